@@ -1,0 +1,17 @@
+# Installs the library, the command and a CMake package: find_package(depthtrack) then
+# target_link_libraries(app PRIVATE depthtrack::depthtrack).
+include(CMakePackageConfigHelpers)
+install(TARGETS depthtrack depthtrack_cli EXPORT depthtrackTargets
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY include/depthtrack DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(EXPORT depthtrackTargets NAMESPACE depthtrack:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/depthtrack)
+configure_package_config_file(cmake/depthtrackConfig.cmake.in
+                              ${PROJECT_BINARY_DIR}/depthtrackConfig.cmake
+                              INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/depthtrack)
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/depthtrackConfigVersion.cmake
+                                 COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/depthtrackConfig.cmake ${PROJECT_BINARY_DIR}/depthtrackConfigVersion.cmake
+        DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/depthtrack)

@@ -1,0 +1,42 @@
+#pragma once
+// Depth sequences on disk: depthtrack's own layout (what `depthtrack synth` writes) and the
+// YCB-Video clip layout (NNNNNN-depth.png + gt.json).
+#include <depthtrack/camera.hpp>
+#include <depthtrack/depth_image.hpp>
+#include <depthtrack/pose.hpp>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace depthtrack {
+
+struct SequenceFrame {
+  std::string name;                    // e.g. "000001"
+  double timestamp = 0;                // seconds
+  std::filesystem::path depth_path;
+  std::optional<Pose> ground_truth;    // camera_from_object of the selected object, when known
+};
+
+struct Sequence {
+  std::string format;                  // "depthtrack" or "ycb-video"
+  std::string object;                  // the object whose ground truth the frames carry ("" if none)
+  Camera camera;                       // intrinsics of the depth images
+  double metres_per_unit = 0.001;      // 16-bit PNG value -> metres
+  std::vector<SequenceFrame> frames;
+
+  // Loads frame i's depth image and checks its size against camera.
+  DepthImage load_depth(size_t i) const;
+};
+
+// Reads either layout from dir (detected from its files). object picks the ground truth of one
+// object in a multi-object clip (YCB-Video); it may be omitted when the clip has only one.
+// Throws InputError for a missing folder, unknown layout, corrupt manifest or unknown object
+// (the message lists the objects present).
+Sequence load_sequence(const std::filesystem::path& dir, const std::string& object = "");
+
+// depthtrack's own layout: dir/sequence.json (camera, scale, frames with timestamps and optional
+// ground truth, row-major 4x4) beside the 16-bit depth PNGs it names.
+void write_sequence_manifest(const std::filesystem::path& dir, const Sequence& sequence);
+
+}  // namespace depthtrack

@@ -1,0 +1,63 @@
+#pragma once
+// The particle filter: one update() per depth frame.
+#include <depthtrack/camera.hpp>
+#include <depthtrack/depth_image.hpp>
+#include <depthtrack/mesh.hpp>
+#include <depthtrack/pose.hpp>
+#include <depthtrack/tracker_config.hpp>
+#include <memory>
+
+namespace depthtrack {
+
+// Wall-clock (reference) or device (compute backends) time of each step of the last update, ms.
+struct StepTimings {
+  double propagate_ms = 0, render_ms = 0, weigh_ms = 0, resample_ms = 0, total_ms = 0;
+};
+
+struct Estimate {
+  Pose pose;                                                // weighted mean camera_from_object
+  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   // m/s, object's local frame
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // rad/s, object's local frame
+  double effective_sample_size = 0;                         // 1 / sum w^2 before resampling
+  double max_log_likelihood = 0;                            // best particle's log L of this frame
+  double mean_log_likelihood = 0;                           // weighted mean of log L
+  bool resampled = false;
+  StepTimings timings;
+};
+
+// Spread of the initial particle cloud: per-axis standard deviations.
+struct InitialSpread {
+  double metres = 0.01;
+  double radians = 0.05;
+};
+
+class FilterBackend;  // the per-backend implementation (reference, compute layer)
+
+class Tracker {
+ public:
+  // sensor: the intrinsics of the images update() receives; they are decimated to the
+  // configured working resolution, which must divide the sensor resolution.
+  Tracker(const Mesh& mesh, const Camera& sensor, const TrackerConfig& config);
+  ~Tracker();
+  Tracker(Tracker&&) noexcept;
+  Tracker& operator=(Tracker&&) noexcept;
+
+  // Draws the particles around pose (gaussian, per-axis, about the mesh's centre, local frame).
+  void initialize(const Pose& pose, const InitialSpread& spread = {});
+  // Runs one frame. depth must have the sensor's size; timestamps (seconds) must increase.
+  Estimate update(const DepthImage& depth, double timestamp);
+
+  const Camera& working_camera() const;
+  const TrackerConfig& config() const;
+  std::string backend_description() const;
+
+ private:
+  std::unique_ptr<FilterBackend> backend_;
+  Camera sensor_;
+  int decimation_ = 1;
+  bool initialized_ = false;
+  bool has_previous_ = false;
+  double previous_timestamp_ = 0;
+};
+
+}  // namespace depthtrack

@@ -1,0 +1,11 @@
+#pragma once
+// Each subcommand of the depthtrack command registers itself on the CLI11 app.
+#include <CLI/CLI.hpp>
+
+namespace depthtrack::cli {
+
+void add_demo_command(CLI::App& app);
+void add_synth_command(CLI::App& app);
+void add_track_command(CLI::App& app);
+
+}  // namespace depthtrack::cli

@@ -1,0 +1,52 @@
+#include <depthtrack/camera.hpp>
+#include <depthtrack/error.hpp>
+
+#include <cmath>
+#include <string>
+
+namespace depthtrack {
+
+Camera Camera::make(int width, int height, double fx, double fy, double cx, double cy) {
+  Camera c;
+  c.width = width;
+  c.height = height;
+  c.fx = fx;
+  c.fy = fy;
+  c.cx = cx;
+  c.cy = cy;
+  c.validate();
+  return c;
+}
+
+void Camera::validate() const {
+  auto fail = [](const std::string& what) { throw InputError("impossible camera intrinsics: " + what); };
+  if (width <= 0 || height <= 0)
+    fail("image size " + std::to_string(width) + "x" + std::to_string(height) + " must be positive");
+  if (!std::isfinite(fx) || fx <= 0) fail("focal length fx = " + std::to_string(fx) + " must be positive");
+  if (!std::isfinite(fy) || fy <= 0) fail("focal length fy = " + std::to_string(fy) + " must be positive");
+  if (!std::isfinite(cx) || !std::isfinite(cy)) fail("principal point must be finite");
+}
+
+Camera Camera::decimated(int factor) const {
+  if (factor < 1) throw InputError("decimation factor " + std::to_string(factor) + " must be at least 1");
+  if (width % factor != 0 || height % factor != 0)
+    throw InputError("image size " + std::to_string(width) + "x" + std::to_string(height) +
+                     " is not divisible by the decimation factor " + std::to_string(factor));
+  // Pixel u' is pixel factor*u' of the original; with integer pixel centres the image
+  // coordinate scales by 1/factor, principal point included (no half-pixel shift).
+  return Camera::make(width / factor, height / factor, fx / factor, fy / factor, cx / factor, cy / factor);
+}
+
+int Camera::decimation_factor_for(int target_width, int target_height) const {
+  if (target_width <= 0 || target_height <= 0)
+    throw InputError("working resolution " + std::to_string(target_width) + "x" + std::to_string(target_height) +
+                     " must be positive");
+  if (width % target_width != 0 || height % target_height != 0 ||
+      width / target_width != height / target_height)
+    throw InputError("working resolution " + std::to_string(target_width) + "x" + std::to_string(target_height) +
+                     " is not the sensor's " + std::to_string(width) + "x" + std::to_string(height) +
+                     " divided by one integer factor");
+  return width / target_width;
+}
+
+}  // namespace depthtrack

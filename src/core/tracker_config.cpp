@@ -1,0 +1,54 @@
+#include <depthtrack/error.hpp>
+#include <depthtrack/tracker_config.hpp>
+
+#include <cmath>
+#include <string>
+
+namespace depthtrack {
+
+const char* to_string(OcclusionStorage mode) {
+  switch (mode) {
+    case OcclusionStorage::PerPixelTime: return "per-pixel-time";
+    case OcclusionStorage::GlobalTime: return "global-time";
+    case OcclusionStorage::Off: return "off";
+  }
+  return "?";
+}
+
+OcclusionStorage occlusion_storage_from_string(const std::string& name) {
+  for (auto mode : {OcclusionStorage::PerPixelTime, OcclusionStorage::GlobalTime, OcclusionStorage::Off})
+    if (name == to_string(mode)) return mode;
+  throw InputError("unknown occlusion mode '" + name + "' (choose per-pixel-time, global-time or off)");
+}
+
+namespace {
+void require(bool ok, const std::string& what) {
+  if (!ok) throw InputError("invalid tracker configuration: " + what);
+}
+bool positive(double v) { return std::isfinite(v) && v > 0; }
+bool probability(double v) { return std::isfinite(v) && v >= 0 && v <= 1; }
+}  // namespace
+
+void TrackerConfig::validate() const {
+  require(particles > 0, "particle count " + std::to_string(particles) + " must be at least 1");
+  require(width > 0 && height > 0, "working resolution must be positive");
+  require(positive(observation.sigma_constant) && std::isfinite(observation.sigma_quadratic) &&
+              observation.sigma_quadratic >= 0,
+          "depth noise sigma must be positive");
+  require(probability(observation.tail_weight) && observation.tail_weight < 1, "tail weight must be in [0, 1)");
+  require(positive(observation.max_depth), "max depth must be positive");
+  require(positive(observation.occluder_rate), "occluder rate must be positive");
+  require(probability(occlusion.p_occluded_stays) && probability(occlusion.p_visible_to_occluded) &&
+              occlusion.p_occluded_stays > occlusion.p_visible_to_occluded && occlusion.p_occluded_stays < 1,
+          "occlusion transition probabilities need 0 <= b < a < 1");
+  require(probability(occlusion.initial), "initial occlusion probability must be in [0, 1]");
+  require(std::isfinite(motion.damping) && motion.damping > 0 && motion.damping < 1, "damping must be in (0, 1)");
+  require(std::isfinite(motion.sigma_linear) && motion.sigma_linear >= 0, "linear motion noise must be >= 0");
+  require(std::isfinite(motion.sigma_angular) && motion.sigma_angular >= 0, "angular motion noise must be >= 0");
+  require(positive(motion.reference_rate), "motion reference rate must be positive");
+  require(std::isfinite(resample_kl_threshold) && resample_kl_threshold >= 0, "resampling threshold must be >= 0");
+  require(positive(near_plane) && near_plane < observation.max_depth, "near plane must be in (0, max depth)");
+  require(!backend.empty(), "backend name is empty");
+}
+
+}  // namespace depthtrack

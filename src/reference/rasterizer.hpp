@@ -1,0 +1,48 @@
+#pragma once
+// Sequential z-buffer rasterizer producing metric z-depth. Its conventions are the ones the GL atlas
+// renderer follows, so the two can be compared pixel by pixel:
+//  - pixel (u, v) is covered when its centre, image coordinate (u, v), lies inside the projected
+//    triangle; a centre exactly on an edge belongs to the triangle for which the edge is top or left;
+//  - its depth is the camera-frame z of the triangle's plane along the ray through that centre
+//    (what perspective-correct interpolation of z gives);
+//  - geometry nearer than `near` is clipped away (triangles are cut at z = near), fragments farther
+//    than `far` are discarded; there is no back-face culling; uncovered pixels hold 0.
+#include <depthtrack/camera.hpp>
+#include <depthtrack/mesh.hpp>
+#include <depthtrack/pose.hpp>
+
+#include <span>
+#include <vector>
+
+namespace depthtrack::reference {
+
+// Pixel rectangle [u0, u1) x [v0, v1) that a rendering covers; empty when u0 >= u1.
+struct PixelBox {
+  int u0 = 0, v0 = 0, u1 = 0, v1 = 0;
+  bool empty() const { return u0 >= u1 || v0 >= v1; }
+};
+
+class Rasterizer {
+ public:
+  Rasterizer(const Mesh& mesh, const Camera& camera, double near, double far);
+
+  // Writes camera.width * camera.height depths (row-major) into depth; returns the covered box.
+  PixelBox render(const Pose& camera_from_object, std::span<float> depth) const;
+
+  const Camera& camera() const { return camera_; }
+
+ private:
+  struct ScreenVertex {
+    double u, v, inv_z;
+  };
+  void rasterize_triangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, std::span<float> depth,
+                          PixelBox& box) const;
+
+  std::vector<Eigen::Vector3d> vertices_;
+  std::vector<Eigen::Vector3i> triangles_;
+  Camera camera_;
+  double near_, far_;
+  mutable std::vector<Eigen::Vector3d> transformed_;  // scratch: vertices in the camera frame
+};
+
+}  // namespace depthtrack::reference

@@ -1,0 +1,29 @@
+#pragma once
+// Shared helpers of the test suite.
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <string>
+
+namespace depthtrack::test {
+
+// Path of a file under ../shared/data, or nullopt (after printing "SKIPPED: ...", which ctest
+// reports as a skip) when the third-party data is not there, as in a user's fresh clone.
+inline std::optional<std::filesystem::path> shared_data(const std::string& relative) {
+  const char* env = std::getenv("DEPTHTRACK_DATA_DIR");
+  const std::filesystem::path root = env ? env : DEPTHTRACK_DATA_DIR;
+  const auto path = root / relative;
+  if (std::filesystem::exists(path)) return path;
+  std::cout << "SKIPPED: " << path.string() << " is absent (third-party data lives in ../shared/data)\n";
+  return std::nullopt;
+}
+
+// A fresh, empty folder for one test's files, inside the build tree.
+inline std::filesystem::path temp_dir(const std::string& name) {
+  const auto dir = std::filesystem::path(DEPTHTRACK_TEST_TMP) / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+}  // namespace depthtrack::test
