@@ -54,6 +54,8 @@ class Tracker {
  private:
   std::unique_ptr<FilterBackend> backend_;
   Camera sensor_;
+  Camera working_;
+  TrackerConfig config_;
   int decimation_ = 1;
   bool initialized_ = false;
   bool has_previous_ = false;

@@ -1,6 +1,7 @@
 #include <depthtrack/error.hpp>
 #include <depthtrack/mesh.hpp>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <string>
 

@@ -1,0 +1,55 @@
+#pragma once
+// Running a tracker over a sequence and scoring it against ground truth.
+#include <depthtrack/mesh.hpp>
+#include <depthtrack/pose.hpp>
+#include <depthtrack/sequence.hpp>
+#include <depthtrack/tracker.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <vector>
+
+namespace depthtrack {
+
+struct TrackedFrame {
+  std::string name;
+  double timestamp = 0;
+  Estimate estimate;
+  std::optional<Pose> ground_truth;
+  double translation_error = NAN;  // metres, when ground truth is known
+  double rotation_error = NAN;     // radians
+};
+
+// Tracks every frame of the sequence from the given initial pose; on_frame(i, frame) is called
+// after each frame (progress, printing).
+std::vector<TrackedFrame> track_sequence(
+    const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config, const Pose& initial,
+    const InitialSpread& spread, const std::function<void(size_t, const TrackedFrame&)>& on_frame = {});
+
+// pose moved by exactly `metres` in a direction and rotated by exactly `degrees` about an axis
+// through the mesh's centre, both drawn from seed: a reproducible "start from perturbed ground truth".
+Pose perturb_pose(const Pose& pose, const Eigen::Vector3d& centre, double metres, double degrees, uint64_t seed);
+
+// ADD-S: mean over the model's vertices, placed by the estimate, of the distance to the closest
+// vertex placed by the truth (symmetric objects score by shape, not by unobservable rotation).
+class AddsMetric {
+ public:
+  explicit AddsMetric(const Mesh& mesh);
+  ~AddsMetric();
+  double operator()(const Pose& estimate, const Pose& truth) const;
+
+ private:
+  struct Index;
+  std::unique_ptr<Index> index_;
+  std::vector<Eigen::Vector3d> vertices_;
+};
+
+// CSV with a header and a row per frame: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess and, when every
+// frame has ground truth, err_t_mm,err_r_deg.
+void write_tracking_csv(const std::filesystem::path& path, const std::vector<TrackedFrame>& frames);
+
+}  // namespace depthtrack

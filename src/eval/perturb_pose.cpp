@@ -1,0 +1,21 @@
+#include <depthtrack/evaluation.hpp>
+
+#include <numbers>
+#include <random>
+
+#include "reference/particle.hpp"
+
+namespace depthtrack {
+
+Pose perturb_pose(const Pose& pose, const Eigen::Vector3d& centre, double metres, double degrees, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal;
+  auto random_unit = [&] {
+    Eigen::Vector3d d(normal(rng), normal(rng), normal(rng));
+    return Eigen::Vector3d(d.normalized());
+  };
+  const Eigen::Vector3d direction = random_unit(), axis = random_unit();
+  return reference::move_about_centre(pose, centre, metres * direction, degrees * std::numbers::pi / 180.0 * axis);
+}
+
+}  // namespace depthtrack

@@ -1,0 +1,26 @@
+#pragma once
+// The per-pixel observation model of MODEL.md, in double precision: the oracle for the kernels.
+#include <depthtrack/tracker_config.hpp>
+
+namespace depthtrack::reference {
+
+struct PixelDensities {
+  double visible;     // p_vis(y | y_hat): the object is seen at this pixel
+  double occluded;    // p_occ(y | y_hat): something in front of the object is seen
+  double background;  // p_bg(y): no object at this pixel
+};
+
+// Depth noise sigma(y) grows with the observed depth y.
+double depth_sigma(const ObservationModel& m, double y);
+
+// Densities of observing depth y where the particle renders depth y_hat (both metres, > 0).
+PixelDensities pixel_densities(const ObservationModel& m, double y, double y_hat);
+
+// One pixel's term of a particle's log-likelihood: log(((1-p) p_vis + p p_occ) / p_bg), where p
+// is the pixel's occlusion probability propagated to now.
+double pixel_log_ratio(const PixelDensities& d, double p_occluded);
+
+// Bayes update of the occlusion probability after the observation: p p_occ / ((1-p) p_vis + p p_occ).
+double occlusion_posterior(const PixelDensities& d, double p_occluded);
+
+}  // namespace depthtrack::reference

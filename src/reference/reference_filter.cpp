@@ -1,0 +1,155 @@
+#include "reference/reference_filter.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <numeric>
+
+#include "philox.h"
+#include "reference/observation_model.hpp"
+#include "reference/occlusion_chain.hpp"
+#include "reference/pose_mean.hpp"
+#include "reference/weights.hpp"
+
+namespace depthtrack::reference {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+}  // namespace
+
+ReferenceFilter::ReferenceFilter(const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
+    : config_(config),
+      camera_(camera),
+      centre_(mesh.centre().cast<double>()),
+      rasterizer_(mesh, camera, config.near_plane, config.observation.max_depth) {
+  const size_t n = static_cast<size_t>(config.particles), pixels = static_cast<size_t>(camera.pixel_count());
+  particles_.resize(n);
+  log_weights_.assign(n, 0.0);
+  rendered_.resize(pixels);
+  if (config.occlusion_storage != OcclusionStorage::Off) occlusion_.resize(n * pixels);
+  if (config.occlusion_storage == OcclusionStorage::PerPixelTime) occlusion_time_.resize(n * pixels);
+}
+
+void ReferenceFilter::initialize(const Pose& pose, const InitialSpread& spread) {
+  for (size_t i = 0; i < particles_.size(); ++i) {
+    float normals[6];
+    dt_normals6(config_.seed, static_cast<dt_u32>(i), 0u, DT_STREAM_INIT, normals);
+    particles_[i] = initial_particle(pose, spread, centre_, normals);
+  }
+  std::fill(log_weights_.begin(), log_weights_.end(), 0.0);
+  std::fill(occlusion_.begin(), occlusion_.end(), static_cast<float>(config_.occlusion.initial));
+  std::fill(occlusion_time_.begin(), occlusion_time_.end(), 0.0f);
+  frame_ = 0;
+  time_ = 0;
+}
+
+void ReferenceFilter::propagate(double dt) {
+  for (size_t i = 0; i < particles_.size(); ++i) {
+    float normals[6];
+    dt_normals6(config_.seed, static_cast<dt_u32>(i), frame_, DT_STREAM_MOTION, normals);
+    propagate_particle(particles_[i], config_.motion, centre_, dt, normals);
+  }
+}
+
+double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double dt, double& render_ms) {
+  const auto render_start = Clock::now();
+  const PixelBox box = rasterizer_.render(particles_[i].pose, rendered_);
+  render_ms += ms_since(render_start);
+
+  const size_t pixels = static_cast<size_t>(camera_.pixel_count());
+  float* occlusion = occlusion_.empty() ? nullptr : occlusion_.data() + i * pixels;
+  float* occlusion_time = occlusion_time_.empty() ? nullptr : occlusion_time_.data() + i * pixels;
+  if (config_.occlusion_storage == OcclusionStorage::GlobalTime && dt > 0)
+    for (size_t k = 0; k < pixels; ++k)
+      occlusion[k] = static_cast<float>(propagate_occlusion(config_.occlusion, occlusion[k], dt));
+
+  double log_likelihood = 0;
+  for (int v = box.v0; v < box.v1; ++v) {
+    for (int u = box.u0; u < box.u1; ++u) {
+      const size_t k = static_cast<size_t>(v) * static_cast<size_t>(camera_.width) + static_cast<size_t>(u);
+      const double y_hat = rendered_[k], y = depth.data()[k];
+      if (y_hat <= 0 || !DepthImage::is_valid(static_cast<float>(y))) continue;  // adds 0
+      double p = 0;
+      if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
+        p = propagate_occlusion(config_.occlusion, occlusion[k], time_ - occlusion_time[k]);
+      else if (config_.occlusion_storage == OcclusionStorage::GlobalTime)
+        p = occlusion[k];
+      const PixelDensities d = pixel_densities(config_.observation, y, y_hat);
+      log_likelihood += pixel_log_ratio(d, p);
+      if (occlusion) occlusion[k] = static_cast<float>(occlusion_posterior(d, p));
+      if (occlusion_time) occlusion_time[k] = static_cast<float>(time_);
+    }
+  }
+  return log_likelihood;
+}
+
+void ReferenceFilter::resample(const std::vector<double>& normalized) {
+  const dt_philox4 words = dt_random_words(config_.seed, 0u, frame_, DT_STREAM_RESAMPLE, 0u);
+  last_parents_ = systematic_resample(normalized, dt_uniform01(words.v[0]));
+  const size_t pixels = static_cast<size_t>(camera_.pixel_count());
+  const std::vector<ParticleState> parents_state = particles_;
+  const std::vector<float> parents_occlusion = occlusion_, parents_time = occlusion_time_;
+  for (size_t child = 0; child < particles_.size(); ++child) {
+    const size_t parent = static_cast<size_t>(last_parents_[child]);
+    particles_[child] = parents_state[parent];
+    if (!occlusion_.empty())
+      std::copy_n(parents_occlusion.begin() + static_cast<std::ptrdiff_t>(parent * pixels), pixels,
+                  occlusion_.begin() + static_cast<std::ptrdiff_t>(child * pixels));
+    if (!occlusion_time_.empty())
+      std::copy_n(parents_time.begin() + static_cast<std::ptrdiff_t>(parent * pixels), pixels,
+                  occlusion_time_.begin() + static_cast<std::ptrdiff_t>(child * pixels));
+  }
+  std::fill(log_weights_.begin(), log_weights_.end(), 0.0);
+}
+
+Estimate ReferenceFilter::update(const DepthImage& depth, double dt) {
+  const auto frame_start = Clock::now();
+  Estimate e;
+  time_ += dt;
+  if (dt > 0) {
+    const auto start = Clock::now();
+    propagate(dt);
+    e.timings.propagate_ms = ms_since(start);
+  }
+
+  const auto weigh_start = Clock::now();
+  last_log_likelihoods_.resize(particles_.size());
+  for (size_t i = 0; i < particles_.size(); ++i) {
+    last_log_likelihoods_[i] = weigh_particle(i, depth, dt, e.timings.render_ms);
+    log_weights_[i] += last_log_likelihoods_[i];
+  }
+  e.timings.weigh_ms = ms_since(weigh_start) - e.timings.render_ms;
+
+  const auto resample_start = Clock::now();
+  const WeightSummary weights = summarize_log_weights(log_weights_);
+  std::vector<Pose> poses(particles_.size());
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero(), angular = Eigen::Vector3d::Zero();
+  double mean_log_likelihood = 0;
+  for (size_t i = 0; i < particles_.size(); ++i) {
+    poses[i] = particles_[i].pose;
+    linear += weights.normalized[i] * particles_[i].linear_velocity;
+    angular += weights.normalized[i] * particles_[i].angular_velocity;
+    mean_log_likelihood += weights.normalized[i] * last_log_likelihoods_[i];
+  }
+  e.pose = weighted_mean_pose(poses, weights.normalized, centre_);
+  e.linear_velocity = linear;
+  e.angular_velocity = angular;
+  e.effective_sample_size = weights.effective_sample_size;
+  e.max_log_likelihood = *std::max_element(last_log_likelihoods_.begin(), last_log_likelihoods_.end());
+  e.mean_log_likelihood = mean_log_likelihood;
+  e.resampled = weights.kl_from_uniform > config_.resample_kl_threshold;
+  if (e.resampled) {
+    resample(weights.normalized);
+  } else {
+    last_parents_.resize(particles_.size());
+    std::iota(last_parents_.begin(), last_parents_.end(), 0);
+  }
+  e.timings.resample_ms = ms_since(resample_start);
+  e.timings.total_ms = ms_since(frame_start);
+  ++frame_;
+  return e;
+}
+
+}  // namespace depthtrack::reference

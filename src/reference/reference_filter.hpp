@@ -1,0 +1,51 @@
+#pragma once
+// The whole particle filter, sequential and single-threaded: the readable statement of the method,
+// the oracle the device kernels are tested against and the baseline speedups are quoted against.
+#include <depthtrack/tracker_config.hpp>
+
+#include <vector>
+
+#include "filter/filter_backend.hpp"
+#include "reference/particle.hpp"
+#include "reference/rasterizer.hpp"
+
+namespace depthtrack::reference {
+
+class ReferenceFilter final : public FilterBackend {
+ public:
+  ReferenceFilter(const Mesh& mesh, const Camera& camera, const TrackerConfig& config);
+
+  void initialize(const Pose& pose, const InitialSpread& spread) override;
+  Estimate update(const DepthImage& depth, double dt) override;
+  std::string description() const override { return "reference (sequential CPU)"; }
+
+  // What the last update computed, for comparing backends: per particle, before resampling.
+  const std::vector<double>& last_log_likelihoods() const { return last_log_likelihoods_; }
+  // Each particle's parent in the last resampling (identity when it did not resample).
+  const std::vector<int>& last_parents() const { return last_parents_; }
+  const std::vector<ParticleState>& particles() const { return particles_; }
+
+ private:
+  void propagate(double dt);
+  // Renders and weighs particle i; returns its log-likelihood and updates its occlusion state.
+  double weigh_particle(size_t i, const DepthImage& depth, double dt, double& render_ms);
+  void resample(const std::vector<double>& normalized);
+
+  TrackerConfig config_;
+  Camera camera_;
+  Eigen::Vector3d centre_;
+  Rasterizer rasterizer_;
+  std::vector<ParticleState> particles_;
+  std::vector<double> log_weights_;
+  // Occlusion state per particle per pixel: probability, and (per-pixel-time mode) the time of its
+  // last update in seconds since the first frame. Stored as float, as a device stores it.
+  std::vector<float> occlusion_;
+  std::vector<float> occlusion_time_;
+  std::vector<float> rendered_;  // scratch: one particle's rendering
+  std::vector<double> last_log_likelihoods_;
+  std::vector<int> last_parents_;
+  unsigned frame_ = 0;
+  double time_ = 0;  // seconds since the first frame
+};
+
+}  // namespace depthtrack::reference
