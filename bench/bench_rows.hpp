@@ -1,0 +1,21 @@
+#pragma once
+// Benchmark output in clpeak's shape: one CSV row per measurement, so runs on different machines
+// and backends can be concatenated and compared.
+#include <string>
+#include <vector>
+
+namespace depthtrack::bench {
+
+struct Row {
+  std::string backend, platform, device, driver, test, metric, unit;
+  double value;
+};
+
+void print_header();
+void print_row(const Row& row);
+// Median of the samples (they are reordered).
+double median(std::vector<double> samples);
+// The host CPU's model name, from /proc/cpuinfo.
+std::string cpu_name();
+
+}  // namespace depthtrack::bench
