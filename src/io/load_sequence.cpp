@@ -1,0 +1,31 @@
+// Picks the sequence reader from the files present, and loads a frame's depth.
+#include "io/sequence_formats.hpp"
+
+#include <depthtrack/error.hpp>
+
+namespace depthtrack {
+
+Sequence load_sequence(const std::filesystem::path& dir, const std::string& object) {
+  std::error_code error;
+  if (!std::filesystem::exists(dir, error)) throw InputError("sequence folder '" + dir.string() + "' does not exist");
+  if (!std::filesystem::is_directory(dir, error)) throw InputError("sequence folder '" + dir.string() + "' is not a folder");
+  if (std::filesystem::exists(dir / io::kDepthtrackManifest, error)) return io::load_depthtrack_sequence(dir, object);
+  if (std::filesystem::exists(dir / io::kYcbVideoManifest, error)) return io::load_ycb_video_sequence(dir, object);
+  throw InputError("sequence folder '" + dir.string() + "' has neither " + io::kDepthtrackManifest + " (depthtrack) nor " +
+                   io::kYcbVideoManifest + " (YCB-Video)");
+}
+
+DepthImage Sequence::load_depth(size_t i) const {
+  if (i >= frames.size())
+    throw InputError("frame index " + std::to_string(i) + " is out of range: the sequence has " +
+                     std::to_string(frames.size()) + " frames");
+  const auto& path = frames[i].depth_path;
+  DepthImage depth = DepthImage::load_png(path, metres_per_unit);
+  if (depth.width() != camera.width || depth.height() != camera.height)
+    throw InputError("depth image '" + path.string() + "' is " + std::to_string(depth.width()) + "x" +
+                     std::to_string(depth.height()) + " but the camera is " + std::to_string(camera.width) + "x" +
+                     std::to_string(camera.height));
+  return depth;
+}
+
+}  // namespace depthtrack

@@ -1,0 +1,90 @@
+// Mesh::load through assimp: every format it reads, merged into one triangle list.
+#include <depthtrack/error.hpp>
+#include <depthtrack/mesh.hpp>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <string>
+
+namespace depthtrack {
+
+namespace {
+
+// Appends one assimp mesh (already in the scene's root frame) to out, keeping only triangles:
+// point and line primitives have no area to render.
+void append_triangles(const aiMesh& in, double unit_scale, const std::string& what, Mesh& out) {
+  const int offset = static_cast<int>(out.vertices.size());
+  for (unsigned i = 0; i < in.mNumVertices; ++i) {
+    const aiVector3D& v = in.mVertices[i];
+    out.vertices.emplace_back(static_cast<float>(v.x * unit_scale), static_cast<float>(v.y * unit_scale),
+                              static_cast<float>(v.z * unit_scale));
+  }
+  for (unsigned i = 0; i < in.mNumFaces; ++i) {
+    const aiFace& face = in.mFaces[i];
+    if (face.mNumIndices != 3) continue;
+    for (int k = 0; k < 3; ++k)
+      if (face.mIndices[k] >= in.mNumVertices) throw InputError(what + ": a face refers to a missing vertex");
+    out.triangles.emplace_back(offset + static_cast<int>(face.mIndices[0]), offset + static_cast<int>(face.mIndices[1]),
+                               offset + static_cast<int>(face.mIndices[2]));
+  }
+}
+
+// Merges vertices at the same position and drops those no triangle uses. Formats such as STL
+// repeat every corner per face, and JoinIdenticalVertices keeps corners whose normals or texture
+// coordinates differ; but centre() is a mean over vertices, so each point must count once.
+void weld(Mesh& mesh, const std::string& what) {
+  std::map<std::array<float, 3>, int> index_of;  // ordered by value, so -0 and +0 are one point
+  std::vector<Eigen::Vector3f> kept;
+  for (auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3f& v = mesh.vertices[static_cast<size_t>(t[k])];
+      if (!v.allFinite()) throw InputError(what + ": vertex " + std::to_string(t[k]) + " has a non-finite coordinate");
+      const auto [it, added] = index_of.try_emplace({v.x(), v.y(), v.z()}, static_cast<int>(kept.size()));
+      if (added) kept.push_back(v);
+      t[k] = it->second;
+    }
+  mesh.vertices = std::move(kept);
+}
+
+bool has_polygons(const aiScene& scene) {
+  for (unsigned i = 0; i < scene.mNumMeshes; ++i)
+    for (unsigned j = 0; j < scene.mMeshes[i]->mNumFaces; ++j)
+      if (scene.mMeshes[i]->mFaces[j].mNumIndices >= 3) return true;
+  return false;
+}
+
+}  // namespace
+
+Mesh Mesh::load(const std::filesystem::path& path, double unit_scale) {
+  const std::string name = "mesh '" + path.string() + "'";
+  if (!std::isfinite(unit_scale) || unit_scale <= 0)
+    throw InputError(name + ": unit_scale must be finite and positive, got " + std::to_string(unit_scale));
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) throw InputError("mesh file '" + path.string() + "' does not exist");
+  if (!std::filesystem::is_regular_file(path, error)) throw InputError("mesh file '" + path.string() + "' is not a file");
+
+  // No DefaultLogger is created, so assimp logs nowhere (the library must not print).
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(path.string(), 0);
+  if (!scene) throw InputError("cannot read " + name + ": " + importer.GetErrorString());
+  // Checked before post-processing, which fails on such a scene with a message about orphaned meshes.
+  if (!has_polygons(*scene)) throw InputError(name + " is empty: it has no triangles");
+  // PreTransformVertices bakes node transforms into the vertices; Triangulate splits polygons.
+  scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                       aiProcess_PreTransformVertices);
+  if (!scene) throw InputError("cannot read " + name + ": " + importer.GetErrorString());
+
+  Mesh mesh;
+  for (unsigned i = 0; i < scene->mNumMeshes; ++i) append_triangles(*scene->mMeshes[i], unit_scale, name, mesh);
+  if (mesh.triangles.empty()) throw InputError(name + " is empty: it has no triangles");
+  weld(mesh, name);
+  mesh.validate_and_clean(name);
+  return mesh;
+}
+
+}  // namespace depthtrack
