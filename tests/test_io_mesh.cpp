@@ -255,3 +255,33 @@ TEST_CASE("Mesh::load of a file of garbage bytes is an InputError naming the fil
     REQUIRE_THROWS_WITH(Mesh::load(path), Contains(name));
   }
 }
+
+TEST_CASE("Mesh::load reads an OBJ whose faces refer to texture coordinates it lacks", "[io]") {
+  // The shape of the YCB exports: "f v/vt/vn" with the vt lines stripped; positions are intact.
+  const auto path = write_text(depthtrack::test::temp_dir("io_mesh_stripped_vt") / "tri.obj",
+                               "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\n");
+  const Mesh mesh = Mesh::load(path);
+  REQUIRE(mesh.triangles.size() == 1);
+  CHECK(mesh.vertices.size() == 3);
+  // A face referring to a missing position is still an error.
+  const auto bad = write_text(depthtrack::test::temp_dir("io_mesh_bad_position") / "tri.obj",
+                              "v 0 0 0\nv 1 0 0\nf 1/1 2/2 9/3\n");
+  CHECK_THROWS_AS(Mesh::load(bad), InputError);
+}
+
+TEST_CASE("Mesh::load reads the YCB gelatin box", "[io]") {
+  const auto path = depthtrack::test::shared_data("meshes/ycb/009_gelatin_box.obj");
+  if (!path) return;
+  const Mesh mesh = Mesh::load(*path);
+  CHECK(mesh.triangles.size() + mesh.dropped_degenerate == 16384);
+  Eigen::Vector3f lo = mesh.vertices[0], hi = mesh.vertices[0];
+  for (const auto& v : mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  // A flat box a few centimetres thick and about ten across.
+  const Eigen::Vector3f size = hi - lo;
+  CHECK(size.minCoeff() > 0.02f);
+  CHECK(size.minCoeff() < 0.04f);
+  CHECK(size.maxCoeff() < 0.12f);
+}

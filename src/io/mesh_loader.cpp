@@ -6,9 +6,12 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 
 namespace depthtrack {
@@ -58,6 +61,33 @@ bool has_polygons(const aiScene& scene) {
   return false;
 }
 
+bool is_obj(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".obj";
+}
+
+// The OBJ text with every face corner reduced to its position index ("f 1/1/1 2/2/7" -> "f 1 2").
+// Real exports (the YCB meshes among them) keep texture-coordinate references after stripping
+// the coordinates themselves, which assimp rejects as "Invalid face index"; depth needs positions only.
+std::string obj_with_positions_only(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::ostringstream out;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("f ", 0) != 0) {
+      out << line << '\n';
+      continue;
+    }
+    std::istringstream corners(line.substr(2));
+    std::string corner;
+    out << 'f';
+    while (corners >> corner) out << ' ' << corner.substr(0, corner.find('/'));
+    out << '\n';
+  }
+  return out.str();
+}
+
 }  // namespace
 
 Mesh Mesh::load(const std::filesystem::path& path, double unit_scale) {
@@ -71,6 +101,14 @@ Mesh Mesh::load(const std::filesystem::path& path, double unit_scale) {
   // No DefaultLogger is created, so assimp logs nowhere (the library must not print).
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(path.string(), 0);
+  std::string obj_text;  // must outlive the scene read from it
+  if ((!scene || !has_polygons(*scene)) && is_obj(path)) {
+    // Depending on the file, assimp fails or silently drops such faces: retry with positions only.
+    const std::string first_error = scene ? "" : importer.GetErrorString();
+    obj_text = obj_with_positions_only(path);
+    scene = importer.ReadFileFromMemory(obj_text.data(), obj_text.size(), 0, "obj");
+    if (!scene) throw InputError("cannot read " + name + ": " + (first_error.empty() ? importer.GetErrorString() : first_error));
+  }
   if (!scene) throw InputError("cannot read " + name + ": " + importer.GetErrorString());
   // Checked before post-processing, which fails on such a scene with a message about orphaned meshes.
   if (!has_polygons(*scene)) throw InputError(name + " is empty: it has no triangles");
