@@ -66,9 +66,9 @@ class Synthesizer {
   std::unique_ptr<Impl> impl_;
 };
 
-// Writes config.frames frames as 16-bit PNGs plus sequence.json into dir (created); progress(i, n)
-// is called after each frame when given. Returns the manifest written.
+// Writes config.frames frames as 16-bit PNGs plus sequence.json into dir (created); on_frame(i, frame)
+// is called after frame i is written, when given. Returns the manifest written.
 Sequence write_synthetic_sequence(const std::filesystem::path& dir, const Mesh& mesh, const SynthConfig& config,
-                                  const std::function<void(int, int)>& progress = {});
+                                  const std::function<void(int, const SynthFrame&)>& on_frame = {});
 
 }  // namespace depthtrack
