@@ -1,6 +1,10 @@
 #pragma once
 // Shared helpers of the test suite.
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -24,6 +28,17 @@ inline std::filesystem::path temp_dir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+// Runs the depthtrack command with arguments, its output (stdout and stderr) to log; returns the
+// exit status and the output.
+inline std::pair<int, std::string> run_cli(const std::string& arguments, const std::filesystem::path& log) {
+  const std::string command = std::string(DEPTHTRACK_CLI) + " " + arguments + " > " + log.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  std::ifstream in(log);
+  std::stringstream text;
+  text << in.rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
 }
 
 }  // namespace depthtrack::test

@@ -23,15 +23,6 @@ SynthConfig small_config() {
   return c;
 }
 
-// Runs the command line, output to a file; returns its exit status and output.
-std::pair<int, std::string> run_cli(const std::string& arguments, const std::filesystem::path& log) {
-  const std::string command = std::string(DEPTHTRACK_CLI) + " " + arguments + " > " + log.string() + " 2>&1";
-  const int status = std::system(command.c_str());
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
 }  // namespace
 
 TEST_CASE("a written synthetic sequence loads back with its frames, poses and depths", "[synth]") {
@@ -80,7 +71,7 @@ TEST_CASE("a written synthetic sequence loads back with its frames, poses and de
 TEST_CASE("depthtrack synth writes a sequence and explains its options", "[synth]") {
   const auto dir = test::temp_dir("synth_cli");
   const auto [status, output] =
-      run_cli("synth --builtin --frames 4 --resolution 160x120 --occluder 0.25 --seed 3 --out " + (dir / "seq").string(),
+      test::run_cli("synth --builtin --frames 4 --resolution 160x120 --occluder 0.25 --seed 3 --out " + (dir / "seq").string(),
               dir / "log.txt");
   INFO(output);
   REQUIRE(status == 0);
@@ -90,7 +81,7 @@ TEST_CASE("depthtrack synth writes a sequence and explains its options", "[synth
   CHECK(loaded.camera.width == 160);
   CHECK(loaded.camera.fx == Approx(131.25));
 
-  const auto [help_status, help] = run_cli("synth --help", dir / "help.txt");
+  const auto [help_status, help] = test::run_cli("synth --help", dir / "help.txt");
   CHECK(help_status == 0);
   for (const char* option : {"--out", "--mesh", "--unit-scale", "--builtin", "--frames", "--rate", "--occluder", "--seed",
                              "--resolution", "--background"})
@@ -99,13 +90,13 @@ TEST_CASE("depthtrack synth writes a sequence and explains its options", "[synth
 
 TEST_CASE("depthtrack synth reports bad arguments as errors", "[synth]") {
   const auto dir = test::temp_dir("synth_cli_errors");
-  const auto [no_object, out1] = run_cli("synth --out " + (dir / "a").string(), dir / "1.txt");
+  const auto [no_object, out1] = test::run_cli("synth --out " + (dir / "a").string(), dir / "1.txt");
   CHECK(no_object == 1);
   CHECK(out1.find("--builtin") != std::string::npos);
-  const auto [bad_size, out2] = run_cli("synth --builtin --resolution 640by480 --out " + (dir / "b").string(), dir / "2.txt");
+  const auto [bad_size, out2] = test::run_cli("synth --builtin --resolution 640by480 --out " + (dir / "b").string(), dir / "2.txt");
   CHECK(bad_size == 1);
   CHECK(out2.find("640by480") != std::string::npos);
-  const auto [bad_fraction, out3] = run_cli("synth --builtin --occluder 0.95 --out " + (dir / "c").string(), dir / "3.txt");
+  const auto [bad_fraction, out3] = test::run_cli("synth --builtin --occluder 0.95 --out " + (dir / "c").string(), dir / "3.txt");
   CHECK(bad_fraction == 1);
   CHECK(out3.find("occluder_fraction") != std::string::npos);
 }

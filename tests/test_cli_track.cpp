@@ -1,0 +1,109 @@
+// The depthtrack track contract: options, CSV columns, exit codes and messages.
+#include <catch2/catch.hpp>
+
+#include <depthtrack/synth.hpp>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support.hpp"
+
+using namespace depthtrack;
+
+namespace {
+// A short synthetic sequence of the built-in object at 160x120, written once per test.
+std::filesystem::path write_sequence(const std::string& name, int frames = 6) {
+  const auto dir = test::temp_dir(name);
+  SynthConfig c;
+  c.camera = Camera::make(160, 120, 131.25, 131.25, 79.875, 59.875);
+  c.frames = frames;
+  write_synthetic_sequence(dir / "seq", builtin_demo_mesh(), c);
+  // The built-in mesh as an OBJ, since track takes a mesh file.
+  std::ofstream obj(dir / "object.obj");
+  const Mesh mesh = builtin_demo_mesh();
+  for (const auto& v : mesh.vertices) obj << "v " << v.x() << " " << v.y() << " " << v.z() << "\n";
+  for (const auto& t : mesh.triangles) obj << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
+  return dir;
+}
+
+std::vector<std::string> lines_of(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+}  // namespace
+
+TEST_CASE("track writes one CSV row per frame with the contract's columns", "[cli]") {
+  const auto dir = write_sequence("cli_track");
+  const auto [status, output] =
+      test::run_cli("track --mesh " + (dir / "object.obj").string() + " --sequence " + (dir / "seq").string() +
+                        " --out " + (dir / "out.csv").string() +
+                        " --resolution 80x60 --particles 100 --init-from-gt --occlusion global-time --seed 4",
+                    dir / "log.txt");
+  INFO(output);
+  REQUIRE(status == 0);
+  const auto lines = lines_of(dir / "out.csv");
+  REQUIRE(lines.size() == 7);
+  CHECK(lines[0] == "frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess,err_t_mm,err_r_deg");
+  // Row 3: frame name, timestamp 2/30 s, and a translation error under 1 cm.
+  std::stringstream row(lines[3]);
+  std::vector<std::string> cells;
+  for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+  REQUIRE(cells.size() == 12);
+  CHECK(cells[0] == "000002");
+  CHECK(std::stod(cells[1]) == Approx(2.0 / 30));
+  CHECK(std::stod(cells[4]) == Approx(0.8).margin(0.15));  // tz near the trajectory's 0.8 m
+  CHECK(std::stod(cells[10]) < 10.0);
+  CHECK(output.find("frames per second") != std::string::npos);
+}
+
+TEST_CASE("track --init starts from a given pose, and its CSV then has no error columns", "[cli]") {
+  const auto dir = write_sequence("cli_track_init", 2);
+  const auto [status, output] = test::run_cli(
+      "track --mesh " + (dir / "object.obj").string() + " --sequence " + (dir / "seq").string() + " --out " +
+          (dir / "out.csv").string() + " --resolution 80x60 --init \"0 0 0.8 1 0 0 0\"",
+      dir / "log.txt");
+  INFO(output);
+  REQUIRE(status == 0);
+  // Ground truth is still known from the sequence, so the error columns stay.
+  CHECK(lines_of(dir / "out.csv")[0].find("err_t_mm") != std::string::npos);
+}
+
+TEST_CASE("track explains every option", "[cli]") {
+  const auto dir = test::temp_dir("cli_track_help");
+  const auto [status, help] = test::run_cli("track --help", dir / "help.txt");
+  CHECK(status == 0);
+  for (const char* option : {"--mesh", "--sequence", "--out", "--object", "--backend", "--particles", "--resolution",
+                             "--occlusion", "--seed", "--init-from-gt", "--init-perturb", "--init"})
+    CHECK(help.find(option) != std::string::npos);
+}
+
+TEST_CASE("track refuses bad input with a reason and a non-zero exit code", "[cli][errors]") {
+  const auto dir = write_sequence("cli_track_errors", 2);
+  const std::string base = "track --sequence " + (dir / "seq").string() + " --out " + (dir / "o.csv").string();
+  const std::string mesh = " --mesh " + (dir / "object.obj").string();
+  struct Case {
+    std::string arguments, expected;
+  };
+  const Case cases[] = {
+      {base + " --mesh " + (dir / "missing.obj").string() + " --init-from-gt", "does not exist"},
+      {base + mesh, "--init"},
+      {base + mesh + " --init-from-gt --particles 0", "particle count 0"},
+      {base + mesh + " --init-from-gt --resolution 81x60", "81x60"},
+      {base + mesh + " --init-from-gt --occlusion sometimes", "unknown occlusion mode 'sometimes'"},
+      {base + mesh + " --init \"0 0 0.8 1 0\"", "takes 7 numbers"},
+      {base + mesh + " --init-from-gt --backend quantum", "unknown backend 'quantum'"},
+      {"track --sequence " + (dir / "nowhere").string() + " --out " + (dir / "o.csv").string() + mesh +
+           " --init-from-gt",
+       "does not exist"},
+  };
+  for (const Case& c : cases) {
+    const auto [status, output] = test::run_cli(c.arguments, dir / "log.txt");
+    INFO(c.arguments << "\n" << output);
+    CHECK(status != 0);
+    CHECK(output.find(c.expected) != std::string::npos);
+  }
+}
