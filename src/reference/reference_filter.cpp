@@ -89,18 +89,20 @@ void ReferenceFilter::resample(const std::vector<double>& normalized) {
   const dt_philox4 words = dt_random_words(config_.seed, 0u, frame_, DT_STREAM_RESAMPLE, 0u);
   last_parents_ = systematic_resample(normalized, dt_uniform01(words.v[0]));
   const size_t pixels = static_cast<size_t>(camera_.pixel_count());
-  const std::vector<ParticleState> parents_state = particles_;
-  const std::vector<float> parents_occlusion = occlusion_, parents_time = occlusion_time_;
-  for (size_t child = 0; child < particles_.size(); ++child) {
-    const size_t parent = static_cast<size_t>(last_parents_[child]);
-    particles_[child] = parents_state[parent];
-    if (!occlusion_.empty())
-      std::copy_n(parents_occlusion.begin() + static_cast<std::ptrdiff_t>(parent * pixels), pixels,
-                  occlusion_.begin() + static_cast<std::ptrdiff_t>(child * pixels));
-    if (!occlusion_time_.empty())
-      std::copy_n(parents_time.begin() + static_cast<std::ptrdiff_t>(parent * pixels), pixels,
-                  occlusion_time_.begin() + static_cast<std::ptrdiff_t>(child * pixels));
-  }
+  // Children are gathered into the scratch copies, which then become the state (one copy, no allocation).
+  auto gather = [&](std::vector<float>& state, std::vector<float>& scratch) {
+    if (state.empty()) return;
+    scratch.resize(state.size());
+    for (size_t child = 0; child < particles_.size(); ++child)
+      std::copy_n(state.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(last_parents_[child]) * pixels), pixels,
+                  scratch.begin() + static_cast<std::ptrdiff_t>(child * pixels));
+    state.swap(scratch);
+  };
+  gather(occlusion_, scratch_occlusion_);
+  gather(occlusion_time_, scratch_occlusion_time_);
+  const std::vector<ParticleState> parents = particles_;
+  for (size_t child = 0; child < particles_.size(); ++child)
+    particles_[child] = parents[static_cast<size_t>(last_parents_[child])];
   std::fill(log_weights_.begin(), log_weights_.end(), 0.0);
 }
 

@@ -41,6 +41,7 @@ class ReferenceFilter final : public FilterBackend {
   // last update in seconds since the first frame. Stored as float, as a device stores it.
   std::vector<float> occlusion_;
   std::vector<float> occlusion_time_;
+  std::vector<float> scratch_occlusion_, scratch_occlusion_time_;  // resampling's gather targets
   std::vector<float> rendered_;  // scratch: one particle's rendering
   std::vector<double> last_log_likelihoods_;
   std::vector<int> last_parents_;
