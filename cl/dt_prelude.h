@@ -19,10 +19,28 @@ typedef ulong dt_u64;
 #define dt_sqrtf sqrt
 #define dt_cospif cospi
 #define dt_sinpif sinpi
-#elif defined(__CUDACC__)
+#elif defined(__CUDACC__) || defined(__CUDACC_RTC__)
+/* CUDA (NVRTC compiles the same text): OpenCL C's words in CUDA's terms. */
+typedef unsigned int uint;
+typedef unsigned long long ulong;
 typedef unsigned int dt_u32;
 typedef unsigned long long dt_u64;
 #define DT_FN __device__ __host__ inline
+#define __kernel extern "C" __global__
+#define __global
+#define __local __shared__
+#define restrict __restrict__
+#define CLK_LOCAL_MEM_FENCE 1
+#define CLK_GLOBAL_MEM_FENCE 2
+#define barrier(flags) __syncthreads()
+__device__ inline uint dt_dim3(uint3 v, uint d) { return d == 0 ? v.x : (d == 1 ? v.y : v.z); }
+__device__ inline uint dt_dim3(dim3 v, uint d) { return d == 0 ? v.x : (d == 1 ? v.y : v.z); }
+#define get_local_id(d) dt_dim3(threadIdx, (d))
+#define get_group_id(d) dt_dim3(blockIdx, (d))
+#define get_local_size(d) dt_dim3(blockDim, (d))
+#define get_num_groups(d) dt_dim3(gridDim, (d))
+#define get_global_id(d) (get_group_id(d) * get_local_size(d) + get_local_id(d))
+#define get_global_size(d) (get_num_groups(d) * get_local_size(d))
 #define dt_mulhi(a, b) __umulhi(DT_CAST(dt_u32, a), DT_CAST(dt_u32, b))
 #define dt_logf logf
 #define dt_sqrtf sqrtf

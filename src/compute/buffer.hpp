@@ -1,0 +1,61 @@
+#pragma once
+// Typed device buffer: RAII over DeviceMemory, element counts instead of bytes, checked ranges.
+#include <depthtrack/error.hpp>
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "compute/queue.hpp"
+
+namespace depthtrack::compute {
+
+template <class T>
+class Buffer {
+  static_assert(std::is_trivially_copyable_v<T>, "device buffers hold plain data");
+
+ public:
+  Buffer() = default;
+  Buffer(Queue& queue, size_t count) : queue_(&queue), count_(count), memory_(queue.allocate(count * sizeof(T))) {}
+
+  size_t size() const { return count_; }
+  DeviceMemory& memory() { return *memory_; }
+  const DeviceMemory& memory() const { return *memory_; }
+
+  // Writes data into elements [offset, offset + data.size()).
+  void upload(std::span<const T> data, size_t offset = 0) {
+    check_range("upload", offset, data.size());
+    queue_->write(*memory_, offset * sizeof(T), data.data(), data.size_bytes());
+  }
+  // Reads elements [offset, offset + out.size()) into out.
+  void download(std::span<T> out, size_t offset = 0) const {
+    check_range("download", offset, out.size());
+    queue_->read(*memory_, offset * sizeof(T), out.data(), out.size_bytes());
+  }
+  std::vector<T> download() const {
+    std::vector<T> out(count_);
+    download(std::span<T>(out));
+    return out;
+  }
+
+ private:
+  void check_range(const char* what, size_t offset, size_t count) const {
+    if (!memory_) throw InputError(std::string("buffer ") + what + ": the buffer was never allocated");
+    if (offset > count_ || count > count_ - offset)
+      throw InputError(std::string("buffer ") + what + " of elements [" + std::to_string(offset) + ", " +
+                       std::to_string(offset + count) + ") is outside a buffer of " + std::to_string(count_) +
+                       " elements");
+  }
+
+  Queue* queue_ = nullptr;
+  size_t count_ = 0;
+  std::unique_ptr<DeviceMemory> memory_;
+};
+
+// Sets a buffer as a kernel argument.
+template <class T>
+void set_arg(Kernel& kernel, unsigned index, const Buffer<T>& buffer) {
+  kernel.set_arg(index, buffer.memory());
+}
+
+}  // namespace depthtrack::compute

@@ -1,0 +1,96 @@
+#pragma once
+// The compute layer's backend boundary: a device with one in-order queue, untyped device memory,
+// programs built from source, kernels launched over an nd-range, and events with device timings.
+// OpenCL and CUDA implement it (src/compute/opencl, src/compute/cuda); the filter knows only this.
+// Every failure throws depthtrack::BackendError naming the API call and the symbolic error
+// (CL_OUT_OF_RESOURCES, CUDA_ERROR_OUT_OF_MEMORY), or InputError for a caller's mistake.
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "compute/device_info.hpp"
+
+namespace depthtrack::compute {
+
+// A device allocation; freed when destroyed.
+class DeviceMemory {
+ public:
+  virtual ~DeviceMemory() = default;
+  virtual size_t bytes() const = 0;
+};
+
+// A completed or pending piece of device work.
+class Event {
+ public:
+  virtual ~Event() = default;
+  virtual void wait() = 0;
+  // Device time from start to end of the work, milliseconds (waits for it first).
+  virtual double elapsed_ms() = 0;
+};
+using EventPtr = std::shared_ptr<Event>;
+
+class Kernel {
+ public:
+  virtual ~Kernel() = default;
+  virtual const std::string& name() const = 0;
+  virtual void set_arg(unsigned index, const DeviceMemory& memory) = 0;
+  virtual void set_arg_bytes(unsigned index, const void* value, size_t size) = 0;
+  // A plain value argument (int, float, unsigned, a struct of them).
+  template <class T>
+    requires std::is_trivially_copyable_v<T> && (!std::is_base_of_v<DeviceMemory, T>)
+  void set_arg(unsigned index, const T& value) {
+    set_arg_bytes(index, &value, sizeof(T));
+  }
+};
+
+class Program {
+ public:
+  virtual ~Program() = default;
+  // Throws BackendError listing the kernel names if name is not in the program.
+  virtual std::unique_ptr<Kernel> kernel(const std::string& name) = 0;
+};
+
+// OpenCL's nd-range: global work-items per dimension, divisible by the work-group size.
+// CUDA backends launch global/local blocks of local threads.
+struct NdRange {
+  size_t global[3] = {1, 1, 1};
+  size_t local[3] = {1, 1, 1};
+  unsigned dimensions = 1;
+  static NdRange linear(size_t global, size_t local) { return NdRange{{global, 1, 1}, {local, 1, 1}, 1}; }
+};
+
+class Queue {
+ public:
+  virtual ~Queue() = default;
+  virtual const DeviceInfo& info() const = 0;
+
+  // Throws BackendError (naming the request and the device's limit) when the device cannot hold it.
+  virtual std::unique_ptr<DeviceMemory> allocate(size_t bytes) = 0;
+  // Blocking copies between host and device memory, at a byte offset into the device memory.
+  virtual void write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) = 0;
+  virtual void read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) = 0;
+  // Device-side copy between allocations.
+  virtual void copy(const DeviceMemory& source, size_t source_offset, DeviceMemory& destination,
+                    size_t destination_offset, size_t bytes) = 0;
+
+  // Builds a program from OpenCL C source (see cl/dt_prelude.h for what both backends accept), with
+  // -D definitions given as "NAME=VALUE" or "NAME". A failed build throws BackendError whose
+  // message holds the device, the options and the compiler's log.
+  virtual std::unique_ptr<Program> build(const std::string& name, const std::string& source,
+                                         const std::vector<std::string>& definitions) = 0;
+  // Enqueues a kernel with the arguments set so far; returns its event (timed on the device).
+  virtual EventPtr launch(Kernel& kernel, const NdRange& range) = 0;
+  // Waits for everything enqueued.
+  virtual void finish() = 0;
+};
+
+// Devices of every backend compiled in (a backend whose runtime is absent lists none).
+std::vector<DeviceInfo> list_devices();
+// Opens the device a selection string names: "opencl" (the best device), "opencl:pocl",
+// "opencl:nvidia" (a platform whose name contains the word), "opencl:<platform>.<device>",
+// "cuda", "cuda:<n>". Unknown or absent: InputError that lists what is available.
+std::unique_ptr<Queue> open_device(const std::string& selector);
+
+}  // namespace depthtrack::compute
