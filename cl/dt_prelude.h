@@ -14,6 +14,8 @@
 typedef uint dt_u32;
 typedef ulong dt_u64;
 #define DT_FN inline
+#define DT_DEVICE_FN inline
+#define DT_LOCAL_PTR __local /* a pointer parameter into work-group memory */
 #define dt_mulhi(a, b) mul_hi(DT_CAST(dt_u32, a), DT_CAST(dt_u32, b))
 #define dt_logf log
 #define dt_sqrtf sqrt
@@ -26,6 +28,8 @@ typedef unsigned long long ulong;
 typedef unsigned int dt_u32;
 typedef unsigned long long dt_u64;
 #define DT_FN __device__ __host__ inline
+#define DT_DEVICE_FN __device__ inline
+#define DT_LOCAL_PTR /* CUDA pointers into shared memory are generic */
 #define __kernel extern "C" __global__
 #define __global
 #define __local __shared__
@@ -58,5 +62,8 @@ inline float dt_sqrtf(float x) { return std::sqrt(x); }
 inline float dt_cospif(float x) { return static_cast<float>(std::cos(3.14159265358979323846 * static_cast<double>(x))); }
 inline float dt_sinpif(float x) { return static_cast<float>(std::sin(3.14159265358979323846 * static_cast<double>(x))); }
 #endif
+
+/* Below every finite float: the start of a maximum search (INFINITY is not defined under NVRTC). */
+#define DT_LOWEST (-3.402823466e+38f)
 
 #endif

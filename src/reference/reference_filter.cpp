@@ -53,7 +53,8 @@ void ReferenceFilter::propagate(double dt) {
   }
 }
 
-double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double dt, double& render_ms) {
+double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double dt, double& render_ms,
+                                      double& magnitude) {
   const auto render_start = Clock::now();
   const PixelBox box = rasterizer_.render(particles_[i].pose, rendered_);
   render_ms += ms_since(render_start);
@@ -66,6 +67,7 @@ double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double
       occlusion[k] = static_cast<float>(propagate_occlusion(config_.occlusion, occlusion[k], dt));
 
   double log_likelihood = 0;
+  magnitude = 0;
   for (int v = box.v0; v < box.v1; ++v) {
     for (int u = box.u0; u < box.u1; ++u) {
       const size_t k = static_cast<size_t>(v) * static_cast<size_t>(camera_.width) + static_cast<size_t>(u);
@@ -77,7 +79,9 @@ double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double
       else if (config_.occlusion_storage == OcclusionStorage::GlobalTime)
         p = occlusion[k];
       const PixelDensities d = pixel_densities(config_.observation, y, y_hat);
-      log_likelihood += pixel_log_ratio(d, p);
+      const double term = pixel_log_ratio(d, p);
+      log_likelihood += term;
+      magnitude += std::abs(term);
       if (occlusion) occlusion[k] = static_cast<float>(occlusion_posterior(d, p));
       if (occlusion_time) occlusion_time[k] = static_cast<float>(time_);
     }
@@ -118,14 +122,16 @@ Estimate ReferenceFilter::update(const DepthImage& depth, double dt) {
 
   const auto weigh_start = Clock::now();
   last_log_likelihoods_.resize(particles_.size());
+  last_magnitudes_.resize(particles_.size());
   for (size_t i = 0; i < particles_.size(); ++i) {
-    last_log_likelihoods_[i] = weigh_particle(i, depth, dt, e.timings.render_ms);
+    last_log_likelihoods_[i] = weigh_particle(i, depth, dt, e.timings.render_ms, last_magnitudes_[i]);
     log_weights_[i] += last_log_likelihoods_[i];
   }
   e.timings.weigh_ms = ms_since(weigh_start) - e.timings.render_ms;
 
   const auto resample_start = Clock::now();
   const WeightSummary weights = summarize_log_weights(log_weights_);
+  last_normalized_ = weights.normalized;
   std::vector<Pose> poses(particles_.size());
   Eigen::Vector3d linear = Eigen::Vector3d::Zero(), angular = Eigen::Vector3d::Zero();
   double mean_log_likelihood = 0;

@@ -21,14 +21,22 @@ class ReferenceFilter final : public FilterBackend {
 
   // What the last update computed, for comparing backends: per particle, before resampling.
   const std::vector<double>& last_log_likelihoods() const { return last_log_likelihoods_; }
+  // Per particle, the sum of the absolute per-pixel terms: the scale against which a float
+  // implementation's rounding in that sum is judged (a sum near 0 can cancel terms of +-5).
+  const std::vector<double>& last_log_likelihood_magnitudes() const { return last_magnitudes_; }
   // Each particle's parent in the last resampling (identity when it did not resample).
   const std::vector<int>& last_parents() const { return last_parents_; }
   const std::vector<ParticleState>& particles() const { return particles_; }
+  // The normalized weights the last resampling drew from, and the particles' stored state.
+  const std::vector<double>& last_normalized_weights() const { return last_normalized_; }
+  const std::vector<float>& occlusion_state() const { return occlusion_; }
+  const std::vector<float>& occlusion_times() const { return occlusion_time_; }
+  const std::vector<double>& log_weights() const { return log_weights_; }
 
  private:
   void propagate(double dt);
   // Renders and weighs particle i; returns its log-likelihood and updates its occlusion state.
-  double weigh_particle(size_t i, const DepthImage& depth, double dt, double& render_ms);
+  double weigh_particle(size_t i, const DepthImage& depth, double dt, double& render_ms, double& magnitude);
   void resample(const std::vector<double>& normalized);
 
   TrackerConfig config_;
@@ -43,8 +51,9 @@ class ReferenceFilter final : public FilterBackend {
   std::vector<float> occlusion_time_;
   std::vector<float> scratch_occlusion_, scratch_occlusion_time_;  // resampling's gather targets
   std::vector<float> rendered_;  // scratch: one particle's rendering
-  std::vector<double> last_log_likelihoods_;
+  std::vector<double> last_log_likelihoods_, last_magnitudes_;
   std::vector<int> last_parents_;
+  std::vector<double> last_normalized_;
   unsigned frame_ = 0;
   double time_ = 0;  // seconds since the first frame
 };

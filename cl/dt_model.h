@@ -1,0 +1,36 @@
+/* The per-pixel observation and occlusion model of MODEL.md in float, for the weigh kernel.
+ * src/reference/observation_model.cpp is the double-precision statement it is tested against. */
+#ifndef DT_MODEL_H
+#define DT_MODEL_H
+#include "dt_prelude.h"
+
+typedef struct {
+  float sigma_constant, sigma_quadratic; /* sigma(y) = c + q y^2 */
+  float tail_density;                    /* w / D */
+  float keep;                            /* 1 - w */
+  float lambda;                          /* occluder rate */
+  float log_c;                           /* log(a - b) of the occlusion chain */
+  float p_inf;                           /* its fixed point b / (1 - (a - b)) */
+} dt_model;
+
+/* log(((1 - p) p_vis + p p_occ) / p_bg) for observed y, rendered y_hat; *posterior gets p's Bayes update. */
+DT_FN float dt_pixel_log_ratio(const dt_model m, float y, float y_hat, float p, float* posterior) {
+  const float sigma = m.sigma_constant + m.sigma_quadratic * y * y;
+  const float z = (y - y_hat) / sigma;
+  const float visible = m.tail_density + m.keep * exp(-0.5f * z * z) / (2.5066282746f * sigma);
+  const float ls2 = m.lambda * sigma * sigma;
+  const float occluded =
+      m.tail_density + m.keep * m.lambda * exp(m.lambda * (y_hat - y) + 0.5f * m.lambda * ls2) *
+                           (1.0f + erf((y_hat - y + ls2) / (1.4142135624f * sigma))) /
+                           (2.0f * expm1(m.lambda * y_hat));
+  const float background = m.tail_density + m.keep * m.lambda * exp(-m.lambda * y + 0.5f * m.lambda * ls2);
+  const float mixture = (1.0f - p) * visible + p * occluded;
+  *posterior = p * occluded / mixture;
+  return log(mixture / background);
+}
+
+/* Occlusion probability dt seconds later: p_inf + c^dt (p - p_inf). */
+DT_FN float dt_propagate_occlusion(const dt_model m, float p, float dt) {
+  return m.p_inf + exp(dt * m.log_c) * (p - m.p_inf);
+}
+#endif

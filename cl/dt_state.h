@@ -1,0 +1,20 @@
+/* Layout of one particle's kinematic state in device memory: DT_STATE_STRIDE floats per particle. */
+#ifndef DT_STATE_H
+#define DT_STATE_H
+#define DT_TX 0  /* translation, metres (camera_from_object) */
+#define DT_QW 3  /* rotation quaternion w, x, y, z */
+#define DT_VX 7  /* linear velocity, m/s, object's local frame */
+#define DT_WX 10 /* angular velocity, rad/s, object's local frame */
+#define DT_STATE_STRIDE 16
+
+/* The estimate a frame produces (one small buffer the host reads back). */
+#define DT_EST_TX 0
+#define DT_EST_QW 3
+#define DT_EST_VX 7
+#define DT_EST_WX 10
+#define DT_EST_ESS 13
+#define DT_EST_KL 14
+#define DT_EST_MAX_LL 15
+#define DT_EST_MEAN_LL 16
+#define DT_EST_SIZE 20
+#endif

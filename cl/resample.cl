@@ -1,0 +1,101 @@
+/* Systematic resampling on the device: prefix sum of the normalized weights, each child's parent
+ * by binary search, then gathers of the particles' state. Reference: systematic_resample. */
+#include "dt_prelude.h"
+#include "dt_state.h"
+
+/* Float-float arithmetic: a value is hi + lo with |lo| <= ulp(hi) / 2, about 48 bits, so the
+ * cumulative weights and the comparisons against them round like the reference's doubles. */
+DT_DEVICE_FN void dt_two_sum(float a, float b, float* hi, float* lo) {
+  const float s = a + b;
+  const float bb = s - a;
+  *hi = s;
+  *lo = (a - (s - bb)) + (b - bb);
+}
+DT_DEVICE_FN void dt_ff_add(float* hi, float* lo, float value) {
+  float s, e;
+  dt_two_sum(*hi, value, &s, &e);
+  e += *lo;
+  dt_two_sum(s, e, hi, lo);
+}
+
+/* Inclusive prefix sum over count values in one work-group, as float-float pairs written to
+ * cumulative[2i], cumulative[2i+1]: each work-item sums a contiguous chunk, work-item 0 scans the
+ * chunk totals, then each writes its chunk's running sums. */
+__kernel void prefix_sum(__global const float* values, __global float* cumulative, uint count) {
+  __local float start_hi[DT_GROUP_SIZE];
+  __local float start_lo[DT_GROUP_SIZE];
+  const uint lid = get_local_id(0);
+  const uint chunk = (count + DT_GROUP_SIZE - 1) / DT_GROUP_SIZE;
+  const uint begin = min(count, lid * chunk), end = min(count, begin + chunk);
+  float hi = 0.0f, lo = 0.0f;
+  for (uint i = begin; i < end; ++i) dt_ff_add(&hi, &lo, values[i]);
+  start_hi[lid] = hi;
+  start_lo[lid] = lo;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (lid == 0) {
+    float run_hi = 0.0f, run_lo = 0.0f;
+    for (uint g = 0; g < DT_GROUP_SIZE; ++g) {
+      const float chunk_hi = start_hi[g], chunk_lo = start_lo[g];
+      start_hi[g] = run_hi;
+      start_lo[g] = run_lo;
+      dt_ff_add(&run_hi, &run_lo, chunk_hi);
+      dt_ff_add(&run_hi, &run_lo, chunk_lo);
+    }
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  hi = start_hi[lid];
+  lo = start_lo[lid];
+  for (uint i = begin; i < end; ++i) {
+    dt_ff_add(&hi, &lo, values[i]);
+    cumulative[2 * i] = hi;
+    cumulative[2 * i + 1] = lo;
+  }
+}
+
+/* Does cumulative weight (hi + lo) exceed (u + child) / count? Compared as
+ * (hi + lo) * count > u + child without dividing, products split exactly with fma. */
+DT_DEVICE_FN int dt_exceeds(float hi, float lo, float count, float u, float child) {
+  const float p = hi * count;
+  const float p_err = fma(hi, count, -p) + lo * count;
+  float s, s_err;
+  dt_two_sum(child, u, &s, &s_err);
+  return (p - s) + (p_err - s_err) > 0.0f;
+}
+
+/* Child j takes the first parent whose cumulative weight exceeds (u + j) / count (the last if none). */
+__kernel void find_parents(__global const float* cumulative, __global uint* parents, uint count, float u) {
+  const uint child = get_global_id(0);
+  if (child >= count) return;
+  uint lo = 0, hi = count - 1; /* the answer lies in [lo, hi] */
+  while (lo < hi) {
+    const uint mid = lo + (hi - lo) / 2;
+    if (dt_exceeds(cumulative[2 * mid], cumulative[2 * mid + 1], DT_CAST(float, count), u, DT_CAST(float, child)))
+      hi = mid;
+    else
+      lo = mid + 1;
+  }
+  parents[child] = lo;
+}
+
+/* Children copy their parent's kinematic state. */
+__kernel void gather_state(__global const float* from, __global float* to, __global const uint* parents, uint count) {
+  const uint child = get_global_id(0);
+  if (child >= count) return;
+  __global const float* source = from + DT_CAST(ulong, parents[child]) * DT_STATE_STRIDE;
+  __global float* target = to + DT_CAST(ulong, child) * DT_STATE_STRIDE;
+  for (int k = 0; k < DT_STATE_STRIDE; ++k) target[k] = source[k];
+}
+
+/* Children copy their parent's per-pixel occlusion state: a work-group per child. */
+__kernel void gather_pixels(__global const float* from, __global float* to, __global const uint* parents,
+                            uint pixels) {
+  const uint child = get_group_id(0);
+  __global const float* source = from + DT_CAST(ulong, parents[child]) * pixels;
+  __global float* target = to + DT_CAST(ulong, child) * pixels;
+  for (uint k = get_local_id(0); k < pixels; k += DT_GROUP_SIZE) target[k] = source[k];
+}
+
+__kernel void fill(__global float* values, uint count, float value) {
+  const uint i = get_global_id(0);
+  if (i < count) values[i] = value;
+}

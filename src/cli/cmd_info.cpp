@@ -1,0 +1,100 @@
+// depthtrack info: every compute device of every backend, and what it offers depthtrack.
+#include <depthtrack/error.hpp>
+
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli/commands.hpp"
+#include "compute/queue.hpp"
+
+namespace depthtrack::cli {
+
+namespace {
+std::string format_bytes(size_t bytes) {
+  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB"};
+  double value = static_cast<double>(bytes);
+  int unit = 0;
+  while (value >= 1024.0 && unit < 4) {
+    value /= 1024.0;
+    ++unit;
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.1f %s", value, units[unit]);
+  return text;
+}
+
+const char* yes_no(bool value) {
+  return value ? "yes" : "no";
+}
+
+void print_extensions(const std::vector<std::string>& extensions) {
+  std::printf("    %-18s", "extensions");
+  if (extensions.empty()) std::printf("(none listed)");
+  size_t column = 0;
+  for (const auto& extension : extensions) {
+    if (column > 0 && column + extension.size() > 80) {  // wrap under the first one
+      std::printf("\n    %-18s", "");
+      column = 0;
+    }
+    std::printf("%s ", extension.c_str());
+    column += extension.size() + 1;
+  }
+  std::printf("\n");
+}
+
+void print_device(const compute::DeviceInfo& d, bool extensions) {
+  std::printf("  %s  %s\n", d.selector.c_str(), d.name.c_str());
+  std::printf("    %-18s%s\n", "platform", d.platform.c_str());
+  std::printf("    %-18s%s\n", "vendor", d.vendor.c_str());
+  std::printf("    %-18s%s\n", "driver", d.driver.c_str());
+  std::printf("    %-18s%s\n", "version", d.version.c_str());
+  std::printf("    %-18s%s\n", "type", d.is_gpu ? "GPU" : "CPU or other");
+  std::printf("    %-18s%s\n", "global memory", format_bytes(d.global_memory).c_str());
+  std::printf("    %-18s%s\n", "max allocation", format_bytes(d.max_allocation).c_str());
+  std::printf("    %-18s%s\n", "local memory", format_bytes(d.local_memory).c_str());
+  std::printf("    %-18s%zu\n", "max work-group", d.max_work_group_size);
+  std::printf("    %-18s%d\n", "compute units", d.compute_units);
+  std::printf("    %-18s%s\n", "gl_sharing", yes_no(d.gl_sharing));
+  std::printf("    %-18s%s\n", "external memory", yes_no(d.external_memory));
+  std::printf("    %-18s%s\n", "fp64", yes_no(d.fp64));
+  std::printf("    %-18s%s\n", "subgroups", yes_no(d.subgroups));
+  if (extensions) print_extensions(d.extensions);
+}
+
+// Why a backend lists no device: opening it fails with the reason on the message's first line.
+std::string absence_reason(const std::string& backend) {
+  try {
+    compute::open_device(backend);
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    const std::string first_line = message.substr(0, message.find('\n'));
+    const auto reason = first_line.find("': ");  // after "cannot open compute device '<backend>'"
+    return reason == std::string::npos ? first_line : first_line.substr(reason + 3);
+  }
+  return "it lists no device, yet one opened";
+}
+
+void print_info(bool extensions) {
+  const auto devices = compute::list_devices();
+  const std::pair<const char*, const char*> backends[] = {{"opencl", "OpenCL"}, {"cuda", "CUDA"}};
+  for (const auto& [backend, title] : backends) {
+    std::vector<const compute::DeviceInfo*> mine;
+    for (const auto& d : devices)
+      if (d.backend == backend) mine.push_back(&d);
+    std::printf("%s: %zu device%s\n", title, mine.size(), mine.size() == 1 ? "" : "s");
+    if (mine.empty()) std::printf("  %s\n", absence_reason(backend).c_str());
+    for (const auto* d : mine) print_device(*d, extensions);
+  }
+}
+}  // namespace
+
+void add_info_command(CLI::App& app) {
+  auto extensions = std::make_shared<bool>(false);
+  CLI::App* c = app.add_subcommand("info", "List the compute devices of every backend and what each offers");
+  c->add_flag("--extensions", *extensions, "Also print every device's full extension list");
+  c->callback([extensions] { print_info(*extensions); });
+}
+
+}  // namespace depthtrack::cli

@@ -1,0 +1,123 @@
+#include "compute/cuda/cuda_program.hpp"
+
+#include <algorithm>
+#include <depthtrack/error.hpp>
+
+#include "compute/cuda/cuda_errors.hpp"
+#include "compute/cuda/cuda_nvrtc_api.hpp"
+#include "compute/cuda/cuda_source_text.hpp"
+
+namespace depthtrack::compute::cuda {
+namespace {
+
+// Owns an nvrtcProgram so that every exit path destroys it.
+class NvrtcProgram {
+ public:
+  NvrtcProgram(const NvrtcApi& api, const std::string& source, const std::string& file) : api_(api) {
+    check_nvrtc(api, api.nvrtcCreateProgram(&program_, source.c_str(), file.c_str(), 0, nullptr, nullptr),
+                "nvrtcCreateProgram");
+  }
+  ~NvrtcProgram() { api_.nvrtcDestroyProgram(&program_); }
+  NvrtcProgram(const NvrtcProgram&) = delete;
+  NvrtcProgram& operator=(const NvrtcProgram&) = delete;
+  nvrtcProgram get() const { return program_; }
+
+ private:
+  const NvrtcApi& api_;
+  nvrtcProgram program_ = nullptr;
+};
+
+std::vector<int> supported_archs(const NvrtcApi& api) {
+  int count = 0;
+  check_nvrtc(api, api.nvrtcGetNumSupportedArchs(&count), "nvrtcGetNumSupportedArchs");
+  std::vector<int> archs(static_cast<size_t>(std::max(count, 0)));
+  if (count > 0) check_nvrtc(api, api.nvrtcGetSupportedArchs(archs.data()), "nvrtcGetSupportedArchs");
+  return archs;
+}
+
+std::string program_log(const NvrtcApi& api, nvrtcProgram program) {
+  size_t size = 0;
+  if (api.nvrtcGetProgramLogSize(program, &size) != NVRTC_SUCCESS || size == 0) return {};
+  std::string log(size, '\0');
+  if (api.nvrtcGetProgramLog(program, log.data()) != NVRTC_SUCCESS) return {};
+  log.resize(log.find('\0') == std::string::npos ? size : log.find('\0'));
+  return log;
+}
+
+// The PTX text or cubin bytes, without PTX's terminating nul.
+std::string program_output(const NvrtcApi& api, nvrtcProgram program, bool cubin) {
+  size_t size = 0;
+  std::string out;
+  if (cubin) {
+    check_nvrtc(api, api.nvrtcGetCUBINSize(program, &size), "nvrtcGetCUBINSize");
+    out.resize(size);
+    check_nvrtc(api, api.nvrtcGetCUBIN(program, out.data()), "nvrtcGetCUBIN");
+  } else {
+    check_nvrtc(api, api.nvrtcGetPTXSize(program, &size), "nvrtcGetPTXSize");
+    out.resize(size);
+    check_nvrtc(api, api.nvrtcGetPTX(program, out.data()), "nvrtcGetPTX");
+    if (!out.empty() && out.back() == '\0') out.pop_back();
+  }
+  return out;
+}
+
+CompiledImage compile(const std::string& name, const std::string& source, const std::vector<std::string>& definitions,
+                      int compute_capability, bool want_cubin, const std::string& where) {
+  const NvrtcApi& api = require_nvrtc();
+  const std::string nvrtc = "NVRTC " + std::to_string(api.major) + "." + std::to_string(api.minor);
+  const std::vector<int> archs = supported_archs(api);
+  const int arch = choose_arch(compute_capability, archs);
+  if (arch < 0)
+    throw BackendError(nvrtc + " cannot compile for sm_" + std::to_string(compute_capability) + " on " + where +
+                       ": its oldest architecture is sm_" + (archs.empty() ? "?" : std::to_string(archs.front())));
+  CompiledImage result;
+  result.is_cubin = want_cubin && arch == compute_capability && api.nvrtcGetCUBIN && api.nvrtcGetCUBINSize;
+  result.target = (result.is_cubin ? "sm_" : "compute_") + std::to_string(arch);
+  std::vector<std::string> options = {"--std=c++17", "--gpu-architecture=" + result.target};
+  for (const std::string& definition : definitions) {
+    if (definition.empty() || definition.front() == '=')
+      throw InputError("program '" + name + "': definition '" + definition + "' is not NAME or NAME=VALUE");
+    options.push_back("-D" + definition);
+  }
+  for (const std::string& option : options) result.options += (result.options.empty() ? "" : " ") + option;
+
+  NvrtcProgram program(api, source, name + ".cu");
+  std::vector<const char*> argv;
+  for (const std::string& option : options) argv.push_back(option.c_str());
+  const nvrtcResult status = api.nvrtcCompileProgram(program.get(), static_cast<int>(argv.size()), argv.data());
+  if (status != NVRTC_SUCCESS) {
+    const std::string log = program_log(api, program.get());
+    throw BackendError("nvrtcCompileProgram failed: " + nvrtc_error_text(api, status) + " building program '" + name +
+                       "' for " + result.target + " on " + where + " with " + nvrtc + "\noptions: " + result.options +
+                       "\nlog:\n" + log + (log.empty() || log.back() == '\n' ? "" : "\n") +
+                       numbered_excerpt(source, first_error_line(log)));
+  }
+  result.image = program_output(api, program.get(), result.is_cubin);
+  return result;
+}
+
+}  // namespace
+
+int choose_arch(int compute_capability, const std::vector<int>& supported) {
+  int best = -1;
+  for (const int arch : supported)
+    if (arch <= compute_capability) best = std::max(best, arch);
+  return best;
+}
+
+CompiledImage compile_for_device(const std::string& program, const std::string& source,
+                                 const std::vector<std::string>& definitions, int compute_capability,
+                                 const std::string& where) {
+  return compile(program, source, definitions, compute_capability, true, where);
+}
+
+std::string compile_to_ptx(const std::string& source, const std::vector<std::string>& definitions,
+                           int compute_capability) {
+  return compile("ptx", source, definitions, compute_capability, false, "the host (PTX only, no device)").image;
+}
+
+std::string nvrtc_unavailable_reason() {
+  return nvrtc_api() ? std::string() : nvrtc_failure();
+}
+
+}  // namespace depthtrack::compute::cuda

@@ -1,0 +1,115 @@
+#include "compute/cuda/cuda_queue.hpp"
+
+#include <depthtrack/error.hpp>
+
+#include "compute/cuda/cuda_event.hpp"
+#include "compute/cuda/cuda_kernel.hpp"
+#include "compute/cuda/cuda_memory.hpp"
+#include "compute/cuda/cuda_module.hpp"
+#include "compute/cuda/cuda_program.hpp"
+
+namespace depthtrack::compute::cuda {
+
+CudaQueue::CudaQueue(int ordinal) : context_(std::make_shared<const Context>(ordinal)) {
+  context_->make_current();
+  // A blocking stream (not CU_STREAM_NON_BLOCKING) also orders against work that other code, such
+  // as GL interop, puts on the legacy default stream.
+  context_->check(context_->api().cuStreamCreate(&stream_, CU_STREAM_DEFAULT), "cuStreamCreate");
+}
+
+CudaQueue::~CudaQueue() {
+  // Pending work still completes; the driver frees the stream afterwards.
+  if (context_->try_make_current()) context_->api().cuStreamDestroy(stream_);
+}
+
+std::unique_ptr<DeviceMemory> CudaQueue::allocate(size_t bytes) {
+  return std::make_unique<CudaMemory>(context_, bytes);
+}
+
+const CudaMemory& CudaQueue::checked(const DeviceMemory& memory, size_t offset, size_t bytes, const char* what) const {
+  const CudaMemory& cuda = cuda_memory(memory, *context_, what);
+  if (offset > cuda.bytes() || bytes > cuda.bytes() - offset)
+    throw InputError(std::string(what) + " of bytes [" + std::to_string(offset) + ", " +
+                     std::to_string(offset + bytes) + ") is outside an allocation of " + std::to_string(cuda.bytes()) +
+                     " bytes on " + context_->where());
+  return cuda;
+}
+
+void CudaQueue::write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) {
+  const CudaMemory& cuda = checked(memory, offset, bytes, "write");
+  if (bytes == 0) return;
+  if (!source) throw InputError("write of " + std::to_string(bytes) + " bytes from a null host pointer");
+  context_->make_current();
+  // On the queue's stream, then waited for: in order with enqueued work, and blocking.
+  context_->check(context_->api().cuMemcpyHtoDAsync(cuda.pointer() + offset, source, bytes, stream_),
+                  "cuMemcpyHtoDAsync");
+  finish();
+}
+
+void CudaQueue::read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {
+  const CudaMemory& cuda = checked(memory, offset, bytes, "read");
+  if (bytes == 0) return;
+  if (!destination) throw InputError("read of " + std::to_string(bytes) + " bytes into a null host pointer");
+  context_->make_current();
+  context_->check(context_->api().cuMemcpyDtoHAsync(destination, cuda.pointer() + offset, bytes, stream_),
+                  "cuMemcpyDtoHAsync");
+  finish();
+}
+
+void CudaQueue::copy(const DeviceMemory& source, size_t source_offset, DeviceMemory& destination,
+                     size_t destination_offset, size_t bytes) {
+  const CudaMemory& from = checked(source, source_offset, bytes, "copy source");
+  const CudaMemory& to = checked(destination, destination_offset, bytes, "copy destination");
+  if (bytes == 0) return;
+  // The driver does not define overlapping copies (OpenCL refuses them: CL_MEM_COPY_OVERLAP).
+  const CUdeviceptr from_start = from.pointer() + source_offset, to_start = to.pointer() + destination_offset;
+  if (from_start < to_start + bytes && to_start < from_start + bytes)
+    throw InputError("copy of " + std::to_string(bytes) + " bytes from offset " + std::to_string(source_offset) +
+                     " to offset " + std::to_string(destination_offset) + " of one allocation: the ranges overlap");
+  context_->make_current();
+  context_->check(context_->api().cuMemcpyDtoDAsync(to.pointer() + destination_offset, from.pointer() + source_offset,
+                                                    bytes, stream_),
+                  "cuMemcpyDtoDAsync");
+}
+
+std::unique_ptr<Program> CudaQueue::build(const std::string& name, const std::string& source,
+                                          const std::vector<std::string>& definitions) {
+  const CompiledImage image =
+      compile_for_device(name, source, definitions, context_->compute_capability(), context_->where());
+  return std::make_unique<CudaProgram>(context_, name, source, image);
+}
+
+EventPtr CudaQueue::launch(Kernel& kernel, const NdRange& range) {
+  auto* cuda = dynamic_cast<CudaKernel*>(&kernel);
+  if (!cuda)
+    throw InputError("launch on " + context_->where() + ": kernel '" + kernel.name() + "' is not a CUDA kernel");
+  if (cuda->context().device() != context_->device())
+    throw InputError("launch on " + context_->where() + ": kernel '" + kernel.name() + "' was built for " +
+                     cuda->context().where());
+  const LaunchShape shape = launch_shape(range, cuda->limits(), cuda->name(), context_->where());
+  std::vector<void*> arguments = cuda->argument_pointers();
+  context_->make_current();
+  auto event = std::make_shared<CudaEvent>(context_);
+  event->record_start(stream_);
+  // No dynamic shared memory: kernels declare fixed-size __local arrays.
+  const CUresult status =
+      context_->api().cuLaunchKernel(cuda->function(), shape.grid[0], shape.grid[1], shape.grid[2], shape.block[0],
+                                     shape.block[1], shape.block[2], 0, stream_, arguments.data(), nullptr);
+  if (status != CUDA_SUCCESS) {
+    const auto dims = [](const unsigned(&v)[3]) {
+      return std::to_string(v[0]) + "x" + std::to_string(v[1]) + "x" + std::to_string(v[2]);
+    };
+    const std::string call =
+        "cuLaunchKernel of '" + cuda->name() + "' (grid " + dims(shape.grid) + ", block " + dims(shape.block) + ")";
+    context_->check(status, call.c_str());
+  }
+  event->record_end(stream_);
+  return event;
+}
+
+void CudaQueue::finish() {
+  context_->make_current();
+  context_->check(context_->api().cuStreamSynchronize(stream_), "cuStreamSynchronize");
+}
+
+}  // namespace depthtrack::compute::cuda

@@ -1,0 +1,43 @@
+#pragma once
+// The CUDA Queue: one device's primary context and one in-order stream. Copies to and from the
+// host block; launches and device copies are enqueued on the stream in order.
+#include <memory>
+
+#include "compute/cuda/cuda_context.hpp"
+#include "compute/queue.hpp"
+
+namespace depthtrack::compute::cuda {
+
+class CudaMemory;
+
+class CudaQueue final : public Queue {
+ public:
+  explicit CudaQueue(int ordinal);
+  ~CudaQueue() override;
+  CudaQueue(const CudaQueue&) = delete;
+  CudaQueue& operator=(const CudaQueue&) = delete;
+
+  const DeviceInfo& info() const override { return context_->info(); }
+  std::unique_ptr<DeviceMemory> allocate(size_t bytes) override;
+  void write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) override;
+  void read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) override;
+  void copy(const DeviceMemory& source, size_t source_offset, DeviceMemory& destination, size_t destination_offset,
+            size_t bytes) override;
+  std::unique_ptr<Program> build(const std::string& name, const std::string& source,
+                                 const std::vector<std::string>& definitions) override;
+  EventPtr launch(Kernel& kernel, const NdRange& range) override;
+  void finish() override;
+
+  // For interop code that enqueues its own work in order with the queue's.
+  const Context& context() const { return *context_; }
+  CUstream stream() const { return stream_; }
+
+ private:
+  // `memory` as this device's memory, with [offset, offset + bytes) inside it (else InputError).
+  const CudaMemory& checked(const DeviceMemory& memory, size_t offset, size_t bytes, const char* what) const;
+
+  std::shared_ptr<const Context> context_;
+  CUstream stream_ = nullptr;
+};
+
+}  // namespace depthtrack::compute::cuda

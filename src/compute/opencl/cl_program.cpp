@@ -1,0 +1,111 @@
+#include "compute/opencl/cl_program.hpp"
+
+#include <depthtrack/error.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <regex>
+#include <sstream>
+
+#include "compute/opencl/cl_errors.hpp"
+#include "compute/opencl/cl_kernel.hpp"
+
+namespace depthtrack::compute::opencl {
+
+namespace {
+constexpr int kSourceLinesShown = 40;
+
+std::string build_options(const std::vector<std::string>& definitions) {
+  std::string options = "-cl-std=CL1.2";
+  for (const auto& definition : definitions) {
+    // The driver splits options at blanks, so a blank inside a definition would silently change its meaning.
+    const bool blank = std::any_of(definition.begin(), definition.end(),
+                                   [](unsigned char c) { return std::isspace(c) != 0 || c == '"' || c == '\''; });
+    if (definition.empty() || blank || definition.front() == '=')
+      throw InputError("kernel definition '" + definition + "' is not of the form NAME or NAME=VALUE without blanks");
+    options += " -D " + definition;
+  }
+  return options;
+}
+
+std::string build_log(cl_program program, cl_device_id device) {
+  size_t size = 0;
+  if (clGetProgramBuildInfo(program, device, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size) != CL_SUCCESS)
+    return "(no build log)";
+  std::string log(size, '\0');
+  clGetProgramBuildInfo(program, device, CL_PROGRAM_BUILD_LOG, size, log.data(), nullptr);
+  while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
+  return log.empty() ? "(empty build log)" : log;
+}
+
+// kSourceLinesShown numbered lines of source: around the first line the log blames with an error,
+// else from the top (the kernel itself usually starts after a long prelude).
+std::string numbered_source(const std::string& source, const std::string& log) {
+  std::vector<std::string> lines;
+  std::istringstream in(source);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  int first = 1;
+  std::istringstream log_lines(log);
+  const std::regex position(R"(:(\d{1,9}):\d+:)");  // clang's "<file>:LINE:COLUMN:" (PoCL, NVIDIA, AMD)
+  for (std::string line; std::getline(log_lines, line);) {
+    std::smatch match;
+    if (line.find("error") == std::string::npos || !std::regex_search(line, match, position)) continue;
+    first = std::stoi(match[1].str()) - kSourceLinesShown / 2;
+    break;
+  }
+  const int total = static_cast<int>(lines.size());
+  first = std::max(1, std::min(first, total - kSourceLinesShown + 1));
+  const int last = std::min(total, first + kSourceLinesShown - 1);
+  std::ostringstream out;
+  out << "source lines " << first << "-" << last << " of " << total << ":\n";
+  for (int number = first; number <= last; ++number) {
+    char prefix[16];
+    std::snprintf(prefix, sizeof prefix, "%5d| ", number);
+    out << prefix << lines[static_cast<size_t>(number - 1)] << '\n';
+  }
+  return out.str();
+}
+
+std::string kernel_names(cl_program program) {
+  size_t size = 0;
+  if (clGetProgramInfo(program, CL_PROGRAM_KERNEL_NAMES, 0, nullptr, &size) != CL_SUCCESS) return "(unknown)";
+  std::string names(size, '\0');
+  clGetProgramInfo(program, CL_PROGRAM_KERNEL_NAMES, size, names.data(), nullptr);
+  while (!names.empty() && names.back() == '\0') names.pop_back();
+  std::string list;
+  std::istringstream in(names);
+  for (std::string name; std::getline(in, name, ';');)  // the API separates them with ';'
+    if (!name.empty()) list += (list.empty() ? "" : ", ") + name;
+  return list.empty() ? "(none)" : list;
+}
+}  // namespace
+
+std::unique_ptr<Kernel> ClProgram::kernel(const std::string& name) {
+  cl_int status = CL_SUCCESS;
+  KernelHandle kernel(clCreateKernel(program_.get(), name.c_str(), &status));
+  if (status != CL_SUCCESS)
+    check(status, "clCreateKernel", device_,
+          "program '" + name_ + "' has no kernel '" + name + "'; its kernels: " + kernel_names(program_.get()));
+  return std::make_unique<ClKernel>(std::move(kernel), name, device_);
+}
+
+std::unique_ptr<Program> build_program(cl_context context, cl_device_id device, const std::string& device_name,
+                                       const std::string& name, const std::string& source,
+                                       const std::vector<std::string>& definitions) {
+  const std::string options = build_options(definitions);
+  const char* text = source.c_str();
+  const size_t length = source.size();
+  cl_int status = CL_SUCCESS;
+  ProgramHandle program(clCreateProgramWithSource(context, 1, &text, &length, &status));
+  check(status, "clCreateProgramWithSource", device_name, "program '" + name + "'");
+  status = clBuildProgram(program.get(), 1, &device, options.c_str(), nullptr, nullptr);
+  if (status != CL_SUCCESS) {
+    const std::string log = build_log(program.get(), device);
+    throw BackendError(failure_message(status, "clBuildProgram", device_name, "program '" + name + "'") +
+                       "\noptions: " + options + "\nbuild log:\n" + log + "\n" + numbered_source(source, log));
+  }
+  return std::make_unique<ClProgram>(std::move(program), name, device_name);
+}
+
+}  // namespace depthtrack::compute::opencl

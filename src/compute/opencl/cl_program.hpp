@@ -1,0 +1,30 @@
+#pragma once
+// Programs built from OpenCL C source at run time, and their kernels.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "compute/opencl/cl_handle.hpp"
+#include "compute/queue.hpp"
+
+namespace depthtrack::compute::opencl {
+
+class ClProgram final : public Program {
+ public:
+  ClProgram(ProgramHandle program, std::string name, std::string device)
+      : program_(std::move(program)), name_(std::move(name)), device_(std::move(device)) {}
+  std::unique_ptr<Kernel> kernel(const std::string& name) override;
+
+ private:
+  ProgramHandle program_;
+  std::string name_;
+  std::string device_;
+};
+
+// Builds source for one device with "-cl-std=CL1.2 -D <definition>...". A failed build throws
+// BackendError with the device, the options, the build log and the numbered source around the error.
+std::unique_ptr<Program> build_program(cl_context context, cl_device_id device, const std::string& device_name,
+                                       const std::string& name, const std::string& source,
+                                       const std::vector<std::string>& definitions);
+
+}  // namespace depthtrack::compute::opencl

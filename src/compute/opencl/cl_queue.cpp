@@ -1,0 +1,139 @@
+#include "compute/opencl/cl_queue.hpp"
+
+#include <depthtrack/error.hpp>
+
+#include <cstdio>
+
+#include "compute/opencl/cl_errors.hpp"
+#include "compute/opencl/cl_event.hpp"
+#include "compute/opencl/cl_kernel.hpp"
+#include "compute/opencl/cl_memory.hpp"
+#include "compute/opencl/cl_program.hpp"
+
+namespace depthtrack::compute::opencl {
+
+namespace {
+std::string format_bytes(size_t bytes) {
+  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB"};
+  double value = static_cast<double>(bytes);
+  int unit = 0;
+  while (value >= 1024.0 && unit < 4) {
+    value /= 1024.0;
+    ++unit;
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.1f %s", value, units[unit]);
+  return text;
+}
+
+void check_range(const char* what, size_t offset, size_t bytes, const DeviceMemory& memory) {
+  if (offset > memory.bytes() || bytes > memory.bytes() - offset)
+    throw InputError(std::string(what) + " of bytes [" + std::to_string(offset) + ", " +
+                     std::to_string(offset + bytes) + ") is outside a device buffer of " +
+                     std::to_string(memory.bytes()) + " bytes");
+}
+
+std::string sizes(const size_t* values, unsigned dimensions) {
+  std::string text = "[";
+  for (unsigned d = 0; d < dimensions; ++d) text += (d ? ", " : "") + std::to_string(values[d]);
+  return text + "]";
+}
+}  // namespace
+
+ClQueue::ClQueue(cl_platform_id platform, cl_device_id device, DeviceInfo info)
+    : device_(device), info_(std::move(info)) {
+  const cl_context_properties properties[] = {CL_CONTEXT_PLATFORM, reinterpret_cast<cl_context_properties>(platform),
+                                              0};
+  cl_int status = CL_SUCCESS;
+  // No notification callback: every error it would print also comes back from the failing call.
+  context_ = ContextHandle(clCreateContext(properties, 1, &device_, nullptr, nullptr, &status));
+  check(status, "clCreateContext", info_.name);
+  queue_ = QueueHandle(clCreateCommandQueue(context_.get(), device_, CL_QUEUE_PROFILING_ENABLE, &status));
+  check(status, "clCreateCommandQueue", info_.name);
+}
+
+std::unique_ptr<DeviceMemory> ClQueue::allocate(size_t bytes) {
+  // Refused here rather than by the driver, whose CL_INVALID_BUFFER_SIZE names neither number.
+  if (bytes == 0)
+    throw BackendError("cannot allocate 0 bytes on " + info_.name + ": a device buffer needs at least one byte");
+  if (bytes > info_.max_allocation)
+    throw BackendError("cannot allocate " + format_bytes(bytes) + " (" + std::to_string(bytes) + " bytes) on " +
+                       info_.name + ": the device allows at most " + format_bytes(info_.max_allocation) + " (" +
+                       std::to_string(info_.max_allocation) + " bytes) in one buffer");
+  cl_int status = CL_SUCCESS;
+  MemHandle buffer(clCreateBuffer(context_.get(), CL_MEM_READ_WRITE, bytes, nullptr, &status));
+  const std::string request =
+      "a buffer of " + format_bytes(bytes) + " (global memory " + format_bytes(info_.global_memory) + ")";
+  check(status, "clCreateBuffer", info_.name, request);
+  // Drivers back buffers lazily; touching one byte makes an out-of-memory surface here, not at a later launch.
+  const unsigned char zero = 0;
+  check(clEnqueueWriteBuffer(queue_.get(), buffer.get(), CL_TRUE, 0, 1, &zero, 0, nullptr, nullptr),
+        "clEnqueueWriteBuffer", info_.name, request);
+  return std::make_unique<ClMemory>(std::move(buffer), bytes);
+}
+
+void ClQueue::write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) {
+  check_range("write", offset, bytes, memory);
+  if (bytes == 0) return;  // OpenCL 1.2 rejects empty transfers
+  if (!source) throw InputError("write of " + std::to_string(bytes) + " bytes from a null host pointer");
+  check(clEnqueueWriteBuffer(queue_.get(), cl_buffer(memory, "write"), CL_TRUE, offset, bytes, source, 0, nullptr,
+                             nullptr),
+        "clEnqueueWriteBuffer", info_.name);
+}
+
+void ClQueue::read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {
+  check_range("read", offset, bytes, memory);
+  if (bytes == 0) return;
+  if (!destination) throw InputError("read of " + std::to_string(bytes) + " bytes into a null host pointer");
+  check(clEnqueueReadBuffer(queue_.get(), cl_buffer(memory, "read"), CL_TRUE, offset, bytes, destination, 0, nullptr,
+                            nullptr),
+        "clEnqueueReadBuffer", info_.name);
+}
+
+void ClQueue::copy(const DeviceMemory& source, size_t source_offset, DeviceMemory& destination,
+                   size_t destination_offset, size_t bytes) {
+  check_range("copy source", source_offset, bytes, source);
+  check_range("copy destination", destination_offset, bytes, destination);
+  if (bytes == 0) return;
+  const bool overlap = &source == &destination && source_offset < destination_offset + bytes &&
+                       destination_offset < source_offset + bytes;
+  if (overlap) throw InputError("copy within one buffer with overlapping source and destination ranges");
+  check(clEnqueueCopyBuffer(queue_.get(), cl_buffer(source, "copy"), cl_buffer(destination, "copy"), source_offset,
+                            destination_offset, bytes, 0, nullptr, nullptr),
+        "clEnqueueCopyBuffer", info_.name);
+}
+
+std::unique_ptr<Program> ClQueue::build(const std::string& name, const std::string& source,
+                                        const std::vector<std::string>& definitions) {
+  return build_program(context_.get(), device_, info_.name, name, source, definitions);
+}
+
+EventPtr ClQueue::launch(Kernel& kernel, const NdRange& range) {
+  auto* cl = dynamic_cast<ClKernel*>(&kernel);
+  if (!cl) throw InputError("launch of kernel '" + kernel.name() + "': it was not built by an OpenCL queue");
+  const std::string what = "kernel '" + kernel.name() + "' over global " + sizes(range.global, range.dimensions) +
+                           ", local " + sizes(range.local, range.dimensions);
+  if (range.dimensions < 1 || range.dimensions > 3)
+    throw InputError("launch of kernel '" + kernel.name() + "' in " + std::to_string(range.dimensions) +
+                     " dimensions: give 1, 2 or 3");
+  size_t group = 1;
+  for (unsigned d = 0; d < range.dimensions; ++d) {
+    if (range.global[d] == 0 || range.local[d] == 0 || range.global[d] % range.local[d] != 0)
+      throw InputError("launch of " + what + ": every global size must be a positive multiple of the local size");
+    group *= range.local[d];
+  }
+  if (group > info_.max_work_group_size)
+    throw InputError("launch of " + what + ": a work-group of " + std::to_string(group) +
+                     " work-items is more than the device's " + std::to_string(info_.max_work_group_size));
+  cl_event event = nullptr;
+  check(clEnqueueNDRangeKernel(queue_.get(), cl->get(), range.dimensions, nullptr, range.global, range.local, 0,
+                               nullptr, &event),
+        "clEnqueueNDRangeKernel", info_.name, what);
+  return std::make_shared<ClEvent>(EventHandle(event), info_.name);
+}
+
+void ClQueue::finish() {
+  check(clFinish(queue_.get()), "clFinish", info_.name);
+}
+
+}  // namespace depthtrack::compute::opencl

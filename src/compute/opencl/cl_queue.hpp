@@ -1,0 +1,32 @@
+#pragma once
+// One OpenCL device as Queue: its own context and an in-order, profiled command queue.
+#include <CL/cl.h>
+
+#include "compute/opencl/cl_handle.hpp"
+#include "compute/queue.hpp"
+
+namespace depthtrack::compute::opencl {
+
+class ClQueue final : public Queue {
+ public:
+  ClQueue(cl_platform_id platform, cl_device_id device, DeviceInfo info);
+
+  const DeviceInfo& info() const override { return info_; }
+  std::unique_ptr<DeviceMemory> allocate(size_t bytes) override;
+  void write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) override;
+  void read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) override;
+  void copy(const DeviceMemory& source, size_t source_offset, DeviceMemory& destination, size_t destination_offset,
+            size_t bytes) override;
+  std::unique_ptr<Program> build(const std::string& name, const std::string& source,
+                                 const std::vector<std::string>& definitions) override;
+  EventPtr launch(Kernel& kernel, const NdRange& range) override;
+  void finish() override;
+
+ private:
+  cl_device_id device_;
+  DeviceInfo info_;
+  ContextHandle context_;
+  QueueHandle queue_;
+};
+
+}  // namespace depthtrack::compute::opencl

@@ -1,0 +1,342 @@
+#include "filter/device_filter.hpp"
+
+#include <depthtrack/error.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "compute/kernel_sources.hpp"
+#include "dt_state.h"
+#include "philox.h"
+#include "reference/occlusion_chain.hpp"
+
+namespace depthtrack {
+
+namespace {
+constexpr size_t kGroupSize = 128;    // work-items per group in weigh, summarize and the gathers
+constexpr size_t kLinearGroup = 64;   // work-items per group in the per-particle kernels
+
+// Host mirrors of the structs the kernels take by value (cl/dt_model.h, cl/propagate.cl).
+struct ModelArgs {
+  float sigma_constant, sigma_quadratic, tail_density, keep, lambda, log_c, p_inf;
+};
+struct MotionArgs {
+  float keep, linear_std, angular_std, dt, centre_x, centre_y, centre_z;
+};
+
+size_t round_up(size_t n, size_t multiple) { return (n + multiple - 1) / multiple * multiple; }
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+int occlusion_define(OcclusionStorage mode) {
+  switch (mode) {
+    case OcclusionStorage::PerPixelTime: return 0;
+    case OcclusionStorage::GlobalTime: return 1;
+    case OcclusionStorage::Off: return 2;
+  }
+  return 2;
+}
+}  // namespace
+
+struct DeviceFilter::Kernels {
+  std::unique_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program;
+  std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state,
+      gather_pixels, fill;
+};
+
+DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
+                           const TrackerConfig& config)
+    : queue_(std::move(queue)),
+      config_(config),
+      camera_(camera),
+      centre_(mesh.centre().cast<double>()),
+      rasterizer_(mesh, camera, config.near_plane, config.observation.max_depth),
+      count_(static_cast<size_t>(config.particles)),
+      pixels_(static_cast<size_t>(camera.pixel_count())) {
+  check_memory();
+  const std::vector<std::string> defines = {"DT_GROUP_SIZE=" + std::to_string(kGroupSize),
+                                            "DT_OCCLUSION=" + std::to_string(occlusion_define(config.occlusion_storage))};
+  kernels_ = std::make_unique<Kernels>();
+  Kernels& k = *kernels_;
+  k.propagate_program = queue_->build("propagate.cl", compute::kernel_source("propagate.cl"), defines);
+  k.weigh_program = queue_->build("weigh.cl", compute::kernel_source("weigh.cl"), defines);
+  k.summarize_program = queue_->build("summarize.cl", compute::kernel_source("summarize.cl"), defines);
+  k.resample_program = queue_->build("resample.cl", compute::kernel_source("resample.cl"), defines);
+  k.propagate = k.propagate_program->kernel("propagate");
+  k.weigh = k.weigh_program->kernel("weigh");
+  k.summarize = k.summarize_program->kernel("summarize");
+  k.prefix_sum = k.resample_program->kernel("prefix_sum");
+  k.find_parents = k.resample_program->kernel("find_parents");
+  k.gather_state = k.resample_program->kernel("gather_state");
+  k.gather_pixels = k.resample_program->kernel("gather_pixels");
+  k.fill = k.resample_program->kernel("fill");
+
+  compute::Queue& q = *queue_;
+  state_ = compute::Buffer<float>(q, count_ * DT_STATE_STRIDE);
+  scratch_state_ = compute::Buffer<float>(q, count_ * DT_STATE_STRIDE);
+  log_weight_ = compute::Buffer<float>(q, count_);
+  log_likelihood_ = compute::Buffer<float>(q, count_);
+  weights_ = compute::Buffer<float>(q, count_);
+  cumulative_ = compute::Buffer<float>(q, 2 * count_);  // float-float pairs
+  parents_ = compute::Buffer<unsigned>(q, count_);
+  estimate_ = compute::Buffer<float>(q, DT_EST_SIZE);
+  atlas_ = compute::Buffer<float>(q, count_ * pixels_);
+  observed_ = compute::Buffer<float>(q, pixels_);
+  // Kernels always take the occlusion buffers; modes that do not use one get a single element.
+  const bool occlusion = config.occlusion_storage != OcclusionStorage::Off;
+  const bool times = config.occlusion_storage == OcclusionStorage::PerPixelTime;
+  occlusion_ = compute::Buffer<float>(q, occlusion ? count_ * pixels_ : 1);
+  scratch_occlusion_ = compute::Buffer<float>(q, occlusion ? count_ * pixels_ : 1);
+  occlusion_time_ = compute::Buffer<float>(q, times ? count_ * pixels_ : 1);
+  scratch_occlusion_time_ = compute::Buffer<float>(q, times ? count_ * pixels_ : 1);
+  host_atlas_.resize(count_ * pixels_);
+  host_state_.resize(count_ * DT_STATE_STRIDE);
+}
+
+DeviceFilter::~DeviceFilter() = default;
+
+void DeviceFilter::check_memory() const {
+  const bool occlusion = config_.occlusion_storage != OcclusionStorage::Off;
+  const bool times = config_.occlusion_storage == OcclusionStorage::PerPixelTime;
+  // Atlas, occlusion probabilities and times, each with a resampling twin, plus per-particle state.
+  const double per_particle = 4.0 * (static_cast<double>(pixels_) * (1 + (occlusion ? 2 : 0) + (times ? 2 : 0)) +
+                                     2 * DT_STATE_STRIDE + 6);
+  const double needed = per_particle * static_cast<double>(count_);
+  const auto& info = queue_->info();
+  if (info.global_memory > 0 && needed > 0.9 * static_cast<double>(info.global_memory)) {
+    std::ostringstream m;
+    m.precision(3);
+    m << config_.particles << " particles at " << camera_.width << "x" << camera_.height << " need "
+      << needed / (1 << 30) << " GiB of device memory but " << info.name << " has "
+      << static_cast<double>(info.global_memory) / (1 << 30) << " GiB; at most about "
+      << static_cast<long long>(0.9 * static_cast<double>(info.global_memory) / per_particle) << " particles fit";
+    throw InputError(m.str());
+  }
+}
+
+std::string DeviceFilter::description() const {
+  const auto& info = queue_->info();
+  return info.selector + " " + info.name + " (" + info.platform + ")";
+}
+
+void DeviceFilter::upload_particles(const std::vector<reference::ParticleState>& particles) {
+  for (size_t i = 0; i < count_; ++i) {
+    const reference::ParticleState& s = particles[i];
+    float* out = host_state_.data() + i * DT_STATE_STRIDE;
+    std::fill(out, out + DT_STATE_STRIDE, 0.0f);
+    for (int k = 0; k < 3; ++k) {
+      out[DT_TX + k] = static_cast<float>(s.pose.translation[k]);
+      out[DT_VX + k] = static_cast<float>(s.linear_velocity[k]);
+      out[DT_WX + k] = static_cast<float>(s.angular_velocity[k]);
+    }
+    out[DT_QW] = static_cast<float>(s.pose.rotation.w());
+    out[DT_QW + 1] = static_cast<float>(s.pose.rotation.x());
+    out[DT_QW + 2] = static_cast<float>(s.pose.rotation.y());
+    out[DT_QW + 3] = static_cast<float>(s.pose.rotation.z());
+  }
+  state_.upload(host_state_);
+}
+
+void DeviceFilter::initialize(const Pose& pose, const InitialSpread& spread) {
+  // Drawn on the host exactly as the reference draws them, then converted to float.
+  std::vector<reference::ParticleState> particles(count_);
+  for (size_t i = 0; i < count_; ++i) {
+    float normals[6];
+    dt_normals6(config_.seed, static_cast<dt_u32>(i), 0u, DT_STREAM_INIT, normals);
+    particles[i] = reference::initial_particle(pose, spread, centre_, normals);
+  }
+  upload_particles(particles);
+  log_weight_.upload(std::vector<float>(count_, 0.0f));
+  if (config_.occlusion_storage != OcclusionStorage::Off)
+    occlusion_.upload(std::vector<float>(count_ * pixels_, static_cast<float>(config_.occlusion.initial)));
+  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
+    occlusion_time_.upload(std::vector<float>(count_ * pixels_, 0.0f));
+  frame_ = 0;
+  time_ = 0;
+  last_resampled_ = false;
+}
+
+void DeviceFilter::set_state(const std::vector<reference::ParticleState>& particles, const std::vector<float>& occlusion,
+                             const std::vector<float>& occlusion_time, const std::vector<double>& log_weights) {
+  if (particles.size() != count_ || log_weights.size() != count_)
+    throw InputError("set_state: expected " + std::to_string(count_) + " particles");
+  upload_particles(particles);
+  log_weight_.upload(std::vector<float>(log_weights.begin(), log_weights.end()));
+  if (!occlusion.empty()) occlusion_.upload(occlusion);
+  if (!occlusion_time.empty()) occlusion_time_.upload(occlusion_time);
+}
+
+std::vector<reference::ParticleState> DeviceFilter::unpack(const compute::Buffer<float>& state) const {
+  const std::vector<float> s = state.download();
+  std::vector<reference::ParticleState> out(count_);
+  for (size_t i = 0; i < count_; ++i) {
+    const float* p = s.data() + i * DT_STATE_STRIDE;
+    out[i].pose = Pose({p[DT_TX], p[DT_TX + 1], p[DT_TX + 2]},
+                       Eigen::Quaterniond(p[DT_QW], p[DT_QW + 1], p[DT_QW + 2], p[DT_QW + 3]));
+    out[i].linear_velocity = Eigen::Vector3d(p[DT_VX], p[DT_VX + 1], p[DT_VX + 2]);
+    out[i].angular_velocity = Eigen::Vector3d(p[DT_WX], p[DT_WX + 1], p[DT_WX + 2]);
+  }
+  return out;
+}
+
+std::vector<reference::ParticleState> DeviceFilter::particles() const { return unpack(state_); }
+
+// Resampling gathers into the scratch buffer and swaps, so the weighed states are left there.
+std::vector<reference::ParticleState> DeviceFilter::weighed_particles() const {
+  return unpack(last_resampled_ ? scratch_state_ : state_);
+}
+
+// Until the GL atlas renderer lands: the poses come to the host, the reference rasterizer draws
+// every tile, and the atlas goes up in one copy.
+void DeviceFilter::render_atlas(double& render_ms) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto states = particles();
+  for (size_t i = 0; i < count_; ++i)
+    rasterizer_.render(states[i].pose, std::span<float>(host_atlas_.data() + i * pixels_, pixels_));
+  atlas_.upload(host_atlas_);
+  render_ms += ms_since(start);
+}
+
+Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
+  const auto frame_start = std::chrono::steady_clock::now();
+  Kernels& k = *kernels_;
+  Estimate e;
+  time_ += dt;
+  if (dt > 0) {
+    const MotionModel& m = config_.motion;
+    const double keep = std::pow(m.damping, dt * m.reference_rate);
+    const double spread = std::sqrt((1.0 - keep * keep) / (1.0 - m.damping * m.damping));
+    const MotionArgs args{static_cast<float>(keep),
+                          static_cast<float>(m.sigma_linear * m.reference_rate * spread),
+                          static_cast<float>(m.sigma_angular * m.reference_rate * spread),
+                          static_cast<float>(dt),
+                          static_cast<float>(centre_.x()),
+                          static_cast<float>(centre_.y()),
+                          static_cast<float>(centre_.z())};
+    compute::set_arg(*k.propagate, 0, state_);
+    k.propagate->set_arg(1, static_cast<unsigned>(count_));
+    k.propagate->set_arg(2, static_cast<unsigned>(config_.seed & 0xffffffffu));
+    k.propagate->set_arg(3, static_cast<unsigned>(config_.seed >> 32));
+    k.propagate->set_arg(4, frame_);
+    k.propagate->set_arg(5, args);
+    e.timings.propagate_ms =
+        queue_->launch(*k.propagate, compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup))->elapsed_ms();
+  }
+
+  render_atlas(e.timings.render_ms);
+  observed_.upload(depth.data());
+
+  const ObservationModel& o = config_.observation;
+  const OcclusionModel& oc = config_.occlusion;
+  const ModelArgs model{static_cast<float>(o.sigma_constant),
+                        static_cast<float>(o.sigma_quadratic),
+                        static_cast<float>(o.tail_weight / o.max_depth),
+                        static_cast<float>(1.0 - o.tail_weight),
+                        static_cast<float>(o.occluder_rate),
+                        static_cast<float>(std::log(oc.p_occluded_stays - oc.p_visible_to_occluded)),
+                        static_cast<float>(reference::occlusion_steady_state(oc))};
+  compute::set_arg(*k.weigh, 0, atlas_);
+  compute::set_arg(*k.weigh, 1, observed_);
+  compute::set_arg(*k.weigh, 2, occlusion_);
+  compute::set_arg(*k.weigh, 3, occlusion_time_);
+  compute::set_arg(*k.weigh, 4, log_likelihood_);
+  compute::set_arg(*k.weigh, 5, log_weight_);
+  k.weigh->set_arg(6, static_cast<unsigned>(pixels_));
+  k.weigh->set_arg(7, model);
+  k.weigh->set_arg(8, static_cast<float>(time_));
+  k.weigh->set_arg(9, static_cast<float>(dt));
+  e.timings.weigh_ms = queue_->launch(*k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize))->elapsed_ms();
+
+  compute::set_arg(*k.summarize, 0, state_);
+  compute::set_arg(*k.summarize, 1, log_weight_);
+  compute::set_arg(*k.summarize, 2, log_likelihood_);
+  compute::set_arg(*k.summarize, 3, weights_);
+  compute::set_arg(*k.summarize, 4, estimate_);
+  k.summarize->set_arg(5, static_cast<unsigned>(count_));
+  k.summarize->set_arg(6, static_cast<float>(centre_.x()));
+  k.summarize->set_arg(7, static_cast<float>(centre_.y()));
+  k.summarize->set_arg(8, static_cast<float>(centre_.z()));
+  e.timings.resample_ms = queue_->launch(*k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize))->elapsed_ms();
+
+  float est[DT_EST_SIZE];
+  estimate_.download(std::span<float>(est, DT_EST_SIZE));
+  e.pose = Pose({est[DT_EST_TX], est[DT_EST_TX + 1], est[DT_EST_TX + 2]},
+                Eigen::Quaterniond(est[DT_EST_QW], est[DT_EST_QW + 1], est[DT_EST_QW + 2], est[DT_EST_QW + 3]));
+  e.linear_velocity = Eigen::Vector3d(est[DT_EST_VX], est[DT_EST_VX + 1], est[DT_EST_VX + 2]);
+  e.angular_velocity = Eigen::Vector3d(est[DT_EST_WX], est[DT_EST_WX + 1], est[DT_EST_WX + 2]);
+  e.effective_sample_size = est[DT_EST_ESS];
+  e.max_log_likelihood = est[DT_EST_MAX_LL];
+  e.mean_log_likelihood = est[DT_EST_MEAN_LL];
+  e.resampled = est[DT_EST_KL] > config_.resample_kl_threshold;
+  last_resampled_ = e.resampled;
+  if (e.resampled) e.timings.resample_ms += resample();
+  e.timings.total_ms = ms_since(frame_start);
+  ++frame_;
+  return e;
+}
+
+double DeviceFilter::resample() {
+  Kernels& k = *kernels_;
+  const dt_philox4 words = dt_random_words(config_.seed, 0u, frame_, DT_STREAM_RESAMPLE, 0u);
+  const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
+  const auto per_particle_group = compute::NdRange::linear(count_ * kGroupSize, kGroupSize);
+  const unsigned count = static_cast<unsigned>(count_);
+  double ms = 0;
+
+  compute::set_arg(*k.prefix_sum, 0, weights_);
+  compute::set_arg(*k.prefix_sum, 1, cumulative_);
+  k.prefix_sum->set_arg(2, count);
+  ms += queue_->launch(*k.prefix_sum, compute::NdRange::linear(kGroupSize, kGroupSize))->elapsed_ms();
+
+  compute::set_arg(*k.find_parents, 0, cumulative_);
+  compute::set_arg(*k.find_parents, 1, parents_);
+  k.find_parents->set_arg(2, count);
+  k.find_parents->set_arg(3, dt_uniform01(words.v[0]));
+  ms += queue_->launch(*k.find_parents, linear)->elapsed_ms();
+
+  compute::set_arg(*k.gather_state, 0, state_);
+  compute::set_arg(*k.gather_state, 1, scratch_state_);
+  compute::set_arg(*k.gather_state, 2, parents_);
+  k.gather_state->set_arg(3, count);
+  ms += queue_->launch(*k.gather_state, linear)->elapsed_ms();
+  std::swap(state_, scratch_state_);
+
+  auto gather_pixels = [&](compute::Buffer<float>& state, compute::Buffer<float>& scratch) {
+    compute::set_arg(*k.gather_pixels, 0, state);
+    compute::set_arg(*k.gather_pixels, 1, scratch);
+    compute::set_arg(*k.gather_pixels, 2, parents_);
+    k.gather_pixels->set_arg(3, static_cast<unsigned>(pixels_));
+    ms += queue_->launch(*k.gather_pixels, per_particle_group)->elapsed_ms();
+    std::swap(state, scratch);
+  };
+  if (config_.occlusion_storage != OcclusionStorage::Off) gather_pixels(occlusion_, scratch_occlusion_);
+  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime) gather_pixels(occlusion_time_, scratch_occlusion_time_);
+
+  compute::set_arg(*k.fill, 0, log_weight_);
+  k.fill->set_arg(1, count);
+  k.fill->set_arg(2, 0.0f);
+  ms += queue_->launch(*k.fill, linear)->elapsed_ms();
+  return ms;
+}
+
+std::vector<double> DeviceFilter::last_log_likelihoods() const {
+  const std::vector<float> ll = log_likelihood_.download();
+  return std::vector<double>(ll.begin(), ll.end());
+}
+
+std::vector<int> DeviceFilter::last_parents() const {
+  std::vector<int> parents(count_);
+  if (!last_resampled_) {
+    std::iota(parents.begin(), parents.end(), 0);
+    return parents;
+  }
+  const std::vector<unsigned> p = parents_.download();
+  for (size_t i = 0; i < count_; ++i) parents[i] = static_cast<int>(p[i]);
+  return parents;
+}
+
+}  // namespace depthtrack

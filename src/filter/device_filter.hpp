@@ -1,0 +1,61 @@
+#pragma once
+// The particle filter on a compute device (OpenCL or CUDA through src/compute): propagate, weigh,
+// normalize and estimate, resample, all in kernels from cl/. The pose atlas it weighs comes from
+// an AtlasSource (today the reference rasterizer on the host; the GL renderer is the next step).
+#include <memory>
+#include <vector>
+
+#include "compute/buffer.hpp"
+#include "filter/filter_backend.hpp"
+#include "reference/particle.hpp"
+#include "reference/rasterizer.hpp"
+
+namespace depthtrack {
+
+class DeviceFilter final : public FilterBackend {
+ public:
+  DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
+               const TrackerConfig& config);
+  ~DeviceFilter() override;
+
+  void initialize(const Pose& pose, const InitialSpread& spread) override;
+  Estimate update(const DepthImage& depth, double dt) override;
+  std::string description() const override;
+
+  // What the last update computed, downloaded for comparison with the reference filter.
+  std::vector<double> last_log_likelihoods() const;
+  std::vector<int> last_parents() const;
+  std::vector<reference::ParticleState> particles() const;
+  // The particles as the last update weighed them (before it resampled).
+  std::vector<reference::ParticleState> weighed_particles() const;
+  // Replaces the whole filter state (for comparing backends from a common state). occlusion and
+  // occlusion_time hold particles x pixels values, or are empty where the mode keeps none.
+  void set_state(const std::vector<reference::ParticleState>& particles, const std::vector<float>& occlusion,
+                 const std::vector<float>& occlusion_time, const std::vector<double>& log_weights);
+
+ private:
+  struct Kernels;
+  void check_memory() const;
+  void render_atlas(double& render_ms);
+  void upload_particles(const std::vector<reference::ParticleState>& particles);
+  std::vector<reference::ParticleState> unpack(const compute::Buffer<float>& state) const;
+  double resample();
+
+  std::unique_ptr<compute::Queue> queue_;
+  TrackerConfig config_;
+  Camera camera_;
+  Eigen::Vector3d centre_;
+  reference::Rasterizer rasterizer_;
+  size_t count_, pixels_;
+  std::unique_ptr<Kernels> kernels_;
+  compute::Buffer<float> state_, scratch_state_, log_weight_, log_likelihood_, weights_, cumulative_, estimate_;
+  compute::Buffer<unsigned> parents_;
+  compute::Buffer<float> atlas_, observed_;
+  compute::Buffer<float> occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_;
+  std::vector<float> host_atlas_, host_state_;
+  bool last_resampled_ = false;
+  unsigned frame_ = 0;
+  double time_ = 0;
+};
+
+}  // namespace depthtrack

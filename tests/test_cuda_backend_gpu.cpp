@@ -1,0 +1,153 @@
+// The CUDA Queue itself on a GPU (skipped without one): Philox on the device equals the host's bit
+// for bit, work-group memory and barriers work, arguments are checked, and objects may outlive
+// the queue that made them. The general [compute] tests cover the rest with DEPTHTRACK_TEST_DEVICE=cuda.
+#if defined(DEPTHTRACK_WITH_CUDA)
+#include <catch2/catch.hpp>
+#include <cstdint>
+#include <depthtrack/error.hpp>
+#include <functional>
+#include <iostream>
+#include <numeric>
+#include <vector>
+
+#include "compute/buffer.hpp"
+#include "compute/cuda/cuda_backend.hpp"
+#include "compute/kernel_sources.hpp"
+#include "philox.h"
+
+using namespace depthtrack;
+
+namespace {
+std::unique_ptr<compute::Queue> cuda_queue() {
+  if (compute::cuda::devices().empty()) {
+    std::cout << "SKIPPED: no CUDA device: " << compute::cuda::unavailable_reason() << "\n";
+    return nullptr;
+  }
+  return compute::cuda::open(0);
+}
+
+const char* const kKernels = R"(
+__kernel void random_words(__global uint* out, ulong seed, uint frame) {
+  const uint i = get_global_id(0);
+  const dt_philox4 w = dt_random_words(seed, i, frame, DT_STREAM_MOTION, 3u);
+  for (uint k = 0; k < 4u; ++k) out[4u * i + k] = w.v[k];
+}
+/* One sum per work-group through work-group memory, as the filter's reductions do. */
+__kernel void group_sums(__global const float* in, __global float* out) {
+  __local float scratch[GROUP];
+  const uint l = get_local_id(0);
+  scratch[l] = in[get_global_id(0)];
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (uint half = GROUP / 2; half > 0; half /= 2) {
+    if (l < half) scratch[l] += scratch[l + half];
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (l == 0) out[get_group_id(0)] = scratch[0];
+}
+)";
+
+std::string error_of(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+}  // namespace
+
+TEST_CASE("CUDA Philox equals the host's bit for bit", "[cuda]") {
+  auto queue = cuda_queue();
+  if (!queue) return;
+  auto program = queue->build("gpu_test", compute::kernel_source("philox.h") + kKernels, {"GROUP=128"});
+  auto kernel = program->kernel("random_words");
+  const size_t n = 4096;
+  const std::uint64_t seed = 0x123456789abcdefULL;
+  compute::Buffer<std::uint32_t> out(*queue, 4 * n);
+  compute::set_arg(*kernel, 0, out);
+  kernel->set_arg(1, seed);
+  kernel->set_arg(2, 7u);
+  auto event = queue->launch(*kernel, compute::NdRange::linear(n, 256));
+  CHECK(event->elapsed_ms() >= 0.0);
+  const auto words = out.download();
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const dt_philox4 expected = dt_random_words(seed, i, 7u, DT_STREAM_MOTION, 3u);
+    for (unsigned k = 0; k < 4; ++k) REQUIRE(words[4 * i + k] == expected.v[k]);
+  }
+}
+
+TEST_CASE("CUDA work-group memory and barriers give group sums", "[cuda]") {
+  auto queue = cuda_queue();
+  if (!queue) return;
+  auto program = queue->build("gpu_test", compute::kernel_source("philox.h") + kKernels, {"GROUP=128"});
+  auto kernel = program->kernel("group_sums");
+  std::vector<float> values(128 * 8);
+  std::iota(values.begin(), values.end(), 0.0f);
+  compute::Buffer<float> in(*queue, values.size()), sums(*queue, 8);
+  in.upload(values);
+  compute::set_arg(*kernel, 0, in);
+  compute::set_arg(*kernel, 1, sums);
+  queue->launch(*kernel, compute::NdRange::linear(values.size(), 128));
+  const auto got = sums.download();
+  for (size_t g = 0; g < 8; ++g)
+    CHECK(got[g] == std::accumulate(values.begin() + 128 * g, values.begin() + 128 * (g + 1), 0.0f));
+}
+
+TEST_CASE("CUDA kernel arguments are checked before the launch", "[cuda]") {
+  auto queue = cuda_queue();
+  if (!queue) return;
+  auto program = queue->build("gpu_test", compute::kernel_source("philox.h") + kKernels, {"GROUP=128"});
+  auto kernel = program->kernel("random_words");
+  compute::Buffer<std::uint32_t> out(*queue, 4 * 64);
+  compute::set_arg(*kernel, 0, out);
+  kernel->set_arg(2, 1u);
+  const std::string missing = error_of([&] { queue->launch(*kernel, compute::NdRange::linear(64, 64)); });
+  CHECK(missing.find("argument 1") != std::string::npos);
+  // A 4-byte value for the 8-byte seed (the driver reports parameter sizes since CUDA 12.4).
+  CHECK_THROWS_AS(kernel->set_arg(1, 5u), InputError);
+  CHECK_THROWS_AS(kernel->set_arg(3, 5u), InputError);  // the kernel has three parameters
+  kernel->set_arg(1, std::uint64_t{5});
+  queue->launch(*kernel, compute::NdRange::linear(64, 64));
+  queue->finish();
+}
+
+TEST_CASE("CUDA copies, shared memory between queues, and objects outliving their queue", "[cuda]") {
+  auto queue = cuda_queue();
+  if (!queue) return;
+  auto other = compute::cuda::open(0);  // same device, same primary context
+  compute::Buffer<int> a(*queue, 16), b(*other, 16);
+  std::vector<int> values(16);
+  std::iota(values.begin(), values.end(), 100);
+  a.upload(values);
+  queue->copy(a.memory(), 4 * sizeof(int), b.memory(), 0, 8 * sizeof(int));
+  queue->finish();
+  const auto got = b.download();
+  CHECK(std::vector<int>(got.begin(), got.begin() + 8) == std::vector<int>(values.begin() + 4, values.begin() + 12));
+  // Within one allocation: disjoint ranges copy, overlapping ones are refused.
+  queue->copy(a.memory(), 0, a.memory(), 8 * sizeof(int), 8 * sizeof(int));
+  CHECK(a.download()[15] == 107);
+  CHECK_THROWS_AS(queue->copy(a.memory(), 0, a.memory(), 4 * sizeof(int), 8 * sizeof(int)), InputError);
+
+  auto program = queue->build("gpu_test", compute::kernel_source("philox.h") + kKernels, {"GROUP=128"});
+  auto kernel = program->kernel("random_words");
+  auto memory = queue->allocate(256);
+  program.reset();
+  queue.reset();  // the context lives on in the memory, kernel and the other queue
+  kernel->set_arg(0, *memory);
+  kernel->set_arg(1, std::uint64_t{1});
+  kernel->set_arg(2, 0u);
+  other->launch(*kernel, compute::NdRange::linear(16, 16))->wait();
+}
+
+TEST_CASE("A CUDA allocation beyond free memory names both sizes", "[cuda]") {
+  auto queue = cuda_queue();
+  if (!queue) return;
+  const size_t too_many = queue->info().global_memory + (size_t{1} << 20);
+  const std::string message = error_of([&] { queue->allocate(too_many); });
+  CHECK(message.find(std::to_string(too_many)) != std::string::npos);
+  CHECK(message.find("free") != std::string::npos);
+  CHECK(message.find(queue->info().name) != std::string::npos);
+  CHECK_THROWS_AS(queue->allocate(0), BackendError);
+}
+
+#endif

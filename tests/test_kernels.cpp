@@ -1,0 +1,262 @@
+// Each kernel under cl/ against the reference function it implements, on the test device.
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include "compute/buffer.hpp"
+#include "compute/kernel_sources.hpp"
+#include "device_support.hpp"
+#include "dt_state.h"
+#include "philox.h"
+#include "reference/observation_model.hpp"
+#include "reference/occlusion_chain.hpp"
+#include "reference/particle.hpp"
+#include "reference/pose_mean.hpp"
+#include "reference/rasterizer.hpp"
+#include "reference/weights.hpp"
+
+using namespace depthtrack;
+
+namespace {
+constexpr unsigned kGroup = 128;
+
+std::unique_ptr<compute::Program> build(compute::Queue& q, const std::string& file, int occlusion_mode = 0) {
+  return q.build(file, compute::kernel_source(file),
+                 {"DT_GROUP_SIZE=" + std::to_string(kGroup), "DT_OCCLUSION=" + std::to_string(occlusion_mode)});
+}
+
+reference::ParticleState random_state(std::mt19937& rng) {
+  std::normal_distribution<double> n;
+  reference::ParticleState s;
+  s.pose = Pose({0.05 * n(rng), 0.05 * n(rng), 0.8 + 0.05 * n(rng)},
+                rotation_exp(Eigen::Vector3d(n(rng), n(rng), n(rng))));
+  s.linear_velocity = Eigen::Vector3d(0.1 * n(rng), 0.1 * n(rng), 0.1 * n(rng));
+  s.angular_velocity = Eigen::Vector3d(n(rng), n(rng), n(rng));
+  return s;
+}
+
+std::vector<float> pack(const std::vector<reference::ParticleState>& states) {
+  std::vector<float> out(states.size() * DT_STATE_STRIDE, 0.0f);
+  for (size_t i = 0; i < states.size(); ++i) {
+    float* p = out.data() + i * DT_STATE_STRIDE;
+    const auto& s = states[i];
+    for (int k = 0; k < 3; ++k) {
+      p[DT_TX + k] = static_cast<float>(s.pose.translation[k]);
+      p[DT_VX + k] = static_cast<float>(s.linear_velocity[k]);
+      p[DT_WX + k] = static_cast<float>(s.angular_velocity[k]);
+    }
+    p[DT_QW] = static_cast<float>(s.pose.rotation.w());
+    p[DT_QW + 1] = static_cast<float>(s.pose.rotation.x());
+    p[DT_QW + 2] = static_cast<float>(s.pose.rotation.y());
+    p[DT_QW + 3] = static_cast<float>(s.pose.rotation.z());
+  }
+  return out;
+}
+
+struct ModelArgs {  // cl/dt_model.h's dt_model
+  float sigma_constant, sigma_quadratic, tail_density, keep, lambda, log_c, p_inf;
+};
+ModelArgs model_args() {
+  const ObservationModel o;
+  const OcclusionModel c;
+  return {static_cast<float>(o.sigma_constant), static_cast<float>(o.sigma_quadratic),
+          static_cast<float>(o.tail_weight / o.max_depth), static_cast<float>(1 - o.tail_weight),
+          static_cast<float>(o.occluder_rate), static_cast<float>(std::log(0.6)), 0.25f};
+}
+}  // namespace
+
+TEST_CASE("propagate kernel equals the reference motion step", "[device][kernels]") {
+  if (!test::device_available()) return;
+  auto q = compute::open_device(test::device_selector());
+  auto program = build(*q, "propagate.cl");
+  auto kernel = program->kernel("propagate");
+  std::mt19937 rng(3);
+  std::vector<reference::ParticleState> states(100);
+  for (auto& s : states) s = random_state(rng);
+  compute::Buffer<float> buffer(*q, states.size() * DT_STATE_STRIDE);
+  buffer.upload(pack(states));
+  const Eigen::Vector3d centre(0.01, -0.02, 0.03);
+  const MotionModel m;
+  const double dt = 0.05, keep = std::pow(m.damping, dt * m.reference_rate);
+  const double spread = std::sqrt((1 - keep * keep) / (1 - m.damping * m.damping));
+  struct {
+    float keep, linear_std, angular_std, dt, cx, cy, cz;
+  } args{static_cast<float>(keep), static_cast<float>(m.sigma_linear * 30 * spread),
+         static_cast<float>(m.sigma_angular * 30 * spread), static_cast<float>(dt), 0.01f, -0.02f, 0.03f};
+  const uint64_t seed = 0x123456789ull;
+  compute::set_arg(*kernel, 0, buffer);
+  kernel->set_arg(1, static_cast<unsigned>(states.size()));
+  kernel->set_arg(2, static_cast<unsigned>(seed & 0xffffffffu));
+  kernel->set_arg(3, static_cast<unsigned>(seed >> 32));
+  kernel->set_arg(4, 7u);
+  kernel->set_arg(5, args);
+  q->launch(*kernel, compute::NdRange::linear(128, 64))->wait();
+  const auto out = buffer.download();
+  for (size_t i = 0; i < states.size(); ++i) {
+    float n[6];
+    dt_normals6(seed, static_cast<dt_u32>(i), 7, DT_STREAM_MOTION, n);
+    reference::propagate_particle(states[i], m, centre, dt, n);
+    const float* p = out.data() + i * DT_STATE_STRIDE;
+    const Pose got({p[DT_TX], p[DT_TX + 1], p[DT_TX + 2]}, Eigen::Quaterniond(p[DT_QW], p[DT_QW + 1], p[DT_QW + 2], p[DT_QW + 3]));
+    REQUIRE(translation_error(got, states[i].pose) < 2e-6);
+    REQUIRE(rotation_error(got, states[i].pose) < 2e-5);
+    REQUIRE(p[DT_WX + 1] == Approx(states[i].angular_velocity.y()).epsilon(1e-5).margin(1e-6));
+  }
+}
+
+TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates", "[device][kernels]") {
+  if (!test::device_available()) return;
+  auto q = compute::open_device(test::device_selector());
+  const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.9375, 29.9375);
+  const Mesh mesh = builtin_demo_mesh();
+  const size_t pixels = 4800, count = 16;
+  reference::Rasterizer r(mesh, camera, 0.05, 6.0);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  // Observed: the object at a pose, with an occluding band, missing pixels and a wall.
+  std::vector<float> observed(pixels);
+  const Pose truth({0, 0, 0.8}, rotation_exp(Eigen::Vector3d(0.4, 0.5, 0.1)));
+  r.render(truth, observed);
+  for (size_t k = 0; k < pixels; ++k) {
+    if (observed[k] == 0) observed[k] = 1.5f;
+    if (k % 80 >= 30 && k % 80 < 36) observed[k] = 0.55f;
+    if (k % 17 == 0) observed[k] = NAN;
+  }
+  std::vector<float> atlas(count * pixels), occlusion(count * pixels), times(count * pixels);
+  for (size_t i = 0; i < count; ++i) {
+    const Pose pose = reference::move_about_centre(truth, Eigen::Vector3d::Zero(),
+                                                   Eigen::Vector3d(0.004 * i - 0.03, 0.002 * i, 0), Eigen::Vector3d(0, 0.02 * i, 0));
+    r.render(pose, std::span<float>(atlas.data() + i * pixels, pixels));
+  }
+  for (auto& p : occlusion) p = unit(rng);
+  for (auto& t : times) t = 0.5f * unit(rng);
+  const double now = 0.7, dt = 0.04;
+  for (int mode = 0; mode < 3; ++mode) {
+    auto program = build(*q, "weigh.cl", mode);
+    auto kernel = program->kernel("weigh");
+    compute::Buffer<float> a(*q, atlas.size()), o(*q, pixels), occ(*q, occlusion.size()), tim(*q, times.size()),
+        ll(*q, count), lw(*q, count);
+    a.upload(atlas);
+    o.upload(observed);
+    occ.upload(occlusion);
+    tim.upload(times);
+    lw.upload(std::vector<float>(count, 1.0f));
+    for (unsigned k = 0; k < 6; ++k) compute::set_arg(*kernel, k, std::array{&a, &o, &occ, &tim, &ll, &lw}[k][0]);
+    kernel->set_arg(6, static_cast<unsigned>(pixels));
+    kernel->set_arg(7, model_args());
+    kernel->set_arg(8, static_cast<float>(now));
+    kernel->set_arg(9, static_cast<float>(dt));
+    q->launch(*kernel, compute::NdRange::linear(count * kGroup, kGroup))->wait();
+    const auto got_ll = ll.download(), got_lw = lw.download(), got_occ = occ.download();
+    const OcclusionModel chain;
+    for (size_t i = 0; i < count; ++i) {
+      double expected = 0;
+      for (size_t k = 0; k < pixels; ++k) {
+        const size_t at = i * pixels + k;
+        double p = occlusion[at];
+        if (mode == 1) p = reference::propagate_occlusion(chain, p, dt);
+        const double y = observed[k], y_hat = atlas[at];
+        const bool used = y_hat > 0 && DepthImage::is_valid(static_cast<float>(y));
+        if (used && mode == 0) p = reference::propagate_occlusion(chain, p, now - times[at]);
+        if (mode == 2) p = 0;
+        double updated = mode == 2 ? occlusion[at] : p;
+        if (used) {
+          const auto d = reference::pixel_densities(ObservationModel{}, y, y_hat);
+          expected += reference::pixel_log_ratio(d, p);
+          if (mode != 2) updated = reference::occlusion_posterior(d, p);
+        }
+        if (mode != 2 && (used || mode == 1)) REQUIRE(got_occ[at] == Approx(updated).epsilon(1e-4).margin(1e-6));
+      }
+      INFO("mode " << mode << " particle " << i);
+      REQUIRE(got_ll[i] == Approx(expected).epsilon(1e-4).margin(1e-3));
+      REQUIRE(got_lw[i] == Approx(expected + 1.0).epsilon(1e-4).margin(1e-3));
+    }
+  }
+}
+
+TEST_CASE("summarize kernel equals the reference normalization and mean pose", "[device][kernels]") {
+  if (!test::device_available()) return;
+  auto q = compute::open_device(test::device_selector());
+  auto program = build(*q, "summarize.cl");
+  auto kernel = program->kernel("summarize");
+  std::mt19937 rng(11);
+  std::normal_distribution<double> n;
+  const size_t count = 1000;  // more than one pass of the work-group
+  std::vector<reference::ParticleState> states(count);
+  std::vector<double> log_weights(count), log_likelihoods(count);
+  const reference::ParticleState base = random_state(rng);
+  for (size_t i = 0; i < count; ++i) {
+    states[i] = base;
+    states[i].pose = reference::move_about_centre(base.pose, Eigen::Vector3d(0, 0, 0.02),
+                                                  Eigen::Vector3d(0.01 * n(rng), 0.01 * n(rng), 0.01 * n(rng)),
+                                                  Eigen::Vector3d(0.1 * n(rng), 0.1 * n(rng), 0.1 * n(rng)));
+    states[i].linear_velocity = Eigen::Vector3d(n(rng), n(rng), n(rng));
+    log_weights[i] = -500 + 3 * n(rng);  // far from 0: the kernel must subtract the maximum
+    log_likelihoods[i] = 10 * n(rng);
+  }
+  compute::Buffer<float> state(*q, count * DT_STATE_STRIDE), lw(*q, count), ll(*q, count), w(*q, count), est(*q, DT_EST_SIZE);
+  state.upload(pack(states));
+  lw.upload(std::vector<float>(log_weights.begin(), log_weights.end()));
+  ll.upload(std::vector<float>(log_likelihoods.begin(), log_likelihoods.end()));
+  for (unsigned k = 0; k < 5; ++k) compute::set_arg(*kernel, k, std::array{&state, &lw, &ll, &w, &est}[k][0]);
+  kernel->set_arg(5, static_cast<unsigned>(count));
+  kernel->set_arg(6, 0.0f);
+  kernel->set_arg(7, 0.0f);
+  kernel->set_arg(8, 0.02f);
+  q->launch(*kernel, compute::NdRange::linear(kGroup, kGroup))->wait();
+  const auto e = est.download();
+  const auto summary = reference::summarize_log_weights(log_weights);
+  std::vector<Pose> poses;
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < count; ++i) {
+    poses.push_back(states[i].pose);
+    velocity += summary.normalized[i] * states[i].linear_velocity;
+  }
+  const Pose mean = reference::weighted_mean_pose(poses, summary.normalized, Eigen::Vector3d(0, 0, 0.02));
+  const Pose got({e[DT_EST_TX], e[DT_EST_TX + 1], e[DT_EST_TX + 2]},
+                 Eigen::Quaterniond(e[DT_EST_QW], e[DT_EST_QW + 1], e[DT_EST_QW + 2], e[DT_EST_QW + 3]));
+  CHECK(e[DT_EST_ESS] == Approx(summary.effective_sample_size).epsilon(1e-4));
+  CHECK(e[DT_EST_KL] == Approx(summary.kl_from_uniform).epsilon(1e-4));
+  CHECK(translation_error(got, mean) < 1e-6);
+  CHECK(rotation_error(got, mean) < 1e-5);
+  CHECK(e[DT_EST_VX] == Approx(velocity.x()).epsilon(1e-4).margin(1e-6));
+  const auto weights = w.download();
+  for (size_t i = 0; i < count; ++i) REQUIRE(weights[i] == Approx(summary.normalized[i]).epsilon(1e-4).margin(1e-9));
+}
+
+TEST_CASE("prefix-sum and find-parents kernels resample as the reference does", "[device][kernels]") {
+  if (!test::device_available()) return;
+  auto q = compute::open_device(test::device_selector());
+  auto program = build(*q, "resample.cl");
+  auto prefix = program->kernel("prefix_sum");
+  auto find = program->kernel("find_parents");
+  std::mt19937 rng(2);
+  std::exponential_distribution<double> e;
+  for (size_t count : {5u, 200u, 5000u}) {
+    std::vector<double> w(count);
+    double sum = 0;
+    for (auto& x : w) sum += x = e(rng) * (e(rng) > 1.5 ? 20 : 1);  // a few heavy particles
+    for (auto& x : w) x /= sum;
+    compute::Buffer<float> weights(*q, count), cumulative(*q, 2 * count);
+    compute::Buffer<unsigned> parents(*q, count);
+    // The reference gets the very floats the device sees, so only the arithmetic differs.
+    const std::vector<float> w_float(w.begin(), w.end());
+    weights.upload(w_float);
+    w.assign(w_float.begin(), w_float.end());
+    compute::set_arg(*prefix, 0, weights);
+    compute::set_arg(*prefix, 1, cumulative);
+    prefix->set_arg(2, static_cast<unsigned>(count));
+    q->launch(*prefix, compute::NdRange::linear(kGroup, kGroup));
+    const float u = dt_uniform01(dt_random_words(4, 0, 1, DT_STREAM_RESAMPLE, 0).v[0]);
+    compute::set_arg(*find, 0, cumulative);
+    compute::set_arg(*find, 1, parents);
+    find->set_arg(2, static_cast<unsigned>(count));
+    find->set_arg(3, u);
+    q->launch(*find, compute::NdRange::linear((count + 63) / 64 * 64, 64))->wait();
+    const auto got = parents.download();
+    const auto expected = reference::systematic_resample(w, u);
+    const auto cum = cumulative.download();
+    CHECK(cum[2 * count - 2] + cum[2 * count - 1] == Approx(1.0).epsilon(1e-5));
+    for (size_t j = 0; j < count; ++j) REQUIRE(static_cast<int>(got[j]) == expected[j]);
+  }
+}
