@@ -1,0 +1,124 @@
+// Time per frame of the tracker on one backend, split into propagate, render, weigh and resample,
+// with the handset (the thesis' object) on a synthetic occluded sequence. Prints CSV rows.
+// Usage: depthtrack_bench [--backend NAME] [--particles N[,N...]] [--resolution WxH[,WxH...]] [--frames N]
+//   default: the reference at 80x60 (200 particles) and 640x480 (50 particles).
+#include <depthtrack/synth.hpp>
+#include <depthtrack/tracker.hpp>
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench_rows.hpp"
+
+using namespace depthtrack;
+
+namespace {
+
+Mesh bench_mesh(std::string& name) {
+  const char* env = std::getenv("DEPTHTRACK_DATA_DIR");
+  const auto handset = std::filesystem::path(env ? env : DEPTHTRACK_DATA_DIR) / "meshes/dbot/handset.obj";
+  if (std::filesystem::exists(handset)) {
+    name = "handset";
+    return Mesh::load(handset);
+  }
+  std::fprintf(stderr, "note: %s is absent; benchmarking the built-in mesh instead\n", handset.c_str());
+  name = "builtin";
+  return builtin_demo_mesh();
+}
+
+std::vector<std::string> split(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  for (std::string part; std::getline(in, part, ',');) parts.push_back(part);
+  return parts;
+}
+
+struct Case {
+  int width, height, particles;
+};
+
+void run(const Mesh& mesh, const std::string& mesh_name, const std::string& backend, const Case& c, int frames) {
+  SynthConfig synth;
+  synth.frames = frames;
+  synth.occluder_fraction = 0.3;
+  const Synthesizer scene(mesh, synth);
+  TrackerConfig config;
+  config.backend = backend;
+  config.width = c.width;
+  config.height = c.height;
+  config.particles = c.particles;
+  Tracker tracker(mesh, synth.camera, config);
+  tracker.initialize(scene.ground_truth(0.0));
+  std::vector<double> propagate, render, weigh, resample, total;
+  for (int i = 0; i < frames; ++i) {
+    const SynthFrame f = scene.frame(i);
+    const Estimate e = tracker.update(f.depth, f.timestamp);
+    if (i < 2) continue;  // warm-up: caches, first-frame propagation skipped
+    propagate.push_back(e.timings.propagate_ms);
+    render.push_back(e.timings.render_ms);
+    weigh.push_back(e.timings.weigh_ms);
+    resample.push_back(e.timings.resample_ms);
+    total.push_back(e.timings.total_ms);
+  }
+  const std::string device = tracker.backend_description();
+  const std::string test = mesh_name + "_" + std::to_string(c.width) + "x" + std::to_string(c.height) + "_" +
+                           std::to_string(c.particles) + "p";
+  const std::string platform = backend == "reference" ? "cpu" : backend;
+  const std::string name = backend == "reference" ? bench::cpu_name() : device;
+  for (const auto& [metric, samples] : {std::pair{"propagate", &propagate}, {"render", &render}, {"weigh", &weigh},
+                                        {"resample", &resample}, {"total", &total}}) {
+    const double ms = bench::median(*samples);
+    bench::print_row({backend, platform, name, "-", test, std::string(metric) + "_ms", "ms", ms});
+    bench::print_row({backend, platform, name, "-", test, std::string(metric) + "_per_particle", "us",
+                      1000.0 * ms / c.particles});
+  }
+  bench::print_row({backend, platform, name, "-", test, "frames_per_second", "Hz", 1000.0 / bench::median(total)});
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string backend = "reference", particles, resolutions;
+  int frames = 20;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--backend" && i + 1 < argc) backend = argv[++i];
+    else if (arg == "--particles" && i + 1 < argc) particles = argv[++i];
+    else if (arg == "--resolution" && i + 1 < argc) resolutions = argv[++i];
+    else if (arg == "--frames" && i + 1 < argc) frames = std::atoi(argv[++i]);
+    else {
+      std::fprintf(stderr, "usage: %s [--backend NAME] [--particles N[,N...]] [--resolution WxH[,WxH...]] [--frames N]\n",
+                   argv[0]);
+      return 2;
+    }
+  }
+  std::vector<Case> cases;
+  if (particles.empty() && resolutions.empty()) {
+    cases = {{80, 60, 200}, {640, 480, 50}};
+  } else {
+    for (const auto& r : split(resolutions.empty() ? "80x60" : resolutions))
+      for (const auto& p : split(particles.empty() ? "200" : particles)) {
+        Case c{};
+        if (std::sscanf(r.c_str(), "%dx%d", &c.width, &c.height) != 2) {
+          std::fprintf(stderr, "bad resolution '%s'\n", r.c_str());
+          return 2;
+        }
+        c.particles = std::atoi(p.c_str());
+        cases.push_back(c);
+      }
+  }
+  try {
+    std::string name;
+    const Mesh mesh = bench_mesh(name);
+    bench::print_header();
+    for (const Case& c : cases) run(mesh, name, backend, c, std::max(frames, 4));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "depthtrack_bench: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# On the lent GPU machine (see ../shared/device): build with the CUDA backend, run the whole test
+# suite once on CUDA and once on NVIDIA OpenCL, and benchmark both. Logs go to $OUT when set.
+# Carry .devdeps, .device and .devdata (a copy of the ../shared/data files the tests read).
+set -uo pipefail
+source .device/enter .devdeps
+out=${OUT:-/tmp/depthtrack-gpu}
+mkdir -p "$out"
+export DEPTHTRACK_DATA_DIR=$PWD/.devdata POCL_CACHE_DIR=/tmp/pocl-cache
+generator=$(command -v ninja >/dev/null && echo Ninja || echo "Unix Makefiles")
+cmake -S . -B build-gpu -G "$generator" -DCMAKE_BUILD_TYPE=Release -DDEPTHTRACK_WERROR=ON >"$out/configure.log" 2>&1 ||
+  { tail -30 "$out/configure.log"; exit 1; }
+cmake --build build-gpu -j"$(nproc)" >"$out/build.log" 2>&1 || { grep -E "error|Error" "$out/build.log" | head -30; exit 1; }
+./build-gpu/depthtrack info | tee "$out/info.txt"
+nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | tee -a "$out/info.txt"
+for device in ${DEVICES:-cuda opencl:nvidia}; do
+  echo "== ctest with DEPTHTRACK_TEST_DEVICE=$device"
+  DEPTHTRACK_TEST_DEVICE=$device ctest --test-dir build-gpu -j8 --output-on-failure -V >"$out/ctest-${device//:/-}.log" 2>&1
+  grep -E "tests passed|tests failed|Failed|\*\*\*|SKIPPED" "$out/ctest-${device//:/-}.log" | grep -v "^[0-9]*: SKIPPED" | tail -15
+  grep -E "worst relative|^[0-9]+: +occlusion|mean rotation error over" "$out/ctest-${device//:/-}.log" | sed 's/^[0-9]*: //' | head -12
+done
+for backend in ${BENCH_BACKENDS:-cuda opencl:nvidia}; do
+  ./build-gpu/depthtrack_bench --backend "$backend" --particles "${BENCH_PARTICLES:-200,2000,10000}" --frames 10 |
+    tee "$out/bench-${backend//:/-}.csv" | grep -E "_ms,|Hz" | cut -d, -f1,5-
+done
