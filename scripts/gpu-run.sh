@@ -8,7 +8,8 @@ out=${OUT:-/tmp/depthtrack-gpu}
 mkdir -p "$out"
 export DEPTHTRACK_DATA_DIR=$PWD/.devdata POCL_CACHE_DIR=/tmp/pocl-cache
 generator=$(command -v ninja >/dev/null && echo Ninja || echo "Unix Makefiles")
-cmake -S . -B build-gpu -G "$generator" -DCMAKE_BUILD_TYPE=Release -DDEPTHTRACK_WERROR=ON >"$out/configure.log" 2>&1 ||
+# No -Werror here: the GPU machine's newer GCC warns where CI's does not; CI keeps warnings fatal.
+cmake -S . -B build-gpu -G "$generator" -DCMAKE_BUILD_TYPE=Release >"$out/configure.log" 2>&1 ||
   { tail -30 "$out/configure.log"; exit 1; }
 cmake --build build-gpu -j"$(nproc)" >"$out/build.log" 2>&1 || { grep -E "error|Error" "$out/build.log" | head -30; exit 1; }
 ./build-gpu/depthtrack info | tee "$out/info.txt"

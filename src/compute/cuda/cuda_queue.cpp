@@ -27,12 +27,14 @@ std::unique_ptr<DeviceMemory> CudaQueue::allocate(size_t bytes) {
 }
 
 const CudaMemory& CudaQueue::checked(const DeviceMemory& memory, size_t offset, size_t bytes, const char* what) const {
-  const CudaMemory& cuda = cuda_memory(memory, *context_, what);
-  if (offset > cuda.bytes() || bytes > cuda.bytes() - offset)
+  // A pointer, not a reference: GCC 13 takes a reference bound to a call with a string argument
+  // for a dangling one (-Wdangling-reference).
+  const CudaMemory* cuda = &cuda_memory(memory, *context_, what);
+  if (offset > cuda->bytes() || bytes > cuda->bytes() - offset)
     throw InputError(std::string(what) + " of bytes [" + std::to_string(offset) + ", " +
-                     std::to_string(offset + bytes) + ") is outside an allocation of " + std::to_string(cuda.bytes()) +
+                     std::to_string(offset + bytes) + ") is outside an allocation of " + std::to_string(cuda->bytes()) +
                      " bytes on " + context_->where());
-  return cuda;
+  return *cuda;
 }
 
 void CudaQueue::write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) {
