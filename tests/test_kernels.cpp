@@ -7,6 +7,7 @@
 #include "compute/kernel_sources.hpp"
 #include "device_support.hpp"
 #include "dt_state.h"
+#include "filter/particle_packing.hpp"
 #include "philox.h"
 #include "reference/observation_model.hpp"
 #include "reference/occlusion_chain.hpp"
@@ -35,24 +36,6 @@ reference::ParticleState random_state(std::mt19937& rng) {
   return s;
 }
 
-std::vector<float> pack(const std::vector<reference::ParticleState>& states) {
-  std::vector<float> out(states.size() * DT_STATE_STRIDE, 0.0f);
-  for (size_t i = 0; i < states.size(); ++i) {
-    float* p = out.data() + i * DT_STATE_STRIDE;
-    const auto& s = states[i];
-    for (int k = 0; k < 3; ++k) {
-      p[DT_TX + k] = static_cast<float>(s.pose.translation[k]);
-      p[DT_VX + k] = static_cast<float>(s.linear_velocity[k]);
-      p[DT_WX + k] = static_cast<float>(s.angular_velocity[k]);
-    }
-    p[DT_QW] = static_cast<float>(s.pose.rotation.w());
-    p[DT_QW + 1] = static_cast<float>(s.pose.rotation.x());
-    p[DT_QW + 2] = static_cast<float>(s.pose.rotation.y());
-    p[DT_QW + 3] = static_cast<float>(s.pose.rotation.z());
-  }
-  return out;
-}
-
 struct ModelArgs {  // cl/dt_model.h's dt_model
   float sigma_constant, sigma_quadratic, tail_density, keep, lambda, log_c, p_inf;
 };
@@ -74,7 +57,7 @@ TEST_CASE("propagate kernel equals the reference motion step", "[device][kernels
   std::vector<reference::ParticleState> states(100);
   for (auto& s : states) s = random_state(rng);
   compute::Buffer<float> buffer(*q, states.size() * DT_STATE_STRIDE);
-  buffer.upload(pack(states));
+  buffer.upload(pack_particles(states));
   const Eigen::Vector3d centre(0.01, -0.02, 0.03);
   const MotionModel m;
   const double dt = 0.05, keep = std::pow(m.damping, dt * m.reference_rate);
@@ -195,7 +178,7 @@ TEST_CASE("summarize kernel equals the reference normalization and mean pose", "
     log_likelihoods[i] = 10 * n(rng);
   }
   compute::Buffer<float> state(*q, count * DT_STATE_STRIDE), lw(*q, count), ll(*q, count), w(*q, count), est(*q, DT_EST_SIZE);
-  state.upload(pack(states));
+  state.upload(pack_particles(states));
   lw.upload(std::vector<float>(log_weights.begin(), log_weights.end()));
   ll.upload(std::vector<float>(log_likelihoods.begin(), log_likelihoods.end()));
   for (unsigned k = 0; k < 5; ++k) compute::set_arg(*kernel, k, std::array{&state, &lw, &ll, &w, &est}[k][0]);

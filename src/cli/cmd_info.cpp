@@ -7,23 +7,13 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "compute/format_bytes.hpp"
 #include "compute/queue.hpp"
 
 namespace depthtrack::cli {
 
 namespace {
-std::string format_bytes(size_t bytes) {
-  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB"};
-  double value = static_cast<double>(bytes);
-  int unit = 0;
-  while (value >= 1024.0 && unit < 4) {
-    value /= 1024.0;
-    ++unit;
-  }
-  char text[32];
-  std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.1f %s", value, units[unit]);
-  return text;
-}
+using depthtrack::compute::format_bytes;
 
 const char* yes_no(bool value) {
   return value ? "yes" : "no";

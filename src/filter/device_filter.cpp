@@ -9,6 +9,7 @@
 
 #include "compute/kernel_sources.hpp"
 #include "dt_state.h"
+#include "filter/particle_packing.hpp"
 #include "philox.h"
 #include "reference/occlusion_chain.hpp"
 
@@ -94,7 +95,6 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
   occlusion_time_ = compute::Buffer<float>(q, times ? count_ * pixels_ : 1);
   scratch_occlusion_time_ = compute::Buffer<float>(q, times ? count_ * pixels_ : 1);
   host_atlas_.resize(count_ * pixels_);
-  host_state_.resize(count_ * DT_STATE_STRIDE);
 }
 
 DeviceFilter::~DeviceFilter() = default;
@@ -124,21 +124,7 @@ std::string DeviceFilter::description() const {
 }
 
 void DeviceFilter::upload_particles(const std::vector<reference::ParticleState>& particles) {
-  for (size_t i = 0; i < count_; ++i) {
-    const reference::ParticleState& s = particles[i];
-    float* out = host_state_.data() + i * DT_STATE_STRIDE;
-    std::fill(out, out + DT_STATE_STRIDE, 0.0f);
-    for (int k = 0; k < 3; ++k) {
-      out[DT_TX + k] = static_cast<float>(s.pose.translation[k]);
-      out[DT_VX + k] = static_cast<float>(s.linear_velocity[k]);
-      out[DT_WX + k] = static_cast<float>(s.angular_velocity[k]);
-    }
-    out[DT_QW] = static_cast<float>(s.pose.rotation.w());
-    out[DT_QW + 1] = static_cast<float>(s.pose.rotation.x());
-    out[DT_QW + 2] = static_cast<float>(s.pose.rotation.y());
-    out[DT_QW + 3] = static_cast<float>(s.pose.rotation.z());
-  }
-  state_.upload(host_state_);
+  state_.upload(pack_particles(particles));
 }
 
 void DeviceFilter::initialize(const Pose& pose, const InitialSpread& spread) {
@@ -171,16 +157,7 @@ void DeviceFilter::set_state(const std::vector<reference::ParticleState>& partic
 }
 
 std::vector<reference::ParticleState> DeviceFilter::unpack(const compute::Buffer<float>& state) const {
-  const std::vector<float> s = state.download();
-  std::vector<reference::ParticleState> out(count_);
-  for (size_t i = 0; i < count_; ++i) {
-    const float* p = s.data() + i * DT_STATE_STRIDE;
-    out[i].pose = Pose({p[DT_TX], p[DT_TX + 1], p[DT_TX + 2]},
-                       Eigen::Quaterniond(p[DT_QW], p[DT_QW + 1], p[DT_QW + 2], p[DT_QW + 3]));
-    out[i].linear_velocity = Eigen::Vector3d(p[DT_VX], p[DT_VX + 1], p[DT_VX + 2]);
-    out[i].angular_velocity = Eigen::Vector3d(p[DT_WX], p[DT_WX + 1], p[DT_WX + 2]);
-  }
-  return out;
+  return unpack_particles(state.download());
 }
 
 std::vector<reference::ParticleState> DeviceFilter::particles() const { return unpack(state_); }

@@ -52,7 +52,7 @@ class DeviceFilter final : public FilterBackend {
   compute::Buffer<unsigned> parents_;
   compute::Buffer<float> atlas_, observed_;
   compute::Buffer<float> occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_;
-  std::vector<float> host_atlas_, host_state_;
+  std::vector<float> host_atlas_;
   bool last_resampled_ = false;
   unsigned frame_ = 0;
   double time_ = 0;

@@ -10,21 +10,12 @@
 #include "compute/opencl/cl_memory.hpp"
 #include "compute/opencl/cl_program.hpp"
 
+#include "compute/format_bytes.hpp"
+
 namespace depthtrack::compute::opencl {
 
 namespace {
-std::string format_bytes(size_t bytes) {
-  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB"};
-  double value = static_cast<double>(bytes);
-  int unit = 0;
-  while (value >= 1024.0 && unit < 4) {
-    value /= 1024.0;
-    ++unit;
-  }
-  char text[32];
-  std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.1f %s", value, units[unit]);
-  return text;
-}
+using depthtrack::compute::format_bytes;
 
 void check_range(const char* what, size_t offset, size_t bytes, const DeviceMemory& memory) {
   if (offset > memory.bytes() || bytes > memory.bytes() - offset)
