@@ -158,3 +158,13 @@ TEST_CASE("device filter equals the reference filter frame by frame in every occ
     CHECK(coverage_flips <= 3);
   }
 }
+
+TEST_CASE("more particles than the device can hold is a clear error, not a crash", "[device][errors]") {
+  if (!test::device_available()) return;
+  TrackerConfig config;
+  config.particles = 100'000'000;
+  const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.9375, 29.9375);
+  CHECK_THROWS_WITH(DeviceFilter(compute::open_device(test::device_selector()), builtin_demo_mesh(), camera, config),
+                    Catch::Contains("100000000 particles at 80x60 need") && Catch::Contains("GiB") &&
+                        Catch::Contains("particles fit"));
+}

@@ -51,10 +51,14 @@ struct TrackerConfig {
   double resample_kl_threshold = 2.0;   // resample when log N - H(w) exceeds this
   double near_plane = 0.05;             // metres: rendering clips geometry closer than this
   uint64_t seed = 1;
-  std::string backend = "reference";
+  // reference, opencl, opencl:pocl, opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n>;
+  // empty: the environment's DEPTHTRACK_DEVICE if set, else reference (see resolved_backend()).
+  std::string backend;
 
   // Throws InputError naming the first impossible value.
   void validate() const;
+  // The backend this configuration selects, after the DEPTHTRACK_DEVICE default.
+  std::string resolved_backend() const;
 };
 
 }  // namespace depthtrack

@@ -8,8 +8,10 @@
 namespace depthtrack::cli {
 
 void TrackerOptions::add_to(CLI::App& command) {
-  command.add_option("--backend", config.backend, "Filter implementation: reference (sequential CPU)")
-      ->capture_default_str();
+  command.add_option("--backend", config.backend,
+                     "Filter implementation: reference (sequential CPU), opencl (best OpenCL device), opencl:pocl, "
+                     "opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n> (`depthtrack info` lists devices); "
+                     "default: $DEPTHTRACK_DEVICE, else reference");
   command.add_option("--particles", config.particles, "Number of particles")->capture_default_str();
   command.add_option("--resolution", resolution,
                      "Working resolution WxH; the sensor image is decimated to it by an integer factor")

@@ -2,6 +2,7 @@
 #include <depthtrack/tracker_config.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 namespace depthtrack {
@@ -29,6 +30,12 @@ bool positive(double v) { return std::isfinite(v) && v > 0; }
 bool probability(double v) { return std::isfinite(v) && v >= 0 && v <= 1; }
 }  // namespace
 
+std::string TrackerConfig::resolved_backend() const {
+  if (!backend.empty()) return backend;
+  const char* env = std::getenv("DEPTHTRACK_DEVICE");
+  return env && *env ? env : "reference";
+}
+
 void TrackerConfig::validate() const {
   require(particles > 0, "particle count " + std::to_string(particles) + " must be at least 1");
   require(width > 0 && height > 0, "working resolution must be positive");
@@ -48,7 +55,6 @@ void TrackerConfig::validate() const {
   require(positive(motion.reference_rate), "motion reference rate must be positive");
   require(std::isfinite(resample_kl_threshold) && resample_kl_threshold >= 0, "resampling threshold must be >= 0");
   require(positive(near_plane) && near_plane < observation.max_depth, "near plane must be in (0, max depth)");
-  require(!backend.empty(), "backend name is empty");
 }
 
 }  // namespace depthtrack
