@@ -1,5 +1,5 @@
 #pragma once
-// The files under cl/, embedded at build time (cmake/EmbedKernels.cmake).
+// The files under cl/, embedded at build time (cmake/EmbedFiles.cmake).
 #include <string>
 
 namespace depthtrack::compute {

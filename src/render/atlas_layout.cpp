@@ -1,0 +1,26 @@
+#include "render/atlas_layout.hpp"
+
+#include <algorithm>
+#include <depthtrack/error.hpp>
+#include <string>
+
+namespace depthtrack::render {
+
+AtlasLayout AtlasLayout::make(int tiles, int tile_width, int tile_height, int max_size) {
+  if (tile_width > max_size || tile_height > max_size)
+    throw InputError("a " + std::to_string(tile_width) + "x" + std::to_string(tile_height) +
+                     " tile exceeds the GL render-target limit of " + std::to_string(max_size));
+  AtlasLayout layout;
+  layout.tile_width = tile_width;
+  layout.tile_height = tile_height;
+  layout.tiles_per_row = std::max(1, std::min(tiles, max_size / tile_width));
+  layout.tiles_per_page = layout.tiles_per_row * (max_size / tile_height);
+  for (int first = 0; first < tiles; first += layout.tiles_per_page) {
+    const int count = std::min(layout.tiles_per_page, tiles - first);
+    const int rows = (count + layout.tiles_per_row - 1) / layout.tiles_per_row;
+    layout.pages.push_back({first, count, layout.tiles_per_row * tile_width, rows * tile_height});
+  }
+  return layout;
+}
+
+}  // namespace depthtrack::render

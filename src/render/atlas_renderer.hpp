@@ -1,0 +1,65 @@
+#pragma once
+// Renders the mesh in many poses at once into a pose atlas of metric z-depth tiles (R32F), with
+// the reference rasterizer's conventions (src/reference/rasterizer.hpp): one instanced draw call
+// per page, each instance placed in its tile and clipped to it. The GlContext must outlive the
+// renderer; every call makes it current on the calling thread.
+#include <depthtrack/camera.hpp>
+#include <depthtrack/mesh.hpp>
+#include <depthtrack/pose.hpp>
+#include <span>
+#include <vector>
+
+#include "render/atlas_layout.hpp"
+#include "render/gl_context.hpp"
+
+namespace depthtrack::render {
+
+struct AtlasOptions {
+  int max_texture_size = 0;  // page size limit in pixels; 0: the context's; smaller forces pages (tests)
+};
+
+// One page's GL objects, for a later zero-copy hand-off: colour is GL_TEXTURE_2D, GL_R32F.
+struct AtlasPage {
+  AtlasPageLayout layout;
+  GLuint color_texture = 0, depth_texture = 0, framebuffer = 0;
+};
+
+class AtlasRenderer {
+ public:
+  AtlasRenderer(GlContext& context, const Mesh& mesh, const Camera& camera, double near, double far,
+                AtlasOptions options = {});
+  ~AtlasRenderer();
+  AtlasRenderer(const AtlasRenderer&) = delete;
+  AtlasRenderer& operator=(const AtlasRenderer&) = delete;
+
+  // Draws every pose (camera_from_object) into its tile; uncovered pixels hold 0.
+  void render(std::span<const Pose> poses);
+  // Copies the last render's tiles into out in pose order, each row-major width x height.
+  void read_back(std::span<float> out);
+  // Blocks until the GL has finished the submitted work (for timing).
+  void finish();
+
+  int tile_count() const { return tiles_; }
+  const AtlasLayout& layout() const { return layout_; }
+  const std::vector<AtlasPage>& pages() const { return pages_; }
+
+ private:
+  void allocate_pages(int tiles);
+  void release_pages();
+  void check(const char* what);
+
+  GlContext& context_;
+  const GlFunctions& gl_;
+  Camera camera_;
+  int max_size_ = 0;
+  GLsizei index_count_ = 0;
+  GLuint program_ = 0, vertex_array_ = 0, vertex_buffer_ = 0, index_buffer_ = 0;
+  GLuint pose_buffer_ = 0, pose_texture_ = 0, plane_buffer_ = 0, plane_texture_ = 0;
+  GLint first_pose_location_ = -1, tiles_per_row_location_ = -1, page_size_location_ = -1;
+  int tiles_ = 0;
+  AtlasLayout layout_;
+  std::vector<AtlasPage> pages_;
+  std::vector<float> staging_;  // one page, read back before it is scattered into pose order
+};
+
+}  // namespace depthtrack::render
