@@ -1,6 +1,7 @@
 // Time per frame of the tracker on one backend, split into propagate, render, weigh and resample,
 // with the handset (the thesis' object) on a synthetic occluded sequence. Prints CSV rows.
-// Usage: depthtrack_bench [--backend NAME] [--particles N[,N...]] [--resolution WxH[,WxH...]] [--frames N]
+// Usage: depthtrack_bench [--backend NAME] [--renderer cpu|gl] [--particles N[,N...]] [--resolution WxH[,...]]
+//                         [--frames N]
 //   default: the reference at 80x60 (200 particles) and 640x480 (50 particles).
 #include <depthtrack/synth.hpp>
 #include <depthtrack/tracker.hpp>
@@ -41,13 +42,15 @@ struct Case {
   int width, height, particles;
 };
 
-void run(const Mesh& mesh, const std::string& mesh_name, const std::string& backend, const Case& c, int frames) {
+void run(const Mesh& mesh, const std::string& mesh_name, const std::string& backend, const std::string& renderer,
+         const Case& c, int frames) {
   SynthConfig synth;
   synth.frames = frames;
   synth.occluder_fraction = 0.3;
   const Synthesizer scene(mesh, synth);
   TrackerConfig config;
   config.backend = backend;
+  config.renderer = renderer;
   config.width = c.width;
   config.height = c.height;
   config.particles = c.particles;
@@ -65,7 +68,7 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
     total.push_back(e.timings.total_ms);
   }
   const std::string device = tracker.backend_description();
-  const std::string test = mesh_name + "_" + std::to_string(c.width) + "x" + std::to_string(c.height) + "_" +
+  const std::string test = (backend == "reference" ? "" : renderer + "_") + mesh_name + "_" + std::to_string(c.width) + "x" + std::to_string(c.height) + "_" +
                            std::to_string(c.particles) + "p";
   const std::string platform = backend == "reference" ? "cpu" : backend;
   const std::string name = backend == "reference" ? bench::cpu_name() : device;
@@ -82,16 +85,19 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string backend = "reference", particles, resolutions;
+  std::string backend = "reference", renderer = "cpu", particles, resolutions;
   int frames = 20;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--backend" && i + 1 < argc) backend = argv[++i];
+    else if (arg == "--renderer" && i + 1 < argc) renderer = argv[++i];
     else if (arg == "--particles" && i + 1 < argc) particles = argv[++i];
     else if (arg == "--resolution" && i + 1 < argc) resolutions = argv[++i];
     else if (arg == "--frames" && i + 1 < argc) frames = std::atoi(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: %s [--backend NAME] [--particles N[,N...]] [--resolution WxH[,WxH...]] [--frames N]\n",
+      std::fprintf(stderr,
+                   "usage: %s [--backend NAME] [--renderer cpu|gl] [--particles N[,N...]] [--resolution WxH[,...]] "
+                   "[--frames N]\n",
                    argv[0]);
       return 2;
     }
@@ -115,7 +121,7 @@ int main(int argc, char** argv) {
     std::string name;
     const Mesh mesh = bench_mesh(name);
     bench::print_header();
-    for (const Case& c : cases) run(mesh, name, backend, c, std::max(frames, 4));
+    for (const Case& c : cases) run(mesh, name, backend, renderer, c, std::max(frames, 4));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "depthtrack_bench: %s\n", e.what());
     return 1;

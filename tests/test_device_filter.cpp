@@ -13,6 +13,7 @@
 #include "reference/observation_model.hpp"
 #include "reference/occlusion_chain.hpp"
 #include "reference/reference_filter.hpp"
+#include "render/gl_context.hpp"
 #include "support.hpp"
 
 using namespace depthtrack;
@@ -45,15 +46,12 @@ Scene make_scene(int frames) {
   return s;
 }
 
-// The reference's log-likelihood of one particle at a given pose, from a snapshot of its occlusion
-// state before the frame: what the device computed, if the device weighed that pose.
-double reference_log_likelihood(const Scene& scene, const TrackerConfig& config, const Pose& pose,
-                                const DepthImage& depth, const std::vector<float>& occlusion,
-                                const std::vector<float>& times, size_t particle, double now, double dt) {
-  reference::Rasterizer r(scene.mesh, scene.working, config.near_plane, config.observation.max_depth);
-  const size_t pixels = static_cast<size_t>(scene.working.pixel_count());
-  std::vector<float> rendered(pixels);
-  r.render(pose, rendered);
+// The reference's log-likelihood of one particle from a given rendering (its atlas tile) and a
+// snapshot of its occlusion state before the frame.
+double reference_log_likelihood(const TrackerConfig& config, std::span<const float> rendered, const DepthImage& depth,
+                                const std::vector<float>& occlusion, const std::vector<float>& times,
+                                size_t particle, double now, double dt) {
+  const size_t pixels = rendered.size();
   double sum = 0;
   for (size_t k = 0; k < pixels; ++k) {
     const float y = depth.data()[k];
@@ -69,6 +67,17 @@ double reference_log_likelihood(const Scene& scene, const TrackerConfig& config,
   return sum;
 }
 
+// Pixels whose coverage differs between a tile and the reference rasterization of the same pose.
+int coverage_differences(const Scene& scene, const TrackerConfig& config, const Pose& pose,
+                         std::span<const float> tile) {
+  reference::Rasterizer r(scene.mesh, scene.working, config.near_plane, config.observation.max_depth);
+  std::vector<float> rendered(tile.size());
+  r.render(pose, rendered);
+  int differences = 0;
+  for (size_t k = 0; k < tile.size(); ++k) differences += (rendered[k] > 0) != (tile[k] > 0);
+  return differences;
+}
+
 // Distance from child j's resampling position (u + j) / N to the nearest cumulative-weight
 // boundary of the reference: where it is below float tolerance the two backends may choose
 // different neighbours and both be right.
@@ -78,13 +87,13 @@ double margin_to_boundary(const std::vector<double>& weights, double u, size_t c
   for (double w : weights) margin = std::min(margin, std::abs((cumulative += w) - position));
   return margin;
 }
-}  // namespace
 
-TEST_CASE("device filter equals the reference filter frame by frame in every occlusion mode", "[device]") {
-  if (!test::device_available()) return;
+// The whole comparison, for one atlas renderer ("cpu": the reference rasterizer; "gl": OpenGL).
+void compare_with_reference(const std::string& renderer) {
   const Scene scene = make_scene(20);
   for (auto mode : {OcclusionStorage::PerPixelTime, OcclusionStorage::GlobalTime, OcclusionStorage::Off}) {
     TrackerConfig config;
+    config.renderer = renderer;
     config.particles = 200;
     config.occlusion_storage = mode;
     config.seed = 9;
@@ -95,7 +104,7 @@ TEST_CASE("device filter equals the reference filter frame by frame in every occ
     reference.initialize(scene.frames[0].ground_truth, spread);
     device.initialize(scene.frames[0].ground_truth, spread);
     double worst_ll = 0, worst_t = 0, worst_r = 0;
-    int resamplings = 0, ties = 0, coverage_flips = 0;
+    int resamplings = 0, ties = 0, coverage_flips = 0, compared_frames = 0;
     for (size_t f = 0; f < scene.frames.size(); ++f) {
       const double dt = f == 0 ? 0.0 : scene.frames[f].timestamp - scene.frames[f - 1].timestamp;
       const std::vector<float> occlusion_before = reference.occlusion_state(), times_before = reference.occlusion_times();
@@ -106,6 +115,8 @@ TEST_CASE("device filter equals the reference filter frame by frame in every occ
       const auto& scale = reference.last_log_likelihood_magnitudes();
       const auto ll_dev = device.last_log_likelihoods();
       const auto weighed = device.weighed_particles();
+      const auto atlas = device.last_atlas();
+      const size_t pixels = static_cast<size_t>(scene.working.pixel_count());
       bool flipped = false;
       for (size_t i = 0; i < ll_ref.size(); ++i) {
         // Relative to the sum's magnitude (sum of |per-pixel term|): a total near 0 cancels terms of
@@ -113,14 +124,21 @@ TEST_CASE("device filter equals the reference filter frame by frame in every occ
         const double relative = std::abs(ll_ref[i] - ll_dev[i]) / std::max(1.0, scale[i]);
         INFO("particle " << i << ": reference " << ll_ref[i] << ", device " << ll_dev[i]);
         if (relative > 1e-4) {
-          // A pixel centre within float rounding of a silhouette edge changes coverage between the
-          // float and the double pose: then the device must equal the reference at its own pose.
-          const double at_device_pose =
-              reference_log_likelihood(scene, config, weighed[i].pose, scene.frames[f].depth, occlusion_before,
-                                       times_before, i, scene.frames[f].timestamp - scene.frames[0].timestamp, dt);
-          REQUIRE(std::abs(at_device_pose - ll_dev[i]) / std::max(1.0, scale[i]) <= 1e-4);
+          // A pixel centre within rounding of a silhouette edge is covered in one rendering and not in
+          // the other (float pose; GL's fixed-point rasterization). Then the device's tile may differ
+          // from the reference rasterization of its own pose at a few pixels only, and the device's
+          // value must equal the reference formula applied to that tile.
+          const std::span<const float> tile(atlas.data() + i * pixels, pixels);
+          REQUIRE(coverage_differences(scene, config, weighed[i].pose, tile) <= 3);
+          const double from_tile = reference_log_likelihood(config, tile, scene.frames[f].depth, occlusion_before,
+                                                            times_before, i,
+                                                            scene.frames[f].timestamp - scene.frames[0].timestamp, dt);
+          REQUIRE(std::abs(from_tile - ll_dev[i]) / std::max(1.0, scale[i]) <= 1e-4);
           ++coverage_flips;
-          flipped = true;
+          // Only a particle with weight can change ancestry or the estimate. The filters started the
+          // frame from the same weights, so the device's weight is the reference's times e^(ll difference).
+          const double w = reference.last_normalized_weights()[i];
+          if (std::max(w, w * std::exp(ll_dev[i] - ll_ref[i])) > 1e-6) flipped = true;
           continue;
         }
         worst_ll = std::max(worst_ll, relative);
@@ -142,21 +160,52 @@ TEST_CASE("device filter equals the reference filter frame by frame in every occ
         device.set_state(reference.particles(), reference.occlusion_state(), reference.occlusion_times(),
                          reference.log_weights());
       resamplings += a.resampled;
-      if (flipped) continue;  // the weights differ by the flipped pixel: estimates are not comparable
+      if (flipped) continue;  // a weighty particle's weight differs by the flipped pixel: not comparable
+      ++compared_frames;
       worst_t = std::max(worst_t, translation_error(a.pose, b.pose));
       worst_r = std::max(worst_r, rotation_error(a.pose, b.pose));
       REQUIRE(translation_error(a.pose, b.pose) <= 1e-5);
       REQUIRE(rotation_error(a.pose, b.pose) <= 1e-4);
-      REQUIRE(b.effective_sample_size == Approx(a.effective_sample_size).epsilon(1e-3).margin(1e-3));
+      // GL computes depth in float (~1e-6 relative), moving log-likelihoods by a few 0.01 nats and
+      // weights by a few percent; the host rasterizer's atlas keeps ESS within 1e-3.
+      const double ess_tolerance = renderer == "gl" ? 2e-2 : 1e-3;
+      REQUIRE(b.effective_sample_size == Approx(a.effective_sample_size).epsilon(ess_tolerance).margin(1e-3));
     }
-    std::printf("%s, %s on %s: worst relative log-likelihood difference %.2g, estimates within %.2g m / %.2g rad, "
-                "%d resamplings, ancestry identical but for %d numerical ties; %d silhouette coverage flips\n",
-                scene.name.c_str(), to_string(mode), device.description().c_str(), worst_ll, worst_t, worst_r,
-                resamplings, ties, coverage_flips);
+    std::printf("%s, %s, renderer %s on %s: worst relative log-likelihood difference %.2g, estimates within %.2g m / %.2g rad, "
+                "%d resamplings, ancestry identical but for %d numerical ties; %d silhouette coverage flips; "
+                "ancestry and estimates compared in %d of %zu frames\n",
+                scene.name.c_str(), to_string(mode), renderer.c_str(), device.description().c_str(), worst_ll, worst_t,
+                worst_r,
+                resamplings, ties, coverage_flips, compared_frames, scene.frames.size());
     CHECK(resamplings > 0);
-    CHECK(ties <= 2);
-    CHECK(coverage_flips <= 3);
+    CHECK(ties <= (renderer == "gl" ? 4 : 2));
+    // GL rasterizes in fixed point (llvmpipe: 1/256 px), so its silhouettes differ from the double
+    // reference at about one pixel in 500 particle tiles; each is checked above.
+    CHECK(coverage_flips <= (renderer == "gl" ? 300 : 3));
+    CHECK(compared_frames >= (renderer == "gl" ? 10 : 15));
   }
+}
+
+// True when a headless GL context can be made here; otherwise prints a skip.
+bool gl_available() {
+  try {
+    render::GlContext context;
+    return true;
+  } catch (const std::exception& e) {
+    std::cout << "SKIPPED: no OpenGL context: " << e.what() << "\n";
+    return false;
+  }
+}
+}  // namespace
+
+TEST_CASE("device filter equals the reference filter frame by frame in every occlusion mode", "[device]") {
+  if (!test::device_available()) return;
+  compare_with_reference("cpu");
+}
+
+TEST_CASE("with the GL atlas in the loop the device filter still equals the reference", "[device][render]") {
+  if (!test::device_available() || !gl_available()) return;
+  compare_with_reference("gl");
 }
 
 TEST_CASE("more particles than the device can hold is a clear error, not a crash", "[device][errors]") {

@@ -54,6 +54,9 @@ struct TrackerConfig {
   // reference, opencl, opencl:pocl, opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n>;
   // empty: the environment's DEPTHTRACK_DEVICE if set, else reference (see resolved_backend()).
   std::string backend;
+  // Who draws the device filters' pose atlas: "cpu" (the reference rasterizer on the host) or "gl"
+  // (OpenGL, headless: EGL device, EGL surfaceless or OSMesa; DEPTHTRACK_GL picks one).
+  std::string renderer = "cpu";
 
   // Throws InputError naming the first impossible value.
   void validate() const;

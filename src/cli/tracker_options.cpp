@@ -12,6 +12,10 @@ void TrackerOptions::add_to(CLI::App& command) {
                      "Filter implementation: reference (sequential CPU), opencl (best OpenCL device), opencl:pocl, "
                      "opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n> (`depthtrack info` lists devices); "
                      "default: $DEPTHTRACK_DEVICE, else reference");
+  command.add_option("--renderer", config.renderer,
+                     "Who draws the pose atlas for device backends: cpu (reference rasterizer) or gl (headless "
+                     "OpenGL; DEPTHTRACK_GL=egl-device|egl-surfaceless|osmesa picks the path)")
+      ->capture_default_str();
   command.add_option("--particles", config.particles, "Number of particles")->capture_default_str();
   command.add_option("--resolution", resolution,
                      "Working resolution WxH; the sensor image is decimated to it by an integer factor")

@@ -55,7 +55,7 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
       config_(config),
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
-      rasterizer_(mesh, camera, config.near_plane, config.observation.max_depth),
+      atlas_source_(make_atlas_source(mesh, camera, config)),
       count_(static_cast<size_t>(config.particles)),
       pixels_(static_cast<size_t>(camera.pixel_count())) {
   check_memory();
@@ -94,7 +94,6 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
   scratch_occlusion_ = compute::Buffer<float>(q, occlusion ? count_ * pixels_ : 1);
   occlusion_time_ = compute::Buffer<float>(q, times ? count_ * pixels_ : 1);
   scratch_occlusion_time_ = compute::Buffer<float>(q, times ? count_ * pixels_ : 1);
-  host_atlas_.resize(count_ * pixels_);
 }
 
 DeviceFilter::~DeviceFilter() = default;
@@ -120,7 +119,7 @@ void DeviceFilter::check_memory() const {
 
 std::string DeviceFilter::description() const {
   const auto& info = queue_->info();
-  return info.selector + " " + info.name + " (" + info.platform + ")";
+  return info.selector + " " + info.name + " (" + info.platform + "); atlas: " + atlas_source_->description();
 }
 
 void DeviceFilter::upload_particles(const std::vector<reference::ParticleState>& particles) {
@@ -167,14 +166,12 @@ std::vector<reference::ParticleState> DeviceFilter::weighed_particles() const {
   return unpack(last_resampled_ ? scratch_state_ : state_);
 }
 
-// Until the GL atlas renderer lands: the poses come to the host, the reference rasterizer draws
-// every tile, and the atlas goes up in one copy.
 void DeviceFilter::render_atlas(double& render_ms) {
   const auto start = std::chrono::steady_clock::now();
   const auto states = particles();
-  for (size_t i = 0; i < count_; ++i)
-    rasterizer_.render(states[i].pose, std::span<float>(host_atlas_.data() + i * pixels_, pixels_));
-  atlas_.upload(host_atlas_);
+  std::vector<Pose> poses(states.size());
+  for (size_t i = 0; i < states.size(); ++i) poses[i] = states[i].pose;
+  atlas_source_->draw(poses, atlas_);
   render_ms += ms_since(start);
 }
 

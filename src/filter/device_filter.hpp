@@ -8,7 +8,7 @@
 #include "compute/buffer.hpp"
 #include "filter/filter_backend.hpp"
 #include "reference/particle.hpp"
-#include "reference/rasterizer.hpp"
+#include "filter/atlas_source.hpp"
 
 namespace depthtrack {
 
@@ -26,6 +26,8 @@ class DeviceFilter final : public FilterBackend {
   std::vector<double> last_log_likelihoods() const;
   std::vector<int> last_parents() const;
   std::vector<reference::ParticleState> particles() const;
+  // The atlas the last update weighed: particles x pixels depths, tile i = particle i.
+  std::vector<float> last_atlas() const { return atlas_.download(); }
   // The particles as the last update weighed them (before it resampled).
   std::vector<reference::ParticleState> weighed_particles() const;
   // Replaces the whole filter state (for comparing backends from a common state). occlusion and
@@ -45,14 +47,13 @@ class DeviceFilter final : public FilterBackend {
   TrackerConfig config_;
   Camera camera_;
   Eigen::Vector3d centre_;
-  reference::Rasterizer rasterizer_;
+  std::unique_ptr<AtlasSource> atlas_source_;
   size_t count_, pixels_;
   std::unique_ptr<Kernels> kernels_;
   compute::Buffer<float> state_, scratch_state_, log_weight_, log_likelihood_, weights_, cumulative_, estimate_;
   compute::Buffer<unsigned> parents_;
   compute::Buffer<float> atlas_, observed_;
   compute::Buffer<float> occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_;
-  std::vector<float> host_atlas_;
   bool last_resampled_ = false;
   unsigned frame_ = 0;
   double time_ = 0;
