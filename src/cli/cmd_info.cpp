@@ -9,6 +9,7 @@
 #include "cli/commands.hpp"
 #include "compute/format_bytes.hpp"
 #include "compute/queue.hpp"
+#include "render/gl_context.hpp"
 
 namespace depthtrack::cli {
 
@@ -66,6 +67,26 @@ std::string absence_reason(const std::string& backend) {
   return "it lists no device, yet one opened";
 }
 
+// Each headless GL path, what it gives or why not, and how the atlas reaches the compute devices.
+void print_gl() {
+  std::printf("OpenGL (pose atlas):\n");
+  for (auto path : {render::GlPath::EglDevice, render::GlPath::EglSurfaceless, render::GlPath::OSMesa}) {
+    try {
+      render::GlContextOptions options;
+      options.path = path;
+      const render::GlContext context(options);
+      std::printf("  %-16s %s\n", render::GlContext::path_name(path), context.describe().c_str());
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      std::printf("  %-16s unavailable: %s\n", render::GlContext::path_name(path),
+                  message.substr(0, message.find('\n')).c_str());
+    }
+  }
+  // Zero-copy hand-offs (CUDA-GL interop, cl_khr_gl_sharing) are not built yet: every device gets
+  // the staged path today.
+  std::printf("  hand-off         staged copy (GL read-back, one upload) for every compute device\n");
+}
+
 void print_info(bool extensions) {
   const auto devices = compute::list_devices();
   const std::pair<const char*, const char*> backends[] = {{"opencl", "OpenCL"}, {"cuda", "CUDA"}};
@@ -77,12 +98,13 @@ void print_info(bool extensions) {
     if (mine.empty()) std::printf("  %s\n", absence_reason(backend).c_str());
     for (const auto* d : mine) print_device(*d, extensions);
   }
+  print_gl();
 }
 }  // namespace
 
 void add_info_command(CLI::App& app) {
   auto extensions = std::make_shared<bool>(false);
-  CLI::App* c = app.add_subcommand("info", "List the compute devices of every backend and what each offers");
+  CLI::App* c = app.add_subcommand("info", "List the compute devices of every backend, the headless GL paths, and how the atlas reaches the devices");
   c->add_flag("--extensions", *extensions, "Also print every device's full extension list");
   c->callback([extensions] { print_info(*extensions); });
 }
