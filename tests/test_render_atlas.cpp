@@ -28,15 +28,21 @@ namespace {
 const Camera camera80 = Camera::make(80, 60, 65.625, 65.625, 39.9375, 29.9375);
 constexpr double near_plane = 0.05, far_plane = 10.0;
 
+// A context on that path, or nullptr with a note. A test that gets no context on any path says
+// SKIPPED (skipped_if_none): one missing path (OSMesa on a GPU machine) must not hide the others.
 std::unique_ptr<GlContext> context_or_skip(GlPath path) {
   try {
     render::GlContextOptions options;
     options.path = path;
     return std::make_unique<GlContext>(options);
   } catch (const BackendError& e) {
-    std::cout << "SKIPPED: " << GlContext::path_name(path) << ": " << e.what() << "\n";
+    std::cout << "note: " << GlContext::path_name(path) << " unavailable: " << e.what() << "\n";
     return nullptr;
   }
+}
+
+void skipped_if_none(int paths_run) {
+  if (paths_run == 0) std::cout << "SKIPPED: no headless GL path could be opened\n";
 }
 
 // Random orientations, the mesh's centre at about `distance` in front of the camera.
@@ -160,9 +166,11 @@ constexpr GlPath all_paths[] = {GlPath::EglDevice, GlPath::EglSurfaceless, GlPat
 TEST_CASE("atlas of the built-in mesh equals the reference rasterizer", "[render]") {
   const Mesh mesh = builtin_demo_mesh();
   const auto poses = random_poses(mesh, 16, 0.8, 1);
+  int paths_run = 0;
   for (GlPath path : all_paths) {
     auto context = context_or_skip(path);
     if (!context) continue;
+    ++paths_run;
     const std::string name = GlContext::path_name(path);
     AtlasRenderer atlas(*context, mesh, camera80, near_plane, far_plane);
     check(compare(mesh, camera80, poses, atlas), name + " built-in 80x60");
@@ -180,9 +188,11 @@ TEST_CASE("atlas of real meshes equals the reference rasterizer", "[render]") {
     if (const auto path = test::shared_data(file)) meshes.emplace_back(file, Mesh::load(*path));
   if (meshes.empty()) return;
   const Camera camera160 = Camera::make(160, 120, 131.25, 131.25, 79.9375, 59.9375);
+  int paths_run = 0;
   for (GlPath path : all_paths) {
     auto context = context_or_skip(path);
     if (!context) continue;
+    ++paths_run;
     for (const auto& [file, mesh] : meshes) {
       // Close enough that the object spans about two thirds of the image height.
       const double distance = std::max(0.3, camera80.fx * mesh.radius() / 20.0);
@@ -196,12 +206,13 @@ TEST_CASE("atlas of real meshes equals the reference rasterizer", "[render]") {
       }
     }
   }
+  skipped_if_none(paths_run);
 }
 
 TEST_CASE("atlas pages split at the texture limit and later pages equal the reference", "[render]") {
   auto context = context_or_skip(GlPath::EglSurfaceless);
   if (!context) context = context_or_skip(GlPath::OSMesa);
-  if (!context) return;
+  if (!context) return skipped_if_none(0);
   const Mesh mesh = builtin_demo_mesh();
   const auto poses = random_poses(mesh, 10, 0.8, 3);
   // 160 pixels: 2 tiles per row, 2 rows per page, so 10 tiles make pages of 4, 4 and 2.
@@ -220,33 +231,4 @@ TEST_CASE("atlas pages split at the texture limit and later pages equal the refe
   CHECK(atlas.pages().size() == 1);
   std::vector<float> wrong(5);
   CHECK_THROWS_AS(atlas.read_back(wrong), InputError);
-}
-
-TEST_CASE("atlas render time for 200 poses at 80x60", "[render]") {
-  const Mesh mesh = builtin_demo_mesh();
-  const auto poses = random_poses(mesh, 200, 0.8, 4);
-  std::vector<float> tiles(poses.size() * static_cast<size_t>(camera80.pixel_count()));
-  for (GlPath path : all_paths) {
-    auto context = context_or_skip(path);
-    if (!context) continue;
-    AtlasRenderer atlas(*context, mesh, camera80, near_plane, far_plane);
-    using clock = std::chrono::steady_clock;
-    std::vector<double> render_ms, read_ms;
-    for (int i = 0; i < 12; ++i) {
-      const auto t0 = clock::now();
-      atlas.render(poses);
-      atlas.finish();
-      const auto t1 = clock::now();
-      atlas.read_back(tiles);
-      const auto t2 = clock::now();
-      if (i < 2) continue;  // warm-up: shader compile on first draw, page allocation
-      render_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-      read_ms.push_back(std::chrono::duration<double, std::milli>(t2 - t1).count());
-    }
-    std::sort(render_ms.begin(), render_ms.end());
-    std::sort(read_ms.begin(), read_ms.end());
-    std::cout << GlContext::path_name(path) << ": 200 poses at 80x60, median render " << render_ms[5]
-              << " ms, read-back " << read_ms[5] << " ms (" << context->describe() << ")\n";
-    CHECK(render_ms[5] > 0);
-  }
 }
