@@ -9,12 +9,12 @@
 #include <sstream>
 
 #include "compute/opencl/cl_errors.hpp"
+#include "compute/source_excerpt.hpp"
 #include "compute/opencl/cl_kernel.hpp"
 
 namespace depthtrack::compute::opencl {
 
 namespace {
-constexpr int kSourceLinesShown = 40;
 
 std::string build_options(const std::vector<std::string>& definitions) {
   std::string options = "-cl-std=CL1.2";
@@ -39,32 +39,17 @@ std::string build_log(cl_program program, cl_device_id device) {
   return log.empty() ? "(empty build log)" : log;
 }
 
-// kSourceLinesShown numbered lines of source: around the first line the log blames with an error,
-// else from the top (the kernel itself usually starts after a long prelude).
-std::string numbered_source(const std::string& source, const std::string& log) {
-  std::vector<std::string> lines;
-  std::istringstream in(source);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  int first = 1;
+// The first line the log blames with an error (clang's "<file>:LINE:COLUMN:", as PoCL, NVIDIA and
+// AMD print it); 0 when there is none. The kernel itself usually starts after a long prelude.
+int first_error_line(const std::string& log) {
   std::istringstream log_lines(log);
-  const std::regex position(R"(:(\d{1,9}):\d+:)");  // clang's "<file>:LINE:COLUMN:" (PoCL, NVIDIA, AMD)
+  const std::regex position(R"(:(\d{1,9}):\d+:)");
   for (std::string line; std::getline(log_lines, line);) {
     std::smatch match;
-    if (line.find("error") == std::string::npos || !std::regex_search(line, match, position)) continue;
-    first = std::stoi(match[1].str()) - kSourceLinesShown / 2;
-    break;
+    if (line.find("error") != std::string::npos && std::regex_search(line, match, position))
+      return std::stoi(match[1].str());
   }
-  const int total = static_cast<int>(lines.size());
-  first = std::max(1, std::min(first, total - kSourceLinesShown + 1));
-  const int last = std::min(total, first + kSourceLinesShown - 1);
-  std::ostringstream out;
-  out << "source lines " << first << "-" << last << " of " << total << ":\n";
-  for (int number = first; number <= last; ++number) {
-    char prefix[16];
-    std::snprintf(prefix, sizeof prefix, "%5d| ", number);
-    out << prefix << lines[static_cast<size_t>(number - 1)] << '\n';
-  }
-  return out.str();
+  return 0;
 }
 
 std::string kernel_names(cl_program program) {
@@ -103,7 +88,7 @@ std::unique_ptr<Program> build_program(cl_context context, cl_device_id device, 
   if (status != CL_SUCCESS) {
     const std::string log = build_log(program.get(), device);
     throw BackendError(failure_message(status, "clBuildProgram", device_name, "program '" + name + "'") +
-                       "\noptions: " + options + "\nbuild log:\n" + log + "\n" + numbered_source(source, log));
+                       "\noptions: " + options + "\nbuild log:\n" + log + "\n" + numbered_excerpt(source, first_error_line(log)));
   }
   return std::make_unique<ClProgram>(std::move(program), name, device_name);
 }
