@@ -6,7 +6,9 @@
 
 namespace depthtrack::bench {
 
-void print_header() { std::printf("backend,platform,device,driver,test,metric,unit,value\n"); }
+void print_header() {
+  std::printf("backend,platform,device,driver,test,metric,unit,value\n");
+}
 
 void print_row(const Row& r) {
   std::printf("%s,%s,\"%s\",%s,%s,%s,%s,%.6g\n", r.backend.c_str(), r.platform.c_str(), r.device.c_str(),

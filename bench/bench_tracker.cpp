@@ -3,11 +3,10 @@
 // Usage: depthtrack_bench [--backend NAME] [--renderer cpu|gl] [--particles N[,N...]] [--resolution WxH[,...]]
 //                         [--frames N]
 //   default: the reference at 80x60 (200 particles) and 640x480 (50 particles).
-#include <depthtrack/synth.hpp>
-#include <depthtrack/tracker.hpp>
-
 #include <cstdio>
 #include <cstring>
+#include <depthtrack/synth.hpp>
+#include <depthtrack/tracker.hpp>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -68,16 +67,19 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
     total.push_back(e.timings.total_ms);
   }
   const std::string device = tracker.backend_description();
-  const std::string test = (backend == "reference" ? "" : renderer + "_") + mesh_name + "_" + std::to_string(c.width) + "x" + std::to_string(c.height) + "_" +
-                           std::to_string(c.particles) + "p";
+  const std::string test = (backend == "reference" ? "" : renderer + "_") + mesh_name + "_" + std::to_string(c.width) +
+                           "x" + std::to_string(c.height) + "_" + std::to_string(c.particles) + "p";
   const std::string platform = backend == "reference" ? "cpu" : backend;
   const std::string name = backend == "reference" ? bench::cpu_name() : device;
-  for (const auto& [metric, samples] : {std::pair{"propagate", &propagate}, {"render", &render}, {"weigh", &weigh},
-                                        {"resample", &resample}, {"total", &total}}) {
+  for (const auto& [metric, samples] : {std::pair{"propagate", &propagate},
+                                        {"render", &render},
+                                        {"weigh", &weigh},
+                                        {"resample", &resample},
+                                        {"total", &total}}) {
     const double ms = bench::median(*samples);
     bench::print_row({backend, platform, name, "-", test, std::string(metric) + "_ms", "ms", ms});
-    bench::print_row({backend, platform, name, "-", test, std::string(metric) + "_per_particle", "us",
-                      1000.0 * ms / c.particles});
+    bench::print_row(
+        {backend, platform, name, "-", test, std::string(metric) + "_per_particle", "us", 1000.0 * ms / c.particles});
   }
   bench::print_row({backend, platform, name, "-", test, "frames_per_second", "Hz", 1000.0 / bench::median(total)});
 }
@@ -89,11 +91,16 @@ int main(int argc, char** argv) {
   int frames = 20;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--backend" && i + 1 < argc) backend = argv[++i];
-    else if (arg == "--renderer" && i + 1 < argc) renderer = argv[++i];
-    else if (arg == "--particles" && i + 1 < argc) particles = argv[++i];
-    else if (arg == "--resolution" && i + 1 < argc) resolutions = argv[++i];
-    else if (arg == "--frames" && i + 1 < argc) frames = std::atoi(argv[++i]);
+    if (arg == "--backend" && i + 1 < argc)
+      backend = argv[++i];
+    else if (arg == "--renderer" && i + 1 < argc)
+      renderer = argv[++i];
+    else if (arg == "--particles" && i + 1 < argc)
+      particles = argv[++i];
+    else if (arg == "--resolution" && i + 1 < argc)
+      resolutions = argv[++i];
+    else if (arg == "--frames" && i + 1 < argc)
+      frames = std::atoi(argv[++i]);
     else {
       std::fprintf(stderr,
                    "usage: %s [--backend NAME] [--renderer cpu|gl] [--particles N[,N...]] [--resolution WxH[,...]] "

@@ -1,10 +1,9 @@
 #pragma once
 // The compute device the [compute] tests run on: DEPTHTRACK_TEST_DEVICE (default "opencl").
-#include <depthtrack/error.hpp>
-
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
+#include <depthtrack/error.hpp>
 #include <iostream>
 #include <memory>
 #include <string>

@@ -3,7 +3,6 @@
 // in front of a wall, optionally with a band of columns hidden by a nearer occluder.
 #include <depthtrack/depth_image.hpp>
 #include <depthtrack/mesh.hpp>
-
 #include <vector>
 
 #include "reference/rasterizer.hpp"

@@ -1,12 +1,13 @@
 #pragma once
 // Shared helpers of the test suite.
+#include <sys/wait.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-#include <sys/wait.h>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <string>
 
 namespace depthtrack::test {

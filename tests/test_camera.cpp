@@ -1,6 +1,5 @@
 // Intrinsics: decimation and impossible values.
 #include <catch2/catch.hpp>
-
 #include <depthtrack/camera.hpp>
 #include <depthtrack/error.hpp>
 

@@ -1,8 +1,6 @@
 // The depthtrack track contract: options, CSV columns, exit codes and messages.
 #include <catch2/catch.hpp>
-
 #include <depthtrack/synth.hpp>
-
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -62,10 +60,10 @@ TEST_CASE("track writes one CSV row per frame with the contract's columns", "[cl
 
 TEST_CASE("track --init starts from a given pose, and its CSV then has no error columns", "[cli]") {
   const auto dir = write_sequence("cli_track_init", 2);
-  const auto [status, output] = test::run_cli(
-      "track --mesh " + (dir / "object.obj").string() + " --sequence " + (dir / "seq").string() + " --out " +
-          (dir / "out.csv").string() + " --resolution 80x60 --init \"0 0 0.8 1 0 0 0\"",
-      dir / "log.txt");
+  const auto [status, output] =
+      test::run_cli("track --mesh " + (dir / "object.obj").string() + " --sequence " + (dir / "seq").string() +
+                        " --out " + (dir / "out.csv").string() + " --resolution 80x60 --init \"0 0 0.8 1 0 0 0\"",
+                    dir / "log.txt");
   INFO(output);
   REQUIRE(status == 0);
   // Ground truth is still known from the sequence, so the error columns stay.

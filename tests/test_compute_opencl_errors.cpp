@@ -1,7 +1,6 @@
 // OpenCL status codes become their symbolic names in every BackendError (no device needed).
-#include <depthtrack/error.hpp>
-
 #include <catch2/catch.hpp>
+#include <depthtrack/error.hpp>
 #include <string>
 
 #include "compute/opencl/cl_errors.hpp"

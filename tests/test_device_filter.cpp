@@ -1,15 +1,13 @@
 // The device filter (compute kernels) against the reference filter: same seed, same frames ->
 // the same log-likelihoods (to float precision), the same resampling ancestry, the same estimates.
 #include <catch2/catch.hpp>
-
+#include <cstdio>
 #include <depthtrack/error.hpp>
 #include <depthtrack/synth.hpp>
 
-#include <cstdio>
-
 #include "device_support.hpp"
-#include "philox.h"
 #include "filter/device_filter.hpp"
+#include "philox.h"
 #include "reference/observation_model.hpp"
 #include "reference/occlusion_chain.hpp"
 #include "reference/reference_filter.hpp"
@@ -50,8 +48,8 @@ Scene make_scene(int frames) {
 // The reference's log-likelihood of one particle from a given rendering (its atlas tile) and a
 // snapshot of its occlusion state before the frame.
 double reference_log_likelihood(const TrackerConfig& config, std::span<const float> rendered, const DepthImage& depth,
-                                const std::vector<float>& occlusion, const std::vector<float>& times,
-                                size_t particle, double now, double dt) {
+                                const std::vector<float>& occlusion, const std::vector<float>& times, size_t particle,
+                                double now, double dt) {
   const size_t pixels = rendered.size();
   double sum = 0;
   for (size_t k = 0; k < pixels; ++k) {
@@ -98,7 +96,8 @@ void compare_with_reference(const std::string& renderer) {
     int resamplings = 0, ties = 0, coverage_flips = 0, compared_frames = 0;
     for (size_t f = 0; f < scene.frames.size(); ++f) {
       const double dt = f == 0 ? 0.0 : scene.frames[f].timestamp - scene.frames[f - 1].timestamp;
-      const std::vector<float> occlusion_before = reference.occlusion_state(), times_before = reference.occlusion_times();
+      const std::vector<float> occlusion_before = reference.occlusion_state(),
+                               times_before = reference.occlusion_times();
       const Estimate a = reference.update(scene.frames[f].depth, dt);
       const Estimate b = device.update(scene.frames[f].depth, dt);
       INFO(scene.name << ", " << to_string(mode) << ", frame " << f);
@@ -121,9 +120,9 @@ void compare_with_reference(const std::string& renderer) {
           // value must equal the reference formula applied to that tile.
           const std::span<const float> tile(atlas.data() + i * pixels, pixels);
           REQUIRE(coverage_differences(scene, config, weighed[i].pose, tile) <= 3);
-          const double from_tile = reference_log_likelihood(config, tile, scene.frames[f].depth, occlusion_before,
-                                                            times_before, i,
-                                                            scene.frames[f].timestamp - scene.frames[0].timestamp, dt);
+          const double from_tile =
+              reference_log_likelihood(config, tile, scene.frames[f].depth, occlusion_before, times_before, i,
+                                       scene.frames[f].timestamp - scene.frames[0].timestamp, dt);
           REQUIRE(std::abs(from_tile - ll_dev[i]) / std::max(1.0, scale[i]) <= 1e-4);
           ++coverage_flips;
           // Only a particle with weight can change ancestry or the estimate. The filters started the
@@ -166,12 +165,12 @@ void compare_with_reference(const std::string& renderer) {
       const double ess_tolerance = renderer == "gl" ? 2e-2 : 1e-3;
       REQUIRE(b.effective_sample_size == Approx(a.effective_sample_size).epsilon(ess_tolerance).margin(1e-3));
     }
-    std::printf("%s, %s, renderer %s on %s: worst relative log-likelihood difference %.2g, estimates within %.2g m / %.2g rad, "
-                "%d resamplings, ancestry identical but for %d numerical ties; %d silhouette coverage flips; "
-                "ancestry and estimates compared in %d of %zu frames\n",
-                scene.name.c_str(), to_string(mode), renderer.c_str(), device.description().c_str(), worst_ll, worst_t,
-                worst_r,
-                resamplings, ties, coverage_flips, compared_frames, scene.frames.size());
+    std::printf(
+        "%s, %s, renderer %s on %s: worst relative log-likelihood difference %.2g, estimates within %.2g m / %.2g rad, "
+        "%d resamplings, ancestry identical but for %d numerical ties; %d silhouette coverage flips; "
+        "ancestry and estimates compared in %d of %zu frames\n",
+        scene.name.c_str(), to_string(mode), renderer.c_str(), device.description().c_str(), worst_ll, worst_t, worst_r,
+        resamplings, ties, coverage_flips, compared_frames, scene.frames.size());
     CHECK(resamplings > 0);
     CHECK(ties <= (renderer == "gl" ? 4 : 2));
     // GL rasterizes in fixed point (llvmpipe: 1/256 px), so its silhouettes differ from the double

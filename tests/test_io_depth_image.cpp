@@ -1,23 +1,22 @@
 // DepthImage: sensor conventions, PNG and float32 files, decimation, and the errors on bad input.
-#include <depthtrack/depth_image.hpp>
-#include <depthtrack/error.hpp>
-
-#include <catch2/catch.hpp>
 #include <png.h>
 
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <depthtrack/depth_image.hpp>
+#include <depthtrack/error.hpp>
 #include <fstream>
 #include <limits>
 #include <vector>
 
 #include "support.hpp"
 
+using Catch::Matchers::Contains;
 using depthtrack::DepthImage;
 using depthtrack::InputError;
-using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
 
 namespace {
@@ -84,7 +83,8 @@ RawPng read_png_raw(const fs::path& path) {
   png_read_end(png, nullptr);
   png_destroy_read_struct(&png, &info, nullptr);
   std::fclose(file);
-  for (size_t i = 0; i < bytes.size(); i += 2) out.samples.push_back(static_cast<uint16_t>(bytes[i] << 8 | bytes[i + 1]));
+  for (size_t i = 0; i < bytes.size(); i += 2)
+    out.samples.push_back(static_cast<uint16_t>(bytes[i] << 8 | bytes[i + 1]));
   return out;
 }
 
@@ -234,13 +234,15 @@ TEST_CASE("load_float32 reads little-endian metres with the missing conventions"
 TEST_CASE("decimated keeps pixel (factor u, factor v)", "[io]") {
   std::vector<float> metres(8 * 6);
   for (int v = 0; v < 6; ++v)
-    for (int u = 0; u < 8; ++u) metres[static_cast<size_t>(v * 8 + u)] = 1.0f + static_cast<float>(u) + 10.0f * static_cast<float>(v);
+    for (int u = 0; u < 8; ++u)
+      metres[static_cast<size_t>(v * 8 + u)] = 1.0f + static_cast<float>(u) + 10.0f * static_cast<float>(v);
   const DepthImage image = DepthImage::from_metres(8, 6, metres);
   const DepthImage half = image.decimated(2);
   REQUIRE(half.width() == 4);
   REQUIRE(half.height() == 3);
   for (int v = 0; v < 3; ++v)
-    for (int u = 0; u < 4; ++u) REQUIRE(half.at(u, v) == 1.0f + 2.0f * static_cast<float>(u) + 20.0f * static_cast<float>(v));
+    for (int u = 0; u < 4; ++u)
+      REQUIRE(half.at(u, v) == 1.0f + 2.0f * static_cast<float>(u) + 20.0f * static_cast<float>(v));
   REQUIRE(image.decimated(1).data() == image.data());
   REQUIRE_THROWS_WITH(image.decimated(3), Contains("8x6") && Contains("3"));
   REQUIRE_THROWS_AS(image.decimated(0), InputError);

@@ -1,17 +1,15 @@
 // Mesh::load: formats, triangulation, node transforms, unit scale, real meshes, and bad files.
+#include <catch2/catch.hpp>
 #include <depthtrack/error.hpp>
 #include <depthtrack/mesh.hpp>
-
-#include <catch2/catch.hpp>
-
 #include <fstream>
 #include <string>
 
 #include "support.hpp"
 
+using Catch::Matchers::Contains;
 using depthtrack::InputError;
 using depthtrack::Mesh;
-using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
 
 namespace {
@@ -133,8 +131,8 @@ TEST_CASE("Mesh::load multiplies coordinates by unit_scale", "[io]") {
 }
 
 TEST_CASE("Mesh::load splits one OBJ quad into two triangles", "[io]") {
-  const auto path =
-      write_text(depthtrack::test::temp_dir("io_mesh_quad") / "quad.obj", "v 0 0 0\nv 1 0 0\nv 1 2 0\nv 0 2 0\nf 1 2 3 4\n");
+  const auto path = write_text(depthtrack::test::temp_dir("io_mesh_quad") / "quad.obj",
+                               "v 0 0 0\nv 1 0 0\nv 1 2 0\nv 0 2 0\nf 1 2 3 4\n");
   const Mesh mesh = Mesh::load(path);
   REQUIRE(mesh.triangles.size() == 2);
   REQUIRE(mesh.vertices.size() == 4);
@@ -264,8 +262,8 @@ TEST_CASE("Mesh::load reads an OBJ whose faces refer to texture coordinates it l
   REQUIRE(mesh.triangles.size() == 1);
   CHECK(mesh.vertices.size() == 3);
   // A face referring to a missing position is still an error.
-  const auto bad = write_text(depthtrack::test::temp_dir("io_mesh_bad_position") / "tri.obj",
-                              "v 0 0 0\nv 1 0 0\nf 1/1 2/2 9/3\n");
+  const auto bad =
+      write_text(depthtrack::test::temp_dir("io_mesh_bad_position") / "tri.obj", "v 0 0 0\nv 1 0 0\nf 1/1 2/2 9/3\n");
   CHECK_THROWS_AS(Mesh::load(bad), InputError);
 }
 

@@ -1,12 +1,10 @@
 // Sequences on disk: depthtrack's manifest round trip, the YCB-Video clip layout, and bad folders.
+#include <algorithm>
+#include <catch2/catch.hpp>
 #include <depthtrack/error.hpp>
 #include <depthtrack/sequence.hpp>
-
-#include <catch2/catch.hpp>
-#include <nlohmann/json.hpp>
-
-#include <algorithm>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "support.hpp"
@@ -17,7 +15,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-void write_text(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
 
 std::string read_text(const fs::path& path) {
   std::ifstream in(path);
@@ -69,7 +69,8 @@ fs::path make_ycb_clip(const std::string& name) {
       return nlohmann::json{{1, 0, 0, x}, {0, 1, 0, 0.1 * number}, {0, 0, 1, 0.7}, {0, 0, 0, 1}};
     };
     objects.push_back({{"cls_index", 14}, {"name", "025_mug"}, {"T_cam_obj", transform(0.05)}});
-    if (number != 2) objects.push_back({{"cls_index", 21}, {"name", "061_foam_brick"}, {"T_cam_obj", transform(-0.05)}});
+    if (number != 2)
+      objects.push_back({{"cls_index", 21}, {"name", "061_foam_brick"}, {"T_cam_obj", transform(-0.05)}});
     frames.push_back({{"frame", id},
                       {"depth", depth},
                       {"factor_depth", 10000.0},

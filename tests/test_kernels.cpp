@@ -1,6 +1,5 @@
 // Each kernel under cl/ against the reference function it implements, on the test device.
 #include <catch2/catch.hpp>
-
 #include <random>
 
 #include "compute/buffer.hpp"
@@ -29,8 +28,8 @@ std::unique_ptr<compute::Program> build(compute::Queue& q, const std::string& fi
 reference::ParticleState random_state(std::mt19937& rng) {
   std::normal_distribution<double> n;
   reference::ParticleState s;
-  s.pose = Pose({0.05 * n(rng), 0.05 * n(rng), 0.8 + 0.05 * n(rng)},
-                rotation_exp(Eigen::Vector3d(n(rng), n(rng), n(rng))));
+  s.pose =
+      Pose({0.05 * n(rng), 0.05 * n(rng), 0.8 + 0.05 * n(rng)}, rotation_exp(Eigen::Vector3d(n(rng), n(rng), n(rng))));
   s.linear_velocity = Eigen::Vector3d(0.1 * n(rng), 0.1 * n(rng), 0.1 * n(rng));
   s.angular_velocity = Eigen::Vector3d(n(rng), n(rng), n(rng));
   return s;
@@ -42,9 +41,13 @@ struct ModelArgs {  // cl/dt_model.h's dt_model
 ModelArgs model_args() {
   const ObservationModel o;
   const OcclusionModel c;
-  return {static_cast<float>(o.sigma_constant), static_cast<float>(o.sigma_quadratic),
-          static_cast<float>(o.tail_weight / o.max_depth), static_cast<float>(1 - o.tail_weight),
-          static_cast<float>(o.occluder_rate), static_cast<float>(std::log(0.6)), 0.25f};
+  return {static_cast<float>(o.sigma_constant),
+          static_cast<float>(o.sigma_quadratic),
+          static_cast<float>(o.tail_weight / o.max_depth),
+          static_cast<float>(1 - o.tail_weight),
+          static_cast<float>(o.occluder_rate),
+          static_cast<float>(std::log(0.6)),
+          0.25f};
 }
 }  // namespace
 
@@ -64,8 +67,13 @@ TEST_CASE("propagate kernel equals the reference motion step", "[device][kernels
   const double spread = std::sqrt((1 - keep * keep) / (1 - m.damping * m.damping));
   struct {
     float keep, linear_std, angular_std, dt, cx, cy, cz;
-  } args{static_cast<float>(keep), static_cast<float>(m.sigma_linear * 30 * spread),
-         static_cast<float>(m.sigma_angular * 30 * spread), static_cast<float>(dt), 0.01f, -0.02f, 0.03f};
+  } args{static_cast<float>(keep),
+         static_cast<float>(m.sigma_linear * 30 * spread),
+         static_cast<float>(m.sigma_angular * 30 * spread),
+         static_cast<float>(dt),
+         0.01f,
+         -0.02f,
+         0.03f};
   const uint64_t seed = 0x123456789ull;
   compute::set_arg(*kernel, 0, buffer);
   kernel->set_arg(1, static_cast<unsigned>(states.size()));
@@ -80,7 +88,8 @@ TEST_CASE("propagate kernel equals the reference motion step", "[device][kernels
     dt_normals6(seed, static_cast<dt_u32>(i), 7, DT_STREAM_MOTION, n);
     reference::propagate_particle(states[i], m, centre, dt, n);
     const float* p = out.data() + i * DT_STATE_STRIDE;
-    const Pose got({p[DT_TX], p[DT_TX + 1], p[DT_TX + 2]}, Eigen::Quaterniond(p[DT_QW], p[DT_QW + 1], p[DT_QW + 2], p[DT_QW + 3]));
+    const Pose got({p[DT_TX], p[DT_TX + 1], p[DT_TX + 2]},
+                   Eigen::Quaterniond(p[DT_QW], p[DT_QW + 1], p[DT_QW + 2], p[DT_QW + 3]));
     REQUIRE(translation_error(got, states[i].pose) < 2e-6);
     REQUIRE(rotation_error(got, states[i].pose) < 2e-5);
     REQUIRE(p[DT_WX + 1] == Approx(states[i].angular_velocity.y()).epsilon(1e-5).margin(1e-6));
@@ -107,8 +116,9 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
   }
   std::vector<float> atlas(count * pixels), occlusion(count * pixels), times(count * pixels);
   for (size_t i = 0; i < count; ++i) {
-    const Pose pose = reference::move_about_centre(truth, Eigen::Vector3d::Zero(),
-                                                   Eigen::Vector3d(0.004 * i - 0.03, 0.002 * i, 0), Eigen::Vector3d(0, 0.02 * i, 0));
+    const Pose pose =
+        reference::move_about_centre(truth, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.004 * i - 0.03, 0.002 * i, 0),
+                                     Eigen::Vector3d(0, 0.02 * i, 0));
     r.render(pose, std::span<float>(atlas.data() + i * pixels, pixels));
   }
   for (auto& p : occlusion) p = unit(rng);
@@ -177,7 +187,8 @@ TEST_CASE("summarize kernel equals the reference normalization and mean pose", "
     log_weights[i] = -500 + 3 * n(rng);  // far from 0: the kernel must subtract the maximum
     log_likelihoods[i] = 10 * n(rng);
   }
-  compute::Buffer<float> state(*q, count * DT_STATE_STRIDE), lw(*q, count), ll(*q, count), w(*q, count), est(*q, DT_EST_SIZE);
+  compute::Buffer<float> state(*q, count * DT_STATE_STRIDE), lw(*q, count), ll(*q, count), w(*q, count),
+      est(*q, DT_EST_SIZE);
   state.upload(pack_particles(states));
   lw.upload(std::vector<float>(log_weights.begin(), log_weights.end()));
   ll.upload(std::vector<float>(log_likelihoods.begin(), log_likelihoods.end()));

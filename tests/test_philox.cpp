@@ -1,6 +1,5 @@
 // Philox4x32-10 against the published known-answer vectors (Random123, kat_vectors).
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <vector>
 

@@ -1,8 +1,6 @@
 // The reference rasterizer against analytic depth: planes and boxes intersected ray by ray.
 #include <catch2/catch.hpp>
-
 #include <depthtrack/error.hpp>
-
 #include <vector>
 
 #include "reference/rasterizer.hpp"
@@ -12,7 +10,9 @@ using namespace depthtrack;
 namespace {
 const Camera camera = Camera::make(64, 48, 60.0, 62.0, 31.5, 23.5);
 
-Eigen::Vector3d ray(int u, int v) { return {(u - camera.cx) / camera.fx, (v - camera.cy) / camera.fy, 1.0}; }
+Eigen::Vector3d ray(int u, int v) {
+  return {(u - camera.cx) / camera.fx, (v - camera.cy) / camera.fy, 1.0};
+}
 
 // Depth z where the ray through pixel (u, v) enters the axis-aligned box [lo, hi] placed by pose;
 // 0 if it misses (slab method, in the box's frame).
@@ -50,7 +50,8 @@ TEST_CASE("a tilted plane renders its analytic depth at every pixel", "[rasteriz
 TEST_CASE("a rotated box renders the depth where each ray enters it", "[rasterizer]") {
   const Eigen::Vector3d size(0.3, 0.2, 0.25);
   const Mesh box = make_box(size.cast<float>());
-  const Pose pose({0.02, 0.01, 1.2}, Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(0.3, 1, 0.2).normalized())));
+  const Pose pose({0.02, 0.01, 1.2},
+                  Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(0.3, 1, 0.2).normalized())));
   reference::Rasterizer r(box, camera, 0.05, 10.0);
   std::vector<float> depth(camera.pixel_count());
   const auto covered_box = r.render(pose, depth);

@@ -1,6 +1,5 @@
 // The reference filter's per-frame computation against independent statements of it.
 #include <catch2/catch.hpp>
-
 #include <depthtrack/error.hpp>
 #include <depthtrack/tracker.hpp>
 

@@ -2,7 +2,6 @@
 #include <catch2/catch.hpp>
 #include <depthtrack/error.hpp>
 #include <depthtrack/synth.hpp>
-
 #include <filesystem>
 #include <functional>
 #include <limits>

@@ -1,8 +1,7 @@
 // The moving occluder: measured from the images against an independent rendering of the object.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <depthtrack/synth.hpp>
-
-#include <algorithm>
 #include <vector>
 
 #include "reference/rasterizer.hpp"

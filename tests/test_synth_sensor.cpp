@@ -1,9 +1,8 @@
 // The structured-light sensor model of the synthesizer, checked against the physics it imitates.
-#include <catch2/catch.hpp>
-#include <depthtrack/synth.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
+#include <depthtrack/synth.hpp>
 #include <vector>
 
 #include "reference/rasterizer.hpp"
@@ -134,8 +133,8 @@ TEST_CASE("pixels at the silhouette go missing at the edge dropout rate, interio
   REQUIRE(interior > 1000);
   const double silhouette_rate = static_cast<double>(silhouette_missing) / silhouette;
   const double interior_rate = static_cast<double>(interior_missing) / interior;
-  INFO("silhouette " << silhouette << " px, missing " << silhouette_rate << "; interior " << interior
-                     << " px, missing " << interior_rate);
+  INFO("silhouette " << silhouette << " px, missing " << silhouette_rate << "; interior " << interior << " px, missing "
+                     << interior_rate);
   CHECK(silhouette_rate == Approx(0.6).margin(0.08));
   CHECK(interior_rate < 0.02);
 }

@@ -1,10 +1,9 @@
 // write_synthetic_sequence and the depthtrack synth command, read back through load_sequence.
 #include <catch2/catch.hpp>
-#include <depthtrack/sequence.hpp>
-#include <depthtrack/synth.hpp>
-
 #include <cmath>
 #include <cstdlib>
+#include <depthtrack/sequence.hpp>
+#include <depthtrack/synth.hpp>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -70,9 +69,9 @@ TEST_CASE("a written synthetic sequence loads back with its frames, poses and de
 
 TEST_CASE("depthtrack synth writes a sequence and explains its options", "[synth]") {
   const auto dir = test::temp_dir("synth_cli");
-  const auto [status, output] =
-      test::run_cli("synth --builtin --frames 4 --resolution 160x120 --occluder 0.25 --seed 3 --out " + (dir / "seq").string(),
-              dir / "log.txt");
+  const auto [status, output] = test::run_cli(
+      "synth --builtin --frames 4 --resolution 160x120 --occluder 0.25 --seed 3 --out " + (dir / "seq").string(),
+      dir / "log.txt");
   INFO(output);
   REQUIRE(status == 0);
   CHECK(output.find("4 frames") != std::string::npos);
@@ -83,8 +82,8 @@ TEST_CASE("depthtrack synth writes a sequence and explains its options", "[synth
 
   const auto [help_status, help] = test::run_cli("synth --help", dir / "help.txt");
   CHECK(help_status == 0);
-  for (const char* option : {"--out", "--mesh", "--unit-scale", "--builtin", "--frames", "--rate", "--occluder", "--seed",
-                             "--resolution", "--background"})
+  for (const char* option : {"--out", "--mesh", "--unit-scale", "--builtin", "--frames", "--rate", "--occluder",
+                             "--seed", "--resolution", "--background"})
     CHECK(help.find(option) != std::string::npos);
 }
 
@@ -93,10 +92,12 @@ TEST_CASE("depthtrack synth reports bad arguments as errors", "[synth]") {
   const auto [no_object, out1] = test::run_cli("synth --out " + (dir / "a").string(), dir / "1.txt");
   CHECK(no_object == 1);
   CHECK(out1.find("--builtin") != std::string::npos);
-  const auto [bad_size, out2] = test::run_cli("synth --builtin --resolution 640by480 --out " + (dir / "b").string(), dir / "2.txt");
+  const auto [bad_size, out2] =
+      test::run_cli("synth --builtin --resolution 640by480 --out " + (dir / "b").string(), dir / "2.txt");
   CHECK(bad_size == 1);
   CHECK(out2.find("640by480") != std::string::npos);
-  const auto [bad_fraction, out3] = test::run_cli("synth --builtin --occluder 0.95 --out " + (dir / "c").string(), dir / "3.txt");
+  const auto [bad_fraction, out3] =
+      test::run_cli("synth --builtin --occluder 0.95 --out " + (dir / "c").string(), dir / "3.txt");
   CHECK(bad_fraction == 1);
   CHECK(out3.find("occluder_fraction") != std::string::npos);
 }

@@ -1,9 +1,8 @@
 // Ground truth of synthetic sequences: consistent, smooth, reproducible, and matching the images.
-#include <catch2/catch.hpp>
-#include <depthtrack/synth.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
+#include <depthtrack/synth.hpp>
 #include <numbers>
 #include <vector>
 
@@ -75,7 +74,8 @@ TEST_CASE("the rendered object lies where the ground truth puts it", "[synth]") 
     std::vector<float> seen;
     for (int dv = -2; dv <= 2; ++dv)
       for (int du = -2; du <= 2; ++du) {
-        const float z = frame.depth.at(static_cast<int>(std::lround(uv.x())) + du, static_cast<int>(std::lround(uv.y())) + dv);
+        const float z =
+            frame.depth.at(static_cast<int>(std::lround(uv.x())) + du, static_cast<int>(std::lround(uv.y())) + dv);
         if (DepthImage::is_valid(z)) seen.push_back(z);
       }
     REQUIRE(seen.size() > 10);

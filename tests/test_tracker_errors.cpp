@@ -1,6 +1,5 @@
 // Bad input to the Tracker: each is an InputError that names the problem.
 #include <catch2/catch.hpp>
-
 #include <depthtrack/error.hpp>
 #include <depthtrack/tracker.hpp>
 
@@ -42,8 +41,7 @@ TEST_CASE("update checks order, image size, timestamps and valid pixels", "[erro
   const DepthImage good = test::render_scene(builtin_demo_mesh(), sensor, truth);
   CHECK_THROWS_WITH(tracker.update(good, 0.0), Catch::Contains("before initialize"));
   tracker.initialize(truth);
-  CHECK_THROWS_WITH(tracker.update(DepthImage(80, 60), 0.0),
-                    Catch::Contains("80x60") && Catch::Contains("160x120"));
+  CHECK_THROWS_WITH(tracker.update(DepthImage(80, 60), 0.0), Catch::Contains("80x60") && Catch::Contains("160x120"));
   CHECK_THROWS_WITH(tracker.update(DepthImage(160, 120), 0.0), Catch::Contains("no valid pixel"));
   tracker.update(good, 1.0);
   CHECK_THROWS_WITH(tracker.update(good, 0.5), Catch::Contains("timestamps must increase"));

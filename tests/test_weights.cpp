@@ -1,6 +1,5 @@
 // Weight normalization, degeneracy measures, systematic resampling and the mean pose, by hand.
 #include <catch2/catch.hpp>
-
 #include <vector>
 
 #include "reference/pose_mean.hpp"

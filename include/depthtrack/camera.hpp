@@ -22,13 +22,9 @@ struct Camera {
   int decimation_factor_for(int target_width, int target_height) const;
 
   // Image coordinates of a camera-frame point (z > 0).
-  Eigen::Vector2d project(const Eigen::Vector3d& p) const {
-    return {fx * p.x() / p.z() + cx, fy * p.y() / p.z() + cy};
-  }
+  Eigen::Vector2d project(const Eigen::Vector3d& p) const { return {fx * p.x() / p.z() + cx, fy * p.y() / p.z() + cy}; }
   // The camera-frame point at depth z seen through image coordinates (u, v).
-  Eigen::Vector3d back_project(double u, double v, double z) const {
-    return {(u - cx) / fx * z, (v - cy) / fy * z, z};
-  }
+  Eigen::Vector3d back_project(double u, double v, double z) const { return {(u - cx) / fx * z, (v - cy) / fy * z, z}; }
   int pixel_count() const { return width * height; }
 };
 

@@ -1,15 +1,14 @@
 #pragma once
 // Running a tracker over a sequence and scoring it against ground truth.
+#include <cmath>
+#include <cstdint>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/pose.hpp>
 #include <depthtrack/sequence.hpp>
 #include <depthtrack/tracker.hpp>
-
-#include <cmath>
-#include <cstdint>
-#include <memory>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -26,9 +25,9 @@ struct TrackedFrame {
 
 // Tracks every frame of the sequence from the given initial pose; on_frame(i, frame) is called
 // after each frame (progress, printing).
-std::vector<TrackedFrame> track_sequence(
-    const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config, const Pose& initial,
-    const InitialSpread& spread, const std::function<void(size_t, const TrackedFrame&)>& on_frame = {});
+std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config,
+                                         const Pose& initial, const InitialSpread& spread,
+                                         const std::function<void(size_t, const TrackedFrame&)>& on_frame = {});
 
 // pose moved by exactly `metres` in a direction and rotated by exactly `degrees` about an axis
 // through the mesh's centre, both drawn from seed: a reproducible "start from perturbed ground truth".

@@ -12,17 +12,17 @@
 namespace depthtrack {
 
 struct SequenceFrame {
-  std::string name;                    // e.g. "000001"
-  double timestamp = 0;                // seconds
+  std::string name;      // e.g. "000001"
+  double timestamp = 0;  // seconds
   std::filesystem::path depth_path;
-  std::optional<Pose> ground_truth;    // camera_from_object of the selected object, when known
+  std::optional<Pose> ground_truth;  // camera_from_object of the selected object, when known
 };
 
 struct Sequence {
-  std::string format;                  // "depthtrack" or "ycb-video"
-  std::string object;                  // the object whose ground truth the frames carry ("" if none)
-  Camera camera;                       // intrinsics of the depth images
-  double metres_per_unit = 0.001;      // 16-bit PNG value -> metres
+  std::string format;              // "depthtrack" or "ycb-video"
+  std::string object;              // the object whose ground truth the frames carry ("" if none)
+  Camera camera;                   // intrinsics of the depth images
+  double metres_per_unit = 0.001;  // 16-bit PNG value -> metres
   std::vector<SequenceFrame> frames;
 
   // Loads frame i's depth image and checks its size against camera.

@@ -2,12 +2,12 @@
 // Synthetic depth sequences whose noise is NOT the tracker's own model: a structured-light sensor
 // (disparity quantization, depth-dependent noise, missing pixels at depth discontinuities), a
 // background wall and an optional moving occluder covering a chosen fraction of the object.
+#include <cstdint>
 #include <depthtrack/camera.hpp>
 #include <depthtrack/depth_image.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/pose.hpp>
 #include <depthtrack/sequence.hpp>
-#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -16,21 +16,21 @@ namespace depthtrack {
 
 // A Kinect-like structured-light sensor: depth z = focal * baseline / disparity.
 struct SensorModel {
-  double baseline = 0.075;              // metres
-  double disparity_step = 0.125;        // pixels: disparity is quantized to 1/8 px
-  double disparity_noise = 0.07;        // pixels, gaussian, before quantization
-  double edge_threshold = 0.03;         // metres of depth jump between neighbours that marks an edge
-  double edge_dropout = 0.6;            // probability that a pixel at an edge is missing
-  double random_dropout = 0.01;         // probability that any pixel is missing
+  double baseline = 0.075;                  // metres
+  double disparity_step = 0.125;            // pixels: disparity is quantized to 1/8 px
+  double disparity_noise = 0.07;            // pixels, gaussian, before quantization
+  double edge_threshold = 0.03;             // metres of depth jump between neighbours that marks an edge
+  double edge_dropout = 0.6;                // probability that a pixel at an edge is missing
+  double random_dropout = 0.01;             // probability that any pixel is missing
   double min_depth = 0.4, max_depth = 4.5;  // outside this range the sensor returns nothing
 };
 
 // Smooth 6-DoF motion: sinusoids about a centre pose.
 struct TrajectoryModel {
-  Eigen::Vector3d centre = {0.0, 0.0, 0.8};        // metres, camera frame, of the mesh's centre
-  Eigen::Vector3d amplitude = {0.08, 0.05, 0.08};  // metres
+  Eigen::Vector3d centre = {0.0, 0.0, 0.8};              // metres, camera frame, of the mesh's centre
+  Eigen::Vector3d amplitude = {0.08, 0.05, 0.08};        // metres
   Eigen::Vector3d rotation_amplitude = {0.5, 0.6, 0.4};  // radians about the object's axes
-  double period = 6.0;                               // seconds of the slowest component
+  double period = 6.0;                                   // seconds of the slowest component
 };
 
 struct SynthConfig {
@@ -38,18 +38,18 @@ struct SynthConfig {
   SensorModel sensor;
   TrajectoryModel trajectory;
   int frames = 150;
-  double rate = 30.0;                   // Hz
-  double occluder_fraction = 0.0;       // share of the object's visible pixels hidden, 0..0.9
-  double background_depth = 1.6;        // metres: a wall behind the object; <= 0 for none
-  double metres_per_unit = 0.0001;      // PNG scale written (0.1 mm)
+  double rate = 30.0;               // Hz
+  double occluder_fraction = 0.0;   // share of the object's visible pixels hidden, 0..0.9
+  double background_depth = 1.6;    // metres: a wall behind the object; <= 0 for none
+  double metres_per_unit = 0.0001;  // PNG scale written (0.1 mm)
   uint64_t seed = 7;
 };
 
 struct SynthFrame {
   double timestamp = 0;
-  Pose ground_truth;                    // camera_from_object
-  DepthImage depth;                     // what the sensor saw, metres
-  double occluded_fraction = 0;         // measured share of object pixels the occluder hid
+  Pose ground_truth;             // camera_from_object
+  DepthImage depth;              // what the sensor saw, metres
+  double occluded_fraction = 0;  // measured share of object pixels the occluder hid
 };
 
 class Synthesizer {

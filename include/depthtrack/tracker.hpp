@@ -15,12 +15,12 @@ struct StepTimings {
 };
 
 struct Estimate {
-  Pose pose;                                                // weighted mean camera_from_object
+  Pose pose;                                                   // weighted mean camera_from_object
   Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   // m/s, object's local frame
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // rad/s, object's local frame
-  double effective_sample_size = 0;                         // 1 / sum w^2 before resampling
-  double max_log_likelihood = 0;                            // best particle's log L of this frame
-  double mean_log_likelihood = 0;                           // weighted mean of log L
+  double effective_sample_size = 0;                            // 1 / sum w^2 before resampling
+  double max_log_likelihood = 0;                               // best particle's log L of this frame
+  double mean_log_likelihood = 0;                              // weighted mean of log L
   bool resampled = false;
   StepTimings timings;
 };

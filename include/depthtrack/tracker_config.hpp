@@ -8,18 +8,18 @@ namespace depthtrack {
 
 // Per-pixel observation model.
 struct ObservationModel {
-  double sigma_constant = 0.003;        // sigma(y) = sigma_constant + sigma_quadratic * y^2 (metres)
+  double sigma_constant = 0.003;  // sigma(y) = sigma_constant + sigma_quadratic * y^2 (metres)
   double sigma_quadratic = 0.0014247;
-  double tail_weight = 0.01;            // w: weight of the uniform outlier tail
-  double max_depth = 6.0;               // D: the tail is uniform on [0, D] (metres)
+  double tail_weight = 0.01;             // w: weight of the uniform outlier tail
+  double max_depth = 6.0;                // D: the tail is uniform on [0, D] (metres)
   double occluder_rate = std::log(2.0);  // lambda: exponential prior of occluder depth (1/m)
 };
 
 // Two-state Markov chain of each pixel's occlusion, per second.
 struct OcclusionModel {
-  double p_occluded_stays = 0.7;        // a = P(occluded -> occluded)
-  double p_visible_to_occluded = 0.1;   // b = P(visible -> occluded)
-  double initial = 0.1;                 // occlusion probability of a fresh particle's pixels
+  double p_occluded_stays = 0.7;       // a = P(occluded -> occluded)
+  double p_visible_to_occluded = 0.1;  // b = P(visible -> occluded)
+  double initial = 0.1;                // occlusion probability of a fresh particle's pixels
 };
 
 enum class OcclusionStorage {
@@ -34,10 +34,10 @@ OcclusionStorage occlusion_storage_from_string(const std::string& name);  // thr
 // At dt = 1/reference_rate it is dbot's v' = damping v + sigma w, in the object's local frame
 // about the mesh's centre.
 struct MotionModel {
-  double damping = 0.8;                 // velocity kept per reference frame
-  double sigma_linear = 0.0025;         // metres per reference frame, per axis
-  double sigma_angular = 0.02;          // radians per reference frame, per axis
-  double reference_rate = 30.0;         // Hz at which the three numbers above are given
+  double damping = 0.8;          // velocity kept per reference frame
+  double sigma_linear = 0.0025;  // metres per reference frame, per axis
+  double sigma_angular = 0.02;   // radians per reference frame, per axis
+  double reference_rate = 30.0;  // Hz at which the three numbers above are given
 };
 
 struct TrackerConfig {
@@ -46,10 +46,10 @@ struct TrackerConfig {
   MotionModel motion;
   OcclusionStorage occlusion_storage = OcclusionStorage::PerPixelTime;
   int particles = 200;
-  int width = 80;                       // working resolution: the sensor image is decimated to it
+  int width = 80;  // working resolution: the sensor image is decimated to it
   int height = 60;
-  double resample_kl_threshold = 2.0;   // resample when log N - H(w) exceeds this
-  double near_plane = 0.05;             // metres: rendering clips geometry closer than this
+  double resample_kl_threshold = 2.0;  // resample when log N - H(w) exceeds this
+  double near_plane = 0.05;            // metres: rendering clips geometry closer than this
   uint64_t seed = 1;
   // reference, opencl, opencl:pocl, opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n>;
   // empty: the environment's DEPTHTRACK_DEVICE if set, else reference (see resolved_backend()).

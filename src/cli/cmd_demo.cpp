@@ -1,9 +1,8 @@
 // depthtrack demo: synthesize an occluded sequence of the built-in object, track it, print the errors.
-#include <depthtrack/evaluation.hpp>
-#include <depthtrack/synth.hpp>
-
 #include <chrono>
 #include <cstdio>
+#include <depthtrack/evaluation.hpp>
+#include <depthtrack/synth.hpp>
 #include <memory>
 #include <numbers>
 
@@ -49,8 +48,8 @@ void run_demo(const DemoArgs& a) {
     sum_t += et;
     sum_r += er;
     max_t = std::max(max_t, et);
-    std::printf("%6d %9.3f %10.2f %10.2f %8.1f %9.2f\n", i, f.timestamp, 1000 * et, deg * er,
-                e.effective_sample_size, 1000 * seconds);
+    std::printf("%6d %9.3f %10.2f %10.2f %8.1f %9.2f\n", i, f.timestamp, 1000 * et, deg * er, e.effective_sample_size,
+                1000 * seconds);
   }
   const double n = synth.frames;
   std::printf("\nmean error %.2f mm / %.2f deg, max %.2f mm; %.1f frames per second (tracking only)\n",
@@ -62,7 +61,8 @@ void run_demo(const DemoArgs& a) {
 void add_demo_command(CLI::App& app) {
   auto args = std::make_shared<DemoArgs>();
   CLI::App* c = app.add_subcommand(
-      "demo", "Synthesize an occluded depth sequence of a built-in object, track it and print per-frame errors and fps");
+      "demo",
+      "Synthesize an occluded depth sequence of a built-in object, track it and print per-frame errors and fps");
   c->add_option("--frames", args->frames, "Number of frames (30 Hz)")->capture_default_str();
   c->add_option("--occluder", args->occluder, "Share of the object hidden by a moving occluder, 0..0.9")
       ->capture_default_str();

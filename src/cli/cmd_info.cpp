@@ -1,7 +1,6 @@
 // depthtrack info: every compute device of every backend, and what it offers depthtrack.
-#include <depthtrack/error.hpp>
-
 #include <cstdio>
+#include <depthtrack/error.hpp>
 #include <memory>
 #include <string>
 #include <vector>
@@ -104,7 +103,9 @@ void print_info(bool extensions) {
 
 void add_info_command(CLI::App& app) {
   auto extensions = std::make_shared<bool>(false);
-  CLI::App* c = app.add_subcommand("info", "List the compute devices of every backend, the headless GL paths, and how the atlas reaches the devices");
+  CLI::App* c = app.add_subcommand(
+      "info",
+      "List the compute devices of every backend, the headless GL paths, and how the atlas reaches the devices");
   c->add_flag("--extensions", *extensions, "Also print every device's full extension list");
   c->callback([extensions] { print_info(*extensions); });
 }

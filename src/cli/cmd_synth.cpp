@@ -1,9 +1,8 @@
 // depthtrack synth: write a synthetic depth sequence with ground truth (see synth.hpp for the model).
+#include <cstdio>
 #include <depthtrack/error.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/synth.hpp>
-
-#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -62,8 +61,8 @@ void add_synth_command(CLI::App& app) {
       "smoothly in front of a wall, seen by a simulated structured-light sensor (quantized disparity, noise growing "
       "with depth squared, holes at depth edges), optionally behind a bar sweeping across it.");
   cmd->add_option("--out", options->out, "Folder to write the sequence into (created)")->required();
-  auto* mesh = cmd->add_option("--mesh", options->mesh, "Object mesh file (any format assimp reads)")
-                   ->check(CLI::ExistingFile);
+  auto* mesh =
+      cmd->add_option("--mesh", options->mesh, "Object mesh file (any format assimp reads)")->check(CLI::ExistingFile);
   cmd->add_option("--unit-scale", options->unit_scale,
                   "Factor turning the mesh's coordinates into metres (0.001 for a mesh in millimetres)")
       ->needs(mesh)
@@ -83,7 +82,8 @@ void add_synth_command(CLI::App& app) {
   cmd->add_option("--background", options->background, "Depth of the wall behind the object (metres; 0 = none)")
       ->capture_default_str();
   cmd->callback([options, mesh, builtin]() {
-    if (mesh->count() == 0 && builtin->count() == 0) throw InputError("synth needs an object: --mesh FILE or --builtin");
+    if (mesh->count() == 0 && builtin->count() == 0)
+      throw InputError("synth needs an object: --mesh FILE or --builtin");
     run(*options);
   });
 }

@@ -1,9 +1,8 @@
 // depthtrack track: run the tracker over a recorded sequence and write the estimates as CSV.
-#include <depthtrack/error.hpp>
-#include <depthtrack/evaluation.hpp>
-
 #include <chrono>
 #include <cstdio>
+#include <depthtrack/error.hpp>
+#include <depthtrack/evaluation.hpp>
 #include <iostream>
 #include <memory>
 #include <numbers>

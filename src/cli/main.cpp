@@ -1,13 +1,13 @@
 // depthtrack: track a known object through depth images (see --help of each subcommand).
 #include <depthtrack/error.hpp>
-
 #include <exception>
 #include <iostream>
 
 #include "cli/commands.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"depthtrack: 6-DoF tracking of a known rigid object in depth images with an occlusion-aware particle filter"};
+  CLI::App app{
+      "depthtrack: 6-DoF tracking of a known rigid object in depth images with an occlusion-aware particle filter"};
   app.require_subcommand(1);
   depthtrack::cli::add_demo_command(app);
   depthtrack::cli::add_synth_command(app);

@@ -1,8 +1,9 @@
 #pragma once
 // A one-line progress bar on stderr, drawn only when stderr is a terminal.
+#include <unistd.h>
+
 #include <cstdio>
 #include <string>
-#include <unistd.h>
 
 namespace depthtrack::cli {
 
@@ -13,7 +14,8 @@ class ProgressBar {
   void update(int done, const std::string& suffix = "") {
     if (!enabled_ || total_ <= 0) return;
     const int width = 30, filled = done * width / total_;
-    std::fprintf(stderr, "\r%s [%s%s] %d/%d %s\033[K", label_.c_str(), std::string(static_cast<size_t>(filled), '#').c_str(),
+    std::fprintf(stderr, "\r%s [%s%s] %d/%d %s\033[K", label_.c_str(),
+                 std::string(static_cast<size_t>(filled), '#').c_str(),
                  std::string(static_cast<size_t>(width - filled), ' ').c_str(), done, total_, suffix.c_str());
     std::fflush(stderr);
     drawn_ = true;

@@ -1,8 +1,7 @@
 #include "cli/tracker_options.hpp"
 
-#include <depthtrack/error.hpp>
-
 #include <cmath>
+#include <depthtrack/error.hpp>
 #include <sstream>
 
 namespace depthtrack::cli {
@@ -12,17 +11,20 @@ void TrackerOptions::add_to(CLI::App& command) {
                      "Filter implementation: reference (sequential CPU), opencl (best OpenCL device), opencl:pocl, "
                      "opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n> (`depthtrack info` lists devices); "
                      "default: $DEPTHTRACK_DEVICE, else reference");
-  command.add_option("--renderer", config.renderer,
-                     "Who draws the pose atlas for device backends: cpu (reference rasterizer) or gl (headless "
-                     "OpenGL; DEPTHTRACK_GL=egl-device|egl-surfaceless|osmesa picks the path)")
+  command
+      .add_option("--renderer", config.renderer,
+                  "Who draws the pose atlas for device backends: cpu (reference rasterizer) or gl (headless "
+                  "OpenGL; DEPTHTRACK_GL=egl-device|egl-surfaceless|osmesa picks the path)")
       ->capture_default_str();
   command.add_option("--particles", config.particles, "Number of particles")->capture_default_str();
-  command.add_option("--resolution", resolution,
-                     "Working resolution WxH; the sensor image is decimated to it by an integer factor")
+  command
+      .add_option("--resolution", resolution,
+                  "Working resolution WxH; the sensor image is decimated to it by an integer factor")
       ->capture_default_str();
-  command.add_option("--occlusion", occlusion,
-                     "Occlusion model storage: per-pixel-time (p and last update time per pixel), global-time "
-                     "(p only, every pixel propagated each frame) or off")
+  command
+      .add_option("--occlusion", occlusion,
+                  "Occlusion model storage: per-pixel-time (p and last update time per pixel), global-time "
+                  "(p only, every pixel propagated each frame) or off")
       ->capture_default_str();
   command.add_option("--seed", config.seed, "Random seed: the same seed gives the same particles on every backend")
       ->capture_default_str();

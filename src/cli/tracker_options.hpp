@@ -1,8 +1,7 @@
 #pragma once
 // The tracker options that `track` and `demo` share, parsed into a TrackerConfig.
-#include <depthtrack/tracker_config.hpp>
-
 #include <CLI/CLI.hpp>
+#include <depthtrack/tracker_config.hpp>
 #include <string>
 
 namespace depthtrack::cli {

@@ -1,7 +1,6 @@
 #pragma once
 // Typed device buffer: RAII over DeviceMemory, element counts instead of bytes, checked ranges.
 #include <depthtrack/error.hpp>
-
 #include <span>
 #include <string>
 #include <vector>

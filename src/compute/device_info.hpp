@@ -11,20 +11,20 @@ struct DeviceInfo {
   std::string selector;  // the string that selects exactly this device, e.g. "opencl:0.1", "cuda:0"
   std::string platform;  // e.g. "Portable Computing Language", "NVIDIA CUDA"
   std::string vendor;
-  std::string name;      // e.g. "NVIDIA H100 80GB HBM3"
-  std::string driver;    // driver version
-  std::string version;   // API version the device offers, e.g. "OpenCL 3.0 CUDA", "CUDA 13.0 (sm_90)"
+  std::string name;     // e.g. "NVIDIA H100 80GB HBM3"
+  std::string driver;   // driver version
+  std::string version;  // API version the device offers, e.g. "OpenCL 3.0 CUDA", "CUDA 13.0 (sm_90)"
   bool is_gpu = false;
-  size_t global_memory = 0;      // bytes
-  size_t max_allocation = 0;     // bytes in one buffer
-  size_t local_memory = 0;       // bytes per work-group
+  size_t global_memory = 0;   // bytes
+  size_t max_allocation = 0;  // bytes in one buffer
+  size_t local_memory = 0;    // bytes per work-group
   size_t max_work_group_size = 0;
   int compute_units = 0;
   // Extensions that matter to depthtrack.
   bool gl_sharing = false;       // cl_khr_gl_sharing / CUDA-GL interop
   bool external_memory = false;  // cl_khr_external_memory(_opaque_fd) / CUDA external memory
   bool fp64 = false;
-  bool subgroups = false;        // cl_khr_subgroups or warps
+  bool subgroups = false;               // cl_khr_subgroups or warps
   std::vector<std::string> extensions;  // the full list, where the API has one
 };
 

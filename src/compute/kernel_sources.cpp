@@ -1,7 +1,6 @@
 #include "compute/kernel_sources.hpp"
 
 #include <depthtrack/error.hpp>
-
 #include <map>
 #include <set>
 #include <sstream>

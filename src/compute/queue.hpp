@@ -39,8 +39,8 @@ class Kernel {
   virtual void set_arg_bytes(unsigned index, const void* value, size_t size) = 0;
   // A plain value argument (int, float, unsigned, a struct of them).
   template <class T>
-    requires std::is_trivially_copyable_v<T> && (!std::is_base_of_v<DeviceMemory, T>)
-  void set_arg(unsigned index, const T& value) {
+  requires std::is_trivially_copyable_v<T> &&
+      (!std::is_base_of_v<DeviceMemory, T>)void set_arg(unsigned index, const T& value) {
     set_arg_bytes(index, &value, sizeof(T));
   }
 };

@@ -1,8 +1,7 @@
 // Device selection: turns "opencl", "opencl:pocl", "opencl:0.1", "cuda:0" into an open Queue.
-#include <depthtrack/error.hpp>
-
 #include <algorithm>
 #include <cctype>
+#include <depthtrack/error.hpp>
 #include <regex>
 
 #include "compute/opencl/opencl_backend.hpp"

@@ -1,7 +1,6 @@
+#include <cmath>
 #include <depthtrack/camera.hpp>
 #include <depthtrack/error.hpp>
-
-#include <cmath>
 #include <string>
 
 namespace depthtrack {
@@ -41,8 +40,7 @@ int Camera::decimation_factor_for(int target_width, int target_height) const {
   if (target_width <= 0 || target_height <= 0)
     throw InputError("working resolution " + std::to_string(target_width) + "x" + std::to_string(target_height) +
                      " must be positive");
-  if (width % target_width != 0 || height % target_height != 0 ||
-      width / target_width != height / target_height)
+  if (width % target_width != 0 || height % target_height != 0 || width / target_width != height / target_height)
     throw InputError("working resolution " + std::to_string(target_width) + "x" + std::to_string(target_height) +
                      " is not the sensor's " + std::to_string(width) + "x" + std::to_string(height) +
                      " divided by one integer factor");

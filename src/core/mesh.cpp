@@ -1,8 +1,7 @@
-#include <depthtrack/error.hpp>
-#include <depthtrack/mesh.hpp>
-
 #include <Eigen/Geometry>
 #include <cmath>
+#include <depthtrack/error.hpp>
+#include <depthtrack/mesh.hpp>
 #include <string>
 
 namespace depthtrack {
@@ -37,7 +36,8 @@ void Mesh::validate_and_clean(const std::string& what) {
 Eigen::Vector3f Mesh::centre() const {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (const auto& v : vertices) sum += v.cast<double>();
-  return vertices.empty() ? Eigen::Vector3f::Zero() : Eigen::Vector3f((sum / static_cast<double>(vertices.size())).cast<float>());
+  return vertices.empty() ? Eigen::Vector3f::Zero()
+                          : Eigen::Vector3f((sum / static_cast<double>(vertices.size())).cast<float>());
 }
 
 float Mesh::radius() const {
@@ -50,7 +50,8 @@ float Mesh::radius() const {
 Mesh make_box(const Eigen::Vector3f& size, const Eigen::Vector3f& centre) {
   Mesh m;
   for (int i = 0; i < 8; ++i)
-    m.vertices.emplace_back(centre + 0.5f * Eigen::Vector3f((i & 1) ? size.x() : -size.x(), (i & 2) ? size.y() : -size.y(),
+    m.vertices.emplace_back(centre + 0.5f * Eigen::Vector3f((i & 1) ? size.x() : -size.x(),
+                                                            (i & 2) ? size.y() : -size.y(),
                                                             (i & 4) ? size.z() : -size.z()));
   // Two triangles per face, wound outwards.
   const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};

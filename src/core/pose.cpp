@@ -1,7 +1,6 @@
+#include <cmath>
 #include <depthtrack/error.hpp>
 #include <depthtrack/pose.hpp>
-
-#include <cmath>
 
 namespace depthtrack {
 
@@ -48,8 +47,12 @@ Eigen::Vector3d rotation_log(const Eigen::Quaterniond& q_in) {
   return q.vec() * (angle / s);
 }
 
-double translation_error(const Pose& a, const Pose& b) { return (a.translation - b.translation).norm(); }
+double translation_error(const Pose& a, const Pose& b) {
+  return (a.translation - b.translation).norm();
+}
 
-double rotation_error(const Pose& a, const Pose& b) { return rotation_log(a.rotation.conjugate() * b.rotation).norm(); }
+double rotation_error(const Pose& a, const Pose& b) {
+  return rotation_log(a.rotation.conjugate() * b.rotation).norm();
+}
 
 }  // namespace depthtrack

@@ -1,17 +1,19 @@
-#include <depthtrack/error.hpp>
-#include <depthtrack/tracker_config.hpp>
-
 #include <cmath>
 #include <cstdlib>
+#include <depthtrack/error.hpp>
+#include <depthtrack/tracker_config.hpp>
 #include <string>
 
 namespace depthtrack {
 
 const char* to_string(OcclusionStorage mode) {
   switch (mode) {
-    case OcclusionStorage::PerPixelTime: return "per-pixel-time";
-    case OcclusionStorage::GlobalTime: return "global-time";
-    case OcclusionStorage::Off: return "off";
+    case OcclusionStorage::PerPixelTime:
+      return "per-pixel-time";
+    case OcclusionStorage::GlobalTime:
+      return "global-time";
+    case OcclusionStorage::Off:
+      return "off";
   }
   return "?";
 }
@@ -26,8 +28,12 @@ namespace {
 void require(bool ok, const std::string& what) {
   if (!ok) throw InputError("invalid tracker configuration: " + what);
 }
-bool positive(double v) { return std::isfinite(v) && v > 0; }
-bool probability(double v) { return std::isfinite(v) && v >= 0 && v <= 1; }
+bool positive(double v) {
+  return std::isfinite(v) && v > 0;
+}
+bool probability(double v) {
+  return std::isfinite(v) && v >= 0 && v <= 1;
+}
 }  // namespace
 
 std::string TrackerConfig::resolved_backend() const {

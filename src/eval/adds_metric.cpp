@@ -1,5 +1,4 @@
 #include <depthtrack/evaluation.hpp>
-
 #include <nanoflann.hpp>
 
 namespace depthtrack {
@@ -23,7 +22,8 @@ using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<
 struct AddsMetric::Index {
   PointCloud cloud;
   KdTree tree;
-  explicit Index(const std::vector<Eigen::Vector3d>& v) : cloud{&v}, tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {
+  explicit Index(const std::vector<Eigen::Vector3d>& v)
+      : cloud{&v}, tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {
     tree.buildIndex();
   }
 };

@@ -1,5 +1,4 @@
 #include <depthtrack/evaluation.hpp>
-
 #include <numbers>
 #include <random>
 

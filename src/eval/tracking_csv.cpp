@@ -1,7 +1,6 @@
+#include <algorithm>
 #include <depthtrack/error.hpp>
 #include <depthtrack/evaluation.hpp>
-
-#include <algorithm>
 #include <fstream>
 #include <numbers>
 
@@ -10,9 +9,8 @@ namespace depthtrack {
 void write_tracking_csv(const std::filesystem::path& path, const std::vector<TrackedFrame>& frames) {
   std::ofstream out(path);
   if (!out) throw InputError("cannot write '" + path.string() + "'");
-  const bool truth = !frames.empty() && std::all_of(frames.begin(), frames.end(), [](const TrackedFrame& f) {
-    return f.ground_truth.has_value();
-  });
+  const bool truth = !frames.empty() && std::all_of(frames.begin(), frames.end(),
+                                                    [](const TrackedFrame& f) { return f.ground_truth.has_value(); });
   out << "frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess" << (truth ? ",err_t_mm,err_r_deg" : "") << "\n";
   out.precision(9);
   for (const auto& f : frames) {

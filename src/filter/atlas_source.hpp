@@ -5,7 +5,6 @@
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/pose.hpp>
 #include <depthtrack/tracker_config.hpp>
-
 #include <memory>
 #include <span>
 #include <string>

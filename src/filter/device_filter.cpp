@@ -1,9 +1,8 @@
 #include "filter/device_filter.hpp"
 
-#include <depthtrack/error.hpp>
-
 #include <chrono>
 #include <cmath>
+#include <depthtrack/error.hpp>
 #include <numeric>
 #include <sstream>
 
@@ -16,8 +15,8 @@
 namespace depthtrack {
 
 namespace {
-constexpr size_t kGroupSize = 128;    // work-items per group in weigh, summarize and the gathers
-constexpr size_t kLinearGroup = 64;   // work-items per group in the per-particle kernels
+constexpr size_t kGroupSize = 128;   // work-items per group in weigh, summarize and the gathers
+constexpr size_t kLinearGroup = 64;  // work-items per group in the per-particle kernels
 
 // Host mirrors of the structs the kernels take by value (cl/dt_model.h, cl/propagate.cl).
 struct ModelArgs {
@@ -27,7 +26,9 @@ struct MotionArgs {
   float keep, linear_std, angular_std, dt, centre_x, centre_y, centre_z;
 };
 
-size_t round_up(size_t n, size_t multiple) { return (n + multiple - 1) / multiple * multiple; }
+size_t round_up(size_t n, size_t multiple) {
+  return (n + multiple - 1) / multiple * multiple;
+}
 
 double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -35,9 +36,12 @@ double ms_since(std::chrono::steady_clock::time_point start) {
 
 int occlusion_define(OcclusionStorage mode) {
   switch (mode) {
-    case OcclusionStorage::PerPixelTime: return 0;
-    case OcclusionStorage::GlobalTime: return 1;
-    case OcclusionStorage::Off: return 2;
+    case OcclusionStorage::PerPixelTime:
+      return 0;
+    case OcclusionStorage::GlobalTime:
+      return 1;
+    case OcclusionStorage::Off:
+      return 2;
   }
   return 2;
 }
@@ -45,8 +49,8 @@ int occlusion_define(OcclusionStorage mode) {
 
 struct DeviceFilter::Kernels {
   std::unique_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program;
-  std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state,
-      gather_pixels, fill;
+  std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state, gather_pixels,
+      fill;
 };
 
 DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
@@ -59,8 +63,9 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
       count_(static_cast<size_t>(config.particles)),
       pixels_(static_cast<size_t>(camera.pixel_count())) {
   check_memory();
-  const std::vector<std::string> defines = {"DT_GROUP_SIZE=" + std::to_string(kGroupSize),
-                                            "DT_OCCLUSION=" + std::to_string(occlusion_define(config.occlusion_storage))};
+  const std::vector<std::string> defines = {
+      "DT_GROUP_SIZE=" + std::to_string(kGroupSize),
+      "DT_OCCLUSION=" + std::to_string(occlusion_define(config.occlusion_storage))};
   kernels_ = std::make_unique<Kernels>();
   Kernels& k = *kernels_;
   k.propagate_program = queue_->build("propagate.cl", compute::kernel_source("propagate.cl"), defines);
@@ -102,8 +107,8 @@ void DeviceFilter::check_memory() const {
   const bool occlusion = config_.occlusion_storage != OcclusionStorage::Off;
   const bool times = config_.occlusion_storage == OcclusionStorage::PerPixelTime;
   // Atlas, occlusion probabilities and times, each with a resampling twin, plus per-particle state.
-  const double per_particle = 4.0 * (static_cast<double>(pixels_) * (1 + (occlusion ? 2 : 0) + (times ? 2 : 0)) +
-                                     2 * DT_STATE_STRIDE + 6);
+  const double per_particle =
+      4.0 * (static_cast<double>(pixels_) * (1 + (occlusion ? 2 : 0) + (times ? 2 : 0)) + 2 * DT_STATE_STRIDE + 6);
   const double needed = per_particle * static_cast<double>(count_);
   const auto& info = queue_->info();
   if (info.global_memory > 0 && needed > 0.9 * static_cast<double>(info.global_memory)) {
@@ -145,8 +150,9 @@ void DeviceFilter::initialize(const Pose& pose, const InitialSpread& spread) {
   last_resampled_ = false;
 }
 
-void DeviceFilter::set_state(const std::vector<reference::ParticleState>& particles, const std::vector<float>& occlusion,
-                             const std::vector<float>& occlusion_time, const std::vector<double>& log_weights) {
+void DeviceFilter::set_state(const std::vector<reference::ParticleState>& particles,
+                             const std::vector<float>& occlusion, const std::vector<float>& occlusion_time,
+                             const std::vector<double>& log_weights) {
   if (particles.size() != count_ || log_weights.size() != count_)
     throw InputError("set_state: expected " + std::to_string(count_) + " particles");
   upload_particles(particles);
@@ -159,7 +165,9 @@ std::vector<reference::ParticleState> DeviceFilter::unpack(const compute::Buffer
   return unpack_particles(state.download());
 }
 
-std::vector<reference::ParticleState> DeviceFilter::particles() const { return unpack(state_); }
+std::vector<reference::ParticleState> DeviceFilter::particles() const {
+  return unpack(state_);
+}
 
 // Resampling gathers into the scratch buffer and swaps, so the weighed states are left there.
 std::vector<reference::ParticleState> DeviceFilter::weighed_particles() const {
@@ -198,7 +206,8 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
     k.propagate->set_arg(4, frame_);
     k.propagate->set_arg(5, args);
     e.timings.propagate_ms =
-        queue_->launch(*k.propagate, compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup))->elapsed_ms();
+        queue_->launch(*k.propagate, compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup))
+            ->elapsed_ms();
   }
 
   render_atlas(e.timings.render_ms);
@@ -223,7 +232,8 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   k.weigh->set_arg(7, model);
   k.weigh->set_arg(8, static_cast<float>(time_));
   k.weigh->set_arg(9, static_cast<float>(dt));
-  e.timings.weigh_ms = queue_->launch(*k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize))->elapsed_ms();
+  e.timings.weigh_ms =
+      queue_->launch(*k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize))->elapsed_ms();
 
   compute::set_arg(*k.summarize, 0, state_);
   compute::set_arg(*k.summarize, 1, log_weight_);
@@ -288,7 +298,8 @@ double DeviceFilter::resample() {
     std::swap(state, scratch);
   };
   if (config_.occlusion_storage != OcclusionStorage::Off) gather_pixels(occlusion_, scratch_occlusion_);
-  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime) gather_pixels(occlusion_time_, scratch_occlusion_time_);
+  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
+    gather_pixels(occlusion_time_, scratch_occlusion_time_);
 
   compute::set_arg(*k.fill, 0, log_weight_);
   k.fill->set_arg(1, count);

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "compute/buffer.hpp"
+#include "filter/atlas_source.hpp"
 #include "filter/filter_backend.hpp"
 #include "reference/particle.hpp"
-#include "filter/atlas_source.hpp"
 
 namespace depthtrack {
 

@@ -5,7 +5,6 @@
 #include <depthtrack/depth_image.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/tracker.hpp>
-
 #include <memory>
 #include <string>
 

@@ -2,7 +2,6 @@
 // staged copy (read back to the host, uploaded). Zero-copy hand-offs (CUDA-GL interop,
 // cl_khr_gl_sharing) are the next step; this path works on every platform, PoCL + llvmpipe included.
 #include <depthtrack/error.hpp>
-
 #include <vector>
 
 #include "filter/atlas_source.hpp"
@@ -14,7 +13,8 @@ namespace {
 class GlAtlasSource final : public AtlasSource {
  public:
   GlAtlasSource(const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
-      : context_(), renderer_(context_, mesh, camera, config.near_plane, config.observation.max_depth),
+      : context_(),
+        renderer_(context_, mesh, camera, config.near_plane, config.observation.max_depth),
         pixels_(static_cast<size_t>(camera.pixel_count())) {}
 
   void draw(std::span<const Pose> poses, compute::Buffer<float>& atlas) override {
@@ -33,7 +33,8 @@ class GlAtlasSource final : public AtlasSource {
 };
 }  // namespace
 
-std::unique_ptr<AtlasSource> make_host_atlas_source(const Mesh& mesh, const Camera& camera, const TrackerConfig& config);
+std::unique_ptr<AtlasSource> make_host_atlas_source(const Mesh& mesh, const Camera& camera,
+                                                    const TrackerConfig& config);
 
 std::unique_ptr<AtlasSource> make_atlas_source(const Mesh& mesh, const Camera& camera, const TrackerConfig& config) {
   if (config.renderer == "cpu") return make_host_atlas_source(mesh, camera, config);

@@ -1,6 +1,5 @@
-#include <depthtrack/error.hpp>
-
 #include <cstdlib>
+#include <depthtrack/error.hpp>
 
 #include "compute/queue.hpp"
 #include "filter/device_filter.hpp"

@@ -1,7 +1,6 @@
+#include <cmath>
 #include <depthtrack/error.hpp>
 #include <depthtrack/tracker.hpp>
-
-#include <cmath>
 #include <sstream>
 
 #include "filter/filter_backend.hpp"
@@ -61,8 +60,14 @@ Estimate Tracker::update(const DepthImage& depth, double timestamp) {
   return e;
 }
 
-const Camera& Tracker::working_camera() const { return working_; }
-const TrackerConfig& Tracker::config() const { return config_; }
-std::string Tracker::backend_description() const { return backend_->description(); }
+const Camera& Tracker::working_camera() const {
+  return working_;
+}
+const TrackerConfig& Tracker::config() const {
+  return config_;
+}
+std::string Tracker::backend_description() const {
+  return backend_->description();
+}
 
 }  // namespace depthtrack

@@ -1,8 +1,7 @@
 // DepthImage construction from the two sensor conventions, and the in-memory operations.
+#include <algorithm>
 #include <depthtrack/depth_image.hpp>
 #include <depthtrack/error.hpp>
-
-#include <algorithm>
 #include <limits>
 #include <sstream>
 
@@ -10,7 +9,9 @@ namespace depthtrack {
 
 namespace {
 
-std::string size_text(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
+std::string size_text(int width, int height) {
+  return std::to_string(width) + "x" + std::to_string(height);
+}
 
 void check_size(int width, int height) {
   // The pixel count must also fit in int: Camera::pixel_count() and the backends use int.

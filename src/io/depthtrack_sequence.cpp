@@ -1,11 +1,10 @@
 // depthtrack's own sequence layout: sequence.json beside the 16-bit depth PNGs it names.
+#include <cmath>
+#include <depthtrack/error.hpp>
+#include <fstream>
+
 #include "io/json_fields.hpp"
 #include "io/sequence_formats.hpp"
-
-#include <depthtrack/error.hpp>
-
-#include <cmath>
-#include <fstream>
 
 namespace depthtrack {
 
@@ -41,8 +40,8 @@ std::string relative_depth_name(const std::filesystem::path& depth, const std::f
   const auto relative = std::filesystem::weakly_canonical(std::filesystem::absolute(depth))
                             .lexically_relative(std::filesystem::weakly_canonical(std::filesystem::absolute(dir)));
   if (relative.empty())
-    throw InputError("cannot write a sequence manifest: depth file '" + depth.string() + "' cannot be named relative to '" +
-                     dir.string() + "'");
+    throw InputError("cannot write a sequence manifest: depth file '" + depth.string() +
+                     "' cannot be named relative to '" + dir.string() + "'");
   return relative.generic_string();
 }
 

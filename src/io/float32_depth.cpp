@@ -1,10 +1,9 @@
 // Raw little-endian float32 depth (a ROS 32FC1 image dumped to a file).
-#include <depthtrack/depth_image.hpp>
-#include <depthtrack/error.hpp>
-
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <depthtrack/depth_image.hpp>
+#include <depthtrack/error.hpp>
 #include <fstream>
 #include <system_error>
 

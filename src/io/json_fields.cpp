@@ -1,8 +1,7 @@
 #include "io/json_fields.hpp"
 
-#include <depthtrack/error.hpp>
-
 #include <cmath>
+#include <depthtrack/error.hpp>
 #include <fstream>
 
 namespace depthtrack::io {

@@ -1,11 +1,9 @@
 #pragma once
 // Internal to the I/O layer: reading JSON manifests with errors that name the file and the field.
-#include <depthtrack/pose.hpp>
-
-#include <nlohmann/json.hpp>
-
 #include <array>
+#include <depthtrack/pose.hpp>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace depthtrack::io {

@@ -1,18 +1,19 @@
 // Picks the sequence reader from the files present, and loads a frame's depth.
-#include "io/sequence_formats.hpp"
-
 #include <depthtrack/error.hpp>
+
+#include "io/sequence_formats.hpp"
 
 namespace depthtrack {
 
 Sequence load_sequence(const std::filesystem::path& dir, const std::string& object) {
   std::error_code error;
   if (!std::filesystem::exists(dir, error)) throw InputError("sequence folder '" + dir.string() + "' does not exist");
-  if (!std::filesystem::is_directory(dir, error)) throw InputError("sequence folder '" + dir.string() + "' is not a folder");
+  if (!std::filesystem::is_directory(dir, error))
+    throw InputError("sequence folder '" + dir.string() + "' is not a folder");
   if (std::filesystem::exists(dir / io::kDepthtrackManifest, error)) return io::load_depthtrack_sequence(dir, object);
   if (std::filesystem::exists(dir / io::kYcbVideoManifest, error)) return io::load_ycb_video_sequence(dir, object);
-  throw InputError("sequence folder '" + dir.string() + "' has neither " + io::kDepthtrackManifest + " (depthtrack) nor " +
-                   io::kYcbVideoManifest + " (YCB-Video)");
+  throw InputError("sequence folder '" + dir.string() + "' has neither " + io::kDepthtrackManifest +
+                   " (depthtrack) nor " + io::kYcbVideoManifest + " (YCB-Video)");
 }
 
 DepthImage Sequence::load_depth(size_t i) const {

@@ -1,14 +1,13 @@
 // Mesh::load through assimp: every format it reads, merged into one triangle list.
-#include <depthtrack/error.hpp>
-#include <depthtrack/mesh.hpp>
-
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include <algorithm>
 #include <array>
+#include <assimp/Importer.hpp>
 #include <cmath>
+#include <depthtrack/error.hpp>
+#include <depthtrack/mesh.hpp>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -63,7 +62,8 @@ bool has_polygons(const aiScene& scene) {
 
 bool is_obj(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext == ".obj";
 }
 
@@ -96,7 +96,8 @@ Mesh Mesh::load(const std::filesystem::path& path, double unit_scale) {
     throw InputError(name + ": unit_scale must be finite and positive, got " + std::to_string(unit_scale));
   std::error_code error;
   if (!std::filesystem::exists(path, error)) throw InputError("mesh file '" + path.string() + "' does not exist");
-  if (!std::filesystem::is_regular_file(path, error)) throw InputError("mesh file '" + path.string() + "' is not a file");
+  if (!std::filesystem::is_regular_file(path, error))
+    throw InputError("mesh file '" + path.string() + "' is not a file");
 
   // No DefaultLogger is created, so assimp logs nowhere (the library must not print).
   Assimp::Importer importer;
@@ -107,7 +108,8 @@ Mesh Mesh::load(const std::filesystem::path& path, double unit_scale) {
     const std::string first_error = scene ? "" : importer.GetErrorString();
     obj_text = obj_with_positions_only(path);
     scene = importer.ReadFileFromMemory(obj_text.data(), obj_text.size(), 0, "obj");
-    if (!scene) throw InputError("cannot read " + name + ": " + (first_error.empty() ? importer.GetErrorString() : first_error));
+    if (!scene)
+      throw InputError("cannot read " + name + ": " + (first_error.empty() ? importer.GetErrorString() : first_error));
   }
   if (!scene) throw InputError("cannot read " + name + ": " + importer.GetErrorString());
   // Checked before post-processing, which fails on such a scene with a message about orphaned meshes.

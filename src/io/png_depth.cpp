@@ -6,18 +6,17 @@
 // everything that needs cleaning up lives in a PngFile owned by the caller.
 #include "io/png_depth.hpp"
 
-#include <depthtrack/depth_image.hpp>
-#include <depthtrack/error.hpp>
-
 #include <png.h>
 
 #include <bit>
 #include <cerrno>
 #include <cmath>
 #include <csetjmp>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
+#include <depthtrack/depth_image.hpp>
+#include <depthtrack/error.hpp>
 #include <sstream>
 #include <vector>
 
@@ -54,10 +53,13 @@ struct PngFile {
 // Warnings (bad ancillary chunks, sRGB profile quirks) do not affect the depth values: stay quiet.
 void on_png_warning(png_structp, png_const_charp) {}
 
-std::string quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
+std::string quoted(const std::filesystem::path& path) {
+  return "'" + path.string() + "'";
+}
 
 [[noreturn]] void throw_libpng(const PngFile& f, const std::filesystem::path& path, const char* doing) {
-  throw InputError("depth image " + quoted(path) + " is corrupt or truncated (libpng, " + doing + ": " + f.message + ")");
+  throw InputError("depth image " + quoted(path) + " is corrupt or truncated (libpng, " + doing + ": " + f.message +
+                   ")");
 }
 
 void check_scale(double metres_per_unit) {
@@ -74,7 +76,8 @@ void open_for_reading(PngFile& f, const std::filesystem::path& path) {
   if (got != sizeof signature || png_sig_cmp(signature, 0, sizeof signature) != 0)
     throw InputError("depth image " + quoted(path) + " is not a PNG file (bad signature)");
   f.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &f, on_png_error, on_png_warning);
-  if (!f.png) throw InputError("libpng could not start reading " + quoted(path) + " (out of memory or version mismatch)");
+  if (!f.png)
+    throw InputError("libpng could not start reading " + quoted(path) + " (out of memory or version mismatch)");
   f.info = png_create_info_struct(f.png);
   if (!f.info) throw InputError("libpng could not start reading " + quoted(path) + " (out of memory)");
 }
@@ -89,12 +92,18 @@ bool read_header(PngFile& f) {
 
 const char* colour_type_name(int colour_type) {
   switch (colour_type) {
-    case PNG_COLOR_TYPE_GRAY: return "greyscale";
-    case PNG_COLOR_TYPE_GRAY_ALPHA: return "greyscale+alpha";
-    case PNG_COLOR_TYPE_RGB: return "RGB";
-    case PNG_COLOR_TYPE_RGB_ALPHA: return "RGBA";
-    case PNG_COLOR_TYPE_PALETTE: return "palette";
-    default: return "unknown";
+    case PNG_COLOR_TYPE_GRAY:
+      return "greyscale";
+    case PNG_COLOR_TYPE_GRAY_ALPHA:
+      return "greyscale+alpha";
+    case PNG_COLOR_TYPE_RGB:
+      return "RGB";
+    case PNG_COLOR_TYPE_RGB_ALPHA:
+      return "RGBA";
+    case PNG_COLOR_TYPE_PALETTE:
+      return "palette";
+    default:
+      return "unknown";
   }
 }
 
@@ -103,8 +112,9 @@ io::ImageSize checked_header(PngFile& f, const std::filesystem::path& path) {
   const int bit_depth = png_get_bit_depth(f.png, f.info);
   const int colour_type = png_get_color_type(f.png, f.info);
   if (bit_depth != 16 || colour_type != PNG_COLOR_TYPE_GRAY)
-    throw InputError("depth image " + quoted(path) + " has bit depth " + std::to_string(bit_depth) + " and colour type " +
-                     colour_type_name(colour_type) + "; a depth image must be a 16-bit single-channel greyscale PNG");
+    throw InputError("depth image " + quoted(path) + " has bit depth " + std::to_string(bit_depth) +
+                     " and colour type " + colour_type_name(colour_type) +
+                     "; a depth image must be a 16-bit single-channel greyscale PNG");
   const png_uint_32 width = png_get_image_width(f.png, f.info), height = png_get_image_height(f.png, f.info);
   // libpng already caps each side at 10^6; a corrupt header could still ask for terabytes.
   if (static_cast<uint64_t>(width) * height > (uint64_t{1} << 28))
@@ -127,8 +137,8 @@ bool read_pixels(PngFile& f, png_bytep* rows) {
 bool write_pixels(PngFile& f, int width, int height, png_bytep* rows) {
   if (setjmp(f.jump)) return false;
   png_init_io(f.png, f.file);
-  png_set_IHDR(f.png, f.info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 16, PNG_COLOR_TYPE_GRAY,
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_IHDR(f.png, f.info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 16,
+               PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_set_compression_level(f.png, 1);  // depth noise barely compresses: favour speed
   png_write_info(f.png, f.info);
   if constexpr (std::endian::native == std::endian::little) png_set_swap(f.png);

@@ -1,7 +1,6 @@
 #pragma once
 // Internal to the I/O layer: one reader per sequence layout; load_sequence picks between them.
 #include <depthtrack/sequence.hpp>
-
 #include <filesystem>
 #include <string>
 

@@ -1,13 +1,12 @@
 // A YCB-Video clip: NNNNNN-depth.png per frame and gt.json with intrinsics and per-object poses
 // (the *-meta.mat files converted to JSON, see ../shared/data/README.md).
+#include <algorithm>
+#include <cctype>
+#include <depthtrack/error.hpp>
+
 #include "io/json_fields.hpp"
 #include "io/png_depth.hpp"
 #include "io/sequence_formats.hpp"
-
-#include <depthtrack/error.hpp>
-
-#include <algorithm>
-#include <cctype>
 
 namespace depthtrack {
 
@@ -18,7 +17,8 @@ constexpr double kFrameRate = 30.0;  // YCB-Video was recorded at 30 Hz; gt.json
 int frame_number(const io::JsonField& f) {
   if (f.json().is_number_integer()) return f.integer();
   const std::string text = f.string();
-  if (text.empty() || text.size() > 9 || !std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c); }))
+  if (text.empty() || text.size() > 9 ||
+      !std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c); }))
     f.fail("must be a frame number such as \"000001\"");
   return std::stoi(text);
 }
@@ -30,7 +30,8 @@ std::string frame_name(const io::JsonField& f) {
 Camera read_camera(const io::JsonField& k, const io::ImageSize& size) {
   if (k.size() != 3 || k[0].size() != 3 || k[1].size() != 3) k.fail("must be a 3x3 matrix");
   try {
-    return Camera::make(size.width, size.height, k[0][0].number(), k[1][1].number(), k[0][2].number(), k[1][2].number());
+    return Camera::make(size.width, size.height, k[0][0].number(), k[1][1].number(), k[0][2].number(),
+                        k[1][2].number());
   } catch (const InputError& e) {
     k.fail(std::string("is not a usable camera: ") + e.what());
   }
@@ -98,7 +99,8 @@ Sequence io::load_ycb_video_sequence(const std::filesystem::path& dir, const std
     SequenceFrame frame;
     frame.name = frame_name(f["frame"]);
     const int number = frame_number(f["frame"]);
-    if (i > 0 && number <= frame_number(frames[i - 1]["frame"])) f["frame"].fail("must be larger than the previous frame's");
+    if (i > 0 && number <= frame_number(frames[i - 1]["frame"]))
+      f["frame"].fail("must be larger than the previous frame's");
     frame.timestamp = (number - first_number) / kFrameRate;
     frame.depth_path = dir / f["depth"].string();
     const JsonField objects = f["objects"];

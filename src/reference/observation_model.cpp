@@ -5,7 +5,9 @@
 
 namespace depthtrack::reference {
 
-double depth_sigma(const ObservationModel& m, double y) { return m.sigma_constant + m.sigma_quadratic * y * y; }
+double depth_sigma(const ObservationModel& m, double y) {
+  return m.sigma_constant + m.sigma_quadratic * y * y;
+}
 
 PixelDensities pixel_densities(const ObservationModel& m, double y, double y_hat) {
   const double sigma = depth_sigma(m, y);

@@ -1,9 +1,8 @@
 #pragma once
 // Each pixel's occlusion is a two-state Markov chain in continuous time (MODEL.md): over dt
 // seconds p relaxes towards p_inf = b / (1 - c) by the factor c^dt, c = a - b.
-#include <depthtrack/tracker_config.hpp>
-
 #include <cmath>
+#include <depthtrack/tracker_config.hpp>
 
 namespace depthtrack::reference {
 

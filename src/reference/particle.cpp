@@ -17,7 +17,7 @@ void propagate_particle(ParticleState& s, const MotionModel& m, const Eigen::Vec
   const double keep = std::pow(m.damping, steps);
   // Stationary variance sigma^2 / (1 - damping^2) per frame; the exact step keeps the share (1 - keep^2).
   const double spread = std::sqrt((1.0 - keep * keep) / (1.0 - m.damping * m.damping));
-  const double linear_std = m.sigma_linear * m.reference_rate * spread;   // m/s
+  const double linear_std = m.sigma_linear * m.reference_rate * spread;    // m/s
   const double angular_std = m.sigma_angular * m.reference_rate * spread;  // rad/s
   const Eigen::Vector3d w_lin(n[0], n[1], n[2]), w_ang(n[3], n[4], n[5]);
   s.linear_velocity = keep * s.linear_velocity + linear_std * w_lin;

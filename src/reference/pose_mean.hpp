@@ -2,7 +2,6 @@
 // Weighted mean of poses: positions of the mesh's centre averaged in space, rotations averaged in
 // the tangent space of a reference rotation (iterated, the Karcher mean), never as Euler angles.
 #include <depthtrack/pose.hpp>
-
 #include <span>
 
 namespace depthtrack::reference {

@@ -1,10 +1,9 @@
 #include "reference/rasterizer.hpp"
 
-#include <depthtrack/error.hpp>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <depthtrack/error.hpp>
 
 namespace depthtrack::reference {
 
@@ -42,7 +41,8 @@ PixelBox Rasterizer::render(const Pose& pose, std::span<float> depth) const {
   };
   PixelBox box{camera_.width, camera_.height, 0, 0};
   for (const auto& t : triangles_) {
-    const std::array<Eigen::Vector3d, 3> p{transformed_[static_cast<size_t>(t[0])], transformed_[static_cast<size_t>(t[1])],
+    const std::array<Eigen::Vector3d, 3> p{transformed_[static_cast<size_t>(t[0])],
+                                           transformed_[static_cast<size_t>(t[1])],
                                            transformed_[static_cast<size_t>(t[2])]};
     const int in_front = (p[0].z() >= near_) + (p[1].z() >= near_) + (p[2].z() >= near_);
     if (in_front == 0) continue;

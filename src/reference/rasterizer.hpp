@@ -10,7 +10,6 @@
 #include <depthtrack/camera.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/pose.hpp>
-
 #include <span>
 #include <vector>
 

@@ -54,7 +54,7 @@ void ReferenceFilter::propagate(double dt) {
 }
 
 double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double dt, double& render_ms,
-                                      double& magnitude) {
+                                       double& magnitude) {
   const auto render_start = Clock::now();
   const PixelBox box = rasterizer_.render(particles_[i].pose, rendered_);
   render_ms += ms_since(render_start);
@@ -98,8 +98,8 @@ void ReferenceFilter::resample(const std::vector<double>& normalized) {
     if (state.empty()) return;
     scratch.resize(state.size());
     for (size_t child = 0; child < particles_.size(); ++child)
-      std::copy_n(state.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(last_parents_[child]) * pixels), pixels,
-                  scratch.begin() + static_cast<std::ptrdiff_t>(child * pixels));
+      std::copy_n(state.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(last_parents_[child]) * pixels),
+                  pixels, scratch.begin() + static_cast<std::ptrdiff_t>(child * pixels));
     state.swap(scratch);
   };
   gather(occlusion_, scratch_occlusion_);

@@ -2,7 +2,6 @@
 // The whole particle filter, sequential and single-threaded: the readable statement of the method,
 // the oracle the device kernels are tested against and the baseline speedups are quoted against.
 #include <depthtrack/tracker_config.hpp>
-
 #include <vector>
 
 #include "filter/filter_backend.hpp"
@@ -50,7 +49,7 @@ class ReferenceFilter final : public FilterBackend {
   std::vector<float> occlusion_;
   std::vector<float> occlusion_time_;
   std::vector<float> scratch_occlusion_, scratch_occlusion_time_;  // resampling's gather targets
-  std::vector<float> rendered_;  // scratch: one particle's rendering
+  std::vector<float> rendered_;                                    // scratch: one particle's rendering
   std::vector<double> last_log_likelihoods_, last_magnitudes_;
   std::vector<int> last_parents_;
   std::vector<double> last_normalized_;

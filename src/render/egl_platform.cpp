@@ -21,13 +21,13 @@ std::string egl_error_name(EGLint error) {
   case e:       \
     return #e;
     NAME(EGL_SUCCESS)
-        NAME(EGL_NOT_INITIALIZED) NAME(EGL_BAD_ACCESS) NAME(EGL_BAD_ALLOC) NAME(EGL_BAD_ATTRIBUTE) NAME(EGL_BAD_CONFIG)
-            NAME(EGL_BAD_CONTEXT) NAME(EGL_BAD_CURRENT_SURFACE) NAME(EGL_BAD_DISPLAY) NAME(EGL_BAD_MATCH)
-                NAME(EGL_BAD_NATIVE_PIXMAP) NAME(EGL_BAD_NATIVE_WINDOW) NAME(EGL_BAD_PARAMETER) NAME(EGL_BAD_SURFACE)
-                    NAME(EGL_CONTEXT_LOST)
+    NAME(EGL_NOT_INITIALIZED)
+        NAME(EGL_BAD_ACCESS) NAME(EGL_BAD_ALLOC) NAME(EGL_BAD_ATTRIBUTE) NAME(EGL_BAD_CONFIG) NAME(EGL_BAD_CONTEXT)
+            NAME(EGL_BAD_CURRENT_SURFACE) NAME(EGL_BAD_DISPLAY) NAME(EGL_BAD_MATCH) NAME(EGL_BAD_NATIVE_PIXMAP)
+                NAME(EGL_BAD_NATIVE_WINDOW) NAME(EGL_BAD_PARAMETER) NAME(EGL_BAD_SURFACE) NAME(EGL_CONTEXT_LOST)
 #undef NAME
-                        default : return "unknown EGL error " +
-                                  std::to_string(error);
+                    default : return "unknown EGL error " +
+                              std::to_string(error);
   }
 }
 

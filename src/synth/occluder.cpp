@@ -39,7 +39,8 @@ Footprint footprint(std::span<const float> object, int width, int height) {
   long running = 0;
   for (int u = 0; u < width; ++u) {
     running += per_column[static_cast<size_t>(u)];
-    f.columns_before[static_cast<size_t>(u) + 1] = f.pixels ? static_cast<double>(running) / static_cast<double>(f.pixels) : 0.0;
+    f.columns_before[static_cast<size_t>(u) + 1] =
+        f.pixels ? static_cast<double>(running) / static_cast<double>(f.pixels) : 0.0;
   }
   return f;
 }
@@ -49,7 +50,8 @@ Footprint footprint(std::span<const float> object, int width, int height) {
 int nearest_boundary(const std::vector<double>& before, double target, int from, int to, bool latest) {
   int best = from;
   for (int k = from; k <= to; ++k) {
-    const double d = std::abs(before[static_cast<size_t>(k)] - target), best_d = std::abs(before[static_cast<size_t>(best)] - target);
+    const double d = std::abs(before[static_cast<size_t>(k)] - target),
+                 best_d = std::abs(before[static_cast<size_t>(best)] - target);
     if (d < best_d || (latest && d == best_d)) best = k;
   }
   return best;

@@ -22,7 +22,9 @@ inline std::mt19937_64 frame_rng(uint64_t seed, int frame) {
 }
 
 // Uniform in [0, 1) from the top 53 bits.
-inline double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+inline double uniform01(std::mt19937_64& rng) {
+  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
 
 // Two uniforms in [0, 1) from one draw (32 bits each): ample for dropout decisions, half the draws.
 struct UniformPair {

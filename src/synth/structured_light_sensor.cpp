@@ -38,7 +38,8 @@ std::vector<float> sense_depth(const SensorModel& sensor, const Camera& camera, 
       const double z = true_depth[i];
       if (!(z >= sensor.min_depth && z <= sensor.max_depth)) continue;  // also the empty (0) pixels
       if (random_draw < sensor.random_dropout) continue;
-      if (edge_draw < sensor.edge_dropout && at_edge(true_depth, camera.width, camera.height, u, v, sensor.edge_threshold))
+      if (edge_draw < sensor.edge_dropout &&
+          at_edge(true_depth, camera.width, camera.height, u, v, sensor.edge_threshold))
         continue;
       // Noise enters in disparity, then the matcher's subpixel step quantizes it: depth error grows as z^2.
       const double disparity = focal_baseline / z + sensor.disparity_noise * noise;

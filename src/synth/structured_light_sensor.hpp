@@ -2,7 +2,6 @@
 // What a structured-light depth camera reports for a scene's true z-depth.
 #include <depthtrack/camera.hpp>
 #include <depthtrack/synth.hpp>
-
 #include <random>
 #include <span>
 #include <vector>

@@ -1,7 +1,6 @@
 // Synthesizer: one frame = trajectory pose -> rendered object -> wall and occluder -> sensor model.
 #include <depthtrack/error.hpp>
 #include <depthtrack/synth.hpp>
-
 #include <string>
 #include <vector>
 
@@ -38,7 +37,9 @@ Synthesizer::Synthesizer(const Mesh& mesh, const SynthConfig& config) : impl_(st
 Synthesizer::~Synthesizer() = default;
 Synthesizer::Synthesizer(Synthesizer&&) noexcept = default;
 
-const SynthConfig& Synthesizer::config() const { return impl_->config; }
+const SynthConfig& Synthesizer::config() const {
+  return impl_->config;
+}
 
 Pose Synthesizer::ground_truth(double timestamp) const {
   return synth::trajectory_pose(impl_->config.trajectory, impl_->mesh_centre, timestamp);
@@ -70,7 +71,8 @@ SynthFrame Synthesizer::frame(int index) const {
       synth::add_occluder(scene, object, c.camera.width, c.camera.height, c.occluder_fraction, out.timestamp);
 
   std::mt19937_64 rng = synth::frame_rng(c.seed, index);
-  out.depth = DepthImage::from_metres(c.camera.width, c.camera.height, synth::sense_depth(c.sensor, c.camera, scene, rng));
+  out.depth =
+      DepthImage::from_metres(c.camera.width, c.camera.height, synth::sense_depth(c.sensor, c.camera, scene, rng));
   return out;
 }
 

@@ -14,10 +14,11 @@ const Eigen::Vector3d kTranslationPhase{0.4, 2.0, 3.9};
 const Eigen::Vector3d kRotationPhase{1.1, 5.3, 2.7};
 
 // Sinusoid per axis: amplitude * sin(2 pi rate t / period + phase).
-Eigen::Vector3d oscillation(const Eigen::Vector3d& amplitude, const Eigen::Vector3d& rate,
-                            const Eigen::Vector3d& phase, double period, double t) {
+Eigen::Vector3d oscillation(const Eigen::Vector3d& amplitude, const Eigen::Vector3d& rate, const Eigen::Vector3d& phase,
+                            double period, double t) {
   Eigen::Vector3d out;
-  for (int k = 0; k < 3; ++k) out[k] = amplitude[k] * std::sin(2.0 * std::numbers::pi * rate[k] * t / period + phase[k]);
+  for (int k = 0; k < 3; ++k)
+    out[k] = amplitude[k] * std::sin(2.0 * std::numbers::pi * rate[k] * t / period + phase[k]);
   return out;
 }
 

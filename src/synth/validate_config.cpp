@@ -1,8 +1,7 @@
 #include "synth/validate_config.hpp"
 
-#include <depthtrack/error.hpp>
-
 #include <cmath>
+#include <depthtrack/error.hpp>
 #include <sstream>
 #include <string>
 
@@ -18,7 +17,9 @@ namespace {
 void require(bool ok, const std::string& name, double value, const std::string& requirement) {
   if (!ok) fail(name, value, requirement);
 }
-bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
+bool finite(const Eigen::Vector3d& v) {
+  return v.allFinite();
+}
 }  // namespace
 
 void validate_config(const SynthConfig& c) {

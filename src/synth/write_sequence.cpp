@@ -1,9 +1,8 @@
 // write_synthetic_sequence: the Synthesizer's frames on disk in depthtrack's own sequence layout.
-#include <depthtrack/error.hpp>
-#include <depthtrack/synth.hpp>
-
 #include <algorithm>
 #include <cstdio>
+#include <depthtrack/error.hpp>
+#include <depthtrack/synth.hpp>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -23,8 +22,8 @@ void check_png_range(const SynthConfig& config) {
   const double deepest = 1.25 * std::max(config.sensor.max_depth, config.background_depth);
   if (deepest / config.metres_per_unit > 65535.0) {
     std::ostringstream message;
-    message << "synthetic sequence: metres_per_unit = " << config.metres_per_unit
-            << " cannot store depths up to " << deepest << " m in 16-bit PNGs";
+    message << "synthetic sequence: metres_per_unit = " << config.metres_per_unit << " cannot store depths up to "
+            << deepest << " m in 16-bit PNGs";
     throw InputError(message.str());
   }
 }

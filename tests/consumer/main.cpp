@@ -1,8 +1,7 @@
 // Tracks three synthetic frames through the installed library; exit code 0 when it tracks.
+#include <cstdio>
 #include <depthtrack/synth.hpp>
 #include <depthtrack/tracker.hpp>
-
-#include <cstdio>
 
 int main() {
   const depthtrack::Mesh mesh = depthtrack::builtin_demo_mesh();

@@ -1,7 +1,6 @@
 #include "compute/opencl/cl_errors.hpp"
 
 #include <depthtrack/error.hpp>
-
 #include <utility>
 
 namespace depthtrack::compute::opencl {

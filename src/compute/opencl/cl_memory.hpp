@@ -1,7 +1,6 @@
 #pragma once
 // A cl_mem buffer as DeviceMemory.
 #include <depthtrack/error.hpp>
-
 #include <string>
 
 #include "compute/opencl/cl_handle.hpp"

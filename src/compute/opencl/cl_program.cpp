@@ -1,16 +1,15 @@
 #include "compute/opencl/cl_program.hpp"
 
-#include <depthtrack/error.hpp>
-
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <depthtrack/error.hpp>
 #include <regex>
 #include <sstream>
 
 #include "compute/opencl/cl_errors.hpp"
-#include "compute/source_excerpt.hpp"
 #include "compute/opencl/cl_kernel.hpp"
+#include "compute/source_excerpt.hpp"
 
 namespace depthtrack::compute::opencl {
 
@@ -88,7 +87,8 @@ std::unique_ptr<Program> build_program(cl_context context, cl_device_id device, 
   if (status != CL_SUCCESS) {
     const std::string log = build_log(program.get(), device);
     throw BackendError(failure_message(status, "clBuildProgram", device_name, "program '" + name + "'") +
-                       "\noptions: " + options + "\nbuild log:\n" + log + "\n" + numbered_excerpt(source, first_error_line(log)));
+                       "\noptions: " + options + "\nbuild log:\n" + log + "\n" +
+                       numbered_excerpt(source, first_error_line(log)));
   }
   return std::make_unique<ClProgram>(std::move(program), name, device_name);
 }

@@ -1,16 +1,14 @@
 #include "compute/opencl/cl_queue.hpp"
 
+#include <cstdio>
 #include <depthtrack/error.hpp>
 
-#include <cstdio>
-
+#include "compute/format_bytes.hpp"
 #include "compute/opencl/cl_errors.hpp"
 #include "compute/opencl/cl_event.hpp"
 #include "compute/opencl/cl_kernel.hpp"
 #include "compute/opencl/cl_memory.hpp"
 #include "compute/opencl/cl_program.hpp"
-
-#include "compute/format_bytes.hpp"
 
 namespace depthtrack::compute::opencl {
 

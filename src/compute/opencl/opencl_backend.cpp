@@ -1,8 +1,7 @@
 #include "compute/opencl/opencl_backend.hpp"
 
-#include <depthtrack/error.hpp>
-
 #include <cstdio>
+#include <depthtrack/error.hpp>
 
 #include "compute/opencl/cl_device_query.hpp"
 #include "compute/opencl/cl_queue.hpp"
