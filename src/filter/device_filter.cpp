@@ -177,9 +177,9 @@ std::vector<reference::ParticleState> DeviceFilter::weighed_particles() const {
 void DeviceFilter::render_atlas(double& render_ms) {
   const auto start = std::chrono::steady_clock::now();
   const auto states = particles();
-  std::vector<Pose> poses(states.size());
-  for (size_t i = 0; i < states.size(); ++i) poses[i] = states[i].pose;
-  atlas_source_->draw(poses, atlas_);
+  poses_.resize(states.size());
+  for (size_t i = 0; i < states.size(); ++i) poses_[i] = states[i].pose;
+  atlas_source_->draw(poses_, atlas_);
   render_ms += ms_since(start);
 }
 
@@ -188,6 +188,9 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   Kernels& k = *kernels_;
   Estimate e;
   time_ += dt;
+  // Device timings are read once the frame's work is done: asking an event earlier would make the
+  // host wait after every kernel.
+  compute::EventPtr propagated;
   if (dt > 0) {
     const MotionModel& m = config_.motion;
     const double keep = std::pow(m.damping, dt * m.reference_rate);
@@ -205,9 +208,7 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
     k.propagate->set_arg(3, static_cast<unsigned>(config_.seed >> 32));
     k.propagate->set_arg(4, frame_);
     k.propagate->set_arg(5, args);
-    e.timings.propagate_ms =
-        queue_->launch(*k.propagate, compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup))
-            ->elapsed_ms();
+    propagated = queue_->launch(*k.propagate, compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup));
   }
 
   render_atlas(e.timings.render_ms);
@@ -232,8 +233,8 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   k.weigh->set_arg(7, model);
   k.weigh->set_arg(8, static_cast<float>(time_));
   k.weigh->set_arg(9, static_cast<float>(dt));
-  e.timings.weigh_ms =
-      queue_->launch(*k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize))->elapsed_ms();
+  const compute::EventPtr weighed =
+      queue_->launch(*k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize));
 
   compute::set_arg(*k.summarize, 0, state_);
   compute::set_arg(*k.summarize, 1, log_weight_);
@@ -244,7 +245,8 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   k.summarize->set_arg(6, static_cast<float>(centre_.x()));
   k.summarize->set_arg(7, static_cast<float>(centre_.y()));
   k.summarize->set_arg(8, static_cast<float>(centre_.z()));
-  e.timings.resample_ms = queue_->launch(*k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize))->elapsed_ms();
+  const compute::EventPtr summarized =
+      queue_->launch(*k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize));
 
   float est[DT_EST_SIZE];
   estimate_.download(std::span<float>(est, DT_EST_SIZE));
@@ -257,36 +259,41 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   e.mean_log_likelihood = est[DT_EST_MEAN_LL];
   e.resampled = est[DT_EST_KL] > config_.resample_kl_threshold;
   last_resampled_ = e.resampled;
-  if (e.resampled) e.timings.resample_ms += resample();
+  std::vector<compute::EventPtr> resampling;
+  if (e.resampled) resampling = resample();
+  if (propagated) e.timings.propagate_ms = propagated->elapsed_ms();
+  e.timings.weigh_ms = weighed->elapsed_ms();
+  e.timings.resample_ms = summarized->elapsed_ms();
+  for (const auto& event : resampling) e.timings.resample_ms += event->elapsed_ms();
   e.timings.total_ms = ms_since(frame_start);
   ++frame_;
   return e;
 }
 
-double DeviceFilter::resample() {
+std::vector<compute::EventPtr> DeviceFilter::resample() {
   Kernels& k = *kernels_;
   const dt_philox4 words = dt_random_words(config_.seed, 0u, frame_, DT_STREAM_RESAMPLE, 0u);
   const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
   const auto per_particle_group = compute::NdRange::linear(count_ * kGroupSize, kGroupSize);
   const unsigned count = static_cast<unsigned>(count_);
-  double ms = 0;
+  std::vector<compute::EventPtr> events;
 
   compute::set_arg(*k.prefix_sum, 0, weights_);
   compute::set_arg(*k.prefix_sum, 1, cumulative_);
   k.prefix_sum->set_arg(2, count);
-  ms += queue_->launch(*k.prefix_sum, compute::NdRange::linear(kGroupSize, kGroupSize))->elapsed_ms();
+  events.push_back(queue_->launch(*k.prefix_sum, compute::NdRange::linear(kGroupSize, kGroupSize)));
 
   compute::set_arg(*k.find_parents, 0, cumulative_);
   compute::set_arg(*k.find_parents, 1, parents_);
   k.find_parents->set_arg(2, count);
   k.find_parents->set_arg(3, dt_uniform01(words.v[0]));
-  ms += queue_->launch(*k.find_parents, linear)->elapsed_ms();
+  events.push_back(queue_->launch(*k.find_parents, linear));
 
   compute::set_arg(*k.gather_state, 0, state_);
   compute::set_arg(*k.gather_state, 1, scratch_state_);
   compute::set_arg(*k.gather_state, 2, parents_);
   k.gather_state->set_arg(3, count);
-  ms += queue_->launch(*k.gather_state, linear)->elapsed_ms();
+  events.push_back(queue_->launch(*k.gather_state, linear));
   std::swap(state_, scratch_state_);
 
   auto gather_pixels = [&](compute::Buffer<float>& state, compute::Buffer<float>& scratch) {
@@ -294,7 +301,7 @@ double DeviceFilter::resample() {
     compute::set_arg(*k.gather_pixels, 1, scratch);
     compute::set_arg(*k.gather_pixels, 2, parents_);
     k.gather_pixels->set_arg(3, static_cast<unsigned>(pixels_));
-    ms += queue_->launch(*k.gather_pixels, per_particle_group)->elapsed_ms();
+    events.push_back(queue_->launch(*k.gather_pixels, per_particle_group));
     std::swap(state, scratch);
   };
   if (config_.occlusion_storage != OcclusionStorage::Off) gather_pixels(occlusion_, scratch_occlusion_);
@@ -304,8 +311,8 @@ double DeviceFilter::resample() {
   compute::set_arg(*k.fill, 0, log_weight_);
   k.fill->set_arg(1, count);
   k.fill->set_arg(2, 0.0f);
-  ms += queue_->launch(*k.fill, linear)->elapsed_ms();
-  return ms;
+  events.push_back(queue_->launch(*k.fill, linear));
+  return events;
 }
 
 std::vector<double> DeviceFilter::last_log_likelihoods() const {

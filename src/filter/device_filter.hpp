@@ -41,13 +41,15 @@ class DeviceFilter final : public FilterBackend {
   void render_atlas(double& render_ms);
   void upload_particles(const std::vector<reference::ParticleState>& particles);
   std::vector<reference::ParticleState> unpack(const compute::Buffer<float>& state) const;
-  double resample();
+  // Enqueues the resampling kernels; their events, for timing.
+  std::vector<compute::EventPtr> resample();
 
   std::unique_ptr<compute::Queue> queue_;
   TrackerConfig config_;
   Camera camera_;
   Eigen::Vector3d centre_;
   std::unique_ptr<AtlasSource> atlas_source_;
+  std::vector<Pose> poses_;  // scratch: the poses handed to the atlas source each frame
   size_t count_, pixels_;
   std::unique_ptr<Kernels> kernels_;
   compute::Buffer<float> state_, scratch_state_, log_weight_, log_likelihood_, weights_, cumulative_, estimate_;

@@ -47,7 +47,10 @@ Estimate Tracker::update(const DepthImage& depth, double timestamp) {
     m << "timestamps must increase: " << timestamp << " s follows " << previous_timestamp_ << " s";
     throw InputError(m.str());
   }
-  const DepthImage working = decimation_ == 1 ? depth : depth.decimated(decimation_);
+  // Decimate only when needed: at the sensor's resolution the caller's image is used as it is.
+  DepthImage decimated;
+  if (decimation_ > 1) decimated = depth.decimated(decimation_);
+  const DepthImage& working = decimation_ > 1 ? decimated : depth;
   if (working.valid_count() == 0) {
     std::ostringstream m;
     m << "depth frame at " << timestamp << " s has no valid pixel (all missing) at the working resolution";

@@ -104,9 +104,10 @@ void ReferenceFilter::resample(const std::vector<double>& normalized) {
   };
   gather(occlusion_, scratch_occlusion_);
   gather(occlusion_time_, scratch_occlusion_time_);
-  const std::vector<ParticleState> parents = particles_;
+  scratch_particles_.resize(particles_.size());
   for (size_t child = 0; child < particles_.size(); ++child)
-    particles_[child] = parents[static_cast<size_t>(last_parents_[child])];
+    scratch_particles_[child] = particles_[static_cast<size_t>(last_parents_[child])];
+  particles_.swap(scratch_particles_);
   std::fill(log_weights_.begin(), log_weights_.end(), 0.0);
 }
 

@@ -42,7 +42,7 @@ class ReferenceFilter final : public FilterBackend {
   Camera camera_;
   Eigen::Vector3d centre_;
   Rasterizer rasterizer_;
-  std::vector<ParticleState> particles_;
+  std::vector<ParticleState> particles_, scratch_particles_;  // scratch: resampling's gather target
   std::vector<double> log_weights_;
   // Occlusion state per particle per pixel: probability, and (per-pixel-time mode) the time of its
   // last update in seconds since the first frame. Stored as float, as a device stores it.

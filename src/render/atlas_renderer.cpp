@@ -213,9 +213,4 @@ void AtlasRenderer::read_back(std::span<float> out) {
   check("reading back the pose atlas");
 }
 
-void AtlasRenderer::finish() {
-  context_.make_current();
-  gl_.Finish();
-}
-
 }  // namespace depthtrack::render

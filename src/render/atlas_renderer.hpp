@@ -36,8 +36,6 @@ class AtlasRenderer {
   void render(std::span<const Pose> poses);
   // Copies the last render's tiles into out in pose order, each row-major width x height.
   void read_back(std::span<float> out);
-  // Blocks until the GL has finished the submitted work (for timing).
-  void finish();
 
   int tile_count() const { return tiles_; }
   const AtlasLayout& layout() const { return layout_; }

@@ -17,20 +17,23 @@ std::string trimmed(std::string text) {
   return text;
 }
 
-std::string platform_string(cl_platform_id platform, cl_platform_info what) {
+// A string property through an OpenCL info query (ask the size, then the text).
+template <class Object, class Name>
+std::string info_string(cl_int (*query)(Object, Name, size_t, void*, size_t*), Object object, Name what,
+                        const char* call) {
   size_t size = 0;
-  check(clGetPlatformInfo(platform, what, 0, nullptr, &size), "clGetPlatformInfo");
+  check(query(object, what, 0, nullptr, &size), call);
   std::string text(size, '\0');
-  check(clGetPlatformInfo(platform, what, size, text.data(), nullptr), "clGetPlatformInfo");
+  check(query(object, what, size, text.data(), nullptr), call);
   return trimmed(text);
 }
 
+std::string platform_string(cl_platform_id platform, cl_platform_info what) {
+  return info_string(&clGetPlatformInfo, platform, what, "clGetPlatformInfo");
+}
+
 std::string device_string(cl_device_id device, cl_device_info what) {
-  size_t size = 0;
-  check(clGetDeviceInfo(device, what, 0, nullptr, &size), "clGetDeviceInfo");
-  std::string text(size, '\0');
-  check(clGetDeviceInfo(device, what, size, text.data(), nullptr), "clGetDeviceInfo");
-  return trimmed(text);
+  return info_string(&clGetDeviceInfo, device, what, "clGetDeviceInfo");
 }
 
 template <class T>
