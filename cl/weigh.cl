@@ -2,24 +2,24 @@
  * work-items (the thesis' layout), a group sum at the end. Compile-time choices:
  *   DT_GROUP_SIZE     work-items per group (power of two)
  *   DT_OCCLUSION      0 per-pixel time, 1 global time, 2 off
+ * The atlas lies in the renderer's page layout (dt_atlas.h); occlusion state is particle-major.
  * Reference: ReferenceFilter::weigh_particle. */
 #include "dt_prelude.h"
 #include "dt_model.h"
 #include "dt_group.h"
+#include "dt_atlas.h"
 
 #define DT_PER_PIXEL_TIME 0
 #define DT_GLOBAL_TIME 1
 #define DT_OCCLUSION_OFF 2
 
-/* The atlas is read through this one accessor, so it can become an image or a paged texture. */
-#define DT_ATLAS(atlas, particle, pixel) (atlas)[DT_CAST(ulong, particle) * pixels + (pixel)]
-
 __kernel void weigh(__global const float* atlas, __global const float* observed, __global float* occlusion,
                     __global float* occlusion_time, __global float* log_likelihood, __global float* log_weight,
-                    uint pixels, dt_model m, float now, float dt) {
+                    uint pixels, dt_model m, float now, float dt, dt_atlas_layout layout) {
   __local float scratch[DT_GROUP_SIZE];
   const uint particle = get_group_id(0);
   const ulong base = DT_CAST(ulong, particle) * pixels;
+  const ulong tile = dt_atlas_tile_start(layout, particle);
   float sum = 0.0f;
   for (uint k = get_local_id(0); k < pixels; k += DT_GROUP_SIZE) {
     float p = 0.0f;
@@ -27,7 +27,7 @@ __kernel void weigh(__global const float* atlas, __global const float* observed,
     p = dt_propagate_occlusion(m, occlusion[base + k], dt);
     occlusion[base + k] = p; /* every pixel ages, covered or not */
 #endif
-    const float y_hat = DT_ATLAS(atlas, particle, k);
+    const float y_hat = atlas[dt_atlas_pixel(layout, tile, k)];
     const float y = observed[k];
     if (!(y_hat > 0.0f) || !(y > 0.0f) || !isfinite(y)) continue; /* adds 0 */
 #if DT_OCCLUSION == DT_PER_PIXEL_TIME

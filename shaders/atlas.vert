@@ -4,7 +4,10 @@
 // on window row tile_y0 + v (no vertical flip), so the page reads back row-major like an image.
 layout(location = 0) in vec3 a_position;
 
-uniform samplerBuffer u_poses;  // 3 RGBA32F texels per pose: the rows of [R | t], camera_from_object
+// Particle states (cl/dt_state.h): 4 RGBA32F texels per pose; texel 0 = (tx, ty, tz, qw), texel 1 =
+// (qx, qy, qz, ...): camera_from_object as translation and unit quaternion, written by the compute
+// device (or the host) in the layout the filter keeps them.
+uniform samplerBuffer u_poses;
 uniform int u_first_pose;       // pose of instance 0 on this page
 uniform int u_tiles_per_row;
 uniform vec2 u_tile_size;       // tile width, height in pixels
@@ -18,9 +21,13 @@ out float gl_ClipDistance[4];
 
 void main() {
   int pose = u_first_pose + gl_InstanceID;
-  v_pose[0] = texelFetch(u_poses, 3 * pose);
-  v_pose[1] = texelFetch(u_poses, 3 * pose + 1);
-  v_pose[2] = texelFetch(u_poses, 3 * pose + 2);
+  vec4 t_qw = texelFetch(u_poses, 4 * pose), q_xyz = texelFetch(u_poses, 4 * pose + 1);
+  vec4 q = normalize(vec4(t_qw.w, q_xyz.xyz));  // w, x, y, z; normalized like the host's Pose
+  float w = q.x, x = q.y, y = q.z, z = q.w;
+  // The rows of [R | t] (the rotation matrix of a unit quaternion, as Eigen forms it).
+  v_pose[0] = vec4(1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y), t_qw.x);
+  v_pose[1] = vec4(2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x), t_qw.y);
+  v_pose[2] = vec4(2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y), t_qw.z);
   vec4 p = vec4(a_position, 1.0);
   vec3 c = vec3(dot(v_pose[0], p), dot(v_pose[1], p), dot(v_pose[2], p));
   v_tile0 = vec2(gl_InstanceID % u_tiles_per_row, gl_InstanceID / u_tiles_per_row) * u_tile_size;

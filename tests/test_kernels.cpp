@@ -124,12 +124,31 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
   for (auto& p : occlusion) p = unit(rng);
   for (auto& t : times) t = 0.5f * unit(rng);
   const double now = 0.7, dt = 0.04;
-  for (int mode = 0; mode < 3; ++mode) {
+  // The tiles also go into a paged layout like the GL atlas's: 3 tiles per row, 6 per page, 3 pages
+  // (placed here by hand: page p at p * 6 tiles, tile t of it at column t % 3, row t / 3).
+  const size_t width = 80, height = 60, page_width = 3 * width;
+  std::vector<float> paged(2 * 6 * pixels + 2 * height * page_width, -1.0f);
+  for (size_t i = 0; i < count; ++i)
+    for (size_t v = 0; v < height; ++v)
+      for (size_t u = 0; u < width; ++u) {
+        const size_t page = i / 6, t = i % 6;
+        paged[page * 6 * pixels + ((t / 3) * height + v) * page_width + (t % 3) * width + u] =
+            atlas[i * pixels + v * width + u];
+      }
+  struct Layout {
+    dt_u32 tile_width, tile_height, tiles_per_row, tiles_per_page;
+  };
+  const std::pair<std::vector<float>*, Layout> layouts[] = {{&atlas, {80, 60, 1, static_cast<dt_u32>(count)}},
+                                                             {&paged, {80, 60, 3, 6}}};
+  for (int run = 0; run < 6; ++run) {
+    const int mode = run % 3;
+    const auto& [laid_out, layout] = layouts[run / 3];
+    INFO("atlas with " << layout.tiles_per_row << " tiles per row");
     auto program = build(*q, "weigh.cl", mode);
     auto kernel = program->kernel("weigh");
-    compute::Buffer<float> a(*q, atlas.size()), o(*q, pixels), occ(*q, occlusion.size()), tim(*q, times.size()),
+    compute::Buffer<float> a(*q, laid_out->size()), o(*q, pixels), occ(*q, occlusion.size()), tim(*q, times.size()),
         ll(*q, count), lw(*q, count);
-    a.upload(atlas);
+    a.upload(*laid_out);
     o.upload(observed);
     occ.upload(occlusion);
     tim.upload(times);
@@ -139,6 +158,7 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
     kernel->set_arg(7, model_args());
     kernel->set_arg(8, static_cast<float>(now));
     kernel->set_arg(9, static_cast<float>(dt));
+    kernel->set_arg(10, layout);
     q->launch(*kernel, compute::NdRange::linear(count * kGroup, kGroup))->wait();
     const auto got_ll = ll.download(), got_lw = lw.download(), got_occ = occ.download();
     const OcclusionModel chain;

@@ -10,6 +10,9 @@
 namespace depthtrack::compute {
 
 template <class T>
+class HostOverwrite;
+
+template <class T>
 class Buffer {
   static_assert(std::is_trivially_copyable_v<T>, "device buffers hold plain data");
 
@@ -31,6 +34,11 @@ class Buffer {
     check_range("download", offset, out.size());
     queue_->read(*memory_, offset * sizeof(T), out.data(), out.size_bytes());
   }
+  // Maps elements [offset, offset + count) for the host to overwrite.
+  HostOverwrite<T> overwrite(size_t offset, size_t count) {
+    check_range("map", offset, count);
+    return HostOverwrite<T>(*queue_, *memory_, offset, count);
+  }
   std::vector<T> download() const {
     std::vector<T> out(count_);
     download(std::span<T>(out));
@@ -49,6 +57,37 @@ class Buffer {
   Queue* queue_ = nullptr;
   size_t count_ = 0;
   std::unique_ptr<DeviceMemory> memory_;
+};
+
+// Host access for overwriting elements [offset, offset + count) of a buffer (Queue::map_for_overwrite):
+// write through data(), then publish(). Unpublished (an exception on the way), it is unmapped anyway.
+template <class T>
+class HostOverwrite {
+ public:
+  HostOverwrite(Queue& queue, DeviceMemory& memory, size_t offset, size_t count)
+      : queue_(queue), memory_(memory), data_(static_cast<T*>(queue.map_for_overwrite(memory, offset * sizeof(T),
+                                                                                       count * sizeof(T))),
+                                              count) {}
+  ~HostOverwrite() {
+    if (!published_) try {
+        queue_.unmap(memory_, data_.data());
+      } catch (...) {  // already failing; the first error is the one to report
+      }
+  }
+  HostOverwrite(const HostOverwrite&) = delete;
+  HostOverwrite& operator=(const HostOverwrite&) = delete;
+
+  std::span<T> data() { return data_; }
+  void publish() {
+    published_ = true;
+    queue_.unmap(memory_, data_.data());
+  }
+
+ private:
+  Queue& queue_;
+  DeviceMemory& memory_;
+  std::span<T> data_;
+  bool published_ = false;
 };
 
 // Sets a buffer as a kernel argument.

@@ -1,6 +1,8 @@
 #pragma once
 // What a compute device is, as `depthtrack info` and benchmark rows report it.
+#include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,8 @@ struct DeviceInfo {
   bool fp64 = false;
   bool subgroups = false;               // cl_khr_subgroups or warps
   std::vector<std::string> extensions;  // the full list, where the API has one
+  // The GPU's UUID (cuDeviceGetUuid, cl_khr_device_uuid), to find the EGL device on the same GPU.
+  std::optional<std::array<unsigned char, 16>> uuid;
 };
 
 }  // namespace depthtrack::compute

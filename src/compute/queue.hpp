@@ -71,6 +71,12 @@ class Queue {
   // Blocking copies between host and device memory, at a byte offset into the device memory.
   virtual void write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) = 0;
   virtual void read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) = 0;
+  // Host access to bytes [offset, offset + bytes) of `memory` for overwriting them all: a pointer
+  // that stays valid until unmap(memory, pointer), which makes the new contents visible to work
+  // enqueued after it. One mapping per queue at a time. OpenCL maps the buffer (no copy at all
+  // where device memory is host memory, as on PoCL); CUDA writes a host staging area at unmap.
+  virtual void* map_for_overwrite(DeviceMemory& memory, size_t offset, size_t bytes) = 0;
+  virtual void unmap(DeviceMemory& memory, void* host) = 0;
   // Device-side copy between allocations.
   virtual void copy(const DeviceMemory& source, size_t source_offset, DeviceMemory& destination,
                     size_t destination_offset, size_t bytes) = 0;

@@ -1,28 +1,33 @@
 #pragma once
-// Where the device filter's pose atlas comes from: particles x pixels metric depths in a device
-// buffer, tile i = particle i, row-major, 0 = not covered. Each source also reports its hand-off.
+// Where the device filter's pose atlas comes from: every particle's rendered metric depth (0 = not
+// covered) in a device buffer, tile i = particle i, laid out as layout() says (cl/dt_atlas.h).
+// Each source also reports how the atlas reaches the kernels.
 #include <depthtrack/camera.hpp>
 #include <depthtrack/mesh.hpp>
-#include <depthtrack/pose.hpp>
 #include <depthtrack/tracker_config.hpp>
 #include <memory>
-#include <span>
 #include <string>
 
 #include "compute/buffer.hpp"
+#include "render/atlas_layout.hpp"
 
 namespace depthtrack {
 
 class AtlasSource {
  public:
   virtual ~AtlasSource() = default;
-  virtual void draw(std::span<const Pose> poses, compute::Buffer<float>& atlas) = 0;
-  // e.g. "GL (EGL device 0: ...), staged copy" or "reference rasterizer on the host, upload".
+  // Fixed for the source's life: config.particles tiles.
+  virtual const render::AtlasLayout& layout() const = 0;
+  // Draws particle i of `states` (DT_STATE_STRIDE floats each, cl/dt_state.h) into tile i of
+  // `atlas` (layout().floats() floats). Work may still be in flight on the queue on return.
+  virtual void draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas) = 0;
+  // e.g. "GL (EGL device 0: ...); hand-off: CUDA-GL interop (zero-copy)".
   virtual std::string description() const = 0;
 };
 
 // The source TrackerConfig::renderer names: "cpu" (the reference rasterizer on the host) or "gl"
 // (the OpenGL atlas renderer; BackendError naming every GL path tried when none works).
-std::unique_ptr<AtlasSource> make_atlas_source(const Mesh& mesh, const Camera& camera, const TrackerConfig& config);
+std::unique_ptr<AtlasSource> make_atlas_source(compute::Queue& queue, const Mesh& mesh, const Camera& camera,
+                                               const TrackerConfig& config);
 
 }  // namespace depthtrack

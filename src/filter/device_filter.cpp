@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "compute/kernel_sources.hpp"
+#include "dt_atlas.h"
 #include "dt_state.h"
 #include "filter/particle_packing.hpp"
 #include "philox.h"
@@ -45,6 +46,12 @@ int occlusion_define(OcclusionStorage mode) {
   }
   return 2;
 }
+
+// The kernels' view of the atlas source's page layout (cl/dt_atlas.h).
+dt_atlas_layout kernel_layout(const render::AtlasLayout& layout) {
+  return dt_atlas_layout{static_cast<dt_u32>(layout.tile_width), static_cast<dt_u32>(layout.tile_height),
+                         static_cast<dt_u32>(layout.tiles_per_row), static_cast<dt_u32>(layout.tiles_per_page)};
+}
 }  // namespace
 
 struct DeviceFilter::Kernels {
@@ -59,10 +66,9 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
       config_(config),
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
-      atlas_source_(make_atlas_source(mesh, camera, config)),
-      count_(static_cast<size_t>(config.particles)),
-      pixels_(static_cast<size_t>(camera.pixel_count())) {
-  check_memory();
+      pixels_(static_cast<size_t>(camera.pixel_count())),
+      count_(checked_particle_count()),
+      atlas_source_(make_atlas_source(*queue_, mesh, camera, config)) {
   const std::vector<std::string> defines = {
       "DT_GROUP_SIZE=" + std::to_string(kGroupSize),
       "DT_OCCLUSION=" + std::to_string(occlusion_define(config.occlusion_storage))};
@@ -90,7 +96,7 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
   cumulative_ = compute::Buffer<float>(q, 2 * count_);  // float-float pairs
   parents_ = compute::Buffer<unsigned>(q, count_);
   estimate_ = compute::Buffer<float>(q, DT_EST_SIZE);
-  atlas_ = compute::Buffer<float>(q, count_ * pixels_);
+  atlas_ = compute::Buffer<float>(q, atlas_source_->layout().floats());
   observed_ = compute::Buffer<float>(q, pixels_);
   // Kernels always take the occlusion buffers; modes that do not use one get a single element.
   const bool occlusion = config.occlusion_storage != OcclusionStorage::Off;
@@ -103,13 +109,17 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
 
 DeviceFilter::~DeviceFilter() = default;
 
-void DeviceFilter::check_memory() const {
+size_t DeviceFilter::checked_particle_count() const {
+  const size_t count = static_cast<size_t>(config_.particles);
   const bool occlusion = config_.occlusion_storage != OcclusionStorage::Off;
   const bool times = config_.occlusion_storage == OcclusionStorage::PerPixelTime;
-  // Atlas, occlusion probabilities and times, each with a resampling twin, plus per-particle state.
-  const double per_particle =
-      4.0 * (static_cast<double>(pixels_) * (1 + (occlusion ? 2 : 0) + (times ? 2 : 0)) + 2 * DT_STATE_STRIDE + 6);
-  const double needed = per_particle * static_cast<double>(count_);
+  // Atlas, occlusion probabilities and times, each with a resampling twin, plus per-particle state;
+  // GL's colour and depth pages and its pose buffer sit on the same GPU.
+  const bool gl = config_.renderer == "gl" && queue_->info().is_gpu;
+  const double per_particle = 4.0 * (static_cast<double>(pixels_) * (1 + (occlusion ? 2 : 0) + (times ? 2 : 0) +
+                                                                      (gl ? 2 : 0)) +
+                                     (2 + (gl ? 1 : 0)) * DT_STATE_STRIDE + 6);
+  const double needed = per_particle * static_cast<double>(count);
   const auto& info = queue_->info();
   if (info.global_memory > 0 && needed > 0.9 * static_cast<double>(info.global_memory)) {
     std::ostringstream m;
@@ -120,6 +130,7 @@ void DeviceFilter::check_memory() const {
       << static_cast<long long>(0.9 * static_cast<double>(info.global_memory) / per_particle) << " particles fit";
     throw InputError(m.str());
   }
+  return count;
 }
 
 std::string DeviceFilter::description() const {
@@ -174,13 +185,23 @@ std::vector<reference::ParticleState> DeviceFilter::weighed_particles() const {
   return unpack(last_resampled_ ? scratch_state_ : state_);
 }
 
+// Timed to the end of the hand-off, so that the per-step split holds for asynchronous paths too.
 void DeviceFilter::render_atlas(double& render_ms) {
   const auto start = std::chrono::steady_clock::now();
-  const auto states = particles();
-  poses_.resize(states.size());
-  for (size_t i = 0; i < states.size(); ++i) poses_[i] = states[i].pose;
-  atlas_source_->draw(poses_, atlas_);
+  atlas_source_->draw(state_, atlas_);
+  queue_->finish();
   render_ms += ms_since(start);
+}
+
+std::vector<float> DeviceFilter::last_atlas() const {
+  const std::vector<float> pages = atlas_.download();
+  const dt_atlas_layout layout = kernel_layout(atlas_source_->layout());
+  std::vector<float> tiles(count_ * pixels_);
+  for (size_t i = 0; i < count_; ++i) {
+    const dt_u64 start = dt_atlas_tile_start(layout, static_cast<dt_u32>(i));
+    for (size_t k = 0; k < pixels_; ++k) tiles[i * pixels_ + k] = pages[dt_atlas_pixel(layout, start, static_cast<dt_u32>(k))];
+  }
+  return tiles;
 }
 
 Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
@@ -233,6 +254,7 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   k.weigh->set_arg(7, model);
   k.weigh->set_arg(8, static_cast<float>(time_));
   k.weigh->set_arg(9, static_cast<float>(dt));
+  k.weigh->set_arg(10, kernel_layout(atlas_source_->layout()));
   const compute::EventPtr weighed =
       queue_->launch(*k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize));
 

@@ -1,7 +1,8 @@
 #pragma once
 // The particle filter on a compute device (OpenCL or CUDA through src/compute): propagate, weigh,
 // normalize and estimate, resample, all in kernels from cl/. The pose atlas it weighs comes from
-// an AtlasSource (today the reference rasterizer on the host; the GL renderer is the next step).
+// an AtlasSource: the GL renderer fed from and handing back to device memory, or the reference
+// rasterizer on the host. Per frame only the depth image goes up and the estimate comes back.
 #include <memory>
 #include <vector>
 
@@ -27,7 +28,7 @@ class DeviceFilter final : public FilterBackend {
   std::vector<int> last_parents() const;
   std::vector<reference::ParticleState> particles() const;
   // The atlas the last update weighed: particles x pixels depths, tile i = particle i.
-  std::vector<float> last_atlas() const { return atlas_.download(); }
+  std::vector<float> last_atlas() const;
   // The particles as the last update weighed them (before it resampled).
   std::vector<reference::ParticleState> weighed_particles() const;
   // Replaces the whole filter state (for comparing backends from a common state). occlusion and
@@ -37,8 +38,9 @@ class DeviceFilter final : public FilterBackend {
 
  private:
   struct Kernels;
-  void check_memory() const;
   void render_atlas(double& render_ms);
+  // The per-particle device memory, checked before anything is allocated.
+  size_t checked_particle_count() const;
   void upload_particles(const std::vector<reference::ParticleState>& particles);
   std::vector<reference::ParticleState> unpack(const compute::Buffer<float>& state) const;
   // Enqueues the resampling kernels; their events, for timing.
@@ -48,9 +50,8 @@ class DeviceFilter final : public FilterBackend {
   TrackerConfig config_;
   Camera camera_;
   Eigen::Vector3d centre_;
+  size_t pixels_, count_;
   std::unique_ptr<AtlasSource> atlas_source_;
-  std::vector<Pose> poses_;  // scratch: the poses handed to the atlas source each frame
-  size_t count_, pixels_;
   std::unique_ptr<Kernels> kernels_;
   compute::Buffer<float> state_, scratch_state_, log_weight_, log_likelihood_, weights_, cumulative_, estimate_;
   compute::Buffer<unsigned> parents_;

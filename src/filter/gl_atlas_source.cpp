@@ -1,44 +1,56 @@
-// The atlas drawn by OpenGL in one instanced call per page, handed to the compute backend by a
-// staged copy (read back to the host, uploaded). Zero-copy hand-offs (CUDA-GL interop,
-// cl_khr_gl_sharing) are the next step; this path works on every platform, PoCL + llvmpipe included.
+// The atlas drawn by OpenGL, all particles in one instanced call per page, and handed to the
+// compute kernels by the best path the platform has (src/interop/).
 #include <depthtrack/error.hpp>
-#include <vector>
 
 #include "filter/atlas_source.hpp"
+#include "interop/atlas_handoff.hpp"
 #include "render/atlas_renderer.hpp"
+#include "render/gl_context.hpp"
 
 namespace depthtrack {
 
 namespace {
+// The GL context for a compute device: on the EGL device that is the same GPU where EGL can tell.
+render::GlContextOptions context_options(const compute::DeviceInfo& device) {
+  render::GlContextOptions options;
+  options.device_uuid = device.uuid;
+  return options;
+}
+
 class GlAtlasSource final : public AtlasSource {
  public:
-  GlAtlasSource(const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
-      : context_(),
-        renderer_(context_, mesh, camera, config.near_plane, config.observation.max_depth),
-        pixels_(static_cast<size_t>(camera.pixel_count())) {}
-
-  void draw(std::span<const Pose> poses, compute::Buffer<float>& atlas) override {
-    renderer_.render(poses);
-    host_.resize(poses.size() * pixels_);
-    renderer_.read_back(host_);
-    atlas.upload(host_);
+  GlAtlasSource(compute::Queue& queue, const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
+      : context_(context_options(queue.info())),
+        renderer_(context_, mesh, camera, config.near_plane, config.observation.max_depth) {
+    renderer_.reserve(config.particles);
+    handoff_ = interop::make_atlas_handoff(queue, renderer_);
   }
-  std::string description() const override { return "GL (" + context_.describe() + "), staged copy"; }
+
+  const render::AtlasLayout& layout() const override { return renderer_.layout(); }
+
+  void draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas) override {
+    handoff_->send_poses(states);
+    renderer_.draw();
+    handoff_->receive_atlas(atlas);
+  }
+  std::string description() const override {
+    return "GL (" + context_.describe() + "); hand-off: " + handoff_->name();
+  }
 
  private:
   render::GlContext context_;
   render::AtlasRenderer renderer_;
-  size_t pixels_;
-  std::vector<float> host_;
+  std::unique_ptr<interop::AtlasHandoff> handoff_;
 };
 }  // namespace
 
 std::unique_ptr<AtlasSource> make_host_atlas_source(const Mesh& mesh, const Camera& camera,
                                                     const TrackerConfig& config);
 
-std::unique_ptr<AtlasSource> make_atlas_source(const Mesh& mesh, const Camera& camera, const TrackerConfig& config) {
+std::unique_ptr<AtlasSource> make_atlas_source(compute::Queue& queue, const Mesh& mesh, const Camera& camera,
+                                               const TrackerConfig& config) {
   if (config.renderer == "cpu") return make_host_atlas_source(mesh, camera, config);
-  if (config.renderer == "gl") return std::make_unique<GlAtlasSource>(mesh, camera, config);
+  if (config.renderer == "gl") return std::make_unique<GlAtlasSource>(queue, mesh, camera, config);
   throw InputError("unknown renderer '" + config.renderer + "' (choose cpu or gl)");
 }
 

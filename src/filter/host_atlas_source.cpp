@@ -2,6 +2,7 @@
 #include <vector>
 
 #include "filter/atlas_source.hpp"
+#include "filter/particle_packing.hpp"
 #include "reference/rasterizer.hpp"
 
 namespace depthtrack {
@@ -11,18 +12,23 @@ class HostAtlasSource final : public AtlasSource {
  public:
   HostAtlasSource(const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
       : rasterizer_(mesh, camera, config.near_plane, config.observation.max_depth),
+        layout_(render::AtlasLayout::particle_major(config.particles, camera.width, camera.height)),
         pixels_(static_cast<size_t>(camera.pixel_count())) {}
 
-  void draw(std::span<const Pose> poses, compute::Buffer<float>& atlas) override {
-    host_.resize(poses.size() * pixels_);
-    for (size_t i = 0; i < poses.size(); ++i)
-      rasterizer_.render(poses[i], std::span<float>(host_.data() + i * pixels_, pixels_));
+  const render::AtlasLayout& layout() const override { return layout_; }
+
+  void draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas) override {
+    const std::vector<reference::ParticleState> particles = unpack_particles(states.download());
+    host_.resize(particles.size() * pixels_);
+    for (size_t i = 0; i < particles.size(); ++i)
+      rasterizer_.render(particles[i].pose, std::span<float>(host_.data() + i * pixels_, pixels_));
     atlas.upload(host_);
   }
-  std::string description() const override { return "reference rasterizer on the host, uploaded"; }
+  std::string description() const override { return "reference rasterizer on the host; hand-off: upload"; }
 
  private:
   reference::Rasterizer rasterizer_;
+  render::AtlasLayout layout_;
   size_t pixels_;
   std::vector<float> host_;
 };

@@ -23,4 +23,24 @@ AtlasLayout AtlasLayout::make(int tiles, int tile_width, int tile_height, int ma
   return layout;
 }
 
+AtlasLayout AtlasLayout::particle_major(int tiles, int tile_width, int tile_height) {
+  AtlasLayout layout;
+  layout.tile_width = tile_width;
+  layout.tile_height = tile_height;
+  layout.tiles_per_row = 1;
+  layout.tiles_per_page = tiles;
+  layout.pages.push_back({0, tiles, tile_width, tiles * tile_height});
+  return layout;
+}
+
+size_t AtlasLayout::page_offset(size_t p) const {
+  return p * static_cast<size_t>(tiles_per_page) * static_cast<size_t>(tile_width) * static_cast<size_t>(tile_height);
+}
+
+size_t AtlasLayout::floats() const {
+  if (pages.empty()) return 0;
+  const AtlasPageLayout& last = pages.back();
+  return page_offset(pages.size() - 1) + static_cast<size_t>(last.width) * static_cast<size_t>(last.height);
+}
+
 }  // namespace depthtrack::render

@@ -1,6 +1,8 @@
 #pragma once
 // Where each pose's tile lies: tile i of a page at column i % tiles_per_row, row i / tiles_per_row;
 // a page holds at most tiles_per_page tiles, so that no page exceeds the GL's render-target limit.
+// The compute kernels read the pages in this same layout (cl/dt_atlas.h).
+#include <cstddef>
 #include <vector>
 
 namespace depthtrack::render {
@@ -18,6 +20,12 @@ struct AtlasLayout {
 
   // InputError when a single tile exceeds max_size.
   static AtlasLayout make(int tiles, int tile_width, int tile_height, int max_size);
+  // One tile per row in a single page: tile i is the i-th block of width x height floats.
+  static AtlasLayout particle_major(int tiles, int tile_width, int tile_height);
+  // Floats of a buffer holding every page back to back (page p starts at p * tiles_per_page tiles).
+  size_t floats() const;
+  // Index of page p's first float in that buffer.
+  size_t page_offset(size_t p) const;
   bool operator==(const AtlasLayout&) const = default;
 };
 

@@ -4,6 +4,7 @@
 #include <depthtrack/error.hpp>
 #include <string>
 
+#include "dt_state.h"
 #include "render/gl_program.hpp"
 
 namespace depthtrack::render {
@@ -54,10 +55,12 @@ AtlasRenderer::AtlasRenderer(GlContext& context, const Mesh& mesh, const Camera&
   gl_.BindTexture(GL_TEXTURE_BUFFER, plane_texture_);
   gl_.TexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, plane_buffer_);
 
-  // Poses: a texture buffer, readable by gl_InstanceID in GLSL 330 on every GL this runs on.
+  // Poses: particle states in a texture buffer, readable by gl_InstanceID in GLSL 330 on every GL
+  // this runs on. atlas.vert reads the translation and quaternion at these offsets.
+  static_assert(DT_STATE_STRIDE == 16 && DT_TX == 0 && DT_QW == 3, "atlas.vert reads cl/dt_state.h's layout");
   gl_.GenBuffers(1, &pose_buffer_);
   gl_.BindBuffer(GL_TEXTURE_BUFFER, pose_buffer_);
-  gl_.BufferData(GL_TEXTURE_BUFFER, 12 * sizeof(float), nullptr, GL_STREAM_DRAW);
+  gl_.BufferData(GL_TEXTURE_BUFFER, DT_STATE_STRIDE * sizeof(float), nullptr, GL_STREAM_DRAW);
   gl_.GenTextures(1, &pose_texture_);
   gl_.BindTexture(GL_TEXTURE_BUFFER, pose_texture_);
   gl_.TexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, pose_buffer_);
@@ -110,11 +113,17 @@ void AtlasRenderer::release_pages() {
   pages_.clear();
 }
 
-void AtlasRenderer::allocate_pages(int tiles) {
+void AtlasRenderer::reserve(int tiles) {
+  if (tiles <= 0) throw InputError("atlas renderer: no poses to render");
+  if (tiles == tiles_ && !pages_.empty()) return;
+  context_.make_current();
   AtlasLayout layout = AtlasLayout::make(tiles, camera_.width, camera_.height, max_size_);
-  tiles_ = tiles;
-  if (layout == layout_ && !pages_.empty()) return;
   release_pages();
+  tiles_ = 0;
+  gl_.BindBuffer(GL_TEXTURE_BUFFER, pose_buffer_);
+  gl_.BufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(static_cast<size_t>(tiles) * DT_STATE_STRIDE * sizeof(float)),
+                 nullptr, GL_DYNAMIC_DRAW);
+  check("allocating the pose buffer");
   layout_ = std::move(layout);
   for (const AtlasPageLayout& l : layout_.pages) {
     AtlasPage page{l, 0, 0, 0};
@@ -141,25 +150,38 @@ void AtlasRenderer::allocate_pages(int tiles) {
     check("allocating an atlas page");
   }
   gl_.BindTexture(GL_TEXTURE_2D, 0);
+  tiles_ = tiles;
 }
 
 void AtlasRenderer::render(std::span<const Pose> poses) {
-  if (poses.empty()) throw InputError("atlas renderer: no poses to render");
-  context_.make_current();
-  allocate_pages(static_cast<int>(poses.size()));
-
-  std::vector<float> rows(poses.size() * 12);  // [R | t] row by row
+  reserve(static_cast<int>(poses.size()));
+  states_.assign(poses.size() * DT_STATE_STRIDE, 0.0f);
   for (size_t i = 0; i < poses.size(); ++i) {
-    const Eigen::Matrix3d r = poses[i].rotation.toRotationMatrix();
-    for (int row = 0; row < 3; ++row) {
-      float* out = &rows[i * 12 + static_cast<size_t>(row) * 4];
-      for (int col = 0; col < 3; ++col) out[col] = static_cast<float>(r(row, col));
-      out[3] = static_cast<float>(poses[i].translation[row]);
-    }
+    float* s = &states_[i * DT_STATE_STRIDE];
+    for (int k = 0; k < 3; ++k) s[DT_TX + k] = static_cast<float>(poses[i].translation[k]);
+    const Eigen::Quaterniond& q = poses[i].rotation;
+    s[DT_QW] = static_cast<float>(q.w());
+    s[DT_QW + 1] = static_cast<float>(q.x());
+    s[DT_QW + 2] = static_cast<float>(q.y());
+    s[DT_QW + 3] = static_cast<float>(q.z());
   }
-  gl_.BindBuffer(GL_TEXTURE_BUFFER, pose_buffer_);
-  gl_.BufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(rows.size() * sizeof(float)), rows.data(), GL_STREAM_DRAW);
+  upload_states(states_);
+  draw();
+}
 
+void AtlasRenderer::upload_states(std::span<const float> states) {
+  if (states.size() != static_cast<size_t>(tiles_) * DT_STATE_STRIDE)
+    throw InputError("atlas renderer: " + std::to_string(states.size()) + " state floats for " +
+                     std::to_string(tiles_) + " tiles of " + std::to_string(DT_STATE_STRIDE));
+  context_.make_current();
+  gl_.BindBuffer(GL_TEXTURE_BUFFER, pose_buffer_);
+  gl_.BufferSubData(GL_TEXTURE_BUFFER, 0, static_cast<GLsizeiptr>(states.size_bytes()), states.data());
+  check("uploading the poses");
+}
+
+void AtlasRenderer::draw() {
+  if (pages_.empty()) throw InputError("atlas renderer: draw() before reserve()");
+  context_.make_current();
   gl_.UseProgram(program_);
   gl_.BindVertexArray(vertex_array_);
   gl_.ActiveTexture(GL_TEXTURE1);
@@ -193,14 +215,10 @@ void AtlasRenderer::read_back(std::span<float> out) {
   if (out.size() != static_cast<size_t>(tiles_) * w * h)
     throw InputError("atlas read-back needs " + std::to_string(static_cast<size_t>(tiles_) * w * h) + " floats, got " +
                      std::to_string(out.size()));
-  context_.make_current();
-  gl_.PixelStorei(GL_PACK_ALIGNMENT, 4);
   for (const AtlasPage& page : pages_) {
     const size_t page_width = static_cast<size_t>(page.layout.width);
     staging_.resize(page_width * static_cast<size_t>(page.layout.height));
-    gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, page.framebuffer);
-    gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
-    gl_.ReadPixels(0, 0, page.layout.width, page.layout.height, GL_RED, GL_FLOAT, staging_.data());
+    read_page(page, staging_);
     // Window row y holds image row y % h of the tiles in page row y / h (no flip: see atlas.vert).
     for (int t = 0; t < page.layout.tile_count; ++t) {
       const size_t x0 = static_cast<size_t>(t % layout_.tiles_per_row) * w;
@@ -209,8 +227,20 @@ void AtlasRenderer::read_back(std::span<float> out) {
       for (size_t v = 0; v < h; ++v) std::copy_n(staging_.data() + (y0 + v) * page_width + x0, w, tile + v * w);
     }
   }
+}
+
+void AtlasRenderer::read_page(const AtlasPage& page, std::span<float> out) {
+  const size_t floats = static_cast<size_t>(page.layout.width) * static_cast<size_t>(page.layout.height);
+  if (out.size() != floats)
+    throw InputError("atlas page read needs " + std::to_string(floats) + " floats, got " + std::to_string(out.size()));
+  context_.make_current();
+  gl_.PixelStorei(GL_PACK_ALIGNMENT, 4);
+  gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, page.framebuffer);
+  gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  gl_.ReadPixels(0, 0, page.layout.width, page.layout.height, GL_RED, GL_FLOAT, out.data());
   gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-  check("reading back the pose atlas");
+  check("reading back an atlas page");
 }
 
 }  // namespace depthtrack::render

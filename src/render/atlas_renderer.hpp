@@ -18,7 +18,7 @@ struct AtlasOptions {
   int max_texture_size = 0;  // page size limit in pixels; 0: the context's; smaller forces pages (tests)
 };
 
-// One page's GL objects, for a later zero-copy hand-off: colour is GL_TEXTURE_2D, GL_R32F.
+// One page's GL objects, for the hand-off to compute: colour is GL_TEXTURE_2D, GL_R32F.
 struct AtlasPage {
   AtlasPageLayout layout;
   GLuint color_texture = 0, depth_texture = 0, framebuffer = 0;
@@ -37,12 +37,23 @@ class AtlasRenderer {
   // Copies the last render's tiles into out in pose order, each row-major width x height.
   void read_back(std::span<float> out);
 
+  // The pieces of render() for a compute hand-off: reserve() sizes the pages and the pose buffer
+  // for `tiles` poses (nothing changes when the count does not); the pose buffer then holds one
+  // particle state per tile (DT_STATE_STRIDE floats, cl/dt_state.h: translation, quaternion, ...),
+  // written by upload_states() or by the compute device through interop; draw() renders them all.
+  void reserve(int tiles);
+  void upload_states(std::span<const float> states);
+  void draw();
+  GLuint pose_buffer() const { return pose_buffer_; }
+  // Reads one page as it lies (page width x height floats, row-major, image rows not flipped).
+  void read_page(const AtlasPage& page, std::span<float> out);
+
   int tile_count() const { return tiles_; }
   const AtlasLayout& layout() const { return layout_; }
   const std::vector<AtlasPage>& pages() const { return pages_; }
+  GlContext& context() { return context_; }
 
  private:
-  void allocate_pages(int tiles);
   void release_pages();
   void check(const char* what);
 
@@ -57,6 +68,7 @@ class AtlasRenderer {
   int tiles_ = 0;
   AtlasLayout layout_;
   std::vector<AtlasPage> pages_;
+  std::vector<float> states_;   // render()'s poses as particle states
   std::vector<float> staging_;  // one page, read back before it is scattered into pose order
 };
 

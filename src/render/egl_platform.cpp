@@ -5,6 +5,8 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include <algorithm>
+#include <array>
 #include <cstring>
 #include <depthtrack/error.hpp>
 #include <string>
@@ -113,9 +115,23 @@ void require_client_extension(const char* name) {
     throw BackendError(std::string("EGL client extensions lack ") + name);
 }
 
+// Whether EGL device `device` reports `uuid` (EGL_EXT_device_persistent_id).
+bool has_uuid(EGLDeviceEXT device, const std::array<unsigned char, 16>& uuid) {
+  auto query_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+  auto query_binary = reinterpret_cast<PFNEGLQUERYDEVICEBINARYEXTPROC>(eglGetProcAddress("eglQueryDeviceBinaryEXT"));
+  if (!query_string || !query_binary ||
+      !has_extension(query_string(device, EGL_EXTENSIONS), "EGL_EXT_device_persistent_id"))
+    return false;
+  std::array<unsigned char, 16> found{};
+  EGLint size = 0;
+  return query_binary(device, EGL_DEVICE_UUID_EXT, static_cast<EGLint>(found.size()), found.data(), &size) &&
+         size == static_cast<EGLint>(found.size()) && found == uuid;
+}
+
 }  // namespace
 
-std::unique_ptr<GlPlatform> create_egl_device_platform(std::optional<int> device, GlVersion required) {
+std::unique_ptr<GlPlatform> create_egl_device_platform(std::optional<int> device, GlVersion required,
+                                                       const std::optional<std::array<unsigned char, 16>>& uuid) {
   require_client_extension("EGL_EXT_platform_device");
   auto query_devices = egl_proc<PFNEGLQUERYDEVICESEXTPROC>("eglQueryDevicesEXT");
   auto get_display = egl_proc<PFNEGLGETPLATFORMDISPLAYEXTPROC>("eglGetPlatformDisplayEXT");
@@ -126,11 +142,19 @@ std::unique_ptr<GlPlatform> create_egl_device_platform(std::optional<int> device
   if (count == 0) throw BackendError("eglQueryDevicesEXT found no device");
   if (device && (*device < 0 || *device >= count))
     throw BackendError("EGL device " + std::to_string(*device) + " requested, " + std::to_string(count) + " present");
+  std::vector<int> order;
+  for (int i = device.value_or(0); i < (device ? *device + 1 : count); ++i) order.push_back(i);
+  int same_gpu = -1;
+  for (int i : order)
+    if (uuid && same_gpu < 0 && has_uuid(devices[static_cast<size_t>(i)], *uuid)) same_gpu = i;
+  if (same_gpu >= 0) std::stable_partition(order.begin(), order.end(), [&](int i) { return i == same_gpu; });
   std::string reasons;
-  for (int i = device.value_or(0); i < (device ? *device + 1 : count); ++i) {
+  for (int i : order) {
     try {
       EGLDisplay display = get_display(EGL_PLATFORM_DEVICE_EXT, devices[static_cast<size_t>(i)], nullptr);
-      return std::make_unique<EglPlatform>(display, "EGL device " + std::to_string(i), required);
+      const std::string name =
+          "EGL device " + std::to_string(i) + (i == same_gpu ? " (the compute device's GPU, by UUID)" : "");
+      return std::make_unique<EglPlatform>(display, name, required);
     } catch (const BackendError& e) {
       reasons += (reasons.empty() ? "" : "; ") + ("device " + std::to_string(i) + ": ") + e.what();
     }

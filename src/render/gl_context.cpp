@@ -17,7 +17,7 @@ std::unique_ptr<GlPlatform> create(GlPath path, const GlContextOptions& options)
   const GlVersion required{options.major, options.minor};
   switch (path) {
     case GlPath::EglDevice:
-      return create_egl_device_platform(options.device, required);
+      return create_egl_device_platform(options.device, required, options.device_uuid);
     case GlPath::EglSurfaceless:
       return create_egl_surfaceless_platform(required);
     case GlPath::OSMesa:

@@ -3,6 +3,7 @@
 // thread. Paths, in order: EGL device platform, EGL surfaceless (Mesa), OSMesa. DEPTHTRACK_GL=
 // egl-device|egl-surfaceless|osmesa restricts the search to one path. No window, no X server:
 // everything renders into framebuffer objects.
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -18,6 +19,8 @@ enum class GlPath { EglDevice, EglSurfaceless, OSMesa };
 struct GlContextOptions {
   std::optional<GlPath> path;  // only this path; unset: DEPTHTRACK_GL, else all in order
   std::optional<int> device;   // EGL device index; unset: the first that works
+  // Prefer the EGL device with this UUID (EGL_EXT_device_persistent_id): the compute device's GPU.
+  std::optional<std::array<unsigned char, 16>> device_uuid;
   int major = 3, minor = 3;    // the least core version accepted
 };
 

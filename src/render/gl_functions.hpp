@@ -36,6 +36,7 @@ namespace depthtrack::render {
   X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                     \
   X(PFNGLBINDBUFFERPROC, BindBuffer)                           \
   X(PFNGLBUFFERDATAPROC, BufferData)                           \
+  X(PFNGLBUFFERSUBDATAPROC, BufferSubData)                     \
   X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                 \
   X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)           \
   X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                 \

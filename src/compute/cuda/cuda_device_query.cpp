@@ -50,6 +50,11 @@ DeviceInfo query_device(const DriverApi& api, int ordinal) {
   info.external_memory = true;  // cuImportExternalMemory (opaque fd)
   info.fp64 = true;
   info.subgroups = true;  // warps
+  CUuuid uuid{};
+  if (api.cuDeviceGetUuid && api.cuDeviceGetUuid(&uuid, device) == CUDA_SUCCESS) {
+    info.uuid.emplace();
+    for (size_t i = 0; i < 16; ++i) (*info.uuid)[i] = static_cast<unsigned char>(uuid.bytes[i]);
+  }
   return info;
 }
 

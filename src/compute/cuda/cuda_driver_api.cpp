@@ -17,6 +17,7 @@ namespace {
 
 struct Loaded {
   DriverApi api;
+  void* library = nullptr;
   std::string failure;  // empty when the driver is usable
 };
 
@@ -47,6 +48,7 @@ Loaded load() {
                       : "libcuda.so.1 could not be loaded: " + detail;
     return out;
   }
+  out.library = library;
   std::string missing;
 #define DT_CUDA_RESOLVE(f)                           \
   if (!resolve(library, out.api.f, DT_CUDA_NAME(f))) \
@@ -79,6 +81,10 @@ const DriverApi* driver_api() {
 
 const std::string& driver_failure() {
   return loaded().failure;
+}
+
+void* driver_symbol(const char* name) {
+  return loaded().library && loaded().failure.empty() ? dlsym(loaded().library, name) : nullptr;
 }
 
 const DriverApi& require_driver() {

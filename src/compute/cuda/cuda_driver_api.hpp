@@ -25,8 +25,14 @@ namespace depthtrack::compute::cuda {
   X(cuModuleLoadDataEx) X(cuModuleUnload) X(cuModuleGetFunction) X(cuFuncGetAttribute) X(cuLaunchKernel)
 // clang-format on
 
-// Functions the backend uses when the driver has them (cuFuncGetParamInfo: CUDA 12.4+).
-#define DT_CUDA_DRIVER_OPTIONAL_FUNCTIONS(X) X(cuFuncGetParamInfo)
+// Functions the backend uses when the driver has them (cuFuncGetParamInfo: CUDA 12.4+), and those
+// of graphics interop, which a driver without graphics support may lack.
+// clang-format off
+#define DT_CUDA_DRIVER_OPTIONAL_FUNCTIONS(X)                                                           \
+  X(cuFuncGetParamInfo) X(cuDeviceGetUuid)                                                             \
+  X(cuGraphicsMapResources) X(cuGraphicsUnmapResources) X(cuGraphicsUnregisterResource)                \
+  X(cuGraphicsSubResourceGetMappedArray) X(cuGraphicsResourceGetMappedPointer) X(cuMemcpy2DAsync)
+// clang-format on
 
 struct DriverApi {
 #define DT_CUDA_DECLARE(f) decltype(&::f) f = nullptr;
@@ -41,5 +47,8 @@ const DriverApi* driver_api();
 const std::string& driver_failure();
 // The table, or BackendError "CUDA is unavailable: <why>".
 const DriverApi& require_driver();
+// Any other symbol of the loaded driver, by its exact name (the GL interop entry points, whose
+// header cudaGL.h would bring in a second set of GL declarations); null when absent.
+void* driver_symbol(const char* name);
 
 }  // namespace depthtrack::compute::cuda

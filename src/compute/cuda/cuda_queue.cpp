@@ -58,6 +58,22 @@ void CudaQueue::read(const DeviceMemory& memory, size_t offset, void* destinatio
   finish();
 }
 
+void* CudaQueue::map_for_overwrite(DeviceMemory& memory, size_t offset, size_t bytes) {
+  checked(memory, offset, bytes, "map");
+  if (mapping_.memory) throw InputError("map on " + context_->where() + ": another range is still mapped");
+  mapping_.memory = &memory;
+  mapping_.offset = offset;
+  mapping_.host.resize(bytes);
+  return mapping_.host.data();
+}
+
+void CudaQueue::unmap(DeviceMemory& memory, void* host) {
+  if (mapping_.memory != &memory || host != mapping_.host.data())
+    throw InputError("unmap on " + context_->where() + ": that range is not mapped");
+  mapping_.memory = nullptr;
+  write(memory, mapping_.offset, host, mapping_.host.size());
+}
+
 void CudaQueue::copy(const DeviceMemory& source, size_t source_offset, DeviceMemory& destination,
                      size_t destination_offset, size_t bytes) {
   const CudaMemory& from = checked(source, source_offset, bytes, "copy source");

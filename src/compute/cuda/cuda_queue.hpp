@@ -2,6 +2,7 @@
 // The CUDA Queue: one device's primary context and one in-order stream. Copies to and from the
 // host block; launches and device copies are enqueued on the stream in order.
 #include <memory>
+#include <vector>
 
 #include "compute/cuda/cuda_context.hpp"
 #include "compute/queue.hpp"
@@ -21,6 +22,8 @@ class CudaQueue final : public Queue {
   std::unique_ptr<DeviceMemory> allocate(size_t bytes) override;
   void write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) override;
   void read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) override;
+  void* map_for_overwrite(DeviceMemory& memory, size_t offset, size_t bytes) override;
+  void unmap(DeviceMemory& memory, void* host) override;
   void copy(const DeviceMemory& source, size_t source_offset, DeviceMemory& destination, size_t destination_offset,
             size_t bytes) override;
   std::unique_ptr<Program> build(const std::string& name, const std::string& source,
@@ -38,6 +41,12 @@ class CudaQueue final : public Queue {
 
   std::shared_ptr<const Context> context_;
   CUstream stream_ = nullptr;
+  // The one mapping map_for_overwrite hands out: host bytes written to the device at unmap.
+  struct Mapping {
+    DeviceMemory* memory = nullptr;
+    size_t offset = 0;
+    std::vector<unsigned char> host;
+  } mapping_;
 };
 
 }  // namespace depthtrack::compute::cuda

@@ -1,6 +1,9 @@
 #include "compute/opencl/cl_device_query.hpp"
 
+#include <CL/cl_ext.h>
+
 #include <algorithm>
+#include <array>
 #include <sstream>
 #include <string>
 
@@ -96,6 +99,10 @@ DeviceInfo query_device(cl_platform_id platform, cl_device_id device, unsigned p
   info.external_memory = has("cl_khr_external_memory") || has("cl_khr_external_memory_opaque_fd");
   info.fp64 = has("cl_khr_fp64");
   info.subgroups = has("cl_khr_subgroups") || has("cl_intel_subgroups");
+  if (has("cl_khr_device_uuid")) {
+    std::array<unsigned char, CL_UUID_SIZE_KHR> uuid{};
+    if (clGetDeviceInfo(device, CL_DEVICE_UUID_KHR, uuid.size(), uuid.data(), nullptr) == CL_SUCCESS) info.uuid = uuid;
+  }
   return info;
 }
 

@@ -79,6 +79,24 @@ void ClQueue::read(const DeviceMemory& memory, size_t offset, void* destination,
         "clEnqueueReadBuffer", info_.name);
 }
 
+void* ClQueue::map_for_overwrite(DeviceMemory& memory, size_t offset, size_t bytes) {
+  check_range("map", offset, bytes, memory);
+  if (mapped_) throw InputError("map on " + info_.name + ": another range is still mapped");
+  cl_int status = CL_SUCCESS;
+  void* host = clEnqueueMapBuffer(queue_.get(), cl_buffer(memory, "map"), CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION,
+                                  offset, bytes, 0, nullptr, nullptr, &status);
+  check(status, "clEnqueueMapBuffer", info_.name, std::to_string(bytes) + " bytes");
+  mapped_ = &memory;
+  return host;
+}
+
+void ClQueue::unmap(DeviceMemory& memory, void* host) {
+  if (mapped_ != &memory) throw InputError("unmap on " + info_.name + ": that buffer is not mapped");
+  mapped_ = nullptr;
+  check(clEnqueueUnmapMemObject(queue_.get(), cl_buffer(memory, "unmap"), host, 0, nullptr, nullptr),
+        "clEnqueueUnmapMemObject", info_.name);
+}
+
 void ClQueue::copy(const DeviceMemory& source, size_t source_offset, DeviceMemory& destination,
                    size_t destination_offset, size_t bytes) {
   check_range("copy source", source_offset, bytes, source);

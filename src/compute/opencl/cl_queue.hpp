@@ -15,6 +15,8 @@ class ClQueue final : public Queue {
   std::unique_ptr<DeviceMemory> allocate(size_t bytes) override;
   void write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) override;
   void read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) override;
+  void* map_for_overwrite(DeviceMemory& memory, size_t offset, size_t bytes) override;
+  void unmap(DeviceMemory& memory, void* host) override;
   void copy(const DeviceMemory& source, size_t source_offset, DeviceMemory& destination, size_t destination_offset,
             size_t bytes) override;
   std::unique_ptr<Program> build(const std::string& name, const std::string& source,
@@ -27,6 +29,7 @@ class ClQueue final : public Queue {
   DeviceInfo info_;
   ContextHandle context_;
   QueueHandle queue_;
+  const DeviceMemory* mapped_ = nullptr;  // the one mapping map_for_overwrite hands out
 };
 
 }  // namespace depthtrack::compute::opencl

@@ -1,0 +1,38 @@
+#pragma once
+// How particle poses reach the GL atlas renderer and its pages reach the compute kernels. Chosen
+// per platform (make_atlas_handoff) and reported by name():
+//   CUDA-GL interop     the pages and the pose buffer are mapped into CUDA: device-to-device copies only;
+//   cl_khr_gl_sharing   the same through OpenCL, where a platform offers it;
+//   staged copy         poses via the host, each page read once straight into the mapped atlas buffer.
+#include <memory>
+#include <string>
+
+#include "compute/buffer.hpp"
+#include "render/atlas_renderer.hpp"
+
+namespace depthtrack::interop {
+
+class AtlasHandoff {
+ public:
+  virtual ~AtlasHandoff() = default;
+  // Puts the particles' states (DT_STATE_STRIDE floats each) into the renderer's pose buffer.
+  virtual void send_poses(const compute::Buffer<float>& states) = 0;
+  // Copies the rendered pages into `atlas` (layout().floats() floats), page after page as they lie.
+  virtual void receive_atlas(compute::Buffer<float>& atlas) = 0;
+  // e.g. "CUDA-GL interop (zero-copy)", "staged copy (OpenCL platform lacks cl_khr_gl_sharing)".
+  virtual std::string name() const = 0;
+};
+
+// The best hand-off between `queue` and `renderer`, whose pages must already be reserve()d (they are
+// registered once). Falls back to the staged copy, saying why in name(); BackendError only when a
+// path the platform advertises fails outright.
+std::unique_ptr<AtlasHandoff> make_atlas_handoff(compute::Queue& queue, render::AtlasRenderer& renderer);
+
+// The paths, for make_atlas_handoff and tests. make_cuda_gl_handoff returns null, with the reason in
+// `why_not`, when the queue is not CUDA or the GL context does not run on its device.
+std::unique_ptr<AtlasHandoff> make_staged_handoff(compute::Queue& queue, render::AtlasRenderer& renderer,
+                                                  std::string reason);
+std::unique_ptr<AtlasHandoff> make_cuda_gl_handoff(compute::Queue& queue, render::AtlasRenderer& renderer,
+                                                   std::string& why_not);
+
+}  // namespace depthtrack::interop

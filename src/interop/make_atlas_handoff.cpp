@@ -1,0 +1,28 @@
+// Picks the hand-off per platform, best first, and keeps the reason each better one was passed over.
+#include "interop/atlas_handoff.hpp"
+
+namespace depthtrack::interop {
+
+#ifndef DEPTHTRACK_WITH_CUDA
+std::unique_ptr<AtlasHandoff> make_cuda_gl_handoff(compute::Queue&, render::AtlasRenderer&, std::string& why_not) {
+  why_not = "built without the CUDA backend";
+  return nullptr;
+}
+#endif
+
+std::unique_ptr<AtlasHandoff> make_atlas_handoff(compute::Queue& queue, render::AtlasRenderer& renderer) {
+  const compute::DeviceInfo& device = queue.info();
+  std::string reason;
+  if (device.backend == "cuda") {
+    if (auto cuda = make_cuda_gl_handoff(queue, renderer, reason)) return cuda;
+    reason = "no CUDA-GL interop: " + reason;
+  } else if (!device.gl_sharing) {
+    reason = "the OpenCL platform lacks cl_khr_gl_sharing";
+  } else {
+    // Sharing needs the OpenCL context created against the GL context; ours is made before GL.
+    reason = "cl_khr_gl_sharing is listed but not used yet";
+  }
+  return make_staged_handoff(queue, renderer, reason);
+}
+
+}  // namespace depthtrack::interop
