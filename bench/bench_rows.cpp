@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <sstream>
 
 namespace depthtrack::bench {
 
@@ -29,6 +32,25 @@ std::string cpu_name() {
   while (std::getline(in, line))
     if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
   return "unknown CPU";
+}
+
+Mesh bench_mesh(std::string& name) {
+  const char* env = std::getenv("DEPTHTRACK_DATA_DIR");
+  const auto handset = std::filesystem::path(env ? env : DEPTHTRACK_DATA_DIR) / "meshes/dbot/handset.obj";
+  if (std::filesystem::exists(handset)) {
+    name = "handset";
+    return Mesh::load(handset);
+  }
+  std::fprintf(stderr, "note: %s is absent; benchmarking the built-in mesh instead\n", handset.c_str());
+  name = "builtin";
+  return builtin_demo_mesh();
+}
+
+std::vector<std::string> split(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  for (std::string part; std::getline(in, part, ',');) parts.push_back(part);
+  return parts;
 }
 
 }  // namespace depthtrack::bench

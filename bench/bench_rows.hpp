@@ -1,6 +1,7 @@
 #pragma once
 // Benchmark output in clpeak's shape: one CSV row per measurement, so runs on different machines
 // and backends can be concatenated and compared.
+#include <depthtrack/mesh.hpp>
 #include <string>
 #include <vector>
 
@@ -17,5 +18,9 @@ void print_row(const Row& row);
 double median(std::vector<double> samples);
 // The host CPU's model name, from /proc/cpuinfo.
 std::string cpu_name();
+// The thesis' handset from the data folder (DEPTHTRACK_DATA_DIR), else the built-in mesh; its name.
+Mesh bench_mesh(std::string& name);
+// "a,b,c" -> {"a", "b", "c"}.
+std::vector<std::string> split(const std::string& text);
 
 }  // namespace depthtrack::bench

@@ -1,5 +1,6 @@
-// Time per frame of the tracker on one backend, split into propagate, render, weigh and resample,
+// Time per frame of the tracker on one backend, split into propagate, render, hand-off, weigh and resample,
 // with the handset (the thesis' object) on a synthetic occluded sequence. Prints CSV rows.
+// render is the atlas draw (GL waited for); handoff moves poses to GL and the atlas to the kernels.
 // Usage: depthtrack_bench [--backend NAME] [--renderer cpu|gl] [--particles N[,N...]] [--resolution WxH[,...]]
 //                         [--frames N]
 //   default: the reference at 80x60 (200 particles) and 640x480 (50 particles).
@@ -7,8 +8,6 @@
 #include <cstring>
 #include <depthtrack/synth.hpp>
 #include <depthtrack/tracker.hpp>
-#include <filesystem>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -17,25 +16,6 @@
 using namespace depthtrack;
 
 namespace {
-
-Mesh bench_mesh(std::string& name) {
-  const char* env = std::getenv("DEPTHTRACK_DATA_DIR");
-  const auto handset = std::filesystem::path(env ? env : DEPTHTRACK_DATA_DIR) / "meshes/dbot/handset.obj";
-  if (std::filesystem::exists(handset)) {
-    name = "handset";
-    return Mesh::load(handset);
-  }
-  std::fprintf(stderr, "note: %s is absent; benchmarking the built-in mesh instead\n", handset.c_str());
-  name = "builtin";
-  return builtin_demo_mesh();
-}
-
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> parts;
-  std::stringstream in(text);
-  for (std::string part; std::getline(in, part, ',');) parts.push_back(part);
-  return parts;
-}
 
 struct Case {
   int width, height, particles;
@@ -55,13 +35,14 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
   config.particles = c.particles;
   Tracker tracker(mesh, synth.camera, config);
   tracker.initialize(scene.ground_truth(0.0));
-  std::vector<double> propagate, render, weigh, resample, total;
+  std::vector<double> propagate, render, handoff, weigh, resample, total;
   for (int i = 0; i < frames; ++i) {
     const SynthFrame f = scene.frame(i);
     const Estimate e = tracker.update(f.depth, f.timestamp);
     if (i < 2) continue;  // warm-up: caches, first-frame propagation skipped
     propagate.push_back(e.timings.propagate_ms);
     render.push_back(e.timings.render_ms);
+    handoff.push_back(e.timings.handoff_ms);
     weigh.push_back(e.timings.weigh_ms);
     resample.push_back(e.timings.resample_ms);
     total.push_back(e.timings.total_ms);
@@ -73,6 +54,7 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
   const std::string name = backend == "reference" ? bench::cpu_name() : device;
   for (const auto& [metric, samples] : {std::pair{"propagate", &propagate},
                                         {"render", &render},
+                                        {"handoff", &handoff},
                                         {"weigh", &weigh},
                                         {"resample", &resample},
                                         {"total", &total}}) {
@@ -113,8 +95,8 @@ int main(int argc, char** argv) {
   if (particles.empty() && resolutions.empty()) {
     cases = {{80, 60, 200}, {640, 480, 50}};
   } else {
-    for (const auto& r : split(resolutions.empty() ? "80x60" : resolutions))
-      for (const auto& p : split(particles.empty() ? "200" : particles)) {
+    for (const auto& r : bench::split(resolutions.empty() ? "80x60" : resolutions))
+      for (const auto& p : bench::split(particles.empty() ? "200" : particles)) {
         Case c{};
         if (std::sscanf(r.c_str(), "%dx%d", &c.width, &c.height) != 2) {
           std::fprintf(stderr, "bad resolution '%s'\n", r.c_str());
@@ -126,7 +108,7 @@ int main(int argc, char** argv) {
   }
   try {
     std::string name;
-    const Mesh mesh = bench_mesh(name);
+    const Mesh mesh = bench::bench_mesh(name);
     bench::print_header();
     for (const Case& c : cases) run(mesh, name, backend, renderer, c, std::max(frames, 4));
   } catch (const std::exception& e) {

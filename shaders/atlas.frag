@@ -18,8 +18,10 @@ void main() {
   vec3 ray = vec3((image - u_intrinsics.zw) / u_intrinsics.xy, 1.0);
   float z = d / dot(n, ray);
   o_depth = z;
+#ifdef DT_EXACT_DEPTH_TEST
   // The depth test compares this exact z too (linear in z, far -> 1, the clear value), so where two
   // surfaces nearly meet the nearer one wins as in the reference, not the one whose snapped,
-  // interpolated depth happens to be smaller.
+  // interpolated depth happens to be smaller. Writing it turns off early depth rejection.
   gl_FragDepth = z * u_inverse_far;
+#endif
 }

@@ -47,3 +47,30 @@ TEST_CASE("Queue copies between device buffers", "[compute]") {
   const auto result = b.download();
   for (size_t i = 0; i < 256; ++i) CHECK(result[i] == (i >= 32 && i < 96 ? data[i - 16] : 0));
 }
+
+TEST_CASE("A mapped range is overwritten on publish and nothing else changes", "[compute]") {
+  auto queue = test::test_queue();
+  if (!queue) return;
+  std::vector<float> data(300);
+  std::iota(data.begin(), data.end(), 1.0f);
+  compute::Buffer<float> buffer(*queue, data.size());
+  buffer.upload(data);
+  {
+    auto mapped = buffer.overwrite(100, 50);
+    REQUIRE(mapped.data().size() == 50);
+    for (size_t i = 0; i < 50; ++i) mapped.data()[i] = -static_cast<float>(i);
+    // One mapping at a time: a second one is refused while the first is open.
+    CHECK_THROWS_AS(buffer.overwrite(0, 10), InputError);
+    mapped.publish();
+  }
+  const std::vector<float> got = buffer.download();
+  for (size_t i = 0; i < got.size(); ++i) {
+    INFO("element " << i);
+    CHECK(got[i] == (i >= 100 && i < 150 ? -static_cast<float>(i - 100) : data[i]));
+  }
+  CHECK_THROWS_AS(buffer.overwrite(290, 20), InputError);  // beyond the end
+  // A mapping dropped without publishing (an exception on the way) is still released.
+  { auto dropped = buffer.overwrite(0, 10); }
+  auto again = buffer.overwrite(0, 10);
+  again.publish();
+}

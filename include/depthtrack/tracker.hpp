@@ -10,8 +10,10 @@
 namespace depthtrack {
 
 // Wall-clock (reference) or device (compute backends) time of each step of the last update, ms.
+// Milliseconds per step. render: drawing the atlas (GL, or the host rasterizer); handoff: moving
+// poses to the renderer and the atlas to the compute kernels (0 for the reference tracker).
 struct StepTimings {
-  double propagate_ms = 0, render_ms = 0, weigh_ms = 0, resample_ms = 0, total_ms = 0;
+  double propagate_ms = 0, render_ms = 0, handoff_ms = 0, weigh_ms = 0, resample_ms = 0, total_ms = 0;
 };
 
 struct Estimate {

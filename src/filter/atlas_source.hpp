@@ -4,6 +4,7 @@
 // Each source also reports how the atlas reaches the kernels.
 #include <depthtrack/camera.hpp>
 #include <depthtrack/mesh.hpp>
+#include <depthtrack/tracker.hpp>
 #include <depthtrack/tracker_config.hpp>
 #include <memory>
 #include <string>
@@ -19,8 +20,9 @@ class AtlasSource {
   // Fixed for the source's life: config.particles tiles.
   virtual const render::AtlasLayout& layout() const = 0;
   // Draws particle i of `states` (DT_STATE_STRIDE floats each, cl/dt_state.h) into tile i of
-  // `atlas` (layout().floats() floats). Work may still be in flight on the queue on return.
-  virtual void draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas) = 0;
+  // `atlas` (layout().floats() floats), adding the host time of drawing and of the hand-off (up
+  // to the point where its work is enqueued) to `timings`.
+  virtual void draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas, StepTimings& timings) = 0;
   // e.g. "GL (EGL device 0: ...); hand-off: CUDA-GL interop (zero-copy)".
   virtual std::string description() const = 0;
 };

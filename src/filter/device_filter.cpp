@@ -1,12 +1,12 @@
 #include "filter/device_filter.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <depthtrack/error.hpp>
 #include <numeric>
 #include <sstream>
 
 #include "compute/kernel_sources.hpp"
+#include "core/stopwatch.hpp"
 #include "dt_atlas.h"
 #include "dt_state.h"
 #include "filter/particle_packing.hpp"
@@ -29,10 +29,6 @@ struct MotionArgs {
 
 size_t round_up(size_t n, size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
-}
-
-double ms_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 int occlusion_define(OcclusionStorage mode) {
@@ -186,11 +182,11 @@ std::vector<reference::ParticleState> DeviceFilter::weighed_particles() const {
 }
 
 // Timed to the end of the hand-off, so that the per-step split holds for asynchronous paths too.
-void DeviceFilter::render_atlas(double& render_ms) {
-  const auto start = std::chrono::steady_clock::now();
-  atlas_source_->draw(state_, atlas_);
+void DeviceFilter::render_atlas(StepTimings& timings) {
+  atlas_source_->draw(state_, atlas_, timings);
+  const Stopwatch clock;
   queue_->finish();
-  render_ms += ms_since(start);
+  timings.handoff_ms += clock.elapsed_ms();
 }
 
 std::vector<float> DeviceFilter::last_atlas() const {
@@ -205,7 +201,7 @@ std::vector<float> DeviceFilter::last_atlas() const {
 }
 
 Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
-  const auto frame_start = std::chrono::steady_clock::now();
+  const Stopwatch frame_clock;
   Kernels& k = *kernels_;
   Estimate e;
   time_ += dt;
@@ -232,7 +228,7 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
     propagated = queue_->launch(*k.propagate, compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup));
   }
 
-  render_atlas(e.timings.render_ms);
+  render_atlas(e.timings);
   observed_.upload(depth.data());
 
   const ObservationModel& o = config_.observation;
@@ -287,7 +283,7 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   e.timings.weigh_ms = weighed->elapsed_ms();
   e.timings.resample_ms = summarized->elapsed_ms();
   for (const auto& event : resampling) e.timings.resample_ms += event->elapsed_ms();
-  e.timings.total_ms = ms_since(frame_start);
+  e.timings.total_ms = frame_clock.elapsed_ms();
   ++frame_;
   return e;
 }

@@ -38,7 +38,7 @@ class DeviceFilter final : public FilterBackend {
 
  private:
   struct Kernels;
-  void render_atlas(double& render_ms);
+  void render_atlas(StepTimings& timings);
   // The per-particle device memory, checked before anything is allocated.
   size_t checked_particle_count() const;
   void upload_particles(const std::vector<reference::ParticleState>& particles);

@@ -2,6 +2,7 @@
 // compute kernels by the best path the platform has (src/interop/).
 #include <depthtrack/error.hpp>
 
+#include "core/stopwatch.hpp"
 #include "filter/atlas_source.hpp"
 #include "interop/atlas_handoff.hpp"
 #include "render/atlas_renderer.hpp"
@@ -28,10 +29,15 @@ class GlAtlasSource final : public AtlasSource {
 
   const render::AtlasLayout& layout() const override { return renderer_.layout(); }
 
-  void draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas) override {
+  void draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas, StepTimings& timings) override {
+    Stopwatch clock;
     handoff_->send_poses(states);
+    timings.handoff_ms += clock.lap_ms();
     renderer_.draw();
+    renderer_.finish();  // so that the split below is GL's time, not the hand-off's wait for it
+    timings.render_ms += clock.lap_ms();
     handoff_->receive_atlas(atlas);
+    timings.handoff_ms += clock.lap_ms();
   }
   std::string description() const override {
     return "GL (" + context_.describe() + "); hand-off: " + handoff_->name();

@@ -1,6 +1,7 @@
 // The atlas drawn tile by tile by the reference rasterizer on the host, then uploaded in one copy.
 #include <vector>
 
+#include "core/stopwatch.hpp"
 #include "filter/atlas_source.hpp"
 #include "filter/particle_packing.hpp"
 #include "reference/rasterizer.hpp"
@@ -17,12 +18,16 @@ class HostAtlasSource final : public AtlasSource {
 
   const render::AtlasLayout& layout() const override { return layout_; }
 
-  void draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas) override {
+  void draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas, StepTimings& timings) override {
+    Stopwatch clock;
     const std::vector<reference::ParticleState> particles = unpack_particles(states.download());
+    timings.handoff_ms += clock.lap_ms();
     host_.resize(particles.size() * pixels_);
     for (size_t i = 0; i < particles.size(); ++i)
       rasterizer_.render(particles[i].pose, std::span<float>(host_.data() + i * pixels_, pixels_));
+    timings.render_ms += clock.lap_ms();
     atlas.upload(host_);
+    timings.handoff_ms += clock.lap_ms();
   }
   std::string description() const override { return "reference rasterizer on the host; hand-off: upload"; }
 

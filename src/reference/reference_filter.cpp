@@ -1,9 +1,9 @@
 #include "reference/reference_filter.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <numeric>
 
+#include "core/stopwatch.hpp"
 #include "philox.h"
 #include "reference/observation_model.hpp"
 #include "reference/occlusion_chain.hpp"
@@ -12,12 +12,6 @@
 
 namespace depthtrack::reference {
 
-namespace {
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-}  // namespace
 
 ReferenceFilter::ReferenceFilter(const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
     : config_(config),
@@ -55,9 +49,9 @@ void ReferenceFilter::propagate(double dt) {
 
 double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double dt, double& render_ms,
                                        double& magnitude) {
-  const auto render_start = Clock::now();
+  const Stopwatch render_clock;
   const PixelBox box = rasterizer_.render(particles_[i].pose, rendered_);
-  render_ms += ms_since(render_start);
+  render_ms += render_clock.elapsed_ms();
 
   const size_t pixels = static_cast<size_t>(camera_.pixel_count());
   float* occlusion = occlusion_.empty() ? nullptr : occlusion_.data() + i * pixels;
@@ -112,25 +106,25 @@ void ReferenceFilter::resample(const std::vector<double>& normalized) {
 }
 
 Estimate ReferenceFilter::update(const DepthImage& depth, double dt) {
-  const auto frame_start = Clock::now();
+  const Stopwatch frame_clock;
   Estimate e;
   time_ += dt;
   if (dt > 0) {
-    const auto start = Clock::now();
+    const Stopwatch clock;
     propagate(dt);
-    e.timings.propagate_ms = ms_since(start);
+    e.timings.propagate_ms = clock.elapsed_ms();
   }
 
-  const auto weigh_start = Clock::now();
+  const Stopwatch weigh_clock;
   last_log_likelihoods_.resize(particles_.size());
   last_magnitudes_.resize(particles_.size());
   for (size_t i = 0; i < particles_.size(); ++i) {
     last_log_likelihoods_[i] = weigh_particle(i, depth, dt, e.timings.render_ms, last_magnitudes_[i]);
     log_weights_[i] += last_log_likelihoods_[i];
   }
-  e.timings.weigh_ms = ms_since(weigh_start) - e.timings.render_ms;
+  e.timings.weigh_ms = weigh_clock.elapsed_ms() - e.timings.render_ms;
 
-  const auto resample_start = Clock::now();
+  const Stopwatch resample_clock;
   const WeightSummary weights = summarize_log_weights(log_weights_);
   last_normalized_ = weights.normalized;
   std::vector<Pose> poses(particles_.size());
@@ -155,8 +149,8 @@ Estimate ReferenceFilter::update(const DepthImage& depth, double dt) {
     last_parents_.resize(particles_.size());
     std::iota(last_parents_.begin(), last_parents_.end(), 0);
   }
-  e.timings.resample_ms = ms_since(resample_start);
-  e.timings.total_ms = ms_since(frame_start);
+  e.timings.resample_ms = resample_clock.elapsed_ms();
+  e.timings.total_ms = frame_clock.elapsed_ms();
   ++frame_;
   return e;
 }

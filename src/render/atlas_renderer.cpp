@@ -18,7 +18,9 @@ AtlasRenderer::AtlasRenderer(GlContext& context, const Mesh& mesh, const Camera&
   max_size_ = options.max_texture_size > 0 ? std::min(options.max_texture_size, context.max_render_size())
                                            : context.max_render_size();
   context_.make_current();
-  program_ = build_program(gl_, "atlas.vert", "atlas.frag");
+  program_ = build_program(gl_, "atlas.vert", "atlas.frag",
+                           options.exact_depth_test ? std::vector<std::string>{"DT_EXACT_DEPTH_TEST"}
+                                                    : std::vector<std::string>{});
 
   // Mesh: Eigen's Vector3f / Vector3i are packed, so the vectors upload as they are.
   gl_.GenVertexArrays(1, &vertex_array_);
@@ -227,6 +229,11 @@ void AtlasRenderer::read_back(std::span<float> out) {
       for (size_t v = 0; v < h; ++v) std::copy_n(staging_.data() + (y0 + v) * page_width + x0, w, tile + v * w);
     }
   }
+}
+
+void AtlasRenderer::finish() {
+  context_.make_current();
+  gl_.Finish();
 }
 
 void AtlasRenderer::read_page(const AtlasPage& page, std::span<float> out) {

@@ -16,6 +16,10 @@ namespace depthtrack::render {
 
 struct AtlasOptions {
   int max_texture_size = 0;  // page size limit in pixels; 0: the context's; smaller forces pages (tests)
+  // Depth-test the exact plane depth (gl_FragDepth) rather than the rasterizer's interpolated one.
+  // Either way the stored depth is exact; the two differ only where surfaces meet within the
+  // interpolation error (~1e-6 relative), and writing gl_FragDepth costs early depth rejection.
+  bool exact_depth_test = true;
 };
 
 // One page's GL objects, for the hand-off to compute: colour is GL_TEXTURE_2D, GL_R32F.
@@ -44,6 +48,8 @@ class AtlasRenderer {
   void reserve(int tiles);
   void upload_states(std::span<const float> states);
   void draw();
+  // Waits until GL has executed everything issued (glFinish).
+  void finish();
   GLuint pose_buffer() const { return pose_buffer_; }
   // Reads one page as it lies (page width x height floats, row-major, image rows not flipped).
   void read_page(const AtlasPage& page, std::span<float> out);

@@ -17,10 +17,16 @@ const std::string& shader_source(const std::string& file) {
 
 namespace {
 
-GLuint compile(const GlFunctions& gl, GLenum stage, const std::string& file) {
-  const char* text = shader_source(file).c_str();
+GLuint compile(const GlFunctions& gl, GLenum stage, const std::string& file, const std::vector<std::string>& defines) {
+  // #version must come first: the definitions go between it and the rest.
+  const std::string& text = shader_source(file);
+  const size_t body = text.find('\n') == std::string::npos ? text.size() : text.find('\n') + 1;
+  const std::string version = text.substr(0, body);
+  std::string definitions;
+  for (const std::string& d : defines) definitions += "#define " + d + "\n";
+  const char* parts[] = {version.c_str(), definitions.c_str(), text.c_str() + body};
   const GLuint shader = gl.CreateShader(stage);
-  gl.ShaderSource(shader, 1, &text, nullptr);
+  gl.ShaderSource(shader, 3, parts, nullptr);
   gl.CompileShader(shader);
   GLint ok = GL_FALSE, length = 0;
   gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -34,11 +40,12 @@ GLuint compile(const GlFunctions& gl, GLenum stage, const std::string& file) {
 
 }  // namespace
 
-GLuint build_program(const GlFunctions& gl, const std::string& vertex_file, const std::string& fragment_file) {
-  const GLuint vertex = compile(gl, GL_VERTEX_SHADER, vertex_file);
+GLuint build_program(const GlFunctions& gl, const std::string& vertex_file, const std::string& fragment_file,
+                     const std::vector<std::string>& defines) {
+  const GLuint vertex = compile(gl, GL_VERTEX_SHADER, vertex_file, defines);
   GLuint fragment = 0;
   try {
-    fragment = compile(gl, GL_FRAGMENT_SHADER, fragment_file);
+    fragment = compile(gl, GL_FRAGMENT_SHADER, fragment_file, defines);
   } catch (...) {
     gl.DeleteShader(vertex);
     throw;

@@ -1,0 +1,73 @@
+// Time of the GL pose atlas alone: one draw of N poses of the handset (or the built-in mesh), waited
+// for with glFinish, for each depth-test variant. Separates GL's share of a frame from the hand-off.
+// Usage: depthtrack_bench_atlas [--particles N[,N...]] [--resolution WxH] [--repeats N]
+#include <chrono>
+#include <cstdio>
+#include <depthtrack/mesh.hpp>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "bench_rows.hpp"
+#include "render/atlas_renderer.hpp"
+
+using namespace depthtrack;
+
+int main(int argc, char** argv) {
+  std::string particles = "2000,10000,100000";
+  int width = 80, height = 60, repeats = 5;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--particles" && i + 1 < argc)
+      particles = argv[++i];
+    else if (arg == "--resolution" && i + 1 < argc && std::sscanf(argv[i + 1], "%dx%d", &width, &height) == 2)
+      ++i;
+    else if (arg == "--repeats" && i + 1 < argc)
+      repeats = std::max(1, std::atoi(argv[++i]));
+    else {
+      std::fprintf(stderr, "usage: %s [--particles N[,N...]] [--resolution WxH] [--repeats N]\n", argv[0]);
+      return 2;
+    }
+  }
+  try {
+    std::string mesh_name;
+    const Mesh mesh = bench::bench_mesh(mesh_name);
+    const Camera camera = Camera::make(width, height, 0.82 * width, 0.82 * width, width / 2.0 - 0.5, height / 2.0 - 0.5);
+    render::GlContext context;
+    bench::print_header();
+    for (const std::string& p : bench::split(particles)) {
+      const int count = std::atoi(p.c_str());
+      std::mt19937 rng(1);
+      std::normal_distribution<double> gauss;
+      std::vector<Pose> poses;
+      for (int i = 0; i < count; ++i)
+        poses.emplace_back(Eigen::Vector3d(0.02 * gauss(rng), 0.02 * gauss(rng), 0.6 + 0.02 * gauss(rng)),
+                           Eigen::Quaterniond(1, 0.1 * gauss(rng), 0.1 * gauss(rng), 0.1 * gauss(rng)));
+      for (const bool exact : {true, false}) {
+        render::AtlasOptions options;
+        options.exact_depth_test = exact;
+        render::AtlasRenderer renderer(context, mesh, camera, 0.05, 6.0, options);
+        renderer.render(poses);  // warm-up: allocation, shader compilation
+        context.gl().Finish();
+        std::vector<double> ms;
+        for (int r = 0; r < repeats; ++r) {
+          const auto start = std::chrono::steady_clock::now();
+          renderer.draw();
+          context.gl().Finish();
+          ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        }
+        const std::string test = "atlas_" + mesh_name + "_" + std::to_string(width) + "x" + std::to_string(height) +
+                                 "_" + p + "p_" + (exact ? "exact_depth_test" : "early_depth_test") + "_" +
+                                 std::to_string(mesh.triangles.size()) + "tri";
+        const double median = bench::median(ms);
+        bench::print_row({"gl", "gl", context.describe(), "-", test, "draw_ms", "ms", median});
+        bench::print_row({"gl", "gl", context.describe(), "-", test, "triangles_per_second", "1/s",
+                          1000.0 * static_cast<double>(count) * static_cast<double>(mesh.triangles.size()) / median});
+      }
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "depthtrack_bench_atlas: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,132 @@
+// The atlas hand-offs (src/interop): each must deliver exactly the pixels GL rendered, every tile at
+// the place cl/dt_atlas.h says, from poses that came from device memory.
+#include <catch2/catch.hpp>
+#include <depthtrack/error.hpp>
+#include <depthtrack/mesh.hpp>
+#include <iostream>
+#include <random>
+
+#include "compute/buffer.hpp"
+#include "device_support.hpp"
+#include "dt_atlas.h"
+#include "filter/particle_packing.hpp"
+#include "interop/atlas_handoff.hpp"
+#include "render/atlas_renderer.hpp"
+
+using namespace depthtrack;
+
+namespace {
+
+const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.9375, 29.9375);
+
+std::unique_ptr<render::GlContext> context_or_skip() {
+  try {
+    return std::make_unique<render::GlContext>();
+  } catch (const BackendError& e) {
+    std::cout << "SKIPPED: no OpenGL context: " << e.what() << "\n";
+    return nullptr;
+  }
+}
+
+std::vector<reference::ParticleState> random_particles(int count, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> gauss;
+  std::vector<reference::ParticleState> particles(static_cast<size_t>(count));
+  for (auto& p : particles) {
+    p.pose = Pose(Eigen::Vector3d(0.05 * gauss(rng), 0.05 * gauss(rng), 0.7 + 0.05 * gauss(rng)),
+                  Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng)));
+    p.linear_velocity = Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));  // must not disturb the pose
+  }
+  return particles;
+}
+
+// The atlas buffer's tiles in particle order, read through the kernels' own accessor.
+std::vector<float> tiles_of(const std::vector<float>& pages, const render::AtlasLayout& layout, size_t count) {
+  const dt_atlas_layout a{static_cast<dt_u32>(layout.tile_width), static_cast<dt_u32>(layout.tile_height),
+                          static_cast<dt_u32>(layout.tiles_per_row), static_cast<dt_u32>(layout.tiles_per_page)};
+  const size_t pixels = static_cast<size_t>(layout.tile_width * layout.tile_height);
+  std::vector<float> tiles(count * pixels);
+  for (size_t i = 0; i < count; ++i) {
+    const dt_u64 start = dt_atlas_tile_start(a, static_cast<dt_u32>(i));
+    for (size_t k = 0; k < pixels; ++k) tiles[i * pixels + k] = pages[dt_atlas_pixel(a, start, static_cast<dt_u32>(k))];
+  }
+  return tiles;
+}
+
+// Renders `particles` through `handoff` (poses from device memory) and returns the atlas buffer.
+std::vector<float> through(interop::AtlasHandoff& handoff, compute::Queue& queue, render::AtlasRenderer& renderer,
+                           const std::vector<reference::ParticleState>& particles) {
+  compute::Buffer<float> states(queue, particles.size() * DT_STATE_STRIDE);
+  states.upload(pack_particles(particles));
+  compute::Buffer<float> atlas(queue, renderer.layout().floats());
+  atlas.upload(std::vector<float>(atlas.size(), -1.0f));
+  handoff.send_poses(states);
+  renderer.draw();
+  handoff.receive_atlas(atlas);
+  return atlas.download();
+}
+
+}  // namespace
+
+TEST_CASE("the staged hand-off delivers every page as GL rendered it, poses taken from device memory",
+          "[device][render][interop]") {
+  if (!test::device_available()) return;
+  auto context = context_or_skip();
+  if (!context) return;
+  auto queue = compute::open_device(test::device_selector());
+  // 200 px pages: 2 tiles per row, 6 per page, so 14 poses fill two pages and part of a third.
+  render::AtlasRenderer renderer(*context, builtin_demo_mesh(), camera, 0.05, 6.0, render::AtlasOptions{200});
+  const auto particles = random_particles(14, 3);
+  renderer.reserve(14);
+  REQUIRE(renderer.layout().tiles_per_row == 2);
+  REQUIRE(renderer.layout().pages.size() == 3);
+  auto staged = interop::make_staged_handoff(*queue, renderer, "test");
+  const std::vector<float> pages = through(*staged, *queue, renderer, particles);
+
+  // Independently: the same poses given to GL from the host, read back tile by tile.
+  std::vector<Pose> poses;
+  for (const auto& p : particles) poses.push_back(p.pose);
+  renderer.render(poses);
+  std::vector<float> expected(14 * 4800);
+  renderer.read_back(expected);
+  const std::vector<float> got = tiles_of(pages, renderer.layout(), 14);
+  size_t covered = 0;
+  for (size_t k = 0; k < expected.size(); ++k) {
+    INFO("tile " << k / 4800 << " pixel " << k % 4800);
+    REQUIRE(got[k] == expected[k]);
+    covered += expected[k] > 0;
+  }
+  CHECK(covered > 14 * 100);  // the object is in view in every tile
+}
+
+TEST_CASE("on a CUDA device whose GPU runs the GL context, the hand-off is CUDA-GL interop and equals the staged copy",
+          "[device][render][interop]") {
+  if (test::device_selector().rfind("cuda", 0) != 0) {
+    std::cout << "SKIPPED: the test device is not CUDA (DEPTHTRACK_TEST_DEVICE=cuda)\n";
+    return;
+  }
+  if (!test::device_available()) return;
+  auto queue = compute::open_device(test::device_selector());
+  render::GlContextOptions options;
+  options.device_uuid = queue->info().uuid;
+  render::GlContext context(options);
+  std::cout << "GL: " << context.describe() << "\n";
+  render::AtlasRenderer renderer(context, builtin_demo_mesh(), camera, 0.05, 6.0, render::AtlasOptions{200});
+  renderer.reserve(14);
+  auto best = interop::make_atlas_handoff(*queue, renderer);
+  std::cout << "hand-off: " << best->name() << "\n";
+  if (context.describe().find("NVIDIA") == std::string::npos) {
+    CHECK(best->name().find("staged copy (no CUDA-GL interop") == 0);
+    std::cout << "SKIPPED: the GL context is not on an NVIDIA GPU\n";
+    return;
+  }
+  REQUIRE(best->name() == "CUDA-GL interop (zero-copy)");
+  const auto particles = random_particles(14, 4);
+  const std::vector<float> zero_copy = through(*best, *queue, renderer, particles);
+  auto staged = interop::make_staged_handoff(*queue, renderer, "test");
+  const std::vector<float> copied = through(*staged, *queue, renderer, particles);
+  REQUIRE(zero_copy == copied);
+  size_t covered = 0;
+  for (float d : zero_copy) covered += d > 0;
+  CHECK(covered > 14 * 100);
+}
