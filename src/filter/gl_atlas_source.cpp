@@ -1,7 +1,5 @@
 // The atlas drawn by OpenGL, all particles in one instanced call per page, and handed to the
 // compute kernels by the best path the platform has (src/interop/).
-#include <depthtrack/error.hpp>
-
 #include "core/stopwatch.hpp"
 #include "filter/atlas_source.hpp"
 #include "interop/atlas_handoff.hpp"
@@ -50,14 +48,9 @@ class GlAtlasSource final : public AtlasSource {
 };
 }  // namespace
 
-std::unique_ptr<AtlasSource> make_host_atlas_source(const Mesh& mesh, const Camera& camera,
-                                                    const TrackerConfig& config);
-
-std::unique_ptr<AtlasSource> make_atlas_source(compute::Queue& queue, const Mesh& mesh, const Camera& camera,
-                                               const TrackerConfig& config) {
-  if (config.renderer == "cpu") return make_host_atlas_source(mesh, camera, config);
-  if (config.renderer == "gl") return std::make_unique<GlAtlasSource>(queue, mesh, camera, config);
-  throw InputError("unknown renderer '" + config.renderer + "' (choose cpu or gl)");
+std::unique_ptr<AtlasSource> make_gl_atlas_source(compute::Queue& queue, const Mesh& mesh, const Camera& camera,
+                                                  const TrackerConfig& config) {
+  return std::make_unique<GlAtlasSource>(queue, mesh, camera, config);
 }
 
 }  // namespace depthtrack

@@ -39,7 +39,7 @@ class HostAtlasSource final : public AtlasSource {
 };
 }  // namespace
 
-std::unique_ptr<AtlasSource> make_host_atlas_source(const Mesh& mesh, const Camera& camera,
+std::unique_ptr<AtlasSource> make_host_atlas_source(compute::Queue&, const Mesh& mesh, const Camera& camera,
                                                     const TrackerConfig& config) {
   return std::make_unique<HostAtlasSource>(mesh, camera, config);
 }
