@@ -33,8 +33,10 @@ inline std::filesystem::path temp_dir(const std::string& name) {
 
 // Runs the depthtrack command with arguments, its output (stdout and stderr) to log; returns the
 // exit status and the output.
-inline std::pair<int, std::string> run_cli(const std::string& arguments, const std::filesystem::path& log) {
-  const std::string command = std::string(DEPTHTRACK_CLI) + " " + arguments + " > " + log.string() + " 2>&1";
+inline std::pair<int, std::string> run_cli(const std::string& arguments, const std::filesystem::path& log,
+                                           const std::string& environment = "") {
+  const std::string command = (environment.empty() ? "" : "env " + environment + " ") + std::string(DEPTHTRACK_CLI) +
+                              " " + arguments + " > " + log.string() + " 2>&1";
   const int status = std::system(command.c_str());
   std::ifstream in(log);
   std::stringstream text;

@@ -202,12 +202,19 @@ TEST_CASE("with the GL atlas in the loop the device filter still equals the refe
   compare_with_reference("gl");
 }
 
-TEST_CASE("more particles than the device can hold is a clear error, not a crash", "[device][errors]") {
+TEST_CASE("more particles than the device can hold is a clear error, not a crash, for every renderer",
+          "[device][errors]") {
   if (!test::device_available()) return;
-  TrackerConfig config;
-  config.particles = 100'000'000;
-  const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.9375, 29.9375);
-  CHECK_THROWS_WITH(DeviceFilter(compute::open_device(test::device_selector()), builtin_demo_mesh(), camera, config),
-                    Catch::Contains("100000000 particles at 80x60 need") && Catch::Contains("GiB") &&
-                        Catch::Contains("particles fit"));
+  for (const char* renderer : {"cpu", "gl"}) {
+    if (std::string(renderer) == "gl" && !gl_available()) continue;
+    INFO("renderer " << renderer);
+    TrackerConfig config;
+    config.particles = 100'000'000;
+    config.renderer = renderer;
+    const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.9375, 29.9375);
+    // Refused before anything is allocated, GL pages included.
+    CHECK_THROWS_WITH(DeviceFilter(compute::open_device(test::device_selector()), builtin_demo_mesh(), camera, config),
+                      Catch::Contains("100000000 particles at 80x60 need") && Catch::Contains("GiB") &&
+                          Catch::Contains("particles fit"));
+  }
 }

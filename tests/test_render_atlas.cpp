@@ -232,3 +232,23 @@ TEST_CASE("atlas pages split at the texture limit and later pages equal the refe
   std::vector<float> wrong(5);
   CHECK_THROWS_AS(atlas.read_back(wrong), InputError);
 }
+
+TEST_CASE("a mesh or a pose count beyond the GL's buffer limit is refused naming the limit", "[render][errors]") {
+  int paths_run = 0;
+  for (auto path : {GlPath::EglDevice, GlPath::EglSurfaceless, GlPath::OSMesa}) {
+    auto context = context_or_skip(path);
+    if (!context) continue;
+    ++paths_run;
+    render::AtlasOptions options;
+    options.max_buffer_texels = 10;  // stands in for GL_MAX_TEXTURE_BUFFER_SIZE
+    const Mesh box = make_box(Eigen::Vector3f(0.1f, 0.1f, 0.1f));  // 12 triangles
+    CHECK_THROWS_WITH(AtlasRenderer(*context, box, camera80, near_plane, far_plane, options),
+                      Catch::Contains("the mesh has 12 triangles, more than this GL can draw") &&
+                          Catch::Contains("GL_MAX_TEXTURE_BUFFER_SIZE 10"));
+    options.max_buffer_texels = 12;  // the mesh fits; 4 texels a pose: 3 poses fit, 4 do not
+    AtlasRenderer renderer(*context, box, camera80, near_plane, far_plane, options);
+    renderer.reserve(3);
+    CHECK_THROWS_WITH(renderer.reserve(4), Catch::Contains("4 poses exceed this GL's pose buffer"));
+  }
+  skipped_if_none(paths_run);
+}

@@ -1,5 +1,7 @@
 // depthtrack info: every compute device of every backend, and what it offers depthtrack.
 #include <cstdio>
+#include <depthtrack/camera.hpp>
+#include <depthtrack/mesh.hpp>
 #include <depthtrack/error.hpp>
 #include <memory>
 #include <string>
@@ -8,6 +10,8 @@
 #include "cli/commands.hpp"
 #include "compute/format_bytes.hpp"
 #include "compute/queue.hpp"
+#include "interop/atlas_handoff.hpp"
+#include "render/atlas_renderer.hpp"
 #include "render/gl_context.hpp"
 
 namespace depthtrack::cli {
@@ -34,6 +38,25 @@ void print_extensions(const std::vector<std::string>& extensions) {
   std::printf("\n");
 }
 
+// The GL context the tracker's GL renderer would use with this device, and the hand-off it gets:
+// found by setting both up for a one-tile atlas, so what is printed is what happens.
+void print_atlas_path(const compute::DeviceInfo& d) {
+  try {
+    auto queue = compute::open_device(d.selector);
+    render::GlContextOptions options;
+    options.device_uuid = d.uuid;
+    render::GlContext context(options);
+    render::AtlasRenderer renderer(context, builtin_demo_mesh(), Camera::make(80, 60, 66, 66, 39.5, 29.5), 0.05, 6);
+    renderer.reserve(1);
+    const auto handoff = interop::make_atlas_handoff(*queue, renderer);
+    std::printf("    %-18s%s\n", "atlas GL", context.describe().c_str());
+    std::printf("    %-18s%s\n", "atlas hand-off", handoff->name().c_str());
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    std::printf("    %-18sunavailable: %s\n", "atlas GL", message.substr(0, message.find('\n')).c_str());
+  }
+}
+
 void print_device(const compute::DeviceInfo& d, bool extensions) {
   std::printf("  %s  %s\n", d.selector.c_str(), d.name.c_str());
   std::printf("    %-18s%s\n", "platform", d.platform.c_str());
@@ -50,6 +73,7 @@ void print_device(const compute::DeviceInfo& d, bool extensions) {
   std::printf("    %-18s%s\n", "external memory", yes_no(d.external_memory));
   std::printf("    %-18s%s\n", "fp64", yes_no(d.fp64));
   std::printf("    %-18s%s\n", "subgroups", yes_no(d.subgroups));
+  print_atlas_path(d);
   if (extensions) print_extensions(d.extensions);
 }
 
@@ -66,7 +90,7 @@ std::string absence_reason(const std::string& backend) {
   return "it lists no device, yet one opened";
 }
 
-// Each headless GL path, what it gives or why not, and how the atlas reaches the compute devices.
+// Each headless GL path, what it gives or why not, and the atlas page limits.
 void print_gl() {
   std::printf("OpenGL (pose atlas):\n");
   for (auto path : {render::GlPath::EglDevice, render::GlPath::EglSurfaceless, render::GlPath::OSMesa}) {
@@ -75,15 +99,15 @@ void print_gl() {
       options.path = path;
       const render::GlContext context(options);
       std::printf("  %-16s %s\n", render::GlContext::path_name(path), context.describe().c_str());
+      const int size = context.max_render_size();
+      std::printf("  %-16s atlas pages up to %dx%d px: %d tiles of 80x60 per row, %d per page\n", "", size, size,
+                  size / 80, (size / 80) * (size / 60));
     } catch (const Error& e) {
       const std::string message = e.what();
       std::printf("  %-16s unavailable: %s\n", render::GlContext::path_name(path),
                   message.substr(0, message.find('\n')).c_str());
     }
   }
-  // Zero-copy hand-offs (CUDA-GL interop, cl_khr_gl_sharing) are not built yet: every device gets
-  // the staged path today.
-  std::printf("  hand-off         staged copy (GL read-back, one upload) for every compute device\n");
 }
 
 void print_info(bool extensions) {
@@ -105,7 +129,8 @@ void add_info_command(CLI::App& app) {
   auto extensions = std::make_shared<bool>(false);
   CLI::App* c = app.add_subcommand(
       "info",
-      "List the compute devices of every backend, the headless GL paths, and how the atlas reaches the devices");
+      "List the compute devices of every backend with the GL context and atlas hand-off each gets, and the "
+      "headless GL paths");
   c->add_flag("--extensions", *extensions, "Also print every device's full extension list");
   c->callback([extensions] { print_info(*extensions); });
 }

@@ -18,6 +18,14 @@ AtlasRenderer::AtlasRenderer(GlContext& context, const Mesh& mesh, const Camera&
   max_size_ = options.max_texture_size > 0 ? std::min(options.max_texture_size, context.max_render_size())
                                            : context.max_render_size();
   context_.make_current();
+  GLint gl_buffer_texels = 0;
+  gl_.GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &gl_buffer_texels);
+  max_buffer_texels_ = options.max_buffer_texels > 0 ? options.max_buffer_texels : gl_buffer_texels;
+  // One plane texel per triangle: a larger mesh cannot be drawn by this GL at all.
+  if (static_cast<long long>(mesh.triangles.size()) > max_buffer_texels_)
+    throw InputError("the mesh has " + std::to_string(mesh.triangles.size()) +
+                     " triangles, more than this GL can draw (GL_MAX_TEXTURE_BUFFER_SIZE " +
+                     std::to_string(max_buffer_texels_) + " texels, one per triangle); simplify the mesh");
   program_ = build_program(gl_, "atlas.vert", "atlas.frag",
                            options.exact_depth_test ? std::vector<std::string>{"DT_EXACT_DEPTH_TEST"}
                                                     : std::vector<std::string>{});
@@ -83,7 +91,7 @@ AtlasRenderer::AtlasRenderer(GlContext& context, const Mesh& mesh, const Camera&
   tiles_per_row_location_ = location("u_tiles_per_row");
   page_size_location_ = location("u_page_size");
   gl_.UseProgram(0);
-  check("setting up the atlas renderer");
+  check(("setting up the atlas renderer for a mesh of " + std::to_string(mesh.triangles.size()) + " triangles").c_str());
 }
 
 AtlasRenderer::~AtlasRenderer() {
@@ -119,6 +127,10 @@ void AtlasRenderer::reserve(int tiles) {
   if (tiles <= 0) throw InputError("atlas renderer: no poses to render");
   if (tiles == tiles_ && !pages_.empty()) return;
   context_.make_current();
+  if (static_cast<long long>(tiles) * (DT_STATE_STRIDE / 4) > max_buffer_texels_)
+    throw InputError(std::to_string(tiles) + " poses exceed this GL's pose buffer (GL_MAX_TEXTURE_BUFFER_SIZE " +
+                     std::to_string(max_buffer_texels_) + " texels, " + std::to_string(DT_STATE_STRIDE / 4) +
+                     " per pose)");
   AtlasLayout layout = AtlasLayout::make(tiles, camera_.width, camera_.height, max_size_);
   release_pages();
   tiles_ = 0;

@@ -20,6 +20,9 @@ struct AtlasOptions {
   // Either way the stored depth is exact; the two differ only where surfaces meet within the
   // interpolation error (~1e-6 relative), and writing gl_FragDepth costs early depth rejection.
   bool exact_depth_test = true;
+  // Texels a texture buffer may hold (triangle planes, poses); 0: the context's
+  // GL_MAX_TEXTURE_BUFFER_SIZE; smaller makes the limit testable with small meshes.
+  long long max_buffer_texels = 0;
 };
 
 // One page's GL objects, for the hand-off to compute: colour is GL_TEXTURE_2D, GL_R32F.
@@ -67,6 +70,7 @@ class AtlasRenderer {
   const GlFunctions& gl_;
   Camera camera_;
   int max_size_ = 0;
+  long long max_buffer_texels_ = 0;
   GLsizei index_count_ = 0;
   GLuint program_ = 0, vertex_array_ = 0, vertex_buffer_ = 0, index_buffer_ = 0;
   GLuint pose_buffer_ = 0, pose_texture_ = 0, plane_buffer_ = 0, plane_texture_ = 0;
