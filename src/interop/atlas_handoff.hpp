@@ -2,10 +2,11 @@
 // How particle poses reach the GL atlas renderer and its pages reach the compute kernels. Chosen
 // per platform (make_atlas_handoff) and reported by name():
 //   CUDA-GL interop     the pages and the pose buffer are mapped into CUDA: device-to-device copies only;
-//   cl_khr_gl_sharing   the same through OpenCL, where a platform offers it;
+//   GL-OpenCL bridge    OpenCL without gl_sharing (NVIDIA): GL and OpenCL import memory CUDA exports;
 //   staged copy         poses via the host, each page read once straight into the mapped atlas buffer.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "compute/buffer.hpp"
 #include "render/atlas_renderer.hpp"
@@ -34,5 +35,11 @@ std::unique_ptr<AtlasHandoff> make_staged_handoff(compute::Queue& queue, render:
                                                   std::string reason);
 std::unique_ptr<AtlasHandoff> make_cuda_gl_handoff(compute::Queue& queue, render::AtlasRenderer& renderer,
                                                    std::string& why_not);
+// OpenCL without cl_khr_gl_sharing, through memory CUDA exports (needs the NVIDIA driver's CUDA).
+std::unique_ptr<AtlasHandoff> make_opencl_gl_bridge_handoff(compute::Queue& queue, render::AtlasRenderer& renderer,
+                                                            std::string& why_not);
+// Poses for paths that move them through the host: download the states, upload them to GL.
+void send_poses_through_host(const compute::Buffer<float>& states, render::AtlasRenderer& renderer,
+                             std::vector<float>& host);
 
 }  // namespace depthtrack::interop

@@ -8,6 +8,11 @@ std::unique_ptr<AtlasHandoff> make_cuda_gl_handoff(compute::Queue&, render::Atla
   why_not = "built without the CUDA backend";
   return nullptr;
 }
+std::unique_ptr<AtlasHandoff> make_opencl_gl_bridge_handoff(compute::Queue&, render::AtlasRenderer&,
+                                                            std::string& why_not) {
+  why_not = "built without the CUDA backend, whose driver allocates the shared memory";
+  return nullptr;
+}
 #endif
 
 std::unique_ptr<AtlasHandoff> make_atlas_handoff(compute::Queue& queue, render::AtlasRenderer& renderer) {
@@ -17,7 +22,12 @@ std::unique_ptr<AtlasHandoff> make_atlas_handoff(compute::Queue& queue, render::
     if (auto cuda = make_cuda_gl_handoff(queue, renderer, reason)) return cuda;
     reason = "no CUDA-GL interop: " + reason;
   } else if (!device.gl_sharing) {
-    reason = "the OpenCL platform lacks cl_khr_gl_sharing";
+    std::string bridge;
+    if (device.external_memory) {
+      if (auto bridged = make_opencl_gl_bridge_handoff(queue, renderer, bridge)) return bridged;
+      bridge = "; no GL-OpenCL bridge: " + bridge;
+    }
+    reason = "the OpenCL platform lacks cl_khr_gl_sharing" + bridge;
   } else {
     // Sharing needs the OpenCL context created against the GL context; ours is made before GL.
     reason = "cl_khr_gl_sharing is listed but not used yet";

@@ -13,9 +13,7 @@ class StagedHandoff final : public AtlasHandoff {
   StagedHandoff(render::AtlasRenderer& renderer, std::string reason) : renderer_(renderer), reason_(std::move(reason)) {}
 
   void send_poses(const compute::Buffer<float>& states) override {
-    host_states_.resize(states.size());
-    states.download(host_states_);
-    renderer_.upload_states(host_states_);
+    send_poses_through_host(states, renderer_, host_states_);
   }
 
   void receive_atlas(compute::Buffer<float>& atlas) override {
@@ -37,6 +35,13 @@ class StagedHandoff final : public AtlasHandoff {
   std::vector<float> host_states_;
 };
 }  // namespace
+
+void send_poses_through_host(const compute::Buffer<float>& states, render::AtlasRenderer& renderer,
+                             std::vector<float>& host) {
+  host.resize(states.size());
+  states.download(host);
+  renderer.upload_states(host);
+}
 
 std::unique_ptr<AtlasHandoff> make_staged_handoff(compute::Queue&, render::AtlasRenderer& renderer,
                                                   std::string reason) {

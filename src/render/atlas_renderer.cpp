@@ -243,6 +243,20 @@ void AtlasRenderer::read_back(std::span<float> out) {
   }
 }
 
+void AtlasRenderer::read_page_into(const AtlasPage& page, GLuint pack_buffer, size_t byte_offset) {
+  context_.make_current();
+  gl_.PixelStorei(GL_PACK_ALIGNMENT, 4);
+  gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer);
+  gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, page.framebuffer);
+  gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  // With a pack buffer bound, the pointer argument is a byte offset into it.
+  gl_.ReadPixels(0, 0, page.layout.width, page.layout.height, GL_RED, GL_FLOAT,
+                 reinterpret_cast<void*>(static_cast<uintptr_t>(byte_offset)));
+  gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  check("reading an atlas page into a GL buffer");
+}
+
 void AtlasRenderer::finish() {
   context_.make_current();
   gl_.Finish();

@@ -56,6 +56,9 @@ class AtlasRenderer {
   GLuint pose_buffer() const { return pose_buffer_; }
   // Reads one page as it lies (page width x height floats, row-major, image rows not flipped).
   void read_page(const AtlasPage& page, std::span<float> out);
+  // The same into a GL buffer at a byte offset (a copy on the GPU; glFinish or finish() before
+  // another API reads the buffer).
+  void read_page_into(const AtlasPage& page, GLuint pack_buffer, size_t byte_offset);
 
   int tile_count() const { return tiles_; }
   const AtlasLayout& layout() const { return layout_; }

@@ -90,6 +90,20 @@ GlContext::GlContext(const GlContextOptions& options) {
 
 GlContext::~GlContext() = default;
 
+bool GlContext::has_extension(const std::string& name) const {
+  GLint count = 0;
+  gl_.GetIntegerv(GL_NUM_EXTENSIONS, &count);
+  for (GLint i = 0; i < count; ++i) {
+    const auto* extension = reinterpret_cast<const char*>(gl_.GetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
+    if (extension && name == extension) return true;
+  }
+  return false;
+}
+
+GlProc GlContext::proc_address(const char* name) const {
+  return platform_->loader()(name);
+}
+
 void GlContext::make_current() {
   platform_->make_current();
 }

@@ -40,6 +40,10 @@ class GlContext {
   // The largest square render target: min(GL_MAX_TEXTURE_SIZE, GL_MAX_VIEWPORT_DIMS).
   int max_render_size() const { return max_render_size_; }
 
+  // Whether GL_EXTENSIONS lists `name`; an entry point of an extension (null when unknown).
+  bool has_extension(const std::string& name) const;
+  GlProc proc_address(const char* name) const;
+
   // "egl-device", "egl-surfaceless", "osmesa": the DEPTHTRACK_GL spellings.
   static const char* path_name(GlPath path);
   // DEPTHTRACK_GL parsed; InputError naming the valid choices for anything else.

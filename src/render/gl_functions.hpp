@@ -10,6 +10,7 @@ namespace depthtrack::render {
 
 #define DEPTHTRACK_GL_FUNCTIONS(X)                             \
   X(PFNGLGETSTRINGPROC, GetString)                             \
+  X(PFNGLGETSTRINGIPROC, GetStringi)                           \
   X(PFNGLGETINTEGERVPROC, GetIntegerv)                         \
   X(PFNGLGETERRORPROC, GetError)                               \
   X(PFNGLENABLEPROC, Enable)                                   \

@@ -26,12 +26,13 @@ namespace depthtrack::compute::cuda {
 // clang-format on
 
 // Functions the backend uses when the driver has them (cuFuncGetParamInfo: CUDA 12.4+), and those
-// of graphics interop, which a driver without graphics support may lack.
+// of graphics interop and exportable memory, which a driver may lack.
 // clang-format off
 #define DT_CUDA_DRIVER_OPTIONAL_FUNCTIONS(X)                                                           \
   X(cuFuncGetParamInfo) X(cuDeviceGetUuid)                                                             \
   X(cuGraphicsMapResources) X(cuGraphicsUnmapResources) X(cuGraphicsUnregisterResource)                \
-  X(cuGraphicsSubResourceGetMappedArray) X(cuGraphicsResourceGetMappedPointer) X(cuMemcpy2DAsync)
+  X(cuGraphicsSubResourceGetMappedArray) X(cuGraphicsResourceGetMappedPointer) X(cuMemcpy2DAsync)          \
+  X(cuMemGetAllocationGranularity) X(cuMemCreate) X(cuMemExportToShareableHandle) X(cuMemRelease)
 // clang-format on
 
 struct DriverApi {

@@ -24,6 +24,11 @@ class ClQueue final : public Queue {
   EventPtr launch(Kernel& kernel, const NdRange& range) override;
   void finish() override;
 
+  // For interop code that enqueues its own work in order with the queue's.
+  cl_context context() const { return context_.get(); }
+  cl_command_queue queue() const { return queue_.get(); }
+  cl_device_id device() const { return device_; }
+
  private:
   cl_device_id device_;
   DeviceInfo info_;
