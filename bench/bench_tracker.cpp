@@ -1,7 +1,7 @@
 // Time per frame of the tracker on one backend, split into propagate, render, hand-off, weigh and resample,
 // with the handset (the thesis' object) on a synthetic occluded sequence. Prints CSV rows.
 // render is the atlas draw (GL waited for); handoff moves poses to GL and the atlas to the kernels.
-// Usage: depthtrack_bench [--backend NAME] [--renderer cpu|gl] [--particles N[,N...]] [--resolution WxH[,...]]
+// Usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] [--resolution WxH[,...]]
 //                         [--frames N]
 //   default: the reference at 80x60 (200 particles) and 640x480 (50 particles).
 #include <cstdio>
@@ -69,7 +69,7 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string backend = "reference", renderer = "cpu", particles, resolutions;
+  std::string backend = "reference", renderer = "kernel", particles, resolutions;
   int frames = 20;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -84,10 +84,11 @@ int main(int argc, char** argv) {
     else if (arg == "--frames" && i + 1 < argc)
       frames = std::atoi(argv[++i]);
     else {
-      std::fprintf(stderr,
-                   "usage: %s [--backend NAME] [--renderer cpu|gl] [--particles N[,N...]] [--resolution WxH[,...]] "
-                   "[--frames N]\n",
-                   argv[0]);
+      std::fprintf(
+          stderr,
+          "usage: %s [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] [--resolution WxH[,...]] "
+          "[--frames N]\n",
+          argv[0]);
       return 2;
     }
   }

@@ -21,6 +21,9 @@ typedef ulong dt_u64;
 #define dt_sqrtf sqrt
 #define dt_cospif cospi
 #define dt_sinpif sinpi
+#define dt_divide(a, b) ((a) / (b))                  /* float division to OpenCL's default 2.5 ulp */
+#define dt_as_uint as_uint                           /* a float's bits */
+#define dt_atomic_min_u32(p, v) atomic_min((p), (v)) /* 32-bit uint, global or local memory */
 #elif defined(__CUDACC__) || defined(__CUDACC_RTC__)
 /* CUDA (NVRTC compiles the same text): OpenCL C's words in CUDA's terms. */
 typedef unsigned int uint;
@@ -37,8 +40,12 @@ typedef unsigned long long dt_u64;
 #define CLK_LOCAL_MEM_FENCE 1
 #define CLK_GLOBAL_MEM_FENCE 2
 #define barrier(flags) __syncthreads()
-__device__ inline uint dt_dim3(uint3 v, uint d) { return d == 0 ? v.x : (d == 1 ? v.y : v.z); }
-__device__ inline uint dt_dim3(dim3 v, uint d) { return d == 0 ? v.x : (d == 1 ? v.y : v.z); }
+__device__ inline uint dt_dim3(uint3 v, uint d) {
+  return d == 0 ? v.x : (d == 1 ? v.y : v.z);
+}
+__device__ inline uint dt_dim3(dim3 v, uint d) {
+  return d == 0 ? v.x : (d == 1 ? v.y : v.z);
+}
 #define get_local_id(d) dt_dim3(threadIdx, (d))
 #define get_group_id(d) dt_dim3(blockIdx, (d))
 #define get_local_size(d) dt_dim3(blockDim, (d))
@@ -50,17 +57,30 @@ __device__ inline uint dt_dim3(dim3 v, uint d) { return d == 0 ? v.x : (d == 1 ?
 #define dt_sqrtf sqrtf
 #define dt_cospif cospif
 #define dt_sinpif sinpif
+#define dt_divide(a, b) __fdividef((a), (b)) /* 2 ulp; CUDA's `/` rounds correctly, and slowly */
+#define dt_as_uint __float_as_uint
+#define dt_atomic_min_u32(p, v) atomicMin((p), (v))
 #else /* host C++ */
 #include <cmath>
 #include <cstdint>
 typedef std::uint32_t dt_u32;
 typedef std::uint64_t dt_u64;
 #define DT_FN inline
-inline dt_u32 dt_mulhi(dt_u32 a, dt_u32 b) { return static_cast<dt_u32>((static_cast<dt_u64>(a) * b) >> 32); }
-inline float dt_logf(float x) { return std::log(x); }
-inline float dt_sqrtf(float x) { return std::sqrt(x); }
-inline float dt_cospif(float x) { return static_cast<float>(std::cos(3.14159265358979323846 * static_cast<double>(x))); }
-inline float dt_sinpif(float x) { return static_cast<float>(std::sin(3.14159265358979323846 * static_cast<double>(x))); }
+inline dt_u32 dt_mulhi(dt_u32 a, dt_u32 b) {
+  return static_cast<dt_u32>((static_cast<dt_u64>(a) * b) >> 32);
+}
+inline float dt_logf(float x) {
+  return std::log(x);
+}
+inline float dt_sqrtf(float x) {
+  return std::sqrt(x);
+}
+inline float dt_cospif(float x) {
+  return static_cast<float>(std::cos(3.14159265358979323846 * static_cast<double>(x)));
+}
+inline float dt_sinpif(float x) {
+  return static_cast<float>(std::sin(3.14159265358979323846 * static_cast<double>(x)));
+}
 #endif
 
 /* Below every finite float: the start of a maximum search (INFINITY is not defined under NVRTC). */

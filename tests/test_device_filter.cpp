@@ -202,10 +202,16 @@ TEST_CASE("with the GL atlas in the loop the device filter still equals the refe
   compare_with_reference("gl");
 }
 
+TEST_CASE("with the compute-kernel atlas in the loop the device filter still equals the reference",
+          "[device][kernel]") {
+  if (!test::device_available()) return;
+  compare_with_reference("kernel");
+}
+
 TEST_CASE("more particles than the device can hold is a clear error, not a crash, for every renderer",
           "[device][errors]") {
   if (!test::device_available()) return;
-  for (const char* renderer : {"cpu", "gl"}) {
+  for (const char* renderer : {"cpu", "gl", "kernel"}) {
     if (std::string(renderer) == "gl" && !gl_available()) continue;
     INFO("renderer " << renderer);
     TrackerConfig config;

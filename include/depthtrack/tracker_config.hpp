@@ -54,9 +54,11 @@ struct TrackerConfig {
   // reference, opencl, opencl:pocl, opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n>;
   // empty: the environment's DEPTHTRACK_DEVICE if set, else reference (see resolved_backend()).
   std::string backend;
-  // Who draws the device filters' pose atlas: "cpu" (the reference rasterizer on the host) or "gl"
-  // (OpenGL, headless: EGL device, EGL surfaceless or OSMesa; DEPTHTRACK_GL picks one).
-  std::string renderer = "cpu";
+  // Who draws the device filters' pose atlas: "kernel" (a compute kernel on the filter's device,
+  // the fastest everywhere measured: docs/design-notes.md), "gl" (OpenGL, headless: EGL device,
+  // EGL surfaceless or OSMesa, DEPTHTRACK_GL picks one; the atlas reaches the kernels by CUDA-GL
+  // interop, a GL-OpenCL bridge or a staged copy) or "cpu" (the reference rasterizer on the host).
+  std::string renderer = "kernel";
 
   // Throws InputError naming the first impossible value.
   void validate() const;

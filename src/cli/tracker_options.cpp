@@ -13,8 +13,9 @@ void TrackerOptions::add_to(CLI::App& command) {
                      "default: $DEPTHTRACK_DEVICE, else reference");
   command
       .add_option("--renderer", config.renderer,
-                  "Who draws the pose atlas for device backends: cpu (reference rasterizer) or gl (headless "
-                  "OpenGL; DEPTHTRACK_GL=egl-device|egl-surfaceless|osmesa picks the path)")
+                  "Who draws the pose atlas for device backends: kernel (a compute kernel on the device itself, "
+                  "the fastest), gl (headless OpenGL; DEPTHTRACK_GL=egl-device|egl-surfaceless|osmesa picks the "
+                  "path) or cpu (the reference rasterizer on the host)")
       ->capture_default_str();
   command.add_option("--particles", config.particles, "Number of particles")->capture_default_str();
   command

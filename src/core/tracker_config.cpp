@@ -60,7 +60,8 @@ void TrackerConfig::validate() const {
   require(std::isfinite(motion.sigma_angular) && motion.sigma_angular >= 0, "angular motion noise must be >= 0");
   require(positive(motion.reference_rate), "motion reference rate must be positive");
   require(std::isfinite(resample_kl_threshold) && resample_kl_threshold >= 0, "resampling threshold must be >= 0");
-  require(renderer == "cpu" || renderer == "gl", "renderer '" + renderer + "' is not cpu or gl");
+  require(renderer == "cpu" || renderer == "gl" || renderer == "kernel",
+          "renderer '" + renderer + "' is not cpu, gl or kernel");
   require(positive(near_plane) && near_plane < observation.max_depth, "near plane must be in (0, max depth)");
 }
 

@@ -27,8 +27,9 @@ class AtlasSource {
   virtual std::string description() const = 0;
 };
 
-// The source TrackerConfig::renderer names: "cpu" (the reference rasterizer on the host) or "gl"
-// (the OpenGL atlas renderer; BackendError naming every GL path tried when none works).
+// The source TrackerConfig::renderer names: "kernel" (cl/rasterize.cl on the filter's device), "gl"
+// (the OpenGL atlas renderer; BackendError naming every GL path tried when none works) or "cpu"
+// (the reference rasterizer on the host).
 std::unique_ptr<AtlasSource> make_atlas_source(compute::Queue& queue, const Mesh& mesh, const Camera& camera,
                                                const TrackerConfig& config);
 

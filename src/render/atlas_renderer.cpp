@@ -6,6 +6,7 @@
 
 #include "dt_state.h"
 #include "render/gl_program.hpp"
+#include "render/triangle_planes.hpp"
 
 namespace depthtrack::render {
 
@@ -26,9 +27,9 @@ AtlasRenderer::AtlasRenderer(GlContext& context, const Mesh& mesh, const Camera&
     throw InputError("the mesh has " + std::to_string(mesh.triangles.size()) +
                      " triangles, more than this GL can draw (GL_MAX_TEXTURE_BUFFER_SIZE " +
                      std::to_string(max_buffer_texels_) + " texels, one per triangle); simplify the mesh");
-  program_ = build_program(gl_, "atlas.vert", "atlas.frag",
-                           options.exact_depth_test ? std::vector<std::string>{"DT_EXACT_DEPTH_TEST"}
-                                                    : std::vector<std::string>{});
+  program_ = build_program(
+      gl_, "atlas.vert", "atlas.frag",
+      options.exact_depth_test ? std::vector<std::string>{"DT_EXACT_DEPTH_TEST"} : std::vector<std::string>{});
 
   // Mesh: Eigen's Vector3f / Vector3i are packed, so the vectors upload as they are.
   gl_.GenVertexArrays(1, &vertex_array_);
@@ -46,17 +47,8 @@ AtlasRenderer::AtlasRenderer(GlContext& context, const Mesh& mesh, const Camera&
   index_count_ = static_cast<GLsizei>(mesh.triangles.size() * 3);
   gl_.BindVertexArray(0);
 
-  // Triangle planes (object frame, computed in double like the reference) for atlas.frag's exact depth.
-  std::vector<float> planes;
-  planes.reserve(mesh.triangles.size() * 4);
-  for (const Eigen::Vector3i& t : mesh.triangles) {
-    const Eigen::Vector3d a = mesh.vertices[static_cast<size_t>(t[0])].cast<double>();
-    const Eigen::Vector3d n = (mesh.vertices[static_cast<size_t>(t[1])].cast<double>() - a)
-                                  .cross(mesh.vertices[static_cast<size_t>(t[2])].cast<double>() - a)
-                                  .normalized();  // zero for a degenerate triangle, which covers no pixel
-    planes.insert(planes.end(), {static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()),
-                                 static_cast<float>(n.dot(a))});
-  }
+  // Triangle planes for atlas.frag's exact depth.
+  const std::vector<float> planes = triangle_planes(mesh);
   gl_.GenBuffers(1, &plane_buffer_);
   gl_.BindBuffer(GL_TEXTURE_BUFFER, plane_buffer_);
   gl_.BufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(planes.size() * sizeof(float)), planes.data(),
@@ -91,7 +83,8 @@ AtlasRenderer::AtlasRenderer(GlContext& context, const Mesh& mesh, const Camera&
   tiles_per_row_location_ = location("u_tiles_per_row");
   page_size_location_ = location("u_page_size");
   gl_.UseProgram(0);
-  check(("setting up the atlas renderer for a mesh of " + std::to_string(mesh.triangles.size()) + " triangles").c_str());
+  check(
+      ("setting up the atlas renderer for a mesh of " + std::to_string(mesh.triangles.size()) + " triangles").c_str());
 }
 
 AtlasRenderer::~AtlasRenderer() {
@@ -135,8 +128,9 @@ void AtlasRenderer::reserve(int tiles) {
   release_pages();
   tiles_ = 0;
   gl_.BindBuffer(GL_TEXTURE_BUFFER, pose_buffer_);
-  gl_.BufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(static_cast<size_t>(tiles) * DT_STATE_STRIDE * sizeof(float)),
-                 nullptr, GL_DYNAMIC_DRAW);
+  gl_.BufferData(GL_TEXTURE_BUFFER,
+                 static_cast<GLsizeiptr>(static_cast<size_t>(tiles) * DT_STATE_STRIDE * sizeof(float)), nullptr,
+                 GL_DYNAMIC_DRAW);
   check("allocating the pose buffer");
   layout_ = std::move(layout);
   for (const AtlasPageLayout& l : layout_.pages) {

@@ -1,0 +1,203 @@
+/* The pose atlas rasterized on the compute device: a work-group per particle, its work-items striding
+ * over the mesh's triangles. Each rasterizes its triangle's pixel box and keeps the nearest depth
+ * with an atomic minimum on the float's bits (positive floats order like their bit patterns).
+ * Conventions of reference::Rasterizer, in float: a pixel is covered when its centre lies inside the
+ * projected triangle (top-left rule on ties), its depth is that of the triangle's plane along the
+ * ray through the centre, triangles are cut at z = near, depths beyond far discarded, no culling.
+ * The depths are kept in the atlas itself: a tile in local memory measured no faster (PoCL: equal;
+ * H100: 5 % faster for the handset, 7-16 % slower for the 69k-triangle bunny, as it lowers occupancy)
+ * and fits only up to about 100x100 pixels. DT_GROUP_SIZE: work-items per group.
+ * Reference: Rasterizer::render. */
+#include "dt_prelude.h"
+#include "dt_atlas.h"
+#include "dt_quaternion.h"
+#include "dt_state.h"
+
+#define DT_NO_SURFACE 0x7f800000u /* +inf's bits: above every depth until the end, then 0 */
+
+typedef struct {
+  float fx, fy, cx, cy, near, far;
+  uint width, height;
+} dt_camera;
+
+typedef struct {
+  float u, v;
+} dt_point;
+
+/* An edge's function w(p) = s ((b - a) x (p - a)), evaluated from the lexicographically smaller end
+ * (o, direction d, sign s): the two triangles sharing an edge get exactly opposite values, so float
+ * rounding opens no crack between them and covers no pixel twice. */
+typedef struct {
+  float ou, ov, du, dv, sign;
+  int owned; /* top-left rule: a centre exactly on the edge belongs to this triangle */
+} dt_edge;
+
+DT_DEVICE_FN dt_edge dt_make_edge(dt_point a, dt_point b) {
+  const int forward = a.u < b.u || (a.u == b.u && a.v < b.v);
+  const dt_point o = forward ? a : b, e = forward ? b : a;
+  dt_edge r;
+  r.ou = o.u;
+  r.ov = o.v;
+  r.du = e.u - o.u;
+  r.dv = e.v - o.v;
+  r.sign = forward ? 1.0f : -1.0f;
+  const float dv = b.v - a.v, du = b.u - a.u;
+  r.owned = dv < 0.0f || (dv == 0.0f && du > 0.0f);
+  return r;
+}
+
+DT_DEVICE_FN float dt_edge_at(dt_edge e, float u, float v) {
+  return e.sign * (e.du * (v - e.ov) - e.dv * (u - e.ou));
+}
+
+DT_DEVICE_FN int dt_edge_admits(dt_edge e, float u, float v) {
+  const float w = dt_edge_at(e, u, v);
+  return w > 0.0f || (w == 0.0f && e.owned);
+}
+
+/* The camera-frame plane n . x = d of the triangle being drawn. */
+typedef struct {
+  float nx, ny, nz, d;
+} dt_plane;
+
+/* Keeps, at every pixel of the tile whose centre lies inside triangle abc, the nearer of its depth
+ * and the tile's. */
+DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_plane plane, dt_camera cam,
+                                     __global uint* tile) {
+  /* Pixel centres in the bounding box, clamped in float so that far-off vertices do not overflow the
+   * conversion to int; most triangles of a fine mesh hold none. */
+  const int u0 = DT_CAST(int, fmax(0.0f, ceil(fmin(a.u, fmin(b.u, c.u)))));
+  const int u1 = DT_CAST(int, fmin(DT_CAST(float, cam.width - 1), floor(fmax(a.u, fmax(b.u, c.u)))));
+  const int v0 = DT_CAST(int, fmax(0.0f, ceil(fmin(a.v, fmin(b.v, c.v)))));
+  const int v1 = DT_CAST(int, fmin(DT_CAST(float, cam.height - 1), floor(fmax(a.v, fmax(b.v, c.v)))));
+  if (u0 > u1 || v0 > v1) return;
+  const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
+  if (area == 0.0f || !isfinite(area)) return;
+  if (area < 0.0f) { /* no culling: give every triangle the same orientation */
+    const dt_point t = b;
+    b = c;
+    c = t;
+  }
+  const dt_edge bc = dt_make_edge(b, c), ca = dt_make_edge(c, a), ab = dt_make_edge(a, b);
+  const float inverse_fx = 1.0f / cam.fx, inverse_fy = 1.0f / cam.fy;
+  for (int v = v0; v <= v1; ++v) {
+    const float pv = DT_CAST(float, v), ray_y = (pv - cam.cy) * inverse_fy;
+    for (int u = u0; u <= u1; ++u) {
+      const float pu = DT_CAST(float, u);
+      if (!dt_edge_admits(bc, pu, pv) || !dt_edge_admits(ca, pu, pv) || !dt_edge_admits(ab, pu, pv)) continue;
+      const float z = dt_divide(plane.d, plane.nx * ((pu - cam.cx) * inverse_fx) + plane.ny * ray_y + plane.nz);
+      if (!(z >= cam.near && z <= cam.far)) continue;
+      dt_atomic_min_u32(tile + DT_CAST(uint, v) * cam.width + DT_CAST(uint, u), dt_as_uint(z));
+    }
+  }
+}
+
+DT_DEVICE_FN dt_point dt_project(dt_vec3 p, dt_camera cam) {
+  const float inverse_z = 1.0f / p.z;
+  dt_point s;
+  s.u = cam.fx * p.x * inverse_z + cam.cx;
+  s.v = cam.fy * p.y * inverse_z + cam.cy;
+  return s;
+}
+
+/* Where edge (inside, outside) crosses z = near; computed from its inside end whichever way the
+ * triangle runs, so that the triangles sharing a cut edge share the new vertex exactly. */
+DT_DEVICE_FN dt_vec3 dt_cut(dt_vec3 inside, dt_vec3 outside, float near) {
+  const float t = (near - inside.z) / (outside.z - inside.z);
+  return dt_vec3_make(inside.x + (outside.x - inside.x) * t, inside.y + (outside.y - inside.y) * t, near);
+}
+
+/* Triangle abc (camera frame) that crosses z = near: cut there (Sutherland-Hodgman against one
+ * plane, 3 or 4 vertices remain), then drawn as a fan. */
+DT_DEVICE_FN void dt_draw_cut_triangle(dt_vec3 a, dt_vec3 b, dt_vec3 c, dt_plane plane, dt_camera cam,
+                                       __global uint* tile) {
+  const dt_vec3 p[3] = {a, b, c};
+  dt_vec3 kept[4];
+  int n = 0;
+  for (int i = 0; i < 3; ++i) {
+    const dt_vec3 from = p[i], to = p[i == 2 ? 0 : i + 1];
+    const int from_in = from.z >= cam.near, to_in = to.z >= cam.near;
+    if (from_in) kept[n++] = from;
+    if (from_in != to_in) kept[n++] = from_in ? dt_cut(from, to, cam.near) : dt_cut(to, from, cam.near);
+  }
+  const dt_point first = dt_project(kept[0], cam);
+  for (int i = 1; i + 1 < n; ++i)
+    dt_raster_triangle(first, dt_project(kept[i], cam), dt_project(kept[i + 1], cam), plane, cam, tile);
+}
+
+/* camera_from_object as the rows of [R | t]. */
+typedef struct {
+  dt_vec3 r0, r1, r2, t;
+} dt_rigid;
+
+DT_DEVICE_FN float dt_dot(dt_vec3 a, float x, float y, float z) {
+  return a.x * x + a.y * y + a.z * z;
+}
+
+/* The particle's pose, R of the normalized quaternion as atlas.vert forms it. */
+DT_DEVICE_FN dt_rigid dt_particle_pose(__global const float* s) {
+  dt_quat q;
+  q.w = s[DT_QW];
+  q.x = s[DT_QW + 1];
+  q.y = s[DT_QW + 2];
+  q.z = s[DT_QW + 3];
+  q = dt_quat_normalize(q);
+  dt_rigid m;
+  m.r0 = dt_vec3_make(1.0f - 2.0f * (q.y * q.y + q.z * q.z), 2.0f * (q.x * q.y - q.w * q.z),
+                      2.0f * (q.x * q.z + q.w * q.y));
+  m.r1 = dt_vec3_make(2.0f * (q.x * q.y + q.w * q.z), 1.0f - 2.0f * (q.x * q.x + q.z * q.z),
+                      2.0f * (q.y * q.z - q.w * q.x));
+  m.r2 = dt_vec3_make(2.0f * (q.x * q.z - q.w * q.y), 2.0f * (q.y * q.z + q.w * q.x),
+                      1.0f - 2.0f * (q.x * q.x + q.y * q.y));
+  m.t = dt_vec3_make(s[DT_TX], s[DT_TX + 1], s[DT_TX + 2]);
+  return m;
+}
+
+/* Vertex i of the mesh in the camera frame. */
+DT_DEVICE_FN dt_vec3 dt_vertex(dt_rigid m, __global const float* vertices, uint i) {
+  __global const float* x = vertices + 3 * DT_CAST(ulong, i);
+  return dt_vec3_make(dt_dot(m.r0, x[0], x[1], x[2]) + m.t.x, dt_dot(m.r1, x[0], x[1], x[2]) + m.t.y,
+                      dt_dot(m.r2, x[0], x[1], x[2]) + m.t.z);
+}
+
+/* Triangle i's plane in the camera frame from its object-frame n and d: n' = R n, d' = d + n' . t. */
+DT_DEVICE_FN dt_plane dt_triangle_plane(dt_rigid m, __global const float* planes, uint i) {
+  __global const float* o = planes + 4 * DT_CAST(ulong, i);
+  dt_plane p;
+  p.nx = dt_dot(m.r0, o[0], o[1], o[2]);
+  p.ny = dt_dot(m.r1, o[0], o[1], o[2]);
+  p.nz = dt_dot(m.r2, o[0], o[1], o[2]);
+  p.d = o[3] + p.nx * m.t.x + p.ny * m.t.y + p.nz * m.t.z;
+  return p;
+}
+
+/* vertices: 3 floats each, object frame; triangles: 3 vertex indices each; planes: object-frame
+ * unit normal and offset (n . x = d) of each triangle. The atlas is written as the floats' bits. */
+__kernel void rasterize(__global const float* states, __global const float* vertices, __global const uint* triangles,
+                        __global const float* planes, uint triangle_count, dt_camera cam, dt_atlas_layout layout,
+                        __global uint* atlas) {
+  const uint particle = get_group_id(0), lid = get_local_id(0), pixels = cam.width * cam.height;
+  /* One tile per atlas row (particle-major, dt_atlas.h): the tile's pixels are contiguous, so plain
+   * loops clear and finish it (stepping by rows of the page took 1.8 times as long on PoCL). */
+  __global uint* tile = atlas + dt_atlas_tile_start(layout, particle);
+  for (uint k = lid; k < pixels; k += DT_GROUP_SIZE) tile[k] = DT_NO_SURFACE;
+  barrier(CLK_GLOBAL_MEM_FENCE);
+
+  const dt_rigid pose = dt_particle_pose(states + DT_CAST(ulong, particle) * DT_STATE_STRIDE);
+  for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE) {
+    __global const uint* corners = triangles + 3 * DT_CAST(ulong, t);
+    const dt_vec3 a = dt_vertex(pose, vertices, corners[0]), b = dt_vertex(pose, vertices, corners[1]),
+                  c = dt_vertex(pose, vertices, corners[2]);
+    const int in_front = (a.z >= cam.near) + (b.z >= cam.near) + (c.z >= cam.near);
+    if (in_front == 0) continue;
+    const dt_plane plane = dt_triangle_plane(pose, planes, t);
+    if (in_front == 3)
+      dt_raster_triangle(dt_project(a, cam), dt_project(b, cam), dt_project(c, cam), plane, cam, tile);
+    else
+      dt_draw_cut_triangle(a, b, c, plane, cam, tile);
+  }
+  barrier(CLK_GLOBAL_MEM_FENCE);
+
+  for (uint k = lid; k < pixels; k += DT_GROUP_SIZE)
+    if (tile[k] == DT_NO_SURFACE) tile[k] = 0u; /* 0.0f's bits */
+}
