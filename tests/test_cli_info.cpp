@@ -26,9 +26,11 @@ TEST_CASE("info names the GL context and the atlas hand-off of every compute dev
     const bool handoff = block.find("atlas hand-off    ") != std::string::npos;
     const bool unavailable = block.find("atlas GL          unavailable: ") != std::string::npos;
     CHECK(handoff != unavailable);
-    // A platform without cl_khr_gl_sharing (PoCL) gets the staged copy and says why.
+    // A platform without cl_khr_gl_sharing gets the bridge through exported memory (NVIDIA) or the
+    // staged copy, which says why (PoCL).
     if (handoff && d.backend == "opencl" && !d.gl_sharing)
-      CHECK(block.find("staged copy (the OpenCL platform lacks cl_khr_gl_sharing)") != std::string::npos);
+      CHECK((block.find("atlas hand-off    GL-OpenCL bridge") != std::string::npos ||
+             block.find("staged copy (the OpenCL platform lacks cl_khr_gl_sharing") != std::string::npos));
   }
 }
 
