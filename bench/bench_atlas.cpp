@@ -32,7 +32,8 @@ int main(int argc, char** argv) {
   try {
     std::string mesh_name;
     const Mesh mesh = bench::bench_mesh(mesh_name);
-    const Camera camera = Camera::make(width, height, 0.82 * width, 0.82 * width, width / 2.0 - 0.5, height / 2.0 - 0.5);
+    const Camera camera =
+        Camera::make(width, height, 0.82 * width, 0.82 * width, width / 2.0 - 0.5, height / 2.0 - 0.5);
     render::GlContext context;
     bench::print_header();
     for (const std::string& p : bench::split(particles)) {

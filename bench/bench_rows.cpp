@@ -19,6 +19,14 @@ void print_row(const Row& r) {
   std::fflush(stdout);
 }
 
+void print_status(const std::string& backend, const std::string& test, const std::string& reason) {
+  std::string line = reason.substr(0, reason.find('\n'));
+  for (char& ch : line)
+    if (ch == '"') ch = '\'';
+  std::printf("%s,%s,\"-\",-,%s,status,\"%s\",nan\n", backend.c_str(), backend.c_str(), test.c_str(), line.c_str());
+  std::fflush(stdout);
+}
+
 double median(std::vector<double> samples) {
   if (samples.empty()) return 0;
   const auto middle = samples.begin() + static_cast<std::ptrdiff_t>(samples.size() / 2);

@@ -14,6 +14,8 @@ struct Row {
 
 void print_header();
 void print_row(const Row& row);
+// A case that could not run: metric "status", the reason (quoted, first line) as its unit, no value.
+void print_status(const std::string& backend, const std::string& test, const std::string& reason);
 // Median of the samples (they are reordered).
 double median(std::vector<double> samples);
 // The host CPU's model name, from /proc/cpuinfo.

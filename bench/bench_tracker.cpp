@@ -6,6 +6,7 @@
 //   default: the reference at 80x60 (200 particles) and 640x480 (50 particles).
 #include <cstdio>
 #include <cstring>
+#include <depthtrack/error.hpp>
 #include <depthtrack/synth.hpp>
 #include <depthtrack/tracker.hpp>
 #include <string>
@@ -111,7 +112,20 @@ int main(int argc, char** argv) {
     std::string name;
     const Mesh mesh = bench::bench_mesh(name);
     bench::print_header();
-    for (const Case& c : cases) run(mesh, name, backend, renderer, c, std::max(frames, 4));
+    int failed = 0;
+    for (const Case& c : cases) {
+      // A case the device cannot run (too many particles for its memory) gets a status row, and
+      // the others still run.
+      try {
+        run(mesh, name, backend, renderer, c, std::max(frames, 4));
+      } catch (const Error& e) {
+        ++failed;
+        const std::string test = renderer + "_" + name + "_" + std::to_string(c.width) + "x" +
+                                 std::to_string(c.height) + "_" + std::to_string(c.particles) + "p";
+        bench::print_status(backend, test, e.what());
+      }
+    }
+    return failed == 0 ? 0 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "depthtrack_bench: %s\n", e.what());
     return 1;
