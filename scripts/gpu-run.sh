@@ -21,7 +21,7 @@ for device in ${DEVICES:-cuda opencl:nvidia}; do
   grep -E "worst relative|^[0-9]+: +occlusion|mean rotation error over" "$out/ctest-${device//:/-}.log" | sed 's/^[0-9]*: //' | head -12
 done
 for backend in ${BENCH_BACKENDS:-cuda opencl:nvidia}; do
-  for renderer in ${BENCH_RENDERERS:-gl}; do
+  for renderer in ${BENCH_RENDERERS:-kernel gl}; do
     ./build-gpu/depthtrack_bench --backend "$backend" --renderer "$renderer" \
       --particles "${BENCH_PARTICLES:-200,2000,10000,100000}" --frames "${BENCH_FRAMES:-6}" |
       tee "$out/bench-${backend//:/-}-$renderer.csv" | grep -E "_ms,|Hz" | cut -d, -f1,5-

@@ -7,15 +7,12 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <depthtrack/synth.hpp>
-#include <filesystem>
 #include <random>
 #include <vector>
 
 #include "compute/buffer.hpp"
 #include "device_support.hpp"
-#include "filter/device_filter.hpp"
+#include "filter/atlas_source.hpp"
 #include "filter/particle_packing.hpp"
 #include "reference/rasterizer.hpp"
 #include "support.hpp"
@@ -205,79 +202,6 @@ TEST_CASE("kernel renderer is a valid choice and says where it draws", "[device]
   CHECK(source->layout() == render::AtlasLayout::particle_major(4, 80, 60));
 }
 
-TEST_CASE("with the kernel atlas the device filter weighs as with the host atlas", "[device][kernel]") {
-  if (!test::device_available()) return;
-  // The handset when ../shared is there, else the built-in object; 30 % occluded, at 80x60.
-  const char* env = std::getenv("DEPTHTRACK_DATA_DIR");
-  const auto path = std::filesystem::path(env ? env : DEPTHTRACK_DATA_DIR) / "meshes/dbot/handset.obj";
-  const bool handset = std::filesystem::exists(path);
-  const Mesh mesh = handset ? Mesh::load(path) : builtin_demo_mesh();
-  SynthConfig synth;
-  synth.frames = 10;
-  synth.occluder_fraction = 0.3;
-  const Synthesizer scene(mesh, synth);
-  const Camera camera = synth.camera.decimated(8);
-  // No resampling: the particles then move alike in both filters, so every frame compares the same poses.
-  TrackerConfig config;
-  config.particles = 200;
-  config.seed = 9;
-  config.resample_kl_threshold = 1e30;
-  config.renderer = "cpu";
-  DeviceFilter host(compute::open_device(test::device_selector()), mesh, camera, config);
-  config.renderer = "kernel";
-  DeviceFilter kernel(compute::open_device(test::device_selector()), mesh, camera, config);
-  const SynthFrame first = scene.frame(0);
-  host.initialize(first.ground_truth, {0.01, 0.05});
-  kernel.initialize(first.ground_truth, {0.01, 0.05});
-  const size_t pixels = static_cast<size_t>(camera.pixel_count());
-  double worst = 0, worst_depth = 0, previous = first.timestamp;
-  int flips = 0, flipped_pixels = 0, compared = 0, beyond = 0;
-  // A flipped pixel's occlusion state then differs too: its particle is not compared again.
-  std::vector<bool> diverged(static_cast<size_t>(config.particles), false);
-  for (int f = 0; f < synth.frames; ++f) {
-    const SynthFrame frame = scene.frame(f);
-    const DepthImage depth = frame.depth.decimated(8);
-    host.update(depth, frame.timestamp - previous);
-    kernel.update(depth, frame.timestamp - previous);
-    previous = frame.timestamp;
-    const auto ll_host = host.last_log_likelihoods(), ll_kernel = kernel.last_log_likelihoods();
-    const auto atlas_host = host.last_atlas(), atlas_kernel = kernel.last_atlas();
-    for (size_t i = 0; i < ll_host.size(); ++i) {
-      int covered_differently = 0;
-      for (size_t k = i * pixels; k < (i + 1) * pixels; ++k) {
-        const float a = atlas_host[k], b = atlas_kernel[k];
-        covered_differently += (a > 0) != (b > 0);
-        if (a > 0 && b > 0) worst_depth = std::max(worst_depth, std::abs(double(a) - double(b)) / double(a));
-      }
-      const double relative = std::abs(ll_host[i] - ll_kernel[i]) / std::max(1.0, std::abs(ll_host[i]));
-      INFO("frame " << f << ", particle " << i << ": host " << ll_host[i] << ", kernel " << ll_kernel[i]);
-      if (covered_differently > 0) {
-        // A pixel centre within float rounding of a silhouette edge: a few pixels at most.
-        REQUIRE(covered_differently <= 3);
-        ++flips;
-        flipped_pixels += covered_differently;
-        diverged[i] = true;
-      }
-      if (diverged[i]) continue;
-      ++compared;
-      worst = std::max(worst, relative);
-      // Float plane depths differ from the double reference's by ~1e-7 relative (more on grazing
-      // faces), moving a sum of terms of +-5 that may cancel to below 1 by up to a few 1e-4.
-      beyond += relative > 1e-4;
-      REQUIRE(relative <= 1e-3);
-    }
-  }
-  std::printf(
-      "kernel vs host atlas in the device filter (%s, %d frames, %d particles): worst relative log-likelihood "
-      "difference %.3g (%d beyond 1e-4), worst relative depth difference %.3g; %d particle tiles with silhouette "
-      "flips (%d pixels); %d of %d particle-frames compared\n",
-      handset ? "handset" : "built-in", synth.frames, config.particles, worst, beyond, worst_depth, flips,
-      flipped_pixels, compared, synth.frames * config.particles);
-  CHECK(beyond * 100 <= compared);
-  CHECK(compared >= 0.9 * synth.frames * config.particles);  // most particles compared in every frame
-}
-
-#if defined(DEPTHTRACK_WITH_CUDA)
 TEST_CASE("rasterize.cl compiles as CUDA", "[cuda][kernel]") {
   const std::string reason = compute::cuda::nvrtc_unavailable_reason();
   if (!reason.empty()) {
