@@ -202,6 +202,7 @@ TEST_CASE("kernel renderer is a valid choice and says where it draws", "[device]
   CHECK(source->layout() == render::AtlasLayout::particle_major(4, 80, 60));
 }
 
+#if defined(DEPTHTRACK_WITH_CUDA)
 TEST_CASE("rasterize.cl compiles as CUDA", "[cuda][kernel]") {
   const std::string reason = compute::cuda::nvrtc_unavailable_reason();
   if (!reason.empty()) {
