@@ -8,7 +8,6 @@
 
 #include "compute/buffer.hpp"
 #include "device_support.hpp"
-#include "dt_atlas.h"
 #include "filter/particle_packing.hpp"
 #include "interop/atlas_handoff.hpp"
 #include "render/atlas_renderer.hpp"
@@ -38,19 +37,6 @@ std::vector<reference::ParticleState> random_particles(int count, unsigned seed)
     p.linear_velocity = Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));  // must not disturb the pose
   }
   return particles;
-}
-
-// The atlas buffer's tiles in particle order, read through the kernels' own accessor.
-std::vector<float> tiles_of(const std::vector<float>& pages, const render::AtlasLayout& layout, size_t count) {
-  const dt_atlas_layout a{static_cast<dt_u32>(layout.tile_width), static_cast<dt_u32>(layout.tile_height),
-                          static_cast<dt_u32>(layout.tiles_per_row), static_cast<dt_u32>(layout.tiles_per_page)};
-  const size_t pixels = static_cast<size_t>(layout.tile_width * layout.tile_height);
-  std::vector<float> tiles(count * pixels);
-  for (size_t i = 0; i < count; ++i) {
-    const dt_u64 start = dt_atlas_tile_start(a, static_cast<dt_u32>(i));
-    for (size_t k = 0; k < pixels; ++k) tiles[i * pixels + k] = pages[dt_atlas_pixel(a, start, static_cast<dt_u32>(k))];
-  }
-  return tiles;
 }
 
 // Renders `particles` through `handoff` (poses from device memory) and returns the atlas buffer.
@@ -89,7 +75,7 @@ TEST_CASE("the staged hand-off delivers every page as GL rendered it, poses take
   renderer.render(poses);
   std::vector<float> expected(14 * 4800);
   renderer.read_back(expected);
-  const std::vector<float> got = tiles_of(pages, renderer.layout(), 14);
+  const std::vector<float> got = renderer.layout().tiles_in_order(pages, 14);
   size_t covered = 0;
   for (size_t k = 0; k < expected.size(); ++k) {
     INFO("tile " << k / 4800 << " pixel " << k % 4800);

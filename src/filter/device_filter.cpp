@@ -7,7 +7,6 @@
 
 #include "compute/kernel_sources.hpp"
 #include "core/stopwatch.hpp"
-#include "dt_atlas.h"
 #include "dt_state.h"
 #include "filter/particle_packing.hpp"
 #include "philox.h"
@@ -41,12 +40,6 @@ int occlusion_define(OcclusionStorage mode) {
       return 2;
   }
   return 2;
-}
-
-// The kernels' view of the atlas source's page layout (cl/dt_atlas.h).
-dt_atlas_layout kernel_layout(const render::AtlasLayout& layout) {
-  return dt_atlas_layout{static_cast<dt_u32>(layout.tile_width), static_cast<dt_u32>(layout.tile_height),
-                         static_cast<dt_u32>(layout.tiles_per_row), static_cast<dt_u32>(layout.tiles_per_page)};
 }
 }  // namespace
 
@@ -112,9 +105,9 @@ size_t DeviceFilter::checked_particle_count() const {
   // Atlas, occlusion probabilities and times, each with a resampling twin, plus per-particle state;
   // GL's colour and depth pages and its pose buffer sit on the same GPU.
   const bool gl = config_.renderer == "gl" && queue_->info().is_gpu;
-  const double per_particle = 4.0 * (static_cast<double>(pixels_) * (1 + (occlusion ? 2 : 0) + (times ? 2 : 0) +
-                                                                      (gl ? 2 : 0)) +
-                                     (2 + (gl ? 1 : 0)) * DT_STATE_STRIDE + 6);
+  const double per_particle =
+      4.0 * (static_cast<double>(pixels_) * (1 + (occlusion ? 2 : 0) + (times ? 2 : 0) + (gl ? 2 : 0)) +
+             (2 + (gl ? 1 : 0)) * DT_STATE_STRIDE + 6);
   const double needed = per_particle * static_cast<double>(count);
   const auto& info = queue_->info();
   if (info.global_memory > 0 && needed > 0.9 * static_cast<double>(info.global_memory)) {
@@ -190,14 +183,7 @@ void DeviceFilter::render_atlas(StepTimings& timings) {
 }
 
 std::vector<float> DeviceFilter::last_atlas() const {
-  const std::vector<float> pages = atlas_.download();
-  const dt_atlas_layout layout = kernel_layout(atlas_source_->layout());
-  std::vector<float> tiles(count_ * pixels_);
-  for (size_t i = 0; i < count_; ++i) {
-    const dt_u64 start = dt_atlas_tile_start(layout, static_cast<dt_u32>(i));
-    for (size_t k = 0; k < pixels_; ++k) tiles[i * pixels_ + k] = pages[dt_atlas_pixel(layout, start, static_cast<dt_u32>(k))];
-  }
-  return tiles;
+  return atlas_source_->layout().tiles_in_order(atlas_.download(), count_);
 }
 
 Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
@@ -250,9 +236,8 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   k.weigh->set_arg(7, model);
   k.weigh->set_arg(8, static_cast<float>(time_));
   k.weigh->set_arg(9, static_cast<float>(dt));
-  k.weigh->set_arg(10, kernel_layout(atlas_source_->layout()));
-  const compute::EventPtr weighed =
-      queue_->launch(*k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize));
+  k.weigh->set_arg(10, atlas_source_->layout().kernel_args());
+  const compute::EventPtr weighed = queue_->launch(*k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize));
 
   compute::set_arg(*k.summarize, 0, state_);
   compute::set_arg(*k.summarize, 1, log_weight_);
@@ -263,8 +248,7 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   k.summarize->set_arg(6, static_cast<float>(centre_.x()));
   k.summarize->set_arg(7, static_cast<float>(centre_.y()));
   k.summarize->set_arg(8, static_cast<float>(centre_.z()));
-  const compute::EventPtr summarized =
-      queue_->launch(*k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize));
+  const compute::EventPtr summarized = queue_->launch(*k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize));
 
   float est[DT_EST_SIZE];
   estimate_.download(std::span<float>(est, DT_EST_SIZE));

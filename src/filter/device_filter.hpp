@@ -1,8 +1,9 @@
 #pragma once
 // The particle filter on a compute device (OpenCL or CUDA through src/compute): propagate, weigh,
 // normalize and estimate, resample, all in kernels from cl/. The pose atlas it weighs comes from
-// an AtlasSource: the GL renderer fed from and handing back to device memory, or the reference
-// rasterizer on the host. Per frame only the depth image goes up and the estimate comes back.
+// an AtlasSource: a compute kernel on this device, the GL renderer fed from and handing back to
+// device memory, or the reference rasterizer on the host. Per frame only the depth image goes up
+// and the estimate comes back.
 #include <memory>
 #include <vector>
 

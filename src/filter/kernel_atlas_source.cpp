@@ -6,7 +6,6 @@
 
 #include "compute/kernel_sources.hpp"
 #include "core/stopwatch.hpp"
-#include "dt_atlas.h"
 #include "dt_state.h"
 #include "filter/atlas_source.hpp"
 #include "render/triangle_planes.hpp"
@@ -60,9 +59,7 @@ class KernelAtlasSource final : public AtlasSource {
     compute::set_arg(*kernel_, 3, planes_);
     kernel_->set_arg(4, static_cast<unsigned>(planes_.size() / 4));
     kernel_->set_arg(5, camera_);
-    kernel_->set_arg(
-        6, dt_atlas_layout{static_cast<dt_u32>(layout_.tile_width), static_cast<dt_u32>(layout_.tile_height),
-                           static_cast<dt_u32>(layout_.tiles_per_row), static_cast<dt_u32>(layout_.tiles_per_page)});
+    kernel_->set_arg(6, layout_.kernel_args());
     compute::set_arg(*kernel_, 7, atlas);  // written as the depths' bits
     queue_.launch(*kernel_, compute::NdRange::linear(particles * kGroupSize, kGroupSize));
     queue_.finish();  // so that render_ms is the drawing's time, as for the other sources

@@ -2,6 +2,7 @@
 // Particle states <-> the float layout of device memory (cl/dt_state.h).
 #include <vector>
 
+#include "core/pose_state.hpp"
 #include "dt_state.h"
 #include "reference/particle.hpp"
 
@@ -12,15 +13,11 @@ inline std::vector<float> pack_particles(const std::vector<reference::ParticleSt
   for (size_t i = 0; i < states.size(); ++i) {
     float* p = out.data() + i * DT_STATE_STRIDE;
     const reference::ParticleState& s = states[i];
+    write_pose(s.pose, p);
     for (int k = 0; k < 3; ++k) {
-      p[DT_TX + k] = static_cast<float>(s.pose.translation[k]);
       p[DT_VX + k] = static_cast<float>(s.linear_velocity[k]);
       p[DT_WX + k] = static_cast<float>(s.angular_velocity[k]);
     }
-    p[DT_QW] = static_cast<float>(s.pose.rotation.w());
-    p[DT_QW + 1] = static_cast<float>(s.pose.rotation.x());
-    p[DT_QW + 2] = static_cast<float>(s.pose.rotation.y());
-    p[DT_QW + 3] = static_cast<float>(s.pose.rotation.z());
   }
   return out;
 }
@@ -29,8 +26,7 @@ inline std::vector<reference::ParticleState> unpack_particles(const std::vector<
   std::vector<reference::ParticleState> out(packed.size() / DT_STATE_STRIDE);
   for (size_t i = 0; i < out.size(); ++i) {
     const float* p = packed.data() + i * DT_STATE_STRIDE;
-    out[i].pose = Pose({p[DT_TX], p[DT_TX + 1], p[DT_TX + 2]},
-                       Eigen::Quaterniond(p[DT_QW], p[DT_QW + 1], p[DT_QW + 2], p[DT_QW + 3]));
+    out[i].pose = read_pose(p);
     out[i].linear_velocity = Eigen::Vector3d(p[DT_VX], p[DT_VX + 1], p[DT_VX + 2]);
     out[i].angular_velocity = Eigen::Vector3d(p[DT_WX], p[DT_WX + 1], p[DT_WX + 2]);
   }

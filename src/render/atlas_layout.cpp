@@ -37,6 +37,22 @@ size_t AtlasLayout::page_offset(size_t p) const {
   return p * static_cast<size_t>(tiles_per_page) * static_cast<size_t>(tile_width) * static_cast<size_t>(tile_height);
 }
 
+dt_atlas_layout AtlasLayout::kernel_args() const {
+  return dt_atlas_layout{static_cast<dt_u32>(tile_width), static_cast<dt_u32>(tile_height),
+                         static_cast<dt_u32>(tiles_per_row), static_cast<dt_u32>(tiles_per_page)};
+}
+
+std::vector<float> AtlasLayout::tiles_in_order(const std::vector<float>& buffer, size_t tiles) const {
+  const dt_atlas_layout a = kernel_args();
+  const size_t pixels = static_cast<size_t>(tile_width) * static_cast<size_t>(tile_height);
+  std::vector<float> out(tiles * pixels);
+  for (size_t i = 0; i < tiles; ++i) {
+    const dt_u64 start = dt_atlas_tile_start(a, static_cast<dt_u32>(i));
+    for (size_t k = 0; k < pixels; ++k) out[i * pixels + k] = buffer[dt_atlas_pixel(a, start, static_cast<dt_u32>(k))];
+  }
+  return out;
+}
+
 size_t AtlasLayout::floats() const {
   if (pages.empty()) return 0;
   const AtlasPageLayout& last = pages.back();

@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "dt_atlas.h"
+
 namespace depthtrack::render {
 
 struct AtlasPageLayout {
@@ -26,6 +28,10 @@ struct AtlasLayout {
   size_t floats() const;
   // Index of page p's first float in that buffer.
   size_t page_offset(size_t p) const;
+  // This layout as the kernels take it (cl/dt_atlas.h).
+  dt_atlas_layout kernel_args() const;
+  // The first `tiles` tiles of such a buffer, one row-major block each, in tile order.
+  std::vector<float> tiles_in_order(const std::vector<float>& buffer, size_t tiles) const;
   bool operator==(const AtlasLayout&) const = default;
 };
 

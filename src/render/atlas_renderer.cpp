@@ -4,6 +4,7 @@
 #include <depthtrack/error.hpp>
 #include <string>
 
+#include "core/pose_state.hpp"
 #include "dt_state.h"
 #include "render/gl_program.hpp"
 #include "render/triangle_planes.hpp"
@@ -164,15 +165,7 @@ void AtlasRenderer::reserve(int tiles) {
 void AtlasRenderer::render(std::span<const Pose> poses) {
   reserve(static_cast<int>(poses.size()));
   states_.assign(poses.size() * DT_STATE_STRIDE, 0.0f);
-  for (size_t i = 0; i < poses.size(); ++i) {
-    float* s = &states_[i * DT_STATE_STRIDE];
-    for (int k = 0; k < 3; ++k) s[DT_TX + k] = static_cast<float>(poses[i].translation[k]);
-    const Eigen::Quaterniond& q = poses[i].rotation;
-    s[DT_QW] = static_cast<float>(q.w());
-    s[DT_QW + 1] = static_cast<float>(q.x());
-    s[DT_QW + 2] = static_cast<float>(q.y());
-    s[DT_QW + 3] = static_cast<float>(q.z());
-  }
+  for (size_t i = 0; i < poses.size(); ++i) write_pose(poses[i], &states_[i * DT_STATE_STRIDE]);
   upload_states(states_);
   draw();
 }
