@@ -6,28 +6,47 @@
 #include <depthtrack/mesh.hpp>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
+#include "bench_args.hpp"
 #include "bench_rows.hpp"
 #include "render/atlas_renderer.hpp"
 
 using namespace depthtrack;
 
+namespace {
+const char* const kUsage =
+    "usage: depthtrack_bench_atlas [--particles N[,N...]] [--resolution WxH] [--repeats N]\n"
+    "Times one GL draw of N poses of the handset (or the built-in mesh) with the exact and the early depth test;\n"
+    "prints CSV rows backend,platform,device,driver,test,metric,unit,value.\n"
+    "  --particles N[,N...]  poses per draw (default 2000,10000,100000)\n"
+    "  --resolution WxH      tile size (default 80x60)\n"
+    "  --repeats N           draws timed per case; the median is printed (default 5)\n";
+}  // namespace
+
 int main(int argc, char** argv) {
-  std::string particles = "2000,10000,100000";
+  std::vector<int> particle_counts = {2000, 10000, 100000};
   int width = 80, height = 60, repeats = 5;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--particles" && i + 1 < argc)
-      particles = argv[++i];
-    else if (arg == "--resolution" && i + 1 < argc && std::sscanf(argv[i + 1], "%dx%d", &width, &height) == 2)
-      ++i;
-    else if (arg == "--repeats" && i + 1 < argc)
-      repeats = std::max(1, std::atoi(argv[++i]));
-    else {
-      std::fprintf(stderr, "usage: %s [--particles N[,N...]] [--resolution WxH] [--repeats N]\n", argv[0]);
-      return 2;
+  try {
+    bench::ArgReader args(argc, argv);
+    for (std::string arg = args.next(); !arg.empty(); arg = args.next()) {
+      if (arg == "--help" || arg == "-h") {
+        std::printf("%s", kUsage);
+        return 0;
+      }
+      if (arg == "--particles")
+        particle_counts = bench::parse_positive_list(args.value(), arg);
+      else if (arg == "--resolution")
+        std::tie(width, height) = bench::parse_size(args.value(), arg);
+      else if (arg == "--repeats")
+        repeats = bench::parse_positive(args.value(), arg);
+      else
+        throw bench::UsageError{"unknown option '" + arg + "'"};
     }
+  } catch (const bench::UsageError& e) {
+    std::fprintf(stderr, "depthtrack_bench_atlas: %s\n%s", e.message.c_str(), kUsage);
+    return 2;
   }
   try {
     std::string mesh_name;
@@ -36,8 +55,8 @@ int main(int argc, char** argv) {
         Camera::make(width, height, 0.82 * width, 0.82 * width, width / 2.0 - 0.5, height / 2.0 - 0.5);
     render::GlContext context;
     bench::print_header();
-    for (const std::string& p : bench::split(particles)) {
-      const int count = std::atoi(p.c_str());
+    for (const int count : particle_counts) {
+      const std::string p = std::to_string(count);
       std::mt19937 rng(1);
       std::normal_distribution<double> gauss;
       std::vector<Pose> poses;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.hpp"
 #include "bench_rows.hpp"
 
 using namespace depthtrack;
@@ -67,46 +68,57 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
   bench::print_row({backend, platform, name, "-", test, "frames_per_second", "Hz", 1000.0 / bench::median(total)});
 }
 
+const char* const kUsage =
+    "usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] "
+    "[--resolution WxH[,...]] [--frames N]\n"
+    "Times tracker frames on a synthetic occluded handset sequence, split into propagate / render / hand-off /\n"
+    "weigh / resample; prints CSV rows backend,platform,device,driver,test,metric,unit,value.\n"
+    "  --backend NAME         reference (default), opencl, opencl:pocl, cuda, ... (`depthtrack info`)\n"
+    "  --renderer NAME        atlas renderer of device backends: kernel (default), gl, cpu\n"
+    "  --particles N[,N...]   particle counts (default 200)\n"
+    "  --resolution WxH[,...] working resolutions (default 80x60)\n"
+    "  --frames N             frames per case, the first two not timed (default 20, at least 4)\n"
+    "Without --particles and --resolution: the reference at 80x60 (200 particles) and 640x480 (50).\n";
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string backend = "reference", renderer = "kernel", particles, resolutions;
+  std::string backend = "reference", renderer = "kernel";
+  std::vector<int> particle_counts;
+  std::vector<std::pair<int, int>> sizes;
   int frames = 20;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--backend" && i + 1 < argc)
-      backend = argv[++i];
-    else if (arg == "--renderer" && i + 1 < argc)
-      renderer = argv[++i];
-    else if (arg == "--particles" && i + 1 < argc)
-      particles = argv[++i];
-    else if (arg == "--resolution" && i + 1 < argc)
-      resolutions = argv[++i];
-    else if (arg == "--frames" && i + 1 < argc)
-      frames = std::atoi(argv[++i]);
-    else {
-      std::fprintf(
-          stderr,
-          "usage: %s [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] [--resolution WxH[,...]] "
-          "[--frames N]\n",
-          argv[0]);
-      return 2;
+  try {
+    bench::ArgReader args(argc, argv);
+    for (std::string arg = args.next(); !arg.empty(); arg = args.next()) {
+      if (arg == "--help" || arg == "-h") {
+        std::printf("%s", kUsage);
+        return 0;
+      }
+      if (arg == "--backend")
+        backend = args.value();
+      else if (arg == "--renderer")
+        renderer = args.value();
+      else if (arg == "--particles")
+        particle_counts = bench::parse_positive_list(args.value(), arg);
+      else if (arg == "--resolution")
+        for (const std::string& r : bench::split(args.value())) sizes.push_back(bench::parse_size(r, arg));
+      else if (arg == "--frames")
+        frames = bench::parse_positive(args.value(), arg);
+      else
+        throw bench::UsageError{"unknown option '" + arg + "'"};
     }
+  } catch (const bench::UsageError& e) {
+    std::fprintf(stderr, "depthtrack_bench: %s\n%s", e.message.c_str(), kUsage);
+    return 2;
   }
   std::vector<Case> cases;
-  if (particles.empty() && resolutions.empty()) {
+  if (particle_counts.empty() && sizes.empty()) {
     cases = {{80, 60, 200}, {640, 480, 50}};
   } else {
-    for (const auto& r : bench::split(resolutions.empty() ? "80x60" : resolutions))
-      for (const auto& p : bench::split(particles.empty() ? "200" : particles)) {
-        Case c{};
-        if (std::sscanf(r.c_str(), "%dx%d", &c.width, &c.height) != 2) {
-          std::fprintf(stderr, "bad resolution '%s'\n", r.c_str());
-          return 2;
-        }
-        c.particles = std::atoi(p.c_str());
-        cases.push_back(c);
-      }
+    if (sizes.empty()) sizes = {{80, 60}};
+    if (particle_counts.empty()) particle_counts = {200};
+    for (const auto& [width, height] : sizes)
+      for (const int p : particle_counts) cases.push_back({width, height, p});
   }
   try {
     std::string name;

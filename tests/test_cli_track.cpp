@@ -1,41 +1,16 @@
 // The depthtrack track contract: options, CSV columns, exit codes and messages.
 #include <catch2/catch.hpp>
-#include <depthtrack/synth.hpp>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "support.hpp"
+#include "cli_support.hpp"
 
 using namespace depthtrack;
 
-namespace {
-// A short synthetic sequence of the built-in object at 160x120, written once per test.
-std::filesystem::path write_sequence(const std::string& name, int frames = 6) {
-  const auto dir = test::temp_dir(name);
-  SynthConfig c;
-  c.camera = Camera::make(160, 120, 131.25, 131.25, 79.875, 59.875);
-  c.frames = frames;
-  write_synthetic_sequence(dir / "seq", builtin_demo_mesh(), c);
-  // The built-in mesh as an OBJ, since track takes a mesh file.
-  std::ofstream obj(dir / "object.obj");
-  const Mesh mesh = builtin_demo_mesh();
-  for (const auto& v : mesh.vertices) obj << "v " << v.x() << " " << v.y() << " " << v.z() << "\n";
-  for (const auto& t : mesh.triangles) obj << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
-  return dir;
-}
-
-std::vector<std::string> lines_of(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-}  // namespace
-
 TEST_CASE("track writes one CSV row per frame with the contract's columns", "[cli]") {
-  const auto dir = write_sequence("cli_track");
+  const auto dir = test::write_cli_sequence("cli_track");
   const auto [status, output] =
       test::run_cli("track --mesh " + (dir / "object.obj").string() + " --sequence " + (dir / "seq").string() +
                         " --out " + (dir / "out.csv").string() +
@@ -43,14 +18,14 @@ TEST_CASE("track writes one CSV row per frame with the contract's columns", "[cl
                     dir / "log.txt");
   INFO(output);
   REQUIRE(status == 0);
-  const auto lines = lines_of(dir / "out.csv");
+  const auto lines = test::lines_of(dir / "out.csv");
   REQUIRE(lines.size() == 7);
-  CHECK(lines[0] == "frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess,err_t_mm,err_r_deg");
+  CHECK(lines[0] == "frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess,err_t_mm,err_r_deg,adds_mm");
   // Row 3: frame name, timestamp 2/30 s, and a translation error under 1 cm.
   std::stringstream row(lines[3]);
   std::vector<std::string> cells;
   for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-  REQUIRE(cells.size() == 12);
+  REQUIRE(cells.size() == 13);
   CHECK(cells[0] == "000002");
   CHECK(std::stod(cells[1]) == Approx(2.0 / 30));
   CHECK(std::stod(cells[4]) == Approx(0.8).margin(0.15));  // tz near the trajectory's 0.8 m
@@ -59,7 +34,7 @@ TEST_CASE("track writes one CSV row per frame with the contract's columns", "[cl
 }
 
 TEST_CASE("track --init starts from a given pose, and its CSV then has no error columns", "[cli]") {
-  const auto dir = write_sequence("cli_track_init", 2);
+  const auto dir = test::write_cli_sequence("cli_track_init", 2);
   const auto [status, output] =
       test::run_cli("track --mesh " + (dir / "object.obj").string() + " --sequence " + (dir / "seq").string() +
                         " --out " + (dir / "out.csv").string() + " --resolution 80x60 --init \"0 0 0.8 1 0 0 0\"",
@@ -67,7 +42,7 @@ TEST_CASE("track --init starts from a given pose, and its CSV then has no error 
   INFO(output);
   REQUIRE(status == 0);
   // Ground truth is still known from the sequence, so the error columns stay.
-  CHECK(lines_of(dir / "out.csv")[0].find("err_t_mm") != std::string::npos);
+  CHECK(test::lines_of(dir / "out.csv")[0].find("err_t_mm") != std::string::npos);
 }
 
 TEST_CASE("track explains every option", "[cli]") {
@@ -80,7 +55,7 @@ TEST_CASE("track explains every option", "[cli]") {
 }
 
 TEST_CASE("track refuses bad input with a reason and a non-zero exit code", "[cli][errors]") {
-  const auto dir = write_sequence("cli_track_errors", 2);
+  const auto dir = test::write_cli_sequence("cli_track_errors", 2);
   const std::string base = "track --sequence " + (dir / "seq").string() + " --out " + (dir / "o.csv").string();
   const std::string mesh = " --mesh " + (dir / "object.obj").string();
   struct Case {

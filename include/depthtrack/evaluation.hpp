@@ -21,6 +21,7 @@ struct TrackedFrame {
   std::optional<Pose> ground_truth;
   double translation_error = NAN;  // metres, when ground truth is known
   double rotation_error = NAN;     // radians
+  double adds = NAN;               // ADD-S of the estimate against the truth (metres), when known
 };
 
 // Tracks every frame of the sequence from the given initial pose; on_frame(i, frame) is called
@@ -47,8 +48,13 @@ class AddsMetric {
   std::vector<Eigen::Vector3d> vertices_;
 };
 
-// CSV with a header and a row per frame: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess and, when every
-// frame has ground truth, err_t_mm,err_r_deg.
-void write_tracking_csv(const std::filesystem::path& path, const std::vector<TrackedFrame>& frames);
+// Order of a quaternion's components in text: w first (Eigen, depthtrack's default) or last (ROS,
+// tf2, SciPy).
+enum class QuaternionOrder { Wxyz, Xyzw };
+
+// CSV with a header and a row per frame: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess (qx,qy,qz,qw with
+// Xyzw) and, when every frame has ground truth, err_t_mm,err_r_deg,adds_mm.
+void write_tracking_csv(const std::filesystem::path& path, const std::vector<TrackedFrame>& frames,
+                        QuaternionOrder order = QuaternionOrder::Wxyz);
 
 }  // namespace depthtrack

@@ -1,9 +1,10 @@
 // depthtrack info: every compute device of every backend, and what it offers depthtrack.
 #include <cstdio>
 #include <depthtrack/camera.hpp>
-#include <depthtrack/mesh.hpp>
 #include <depthtrack/error.hpp>
+#include <depthtrack/mesh.hpp>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -39,8 +40,12 @@ void print_extensions(const std::vector<std::string>& extensions) {
 }
 
 // The GL context the tracker's GL renderer would use with this device, and the hand-off it gets:
-// found by setting both up for a one-tile atlas, so what is printed is what happens.
-void print_atlas_path(const compute::DeviceInfo& d) {
+// found by setting both up for a one-tile atlas, so what is reported is what happens.
+struct AtlasPath {
+  std::string context, handoff, unavailable;  // unavailable: why not (first line), else empty
+};
+
+AtlasPath find_atlas_path(const compute::DeviceInfo& d) {
   try {
     auto queue = compute::open_device(d.selector);
     render::GlContextOptions options;
@@ -49,12 +54,21 @@ void print_atlas_path(const compute::DeviceInfo& d) {
     render::AtlasRenderer renderer(context, builtin_demo_mesh(), Camera::make(80, 60, 66, 66, 39.5, 29.5), 0.05, 6);
     renderer.reserve(1);
     const auto handoff = interop::make_atlas_handoff(*queue, renderer);
-    std::printf("    %-18s%s\n", "atlas GL", context.describe().c_str());
-    std::printf("    %-18s%s\n", "atlas hand-off", handoff->name().c_str());
+    return {context.describe(), handoff->name(), ""};
   } catch (const Error& e) {
     const std::string message = e.what();
-    std::printf("    %-18sunavailable: %s\n", "atlas GL", message.substr(0, message.find('\n')).c_str());
+    return {"", "", message.substr(0, message.find('\n'))};
   }
+}
+
+void print_atlas_path(const compute::DeviceInfo& d) {
+  const AtlasPath path = find_atlas_path(d);
+  if (!path.unavailable.empty()) {
+    std::printf("    %-18sunavailable: %s\n", "atlas GL", path.unavailable.c_str());
+    return;
+  }
+  std::printf("    %-18s%s\n", "atlas GL", path.context.c_str());
+  std::printf("    %-18s%s\n", "atlas hand-off", path.handoff.c_str());
 }
 
 void print_device(const compute::DeviceInfo& d, bool extensions) {
@@ -90,30 +104,52 @@ std::string absence_reason(const std::string& backend) {
   return "it lists no device, yet one opened";
 }
 
-// Each headless GL path, what it gives or why not, and the atlas page limits.
-void print_gl() {
-  std::printf("OpenGL (pose atlas):\n");
+// A headless GL path: its context and atlas page size, or why it is unavailable.
+struct GlPathFacts {
+  const char* name;
+  std::string context, unavailable;
+  int max_render_size = 0;
+};
+
+std::vector<GlPathFacts> gl_paths() {
+  std::vector<GlPathFacts> facts;
   for (auto path : {render::GlPath::EglDevice, render::GlPath::EglSurfaceless, render::GlPath::OSMesa}) {
+    GlPathFacts f{render::GlContext::path_name(path), "", "", 0};
     try {
       render::GlContextOptions options;
       options.path = path;
       const render::GlContext context(options);
-      std::printf("  %-16s %s\n", render::GlContext::path_name(path), context.describe().c_str());
-      const int size = context.max_render_size();
-      std::printf("  %-16s atlas pages up to %dx%d px: %d tiles of 80x60 per row, %d per page\n", "", size, size,
-                  size / 80, (size / 80) * (size / 60));
+      f.context = context.describe();
+      f.max_render_size = context.max_render_size();
     } catch (const Error& e) {
       const std::string message = e.what();
-      std::printf("  %-16s unavailable: %s\n", render::GlContext::path_name(path),
-                  message.substr(0, message.find('\n')).c_str());
+      f.unavailable = message.substr(0, message.find('\n'));
     }
+    facts.push_back(f);
+  }
+  return facts;
+}
+
+// Each headless GL path, what it gives or why not, and the atlas page limits.
+void print_gl() {
+  std::printf("OpenGL (pose atlas):\n");
+  for (const GlPathFacts& f : gl_paths()) {
+    if (!f.unavailable.empty()) {
+      std::printf("  %-16s unavailable: %s\n", f.name, f.unavailable.c_str());
+      continue;
+    }
+    const int size = f.max_render_size;
+    std::printf("  %-16s %s\n", f.name, f.context.c_str());
+    std::printf("  %-16s atlas pages up to %dx%d px: %d tiles of 80x60 per row, %d per page\n", "", size, size,
+                size / 80, (size / 80) * (size / 60));
   }
 }
 
+constexpr std::pair<const char*, const char*> kBackends[] = {{"opencl", "OpenCL"}, {"cuda", "CUDA"}};
+
 void print_info(bool extensions) {
   const auto devices = compute::list_devices();
-  const std::pair<const char*, const char*> backends[] = {{"opencl", "OpenCL"}, {"cuda", "CUDA"}};
-  for (const auto& [backend, title] : backends) {
+  for (const auto& [backend, title] : kBackends) {
     std::vector<const compute::DeviceInfo*> mine;
     for (const auto& d : devices)
       if (d.backend == backend) mine.push_back(&d);
@@ -123,16 +159,74 @@ void print_info(bool extensions) {
   }
   print_gl();
 }
+
+// The same facts as one JSON document, for scripts.
+void print_info_json() {
+  nlohmann::ordered_json root;
+  root["version"] = DEPTHTRACK_VERSION;
+  const auto devices = compute::list_devices();
+  for (const auto& [backend, title] : kBackends) {
+    nlohmann::ordered_json list = nlohmann::json::array();
+    for (const auto& d : devices) {
+      if (d.backend != backend) continue;
+      const AtlasPath path = find_atlas_path(d);
+      nlohmann::ordered_json j;
+      j["selector"] = d.selector;
+      j["name"] = d.name;
+      j["platform"] = d.platform;
+      j["vendor"] = d.vendor;
+      j["driver"] = d.driver;
+      j["version"] = d.version;
+      j["gpu"] = d.is_gpu;
+      j["global_memory_bytes"] = d.global_memory;
+      j["max_allocation_bytes"] = d.max_allocation;
+      j["local_memory_bytes"] = d.local_memory;
+      j["max_work_group_size"] = d.max_work_group_size;
+      j["compute_units"] = d.compute_units;
+      j["gl_sharing"] = d.gl_sharing;
+      j["external_memory"] = d.external_memory;
+      j["fp64"] = d.fp64;
+      j["subgroups"] = d.subgroups;
+      if (path.unavailable.empty()) {
+        j["atlas_gl"] = path.context;
+        j["atlas_handoff"] = path.handoff;
+      } else {
+        j["atlas_gl_unavailable"] = path.unavailable;
+      }
+      j["extensions"] = d.extensions;
+      list.push_back(j);
+    }
+    nlohmann::ordered_json b;
+    b["devices"] = list;
+    if (list.empty()) b["unavailable"] = absence_reason(backend);
+    root[backend] = b;
+  }
+  nlohmann::ordered_json gl = nlohmann::json::array();
+  for (const GlPathFacts& f : gl_paths()) {
+    nlohmann::ordered_json j;
+    j["path"] = f.name;
+    if (f.unavailable.empty()) {
+      j["context"] = f.context;
+      j["max_render_size"] = f.max_render_size;
+    } else {
+      j["unavailable"] = f.unavailable;
+    }
+    gl.push_back(j);
+  }
+  root["gl"] = gl;
+  std::printf("%s\n", root.dump(2).c_str());
+}
 }  // namespace
 
 void add_info_command(CLI::App& app) {
-  auto extensions = std::make_shared<bool>(false);
+  auto extensions = std::make_shared<bool>(false), json = std::make_shared<bool>(false);
   CLI::App* c = app.add_subcommand(
       "info",
       "List the compute devices of every backend with the GL context and atlas hand-off each gets, and the "
       "headless GL paths");
   c->add_flag("--extensions", *extensions, "Also print every device's full extension list");
-  c->callback([extensions] { print_info(*extensions); });
+  c->add_flag("--json", *json, "Print the same facts (and every extension) as one JSON document");
+  c->callback([extensions, json] { *json ? print_info_json() : print_info(*extensions); });
 }
 
 }  // namespace depthtrack::cli

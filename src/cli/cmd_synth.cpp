@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/mesh_scale_warning.hpp"
 #include "cli/progress.hpp"
 #include "cli/tracker_options.hpp"
 
@@ -32,6 +33,7 @@ Camera camera_for(const std::string& resolution) {
 
 void run(const SynthOptions& o) {
   const Mesh mesh = o.builtin ? builtin_demo_mesh() : Mesh::load(o.mesh, o.unit_scale);
+  if (!o.builtin) warn_if_mesh_scale_unusual(mesh, o.mesh, o.unit_scale);
   SynthConfig config;
   config.camera = camera_for(o.resolution);
   config.frames = o.frames;

@@ -8,7 +8,9 @@
 #include <numbers>
 
 #include "cli/commands.hpp"
+#include "cli/mesh_scale_warning.hpp"
 #include "cli/progress.hpp"
+#include "cli/run_summary.hpp"
 #include "cli/tracker_options.hpp"
 
 namespace depthtrack::cli {
@@ -16,15 +18,24 @@ namespace depthtrack::cli {
 namespace {
 
 struct TrackArgs {
-  std::string mesh, sequence, out, object, init, init_perturb, init_spread = "0.01 5";
+  std::string mesh, sequence, out, object, init, init_perturb, init_spread = "0.01 5", summary;
+  std::string quaternion = "wxyz";
   double unit_scale = 1.0;
   bool init_from_gt = false;
   TrackerOptions tracker;
 };
 
+QuaternionOrder quaternion_order(const std::string& name) {
+  if (name == "wxyz") return QuaternionOrder::Wxyz;
+  if (name == "xyzw") return QuaternionOrder::Xyzw;
+  throw InputError("--quaternion '" + name + "' is neither wxyz (depthtrack, Eigen) nor xyzw (ROS)");
+}
+
 Pose initial_pose(const TrackArgs& a, const Sequence& seq, const Mesh& mesh) {
   if (!a.init.empty()) {
     const auto v = parse_numbers(a.init, 7, "--init");
+    if (quaternion_order(a.quaternion) == QuaternionOrder::Xyzw)
+      return Pose({v[0], v[1], v[2]}, Eigen::Quaterniond(v[6], v[3], v[4], v[5]));
     return Pose({v[0], v[1], v[2]}, Eigen::Quaterniond(v[3], v[4], v[5], v[6]));
   }
   if (seq.frames.empty() || !seq.frames.front().ground_truth)
@@ -38,29 +49,23 @@ Pose initial_pose(const TrackArgs& a, const Sequence& seq, const Mesh& mesh) {
   return pose;
 }
 
-void print_summary(const std::vector<TrackedFrame>& frames, const Mesh& mesh, double seconds) {
-  std::printf("%zu frames in %.2f s: %.1f frames per second\n", frames.size(), seconds,
-              static_cast<double>(frames.size()) / seconds);
-  if (frames.empty() || !frames.back().ground_truth) return;
-  double sum_t = 0, sum_r = 0, max_t = 0;
-  for (const auto& f : frames) {
-    sum_t += f.translation_error;
-    sum_r += f.rotation_error;
-    max_t = std::max(max_t, f.translation_error);
-  }
-  const double n = static_cast<double>(frames.size()), deg = 180.0 / std::numbers::pi;
-  const TrackedFrame& last = frames.back();
-  std::printf("translation error: mean %.2f mm, max %.2f mm; rotation error: mean %.2f deg\n", 1000 * sum_t / n,
-              1000 * max_t, deg * sum_r / n);
-  std::printf("last frame: translation %.2f mm, rotation %.2f deg, ADD-S %.2f mm\n", 1000 * last.translation_error,
-              deg * last.rotation_error, 1000 * AddsMetric(mesh)(last.estimate.pose, *last.ground_truth));
+void print_summary(const RunStats& s, const TrackedFrame* last) {
+  std::printf("%zu frames in %.2f s: %.1f frames per second\n", s.frames, s.seconds, s.frames_per_second);
+  if (!s.ground_truth || !last) return;
+  const double deg = 180.0 / std::numbers::pi;
+  std::printf("translation error: mean %.2f mm, max %.2f mm; rotation error: mean %.2f deg; ADD-S: mean %.2f mm\n",
+              s.mean_err_t_mm, s.max_err_t_mm, s.mean_err_r_deg, s.mean_adds_mm);
+  std::printf("last frame: translation %.2f mm, rotation %.2f deg, ADD-S %.2f mm\n", 1000 * last->translation_error,
+              deg * last->rotation_error, 1000 * last->adds);
 }
 
 void run_track(const TrackArgs& a) {
   if (a.init.empty() && !a.init_from_gt) throw InputError("give --init POSE or --init-from-gt");
   if (!a.init.empty() && a.init_from_gt) throw InputError("--init and --init-from-gt exclude each other");
+  const QuaternionOrder order = quaternion_order(a.quaternion);
   const TrackerConfig config = a.tracker.resolve();
   const Mesh mesh = Mesh::load(a.mesh, a.unit_scale);
+  warn_if_mesh_scale_unusual(mesh, a.mesh, a.unit_scale);
   if (mesh.dropped_degenerate > 0)
     std::fprintf(stderr, "depthtrack: note: dropped %zu degenerate triangles of '%s'\n", mesh.dropped_degenerate,
                  a.mesh.c_str());
@@ -78,8 +83,10 @@ void run_track(const TrackArgs& a) {
   });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   bar.finish();
-  write_tracking_csv(a.out, frames);
-  print_summary(frames, mesh, seconds);
+  write_tracking_csv(a.out, frames, order);
+  const RunStats stats = run_stats(frames, seconds);
+  print_summary(stats, frames.empty() ? nullptr : &frames.back());
+  if (!a.summary.empty()) write_summary(a.summary, summary_json(stats, config, a.sequence, a.mesh));
   std::printf("wrote %s\n", a.out.c_str());
 }
 
@@ -97,10 +104,18 @@ void add_track_command(CLI::App& app) {
       ->required();
   c->add_option("--out", args->out,
                 "CSV to write: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess (camera-from-object, metres), plus "
-                "err_t_mm,err_r_deg when ground truth is known")
+                "err_t_mm,err_r_deg,adds_mm when ground truth is known")
       ->required();
+  c->add_option("--summary", args->summary,
+                "Also write a one-line JSON summary of the run (frames, mean/max errors, fps, backend) to this "
+                "file; - prints it");
+  c->add_option("--quaternion", args->quaternion,
+                "Quaternion component order of --init and the CSV: wxyz (depthtrack, Eigen) or xyzw (ROS, tf2)")
+      ->capture_default_str();
   c->add_option("--object", args->object, "Which object's ground truth to use in a multi-object clip (e.g. 025_mug)");
-  c->add_option("--init", args->init, "Initial pose \"tx ty tz qw qx qy qz\" (camera-from-object, metres)");
+  c->add_option("--init", args->init,
+                "Initial pose \"tx ty tz qw qx qy qz\" (camera-from-object, metres; qx qy qz qw with --quaternion "
+                "xyzw)");
   c->add_flag("--init-from-gt", args->init_from_gt, "Start from the first frame's ground-truth pose");
   c->add_option("--init-perturb", args->init_perturb,
                 "With --init-from-gt: move the start by exactly \"METRES DEGREES\" in a seeded random direction");

@@ -8,6 +8,7 @@
 int main(int argc, char** argv) {
   CLI::App app{
       "depthtrack: 6-DoF tracking of a known rigid object in depth images with an occlusion-aware particle filter"};
+  app.set_version_flag("--version", "depthtrack " DEPTHTRACK_VERSION);
   app.require_subcommand(1);
   depthtrack::cli::add_demo_command(app);
   depthtrack::cli::add_synth_command(app);

@@ -1,6 +1,7 @@
 #include "cli/tracker_options.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <depthtrack/error.hpp>
 #include <sstream>
 
@@ -11,12 +12,12 @@ void TrackerOptions::add_to(CLI::App& command) {
                      "Filter implementation: reference (sequential CPU), opencl (best OpenCL device), opencl:pocl, "
                      "opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n> (`depthtrack info` lists devices); "
                      "default: $DEPTHTRACK_DEVICE, else reference");
-  command
-      .add_option("--renderer", config.renderer,
-                  "Who draws the pose atlas for device backends: kernel (a compute kernel on the device itself, "
-                  "the fastest), gl (headless OpenGL; DEPTHTRACK_GL=egl-device|egl-surfaceless|osmesa picks the "
-                  "path) or cpu (the reference rasterizer on the host)")
-      ->capture_default_str();
+  renderer_option =
+      command.add_option("--renderer", config.renderer,
+                         "Who draws the pose atlas for device backends: kernel (a compute kernel on the device itself, "
+                         "the fastest), gl (headless OpenGL; DEPTHTRACK_GL=egl-device|egl-surfaceless|osmesa picks the "
+                         "path) or cpu (the reference rasterizer on the host)");
+  renderer_option->capture_default_str();
   command.add_option("--particles", config.particles, "Number of particles")->capture_default_str();
   command
       .add_option("--resolution", resolution,
@@ -36,6 +37,12 @@ TrackerConfig TrackerOptions::resolve() const {
   std::tie(c.width, c.height) = parse_resolution(resolution);
   c.occlusion_storage = occlusion_storage_from_string(occlusion);
   c.validate();
+  // The reference filter always draws with its own rasterizer: say so rather than ignore the choice.
+  if (renderer_option && renderer_option->count() > 0 && c.resolved_backend() == "reference")
+    std::fprintf(stderr,
+                 "depthtrack: warning: --renderer %s has no effect with the reference backend (it draws with its own "
+                 "rasterizer); it applies to the opencl and cuda backends\n",
+                 c.renderer.c_str());
   return c;
 }
 

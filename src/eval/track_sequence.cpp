@@ -9,6 +9,7 @@ std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& m
   tracker.initialize(initial, spread);
   std::vector<TrackedFrame> frames;
   frames.reserve(sequence.frames.size());
+  std::optional<AddsMetric> adds;  // built only when some frame has ground truth to score against
   for (size_t i = 0; i < sequence.frames.size(); ++i) {
     const SequenceFrame& f = sequence.frames[i];
     TrackedFrame out;
@@ -19,6 +20,8 @@ std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& m
     if (f.ground_truth) {
       out.translation_error = translation_error(out.estimate.pose, *f.ground_truth);
       out.rotation_error = rotation_error(out.estimate.pose, *f.ground_truth);
+      if (!adds) adds.emplace(mesh);
+      out.adds = (*adds)(out.estimate.pose, *f.ground_truth);
     }
     frames.push_back(out);
     if (on_frame) on_frame(i, frames.back());

@@ -23,7 +23,7 @@ std::unique_ptr<FilterBackend> make_filter_backend(const Mesh& mesh, const Camer
     }
   }
   throw InputError("unknown backend '" + backend + "'" + origin +
-                   "'; available: reference, opencl, opencl:pocl, opencl:nvidia, opencl:<platform>.<device>, cuda, "
+                   "; available: reference, opencl, opencl:pocl, opencl:nvidia, opencl:<platform>.<device>, cuda, "
                    "cuda:<n> (`depthtrack info` lists the devices)");
 }
 

@@ -1,0 +1,36 @@
+#pragma once
+// Command-line parsing shared by the benchmarks: numbers are read strictly (the whole text must be a
+// positive integer), --help prints the usage and exits 0, anything else wrong exits 2 with a reason.
+#include <string>
+#include <vector>
+
+namespace depthtrack::bench {
+
+// Thrown for a bad command line; main prints it with the usage and exits 2.
+struct UsageError {
+  std::string message;
+};
+
+// "12" -> 12; UsageError naming the option for "", "12x", "-3", "0", "1e3" or a number beyond int.
+int parse_positive(const std::string& text, const std::string& option);
+// "80x60" -> {80, 60}, each side strict as above.
+std::pair<int, int> parse_size(const std::string& text, const std::string& option);
+// "200,2000" -> {200, 2000}.
+std::vector<int> parse_positive_list(const std::string& text, const std::string& option);
+
+// Walks argv: an option taking a value gets it from the next argument.
+class ArgReader {
+ public:
+  ArgReader(int argc, char** argv) : argc_(argc), argv_(argv) {}
+  // The next option name, or "" at the end.
+  std::string next();
+  // The value after the option just read; UsageError when there is none.
+  std::string value();
+
+ private:
+  int argc_, index_ = 0;
+  char** argv_;
+  std::string option_;
+};
+
+}  // namespace depthtrack::bench

@@ -1,0 +1,140 @@
+// The small frictions of a first try, each with its exit code and message: backend names, options
+// that do nothing, meshes in the wrong unit, progress, --version, the benchmarks' command lines.
+#include <catch2/catch.hpp>
+#include <regex>
+
+#include "cli_support.hpp"
+
+using namespace depthtrack;
+
+namespace {
+std::string track_args(const std::filesystem::path& dir, const std::string& mesh = "object.obj") {
+  return "track --mesh " + (dir / mesh).string() + " --sequence " + (dir / "seq").string() + " --out " +
+         (dir / "out.csv").string() + " --resolution 80x60 --particles 50 --init-from-gt";
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+}  // namespace
+
+TEST_CASE("an unknown backend is named once, without a stray quote", "[cli][errors]") {
+  const auto dir = test::write_cli_sequence("cli_rough_backend", 2);
+  const auto [status, output] = test::run_cli(track_args(dir) + " --backend quantum", dir / "log.txt");
+  INFO(output);
+  CHECK(status == 1);
+  CHECK(contains(output, "unknown backend 'quantum'; available: reference, opencl"));
+  CHECK(!contains(output, "''"));
+}
+
+TEST_CASE("track --renderer with the reference backend warns that it has no effect", "[cli]") {
+  const auto dir = test::write_cli_sequence("cli_rough_renderer", 2);
+  const auto [status, output] = test::run_cli(track_args(dir) + " --backend reference --renderer gl", dir / "log.txt");
+  INFO(output);
+  CHECK(status == 0);
+  CHECK(contains(output, "warning: --renderer gl has no effect with the reference backend"));
+  // Without --renderer nothing is said.
+  const auto [plain_status, plain] = test::run_cli(track_args(dir) + " --backend reference", dir / "log.txt");
+  CHECK(plain_status == 0);
+  CHECK(!contains(plain, "--renderer"));
+}
+
+TEST_CASE("a mesh spanning more than 5 m or less than 1 mm gets a warning naming --unit-scale", "[cli]") {
+  const auto dir = test::write_cli_sequence("cli_rough_scale", 2);
+  test::write_obj(dir / "millimetres.obj", builtin_demo_mesh(), 1000.0);  // 16 cm object written in mm
+  test::write_obj(dir / "tiny.obj", builtin_demo_mesh(), 0.001);
+  const auto [mm_status, mm] = test::run_cli(track_args(dir, "millimetres.obj"), dir / "log.txt");
+  INFO(mm);
+  CHECK(mm_status == 0);
+  CHECK(contains(mm, "warning: mesh '" + (dir / "millimetres.obj").string() + "' spans 160 m"));
+  CHECK(contains(mm, "check --unit-scale"));
+  // The right factor silences it.
+  const auto [fixed_status, fixed] =
+      test::run_cli(track_args(dir, "millimetres.obj") + " --unit-scale 0.001", dir / "log.txt");
+  CHECK(fixed_status == 0);
+  CHECK(!contains(fixed, "warning"));
+  const auto [tiny_status, tiny] = test::run_cli(track_args(dir, "tiny.obj"), dir / "log.txt");
+  CHECK(tiny_status == 0);
+  CHECK(contains(tiny, "spans 0.00016 m"));
+  // synth warns the same way.
+  const auto [synth_status, synth] =
+      test::run_cli("synth --mesh " + (dir / "millimetres.obj").string() + " --out " + (dir / "synth").string() +
+                        " --frames 1 --resolution 80x60 --background 0",
+                    dir / "log.txt");
+  CHECK(contains(synth, "check --unit-scale"));
+  (void)synth_status;  // the 160 m object fills the view; only the warning matters here
+}
+
+TEST_CASE("track draws a progress bar when stderr is a terminal", "[cli]") {
+  if (std::system("command -v script > /dev/null 2>&1") != 0) {
+    std::cout << "SKIPPED: util-linux 'script' (to give the command a terminal) is not installed\n";
+    return;
+  }
+  const auto dir = test::write_cli_sequence("cli_rough_progress", 3);
+  const std::string command = "script -qec '" + std::string(DEPTHTRACK_CLI) + " " + track_args(dir) + "' /dev/null > " +
+                              (dir / "log.txt").string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  const auto lines = test::lines_of(dir / "log.txt");
+  std::string output;
+  for (const auto& l : lines) output += l + "\n";
+  INFO(output);
+  CHECK(WEXITSTATUS(status) == 0);
+  CHECK(contains(output, "tracking ["));
+  CHECK(contains(output, "] 3/3 err "));
+  // Redirected to a file, no bar (no carriage returns in logs).
+  const auto [plain_status, plain] = test::run_cli(track_args(dir), dir / "plain.txt");
+  CHECK(plain_status == 0);
+  CHECK(!contains(plain, "tracking ["));
+}
+
+TEST_CASE("depthtrack --version prints the version and exits 0", "[cli]") {
+  const auto dir = test::temp_dir("cli_rough_version");
+  const auto [status, output] = test::run_cli("--version", dir / "log.txt");
+  CHECK(status == 0);
+  CHECK(std::regex_match(output, std::regex("depthtrack [0-9]+\\.[0-9]+\\.[0-9]+\n")));
+}
+
+TEST_CASE("the benchmarks answer --help and refuse malformed numbers", "[cli][bench]") {
+  const std::string bench_dir = DEPTHTRACK_BENCH_DIR;
+  if (bench_dir.empty()) {
+    std::cout << "SKIPPED: the benchmarks are not built (DEPTHTRACK_BUILD_BENCH=OFF)\n";
+    return;
+  }
+  const auto dir = test::temp_dir("cli_rough_bench");
+  auto run = [&](const std::string& program, const std::string& arguments) {
+    const std::string command =
+        bench_dir + "/" + program + " " + arguments + " > " + (dir / "log.txt").string() + " 2>&1";
+    const int status = std::system(command.c_str());
+    std::string output;
+    for (const auto& l : test::lines_of(dir / "log.txt")) output += l + "\n";
+    return std::pair{WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  };
+  for (const char* program : {"depthtrack_bench", "depthtrack_bench_atlas"}) {
+    const auto [status, help] = run(program, "--help");
+    INFO(program << "\n" << help);
+    CHECK(status == 0);
+    CHECK(contains(help, std::string("usage: ") + program));
+    CHECK(contains(help, "--particles"));
+  }
+  struct Case {
+    const char *program, *arguments, *expected;
+  };
+  const Case cases[] = {
+      {"depthtrack_bench", "--frames 12x", "--frames: '12x' is not a positive integer"},
+      {"depthtrack_bench", "--particles 200,abc", "--particles: 'abc' is not a positive integer"},
+      {"depthtrack_bench", "--particles -5", "--particles: '-5' is not a positive integer"},
+      {"depthtrack_bench", "--resolution 80x", "--resolution: '' is not a positive integer"},
+      {"depthtrack_bench", "--resolution 80by60", "is not of the form WxH"},
+      {"depthtrack_bench", "--frames", "--frames needs a value"},
+      {"depthtrack_bench", "--fast", "unknown option '--fast'"},
+      {"depthtrack_bench_atlas", "--repeats 0", "--repeats: '0' is not a positive integer"},
+      {"depthtrack_bench_atlas", "--particles 1e3", "--particles: '1e3' is not a positive integer"},
+  };
+  for (const Case& c : cases) {
+    const auto [status, output] = run(c.program, c.arguments);
+    INFO(c.program << " " << c.arguments << "\n" << output);
+    CHECK(status == 2);
+    CHECK(contains(output, c.expected));
+    CHECK(contains(output, std::string("usage: ") + c.program));
+  }
+}
