@@ -15,6 +15,7 @@ struct SequenceFrame {
   std::string name;      // e.g. "000001"
   double timestamp = 0;  // seconds
   std::filesystem::path depth_path;
+  std::filesystem::path colour_path;  // a colour image registered to the depth, when the sequence has one
   std::optional<Pose> ground_truth;  // camera_from_object of the selected object, when known
 };
 

@@ -6,9 +6,11 @@
 #include <iostream>
 #include <memory>
 #include <numbers>
+#include <optional>
 
 #include "cli/commands.hpp"
 #include "cli/mesh_scale_warning.hpp"
+#include "cli/overlay_writer.hpp"
 #include "cli/progress.hpp"
 #include "cli/run_summary.hpp"
 #include "cli/tracker_options.hpp"
@@ -18,7 +20,7 @@ namespace depthtrack::cli {
 namespace {
 
 struct TrackArgs {
-  std::string mesh, sequence, out, object, init, init_perturb, init_spread = "0.01 5", summary;
+  std::string mesh, sequence, out, object, init, init_perturb, init_spread = "0.01 5", summary, overlay;
   std::string quaternion = "wxyz";
   double unit_scale = 1.0;
   bool init_from_gt = false;
@@ -74,12 +76,16 @@ void run_track(const TrackArgs& a) {
   const auto spread_values = parse_numbers(a.init_spread, 2, "--init-spread");
   const InitialSpread spread{spread_values[0], spread_values[1] * std::numbers::pi / 180.0};
 
+  std::optional<OverlayWriter> overlay;
+  if (!a.overlay.empty()) overlay.emplace(a.overlay, mesh, seq);
+
   ProgressBar bar("tracking", static_cast<int>(seq.frames.size()));
   const auto begin = std::chrono::steady_clock::now();
   const auto frames = track_sequence(seq, mesh, config, start, spread, [&](size_t i, const TrackedFrame& f) {
     char text[64] = "";
     if (f.ground_truth) std::snprintf(text, sizeof text, "err %.1f mm", 1000 * f.translation_error);
     bar.update(static_cast<int>(i + 1), text);
+    if (overlay) overlay->write(i, f, config.particles);
   });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   bar.finish();
@@ -109,6 +115,9 @@ void add_track_command(CLI::App& app) {
   c->add_option("--summary", args->summary,
                 "Also write a one-line JSON summary of the run (frames, mean/max errors, fps, backend) to this "
                 "file; - prints it");
+  c->add_option("--overlay", args->overlay,
+                "Also draw each frame's estimate (silhouette, outline, depth edges) over its colour image, or "
+                "its depth in colour, with frame, error and ESS, as DIR/<frame>.png (DIR is created)");
   c->add_option("--quaternion", args->quaternion,
                 "Quaternion component order of --init and the CSV: wxyz (depthtrack, Eigen) or xyzw (ROS, tf2)")
       ->capture_default_str();

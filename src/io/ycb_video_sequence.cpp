@@ -60,6 +60,15 @@ std::string choose_object(const std::vector<std::string>& names, const std::stri
   throw InputError("object '" + wanted + "' is ambiguous in '" + file + "': it matches " + join(matches));
 }
 
+// NNNNNN-color.png beside NNNNNN-depth.png, when it is there.
+std::filesystem::path colour_image_beside(const std::filesystem::path& depth) {
+  const std::string name = depth.filename().string(), suffix = "-depth.png";
+  if (name.size() <= suffix.size() || name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) return {};
+  const auto colour = depth.parent_path() / (name.substr(0, name.size() - suffix.size()) + "-color.png");
+  std::error_code error;
+  return std::filesystem::exists(colour, error) ? colour : std::filesystem::path();
+}
+
 }  // namespace
 
 Sequence io::load_ycb_video_sequence(const std::filesystem::path& dir, const std::string& object) {
@@ -103,6 +112,7 @@ Sequence io::load_ycb_video_sequence(const std::filesystem::path& dir, const std
       f["frame"].fail("must be larger than the previous frame's");
     frame.timestamp = (number - first_number) / kFrameRate;
     frame.depth_path = dir / f["depth"].string();
+    frame.colour_path = colour_image_beside(frame.depth_path);
     const JsonField objects = f["objects"];
     for (size_t j = 0; j < objects.size(); ++j)
       if (objects[j]["name"].string() == sequence.object) frame.ground_truth = objects[j]["T_cam_obj"].pose();

@@ -1,0 +1,42 @@
+#include "cli/overlay_writer.hpp"
+
+#include <cstdio>
+#include <depthtrack/error.hpp>
+#include <numbers>
+
+namespace depthtrack::cli {
+
+namespace {
+std::string format(const char* pattern, double a, double b = 0, double c = 0) {
+  char text[128];
+  std::snprintf(text, sizeof text, pattern, a, b, c);
+  return text;
+}
+}  // namespace
+
+std::vector<std::string> overlay_text(const TrackedFrame& f, int particles) {
+  std::vector<std::string> lines = {"FRAME " + f.name + format("  T %.3f S", f.timestamp)};
+  if (f.ground_truth)
+    lines.push_back(format("ERR %.1f MM %.2f DEG  ADD-S %.1f MM", 1000 * f.translation_error,
+                           f.rotation_error * 180.0 / std::numbers::pi, 1000 * f.adds));
+  lines.push_back(format("ESS %.1f OF %.0f", f.estimate.effective_sample_size, particles));
+  return lines;
+}
+
+OverlayWriter::OverlayWriter(const std::filesystem::path& dir, const Mesh& mesh, const Sequence& sequence)
+    : dir_(dir), sequence_(sequence), painter_(mesh, sequence.camera) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error || !std::filesystem::is_directory(dir))
+    throw InputError("--overlay: cannot create the folder '" + dir.string() + "'" +
+                     (error ? ": " + error.message() : ""));
+}
+
+void OverlayWriter::write(size_t i, const TrackedFrame& frame, int particles) const {
+  const SequenceFrame& f = sequence_.frames.at(i);
+  const viz::RgbImage background = f.colour_path.empty() ? viz::colour_mapped_depth(sequence_.load_depth(i))
+                                                         : viz::RgbImage::load_png(f.colour_path);
+  painter_.paint(background, frame.estimate.pose, overlay_text(frame, particles)).save_png(dir_ / (f.name + ".png"));
+}
+
+}  // namespace depthtrack::cli
