@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   depthtrack::cli::add_synth_command(app);
   depthtrack::cli::add_track_command(app);
   depthtrack::cli::add_info_command(app);
+  depthtrack::cli::add_plot_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
