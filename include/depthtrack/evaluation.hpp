@@ -57,4 +57,12 @@ enum class QuaternionOrder { Wxyz, Xyzw };
 void write_tracking_csv(const std::filesystem::path& path, const std::vector<TrackedFrame>& frames,
                         QuaternionOrder order = QuaternionOrder::Wxyz);
 
+// BOP's result CSV (bop_toolkit): scene_id,im_id,obj_id,score,R,t,time per frame, R row-major and
+// t in mm, space-separated; score is the ESS over the particle count, time the filter's seconds for
+// the frame. The sequence must be a BOP scene with an obj_id (check_bop_exportable throws
+// InputError otherwise).
+void check_bop_exportable(const Sequence& sequence);
+void write_bop_csv(const std::filesystem::path& path, const Sequence& sequence, const std::vector<TrackedFrame>& frames,
+                   int particles);
+
 }  // namespace depthtrack

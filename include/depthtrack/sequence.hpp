@@ -1,6 +1,7 @@
 #pragma once
-// Depth sequences on disk: depthtrack's own layout (what `depthtrack synth` writes) and the
-// YCB-Video clip layout (NNNNNN-depth.png + gt.json).
+// Depth sequences on disk: depthtrack's own layout (what `depthtrack synth` writes), the
+// YCB-Video clip layout (NNNNNN-depth.png + gt.json) and a BOP scene (scene_camera.json,
+// scene_gt.json, depth/NNNNNN.png).
 #include <depthtrack/camera.hpp>
 #include <depthtrack/depth_image.hpp>
 #include <depthtrack/pose.hpp>
@@ -16,12 +17,13 @@ struct SequenceFrame {
   double timestamp = 0;  // seconds
   std::filesystem::path depth_path;
   std::filesystem::path colour_path;  // a colour image registered to the depth, when the sequence has one
-  std::optional<Pose> ground_truth;  // camera_from_object of the selected object, when known
+  std::optional<Pose> ground_truth;   // camera_from_object of the selected object, when known
 };
 
 struct Sequence {
-  std::string format;              // "depthtrack" or "ycb-video"
-  std::string object;              // the object whose ground truth the frames carry ("" if none)
+  std::string format;              // "depthtrack", "ycb-video" or "bop"
+  std::string object;              // the object whose ground truth the frames carry ("" if none; BOP: its obj_id)
+  int scene_id = 0;                // BOP: the scene folder's number
   Camera camera;                   // intrinsics of the depth images
   double metres_per_unit = 0.001;  // 16-bit PNG value -> metres
   std::vector<SequenceFrame> frames;
@@ -30,8 +32,9 @@ struct Sequence {
   DepthImage load_depth(size_t i) const;
 };
 
-// Reads either layout from dir (detected from its files). object picks the ground truth of one
-// object in a multi-object clip (YCB-Video); it may be omitted when the clip has only one.
+// Reads any of the layouts from dir (detected from its files). object picks the ground truth of one
+// object in a multi-object clip (YCB-Video: a name; BOP: the obj_id); it may be omitted when the
+// clip has only one.
 // Throws InputError for a missing folder, unknown layout, corrupt manifest or unknown object
 // (the message lists the objects present).
 Sequence load_sequence(const std::filesystem::path& dir, const std::string& object = "");

@@ -20,10 +20,11 @@ namespace depthtrack::cli {
 namespace {
 
 struct TrackArgs {
-  std::string mesh, sequence, out, object, init, init_perturb, init_spread = "0.01 5", summary, overlay;
+  std::string mesh, sequence, out, object, init, init_perturb, init_spread = "0.01 5", summary, overlay, bop_out;
   std::string quaternion = "wxyz";
   double unit_scale = 1.0;
   bool init_from_gt = false;
+  CLI::Option* unit_scale_option = nullptr;  // to tell an explicit --unit-scale from the default
   TrackerOptions tracker;
 };
 
@@ -66,12 +67,18 @@ void run_track(const TrackArgs& a) {
   if (!a.init.empty() && a.init_from_gt) throw InputError("--init and --init-from-gt exclude each other");
   const QuaternionOrder order = quaternion_order(a.quaternion);
   const TrackerConfig config = a.tracker.resolve();
-  const Mesh mesh = Mesh::load(a.mesh, a.unit_scale);
-  warn_if_mesh_scale_unusual(mesh, a.mesh, a.unit_scale);
+  const Sequence seq = load_sequence(a.sequence, a.object);
+  if (!a.bop_out.empty()) check_bop_exportable(seq);
+  // BOP models are in millimetres by the format's definition.
+  const bool bop_units = seq.format == "bop" && a.unit_scale_option->count() == 0;
+  const double unit_scale = bop_units ? 0.001 : a.unit_scale;
+  if (bop_units)
+    std::fprintf(stderr, "depthtrack: note: BOP scene: reading the mesh in millimetres (--unit-scale 0.001)\n");
+  const Mesh mesh = Mesh::load(a.mesh, unit_scale);
+  warn_if_mesh_scale_unusual(mesh, a.mesh, unit_scale);
   if (mesh.dropped_degenerate > 0)
     std::fprintf(stderr, "depthtrack: note: dropped %zu degenerate triangles of '%s'\n", mesh.dropped_degenerate,
                  a.mesh.c_str());
-  const Sequence seq = load_sequence(a.sequence, a.object);
   const Pose start = initial_pose(a, seq, mesh);
   const auto spread_values = parse_numbers(a.init_spread, 2, "--init-spread");
   const InitialSpread spread{spread_values[0], spread_values[1] * std::numbers::pi / 180.0};
@@ -90,6 +97,7 @@ void run_track(const TrackArgs& a) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   bar.finish();
   write_tracking_csv(a.out, frames, order);
+  if (!a.bop_out.empty()) write_bop_csv(a.bop_out, seq, frames, config.particles);
   const RunStats stats = run_stats(frames, seconds);
   print_summary(stats, frames.empty() ? nullptr : &frames.back());
   if (!a.summary.empty()) write_summary(a.summary, summary_json(stats, config, a.sequence, a.mesh));
@@ -102,11 +110,14 @@ void add_track_command(CLI::App& app) {
   auto args = std::make_shared<TrackArgs>();
   CLI::App* c = app.add_subcommand("track", "Track an object through a depth sequence and write the poses as CSV");
   c->add_option("--mesh", args->mesh, "Object mesh (OBJ, PLY, STL, glTF, ... through assimp)")->required();
-  c->add_option("--unit-scale", args->unit_scale, "Multiply mesh coordinates by this to get metres")
-      ->capture_default_str();
+  args->unit_scale_option =
+      c->add_option("--unit-scale", args->unit_scale,
+                    "Multiply mesh coordinates by this to get metres (default 1; 0.001 for a BOP scene, whose "
+                    "models are in mm)");
   c->add_option("--sequence", args->sequence,
                 "Sequence folder: depthtrack's own (sequence.json, what `depthtrack synth` writes) or a "
-                "YCB-Video clip (NNNNNN-depth.png + gt.json)")
+                "YCB-Video clip (NNNNNN-depth.png + gt.json) or a BOP scene (scene_camera.json, scene_gt.json, "
+                "depth/)")
       ->required();
   c->add_option("--out", args->out,
                 "CSV to write: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess (camera-from-object, metres), plus "
@@ -121,7 +132,12 @@ void add_track_command(CLI::App& app) {
   c->add_option("--quaternion", args->quaternion,
                 "Quaternion component order of --init and the CSV: wxyz (depthtrack, Eigen) or xyzw (ROS, tf2)")
       ->capture_default_str();
-  c->add_option("--object", args->object, "Which object's ground truth to use in a multi-object clip (e.g. 025_mug)");
+  c->add_option("--object", args->object,
+                "Which object's ground truth to use in a multi-object clip: a YCB-Video name (e.g. 025_mug) or a "
+                "BOP obj_id");
+  c->add_option("--bop-out", args->bop_out,
+                "Also write the estimates as BOP results: scene_id,im_id,obj_id,score,R,t,time (R row-major, t in "
+                "mm; BOP scenes only)");
   c->add_option("--init", args->init,
                 "Initial pose \"tx ty tz qw qx qy qz\" (camera-from-object, metres; qx qy qz qw with --quaternion "
                 "xyzw)");

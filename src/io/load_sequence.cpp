@@ -12,8 +12,9 @@ Sequence load_sequence(const std::filesystem::path& dir, const std::string& obje
     throw InputError("sequence folder '" + dir.string() + "' is not a folder");
   if (std::filesystem::exists(dir / io::kDepthtrackManifest, error)) return io::load_depthtrack_sequence(dir, object);
   if (std::filesystem::exists(dir / io::kYcbVideoManifest, error)) return io::load_ycb_video_sequence(dir, object);
-  throw InputError("sequence folder '" + dir.string() + "' has neither " + io::kDepthtrackManifest +
-                   " (depthtrack) nor " + io::kYcbVideoManifest + " (YCB-Video)");
+  if (std::filesystem::exists(dir / io::kBopManifest, error)) return io::load_bop_sequence(dir, object);
+  throw InputError("sequence folder '" + dir.string() + "' has none of " + io::kDepthtrackManifest + " (depthtrack), " +
+                   io::kYcbVideoManifest + " (YCB-Video) and " + io::kBopManifest + " (BOP)");
 }
 
 DepthImage Sequence::load_depth(size_t i) const {
