@@ -106,3 +106,17 @@ TEST_CASE("track --overlay draws YCB-Video frames over their colour images", "[v
   CHECK(picture.at(600, 450) == colour.at(600, 450));     // far from the mug and the text
   CHECK(!(picture.at(410, 200) == colour.at(410, 200)));  // the mug's body, tinted
 }
+
+TEST_CASE("track --overlay into a folder that cannot be made stops before tracking", "[viz][cli][errors]") {
+  const auto dir = test::write_cli_sequence("overlay_bad_folder", 2);
+  std::ofstream(dir / "file") << "x";
+  const auto [status, output] = test::run_cli("track --mesh " + (dir / "object.obj").string() + " --sequence " +
+                                                  (dir / "seq").string() + " --out " + (dir / "out.csv").string() +
+                                                  " --init-from-gt --overlay " + (dir / "file" / "pictures").string(),
+                                              dir / "log.txt");
+  INFO(output);
+  CHECK(status == 1);
+  CHECK(output.find("--overlay: cannot create the folder '" + (dir / "file" / "pictures").string() + "'") !=
+        std::string::npos);
+  CHECK(!std::filesystem::exists(dir / "out.csv"));
+}
