@@ -30,7 +30,7 @@ RgbImage colour_mapped_depth(const DepthImage& depth) {
     if (DepthImage::is_valid(z)) valid.push_back(z);
   if (valid.empty()) return image;
   std::sort(valid.begin(), valid.end());
-  const double near = valid[valid.size() * 2 / 100], far = valid[valid.size() * 98 / 100];
+  const double near = valid[valid.size() / 1000], far = valid[valid.size() * 999 / 1000];
   const Rgb stops[] = {{255, 235, 190}, {90, 150, 210}, {15, 25, 80}};
   for (int v = 0; v < depth.height(); ++v)
     for (int u = 0; u < depth.width(); ++u) {

@@ -12,7 +12,7 @@
 
 namespace depthtrack::viz {
 
-// Depth as colour: near is light and warm, far dark blue, over the 2nd..98th percentile of the
+// Depth as colour: near is light and warm, far dark blue, over the 0.1th..99.9th percentile of
 // valid depths; pixels without a measurement are black.
 RgbImage colour_mapped_depth(const DepthImage& depth);
 
