@@ -8,7 +8,8 @@
 # Environment: BUILD (build folder, default build-peers), WORK (sequences and CSVs, default
 # /tmp/depthtrack-peers), DEPTHTRACK_DATA_DIR (default ../shared/data), DT_ARGS (extra
 # `depthtrack track` options, e.g. "--backend opencl"), PCL_ARGS (extra options of the PCL runner),
-# JOBS (build parallelism for the library, default 2; the PCL file always builds with -j1).
+# JOBS (build parallelism for the library, default 2; the PCL file always builds with -j1), PCL_RUNS
+# (PCL cannot be seeded: its rows are the mean of this many runs, default 3, with the range in brackets).
 # The sequences are written once and reused; delete $WORK to make them again.
 set -euo pipefail
 
@@ -17,6 +18,7 @@ BUILD=${BUILD:-$ROOT/build-peers}
 WORK=${WORK:-/tmp/depthtrack-peers}
 DATA=${DEPTHTRACK_DATA_DIR:-$ROOT/../shared/data}
 JOBS=${JOBS:-2}
+PCL_RUNS=${PCL_RUNS:-3}
 read -r -a DT_EXTRA <<<"${DT_ARGS:-}"
 read -r -a PCL_EXTRA <<<"${PCL_ARGS:-}"
 HANDSET=$DATA/meshes/dbot/handset.obj
@@ -75,13 +77,21 @@ compare() {
     ROWS+=("$("$SCORE" --mesh "$mesh" --sequence "$seq" "${object_args[@]}" --csv "$out.csv" --label "$label" \
       --tracker "$name" --ms-per-frame "$(ms_per_frame "$out.log")")")
   done
-  local out=$WORK/$tag-pcl
-  echo "== $label: PCL" >&2
-  "$PCL" "${common[@]}" --out "$out.csv" --init-perturb "0.01 5" "${PCL_EXTRA[@]}" >"$out.log"
-  local particles
-  particles=$(sed -n 's/^mean particles \([0-9]*\).*/\1/p' "$out.log")
-  ROWS+=("$("$SCORE" --mesh "$mesh" --sequence "$seq" "${object_args[@]}" --csv "$out.csv" --label "$label" \
-    --tracker "PCL KLD (mean $particles particles)" --ms-per-frame "$(ms_per_frame "$out.log")")")
+  # PCL seeds its random numbers from std::random_device: every run differs, so run it PCL_RUNS times.
+  local csvs=() ms=() particles=()
+  for run in $(seq 1 "$PCL_RUNS"); do
+    local out=$WORK/$tag-pcl-$run
+    echo "== $label: PCL, run $run of $PCL_RUNS" >&2
+    "$PCL" "${common[@]}" --out "$out.csv" --init-perturb "0.01 5" "${PCL_EXTRA[@]}" >"$out.log"
+    csvs+=("$out.csv")
+    ms+=("$(ms_per_frame "$out.log")")
+    particles+=("$(sed -n 's/^mean particles \([0-9]*\).*/\1/p' "$out.log")")
+  done
+  local runs="$PCL_RUNS runs" ms_mean
+  [[ $PCL_RUNS == 1 ]] && runs="1 run"
+  ms_mean=$(printf '%s\n' "${ms[@]}" | awk '{ s += $1 } END { printf "%.1f", s / NR }')
+  ROWS+=("$("$SCORE" --mesh "$mesh" --sequence "$seq" "${object_args[@]}" --csv "${csvs[@]}" --label "$label" \
+    --tracker "PCL KLD, ${particles[0]} particles, $runs" --ms-per-frame "$ms_mean")")
 }
 
 for s in "${SEQUENCES[@]}"; do compare "$s" "$HANDSET" "$WORK/$s" "" 80x60; done
@@ -90,7 +100,8 @@ for o in 009_gelatin_box 025_mug 061_foam_brick; do
 done
 
 echo
-echo "All from ground truth moved by exactly 1 cm / 5 deg (seed 1); errors over every frame; one CPU thread each."
+echo "All from ground truth moved by exactly 1 cm / 5 deg (seed 1); errors over every frame; one CPU thread each;"
+echo "PCL rows: mean over its runs (range in brackets); PCL's particle count is its mean over the frames of run 1."
 echo
 echo "| sequence / object | tracker | mean translation mm | max mm | mean rotation deg | last-frame ADD-S mm | ms/frame |"
 echo "|---|---|---|---|---|---|---|"
