@@ -60,6 +60,9 @@ struct Score {
 
 Score score(const Sequence& seq, const std::string& sequence_path, const AddsMetric& adds, const std::string& csv) {
   const auto poses = read_poses(csv);
+  if (poses.size() != seq.frames.size())
+    throw InputError("'" + csv + "' has " + std::to_string(poses.size()) + " frames but '" + sequence_path + "' has " +
+                     std::to_string(seq.frames.size()) + ": not a run over this sequence");
   Score s;
   size_t n = 0;
   for (const SequenceFrame& f : seq.frames) {
