@@ -27,6 +27,7 @@
 #include <iostream>
 #include <nanoflann.hpp>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <sstream>
 
@@ -54,17 +55,17 @@ struct Options {
   double normal_weight = 0.0;     // NormalCoherence weight (0 = off)
   double roi_margin = 0.03;       // metres beyond the mesh's radius around the previous estimate
   double visible_tolerance = 0.005;
-  double alpha = 30.0;  // PCL default 15; 30 measured best on the handset (15: 2.7 mm, 30: 2.3-2.5 mm, 60: 3.1 mm)
+  double alpha = 30.0;  // PCL's default 15; 30 measured a little better, 5, 20, 60, 120 worse (design notes)
   double motion_ratio = 0.25;
-  std::string search =
-      "nanoflann";            // nanoflann, kdtree, octree (exact nearest pair), approx (PCL's approximate octree)
+  // nanoflann, kdtree, octree (exact nearest pairs) or approx (PCL's approximate octree)
+  std::string search = "nanoflann";
   double octree_leaf = 0.01;  // metres
   bool full_model = false;    // the whole sampled surface instead of its visible part
 };
 
 // An exact nearest-neighbour search for PCL's coherence through nanoflann (a dependency of
-// depthtrack already): FLANN's kd-tree behind pcl::search::KdTree costs a system call per query
-// here (5x slower), PCL's exact octree 8x; only nearest-K queries are used by the coherence.
+// depthtrack already): FLANN's kd-tree behind pcl::search::KdTree spends most of its time in the kernel
+// here (6-8x slower), PCL's exact octree 15x; only nearest-K queries are used by the coherence.
 class NanoflannSearch : public pcl::search::Search<Point> {
  public:
   NanoflannSearch() : pcl::search::Search<Point>("nanoflann", true) {}
