@@ -12,12 +12,12 @@
 
 namespace depthtrack::reference {
 
-
 ReferenceFilter::ReferenceFilter(const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
     : config_(config),
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
-      rasterizer_(mesh, camera, config.near_plane, config.observation.max_depth) {
+      rasterizer_(mesh, camera, config.near_plane, config.observation.max_depth),
+      refiner_(mesh, camera, config) {
   const size_t n = static_cast<size_t>(config.particles), pixels = static_cast<size_t>(camera.pixel_count());
   particles_.resize(n);
   log_weights_.assign(n, 0.0);
@@ -105,6 +105,25 @@ void ReferenceFilter::resample(const std::vector<double>& normalized) {
   std::fill(log_weights_.begin(), log_weights_.end(), 0.0);
 }
 
+std::vector<double> ReferenceFilter::occlusion_map(size_t i) const {
+  if (config_.occlusion_storage == OcclusionStorage::Off) return {};
+  const size_t pixels = static_cast<size_t>(camera_.pixel_count());
+  std::vector<double> p(occlusion_.begin() + static_cast<std::ptrdiff_t>(i * pixels),
+                        occlusion_.begin() + static_cast<std::ptrdiff_t>((i + 1) * pixels));
+  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
+    for (size_t k = 0; k < pixels; ++k)
+      p[k] = propagate_occlusion(config_.occlusion, p[k], time_ - occlusion_time_[i * pixels + k]);
+  return p;
+}
+
+void ReferenceFilter::refine(Estimate& e, const DepthImage& depth, size_t heaviest) {
+  const RefinedPose fit = refiner_.refine(e.pose, depth, occlusion_map(heaviest));
+  const Vector6d correction = twist_between(e.pose, fit.pose, centre_);
+  for (ParticleState& s : particles_) s.pose = apply_twist(s.pose, centre_, correction);
+  e.pose = fit.pose;
+  e.covariance = fit.covariance;
+}
+
 Estimate ReferenceFilter::update(const DepthImage& depth, double dt) {
   const Stopwatch frame_clock;
   Estimate e;
@@ -143,13 +162,22 @@ Estimate ReferenceFilter::update(const DepthImage& depth, double dt) {
   e.max_log_likelihood = *std::max_element(last_log_likelihoods_.begin(), last_log_likelihoods_.end());
   e.mean_log_likelihood = mean_log_likelihood;
   e.resampled = weights.kl_from_uniform > config_.resample_kl_threshold;
+  e.timings.resample_ms = resample_clock.elapsed_ms();
+  if (config_.refine.enabled) {
+    const Stopwatch refine_clock;
+    const size_t heaviest = static_cast<size_t>(std::max_element(weights.normalized.begin(), weights.normalized.end()) -
+                                                weights.normalized.begin());
+    refine(e, depth, heaviest);
+    e.timings.refine_ms = refine_clock.elapsed_ms();
+  }
+  const Stopwatch gather_clock;
   if (e.resampled) {
     resample(weights.normalized);
   } else {
     last_parents_.resize(particles_.size());
     std::iota(last_parents_.begin(), last_parents_.end(), 0);
   }
-  e.timings.resample_ms = resample_clock.elapsed_ms();
+  e.timings.resample_ms += gather_clock.elapsed_ms();
   e.timings.total_ms = frame_clock.elapsed_ms();
   ++frame_;
   return e;

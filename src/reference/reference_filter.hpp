@@ -6,6 +6,7 @@
 
 #include "filter/filter_backend.hpp"
 #include "reference/particle.hpp"
+#include "reference/pose_refiner.hpp"
 #include "reference/rasterizer.hpp"
 
 namespace depthtrack::reference {
@@ -37,11 +38,16 @@ class ReferenceFilter final : public FilterBackend {
   // Renders and weighs particle i; returns its log-likelihood and updates its occlusion state.
   double weigh_particle(size_t i, const DepthImage& depth, double dt, double& render_ms, double& magnitude);
   void resample(const std::vector<double>& normalized);
+  // Each pixel's occlusion probability for this frame as particle i holds it after its update.
+  std::vector<double> occlusion_map(size_t i) const;
+  // Fits e.pose to the likelihood's maximum and shifts every particle by the same correction.
+  void refine(Estimate& e, const DepthImage& depth, size_t heaviest);
 
   TrackerConfig config_;
   Camera camera_;
   Eigen::Vector3d centre_;
   Rasterizer rasterizer_;
+  PoseRefiner refiner_;
   std::vector<ParticleState> particles_, scratch_particles_;  // scratch: resampling's gather target
   std::vector<double> log_weights_;
   // Occlusion state per particle per pixel: probability, and (per-pixel-time mode) the time of its
