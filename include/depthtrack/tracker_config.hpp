@@ -46,7 +46,7 @@ struct MotionModel {
 // cloud is shifted by the correction so the filter stays consistent with the reported pose.
 struct Refinement {
   bool enabled = true;
-  int iterations = 3;           // Gauss-Newton steps per frame (each renders the pose once more)
+  int iterations = 6;           // Gauss-Newton steps per frame (each renders the pose once more)
   double damping = 1e-3;        // Levenberg-Marquardt lambda on diag(H); grown tenfold after a rejected step
   double min_incidence = 0.15;  // pixels whose |cos| between surface normal and ray is below this are dropped
 };
