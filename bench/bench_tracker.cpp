@@ -1,8 +1,9 @@
-// Time per frame of the tracker on one backend, split into propagate, render, hand-off, weigh and resample,
+// Time per frame of the tracker on one backend, split into propagate, render, hand-off, weigh, resample
+// and refine (the pose refinement with the shift of the cloud; refine_share is its % of the frame),
 // with the handset (the thesis' object) on a synthetic occluded sequence. Prints CSV rows.
 // render is the atlas draw (GL waited for); handoff moves poses to GL and the atlas to the kernels.
 // Usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] [--resolution WxH[,...]]
-//                         [--frames N]
+//                         [--frames N] [--refine on|off] [--refine-iterations N]
 //   default: the reference at 80x60 (200 particles) and 640x480 (50 particles).
 #include <cstdio>
 #include <cstring>
@@ -23,7 +24,7 @@ struct Case {
 };
 
 void run(const Mesh& mesh, const std::string& mesh_name, const std::string& backend, const std::string& renderer,
-         const Case& c, int frames) {
+         const Refinement& refine, const Case& c, int frames) {
   SynthConfig synth;
   synth.frames = frames;
   synth.occluder_fraction = 0.3;
@@ -34,9 +35,10 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
   config.width = c.width;
   config.height = c.height;
   config.particles = c.particles;
+  config.refine = refine;
   Tracker tracker(mesh, synth.camera, config);
   tracker.initialize(scene.ground_truth(0.0));
-  std::vector<double> propagate, render, handoff, weigh, resample, total;
+  std::vector<double> propagate, render, handoff, weigh, resample, refined, total;
   for (int i = 0; i < frames; ++i) {
     const SynthFrame f = scene.frame(i);
     const Estimate e = tracker.update(f.depth, f.timestamp);
@@ -46,11 +48,13 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
     handoff.push_back(e.timings.handoff_ms);
     weigh.push_back(e.timings.weigh_ms);
     resample.push_back(e.timings.resample_ms);
+    refined.push_back(e.timings.refine_ms);
     total.push_back(e.timings.total_ms);
   }
   const std::string device = tracker.backend_description();
   const std::string test = (backend == "reference" ? "" : renderer + "_") + mesh_name + "_" + std::to_string(c.width) +
-                           "x" + std::to_string(c.height) + "_" + std::to_string(c.particles) + "p";
+                           "x" + std::to_string(c.height) + "_" + std::to_string(c.particles) + "p" +
+                           (refine.enabled ? "_refine" + std::to_string(refine.iterations) : "_norefine");
   const std::string platform = backend == "reference" ? "cpu" : backend;
   const std::string name = backend == "reference" ? bench::cpu_name() : device;
   for (const auto& [metric, samples] : {std::pair{"propagate", &propagate},
@@ -58,12 +62,15 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
                                         {"handoff", &handoff},
                                         {"weigh", &weigh},
                                         {"resample", &resample},
+                                        {"refine", &refined},
                                         {"total", &total}}) {
     const double ms = bench::median(*samples);
     bench::print_row({backend, platform, name, "-", test, std::string(metric) + "_ms", "ms", ms});
     bench::print_row(
         {backend, platform, name, "-", test, std::string(metric) + "_per_particle", "us", 1000.0 * ms / c.particles});
   }
+  bench::print_row(
+      {backend, platform, name, "-", test, "refine_share", "%", 100.0 * bench::median(refined) / bench::median(total)});
   bench::print_row({backend, platform, name, "-", test, "frames_per_second", "Hz", 1000.0 / bench::median(total)});
 }
 
@@ -72,6 +79,7 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
 int main(int argc, char** argv) {
   std::string backend = "reference", renderer = "kernel", particles, resolutions;
   int frames = 20;
+  Refinement refine;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--backend" && i + 1 < argc)
@@ -84,11 +92,16 @@ int main(int argc, char** argv) {
       resolutions = argv[++i];
     else if (arg == "--frames" && i + 1 < argc)
       frames = std::atoi(argv[++i]);
+    else if (arg == "--refine" && i + 1 < argc &&
+             (std::string(argv[i + 1]) == "on" || std::string(argv[i + 1]) == "off"))
+      refine.enabled = std::string(argv[++i]) == "on";
+    else if (arg == "--refine-iterations" && i + 1 < argc)
+      refine.iterations = std::atoi(argv[++i]);
     else {
       std::fprintf(
           stderr,
           "usage: %s [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] [--resolution WxH[,...]] "
-          "[--frames N]\n",
+          "[--frames N] [--refine on|off] [--refine-iterations N]\n",
           argv[0]);
       return 2;
     }
@@ -117,7 +130,7 @@ int main(int argc, char** argv) {
       // A case the device cannot run (too many particles for its memory) gets a status row, and
       // the others still run.
       try {
-        run(mesh, name, backend, renderer, c, std::max(frames, 4));
+        run(mesh, name, backend, renderer, refine, c, std::max(frames, 4));
       } catch (const Error& e) {
         ++failed;
         const std::string test = renderer + "_" + name + "_" + std::to_string(c.width) + "x" +

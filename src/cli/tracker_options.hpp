@@ -10,6 +10,7 @@ struct TrackerOptions {
   TrackerConfig config;
   std::string resolution = "80x60";
   std::string occlusion = "per-pixel-time";
+  std::string refine = "on";
 
   void add_to(CLI::App& command);
   // Fills config from the parsed strings; throws InputError for malformed values.
