@@ -8,8 +8,8 @@
  * H100: 5 % faster for the handset, 7-16 % slower for the 69k-triangle bunny, as it lowers occupancy)
  * and fits only up to about 100x100 pixels. DT_GROUP_SIZE: work-items per group.
  * Reference: Rasterizer::render. */
-#include "dt_atlas.h"
 #include "dt_prelude.h"
+#include "dt_atlas.h"
 #include "dt_quaternion.h"
 #include "dt_state.h"
 

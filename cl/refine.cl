@@ -1,11 +1,12 @@
-/* Pose refinement on the device, in one work-group of DT_GROUP_SIZE: from the frame's estimate, damped
- * Gauss-Newton steps on the per-pixel likelihood with the heaviest particle's occlusion map (IRLS:
+/* Pose refinement on the device, in one work-group of DT_GROUP_SIZE: from the heaviest particle, damped
+ * Gauss-Newton steps on the per-pixel likelihood with the heaviest particle's occlusion prior (IRLS:
  * each pixel weighted by the responsibility of its visible gaussian over sigma^2), each step a
  * camera-frame twist about the mesh's centre. Every candidate pose is drawn into one tile with the
  * atlas rasterizer, then drawn again to learn each pixel's triangle (for its normal); the normal
  * equations are a group sum and work-item 0 solves them (Cholesky of the diagonally scaled system)
- * and keeps the best pose evaluated. No host round trip: the estimate buffer receives the refined
- * pose and its covariance, `correction` the twist that shift_particles applies to every particle.
+ * and keeps each step unless it lowers the log-likelihood. No host round trip: the estimate buffer receives the refined
+ * pose and its covariance, `correction` the twist that shift_particles applies to every particle
+ * (the one that moves the heaviest particle onto the refined pose).
  * Compile-time choices as for weigh.cl (DT_GROUP_SIZE, DT_OCCLUSION).
  * Reference: PoseRefiner::refine and ReferenceFilter::refine. */
 #include "dt_group.h"
@@ -121,10 +122,11 @@ DT_DEVICE_FN dt_vec3 dt_vertex_at(dt_rigid m, float x, float y, float z) {
  * pixel's triangle into ids, then sums the normal equations over the group into sums[k * G]. */
 DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global const float* observed,
                                      __global const float* occlusion, __global const float* occlusion_time,
-                                     __global const float* vertices, __global const uint* triangles,
-                                     __global const float* planes, uint triangle_count, dt_camera cam, dt_model m,
-                                     dt_refine_args args, __global uint* tile, __global uint* ids,
-                                     DT_LOCAL_PTR float* sums) {
+                                     __global const float* prior, __global const float* atlas, dt_atlas_layout layout,
+                                     ulong heaviest_tile, __global const float* vertices,
+                                     __global const uint* triangles, __global const float* planes, uint triangle_count,
+                                     dt_camera cam, dt_model m, dt_refine_args args, __global uint* tile,
+                                     __global uint* ids, DT_LOCAL_PTR float* sums) {
   const uint lid = get_local_id(0), pixels = cam.width * cam.height;
   for (uint k = lid; k < pixels; k += DT_GROUP_SIZE) {
     tile[k] = DT_NO_SURFACE;
@@ -147,11 +149,17 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
     const float y = observed[k];
     if (bits == DT_NO_SURFACE || !(y > 0.0f) || !isfinite(y)) continue;
     const float y_hat = dt_as_float(bits);
+    /* The heaviest particle's occlusion prior: kept by weigh where its update changed the pixel. */
     float p = 0.0f;
+#if DT_OCCLUSION != 2
+    if (atlas[dt_atlas_pixel(layout, heaviest_tile, k)] > 0.0f)
+      p = prior[k];
+    else
 #if DT_OCCLUSION == 0
-    p = dt_propagate_occlusion(m, occlusion[k], args.now - occlusion_time[k]);
-#elif DT_OCCLUSION == 1
-    p = occlusion[k];
+      p = dt_propagate_occlusion(m, occlusion[k], args.now - occlusion_time[k]);
+#else
+      p = occlusion[k];
+#endif
 #endif
     float posterior;
     acc[DT_REFINE_OBJECTIVE] += dt_pixel_log_ratio(m, y, y_hat, p, &posterior);
@@ -189,14 +197,16 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
   }
 }
 
-/* estimate: the frame's estimate in, the refined pose and covariance out (dt_state.h); weights: the
- * normalized weights (the heaviest particle's occlusion map is used); pose_state, tile and ids:
- * scratch for one pose; correction: the twist from the estimate to the refined pose. */
-__kernel void refine(__global float* estimate, __global const float* weights, __global const float* observed,
-                     __global const float* occlusion, __global const float* occlusion_time,
-                     __global const float* vertices, __global const uint* triangles, __global const float* planes,
-                     uint triangle_count, dt_camera cam, dt_model m, dt_refine_args args, __global float* pose_state,
-                     __global uint* tile, __global uint* ids, __global float* correction) {
+/* estimate: receives the refined pose and its covariance (dt_state.h); states: the particles; weights: the
+ * normalized weights (the heaviest particle's occlusion prior is used: weigh's prior where the
+ * particle's tile in atlas covers the pixel, its state elsewhere); pose_state, tile and ids:
+ * scratch for one pose; correction: the twist from the heaviest particle to the refined pose. */
+__kernel void refine(__global float* estimate, __global const float* states, __global const float* weights,
+                     __global const float* observed, __global const float* occlusion,
+                     __global const float* occlusion_time, __global const float* prior, __global const float* atlas,
+                     dt_atlas_layout layout, __global const float* vertices, __global const uint* triangles,
+                     __global const float* planes, uint triangle_count, dt_camera cam, dt_model m, dt_refine_args args,
+                     __global float* pose_state, __global uint* tile, __global uint* ids, __global float* correction) {
   __local float sums[DT_REFINE_SUMS * DT_GROUP_SIZE];
   __local float scratch[DT_GROUP_SIZE];
   __local uint scratch_index[DT_GROUP_SIZE];
@@ -217,19 +227,23 @@ __kernel void refine(__global float* estimate, __global const float* weights, __
 #if DT_OCCLUSION == 2
   __global const float* p_map = occlusion;
   __global const float* t_map = occlusion_time;
+  __global const float* prior_map = prior;
 #elif DT_OCCLUSION == 1
   __global const float* p_map = occlusion + base;
   __global const float* t_map = occlusion_time;
+  __global const float* prior_map = prior + base;
 #else
   __global const float* p_map = occlusion + base;
   __global const float* t_map = occlusion_time + base;
+  __global const float* prior_map = prior + base;
 #endif
+  const ulong heaviest_tile = dt_atlas_tile_start(layout, heaviest);
 
-  const dt_pose start = dt_load_pose(estimate);
+  const dt_pose start = dt_load_pose(states + DT_CAST(ulong, heaviest) * DT_STATE_STRIDE);
   if (lid == 0) dt_store_pose(pose_state, start);
   barrier(CLK_GLOBAL_MEM_FENCE);
-  dt_refine_evaluate(pose_state, observed, p_map, t_map, vertices, triangles, planes, triangle_count, cam, m, args,
-                     tile, ids, sums);
+  dt_refine_evaluate(pose_state, observed, p_map, t_map, prior_map, atlas, layout, heaviest_tile, vertices, triangles,
+                     planes, triangle_count, cam, m, args, tile, ids, sums);
   /* Work-item 0's: the best pose evaluated, its sums, the damping. */
   dt_pose best = start;
   float best_sums[DT_REFINE_SUMS];
@@ -244,10 +258,11 @@ __kernel void refine(__global float* estimate, __global const float* weights, __
     }
     barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
     if (!proceed) break;
-    dt_refine_evaluate(pose_state, observed, p_map, t_map, vertices, triangles, planes, triangle_count, cam, m, args,
-                       tile, ids, sums);
+    dt_refine_evaluate(pose_state, observed, p_map, t_map, prior_map, atlas, layout, heaviest_tile, vertices, triangles,
+                       planes, triangle_count, cam, m, args, tile, ids, sums);
     if (lid == 0) {
-      if (sums[DT_REFINE_OBJECTIVE * DT_GROUP_SIZE] >= best_sums[DT_REFINE_OBJECTIVE]) {
+      /* Kept unless it lowers the objective by more than float rounding could (PoseRefiner's tolerance). */
+      if (sums[DT_REFINE_OBJECTIVE * DT_GROUP_SIZE] >= best_sums[DT_REFINE_OBJECTIVE] - 0.01f) {
         best = dt_load_pose(pose_state);
         for (int k = 0; k < DT_REFINE_SUMS; ++k) best_sums[k] = sums[k * DT_GROUP_SIZE];
         lambda = args.damping;
@@ -266,8 +281,10 @@ __kernel void refine(__global float* estimate, __global const float* weights, __
       const int ok = best_sums[DT_REFINE_PIXELS] >= 6.0f && dt_solve6(best_sums, 1.0f, unit, column);
       for (int r = 0; r < 6; ++r) estimate[DT_EST_COV + 6 * r + c] = ok ? column[r] : nan;
     }
-    const dt_vec3 from = dt_pose_centre(start, centre), to = dt_pose_centre(best, centre);
-    const dt_vec3 rotation = dt_quat_log(dt_quat_mul(best.q, dt_quat_conj(start.q)));
+    /* The twist that puts the heaviest particle on the refined pose (see ReferenceFilter::refine). */
+    const dt_pose heaviest_pose = dt_load_pose(states + DT_CAST(ulong, heaviest) * DT_STATE_STRIDE);
+    const dt_vec3 from = dt_pose_centre(heaviest_pose, centre), to = dt_pose_centre(best, centre);
+    const dt_vec3 rotation = dt_quat_log(dt_quat_mul(best.q, dt_quat_conj(heaviest_pose.q)));
     correction[0] = to.x - from.x;
     correction[1] = to.y - from.y;
     correction[2] = to.z - from.z;

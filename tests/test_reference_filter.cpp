@@ -109,7 +109,7 @@ TEST_CASE("the filter resamples a degenerate cloud and children copy their paren
   CHECK(std::count(parents.begin(), parents.end(), best) >= 2);
 }
 
-TEST_CASE("with refinement every particle moves by the one twist that takes the estimate to the refined pose",
+TEST_CASE("with refinement every particle moves by the one twist that puts the heaviest on the refined pose",
           "[filter][refine]") {
   const Mesh mesh = builtin_demo_mesh();
   const Eigen::Vector3d centre = mesh.centre().cast<double>();
@@ -126,9 +126,15 @@ TEST_CASE("with refinement every particle moves by the one twist that takes the 
   CHECK(after.covariance.allFinite());
   CHECK(std::isnan(before.covariance(0, 0)));
   REQUIRE(plain.last_parents() == refined.last_parents());
-  const Vector6d correction = twist_between(before.pose, after.pose, centre);
+  const Vector6d correction = twist_between(plain.particles()[0].pose, refined.particles()[0].pose, centre);
+  CHECK(correction.head<3>().norm() > 1e-5);  // the refinement did move the cloud
+  int on_refined_pose = 0;
   for (size_t i = 0; i < plain.particles().size(); ++i) {
     const Vector6d moved = twist_between(plain.particles()[i].pose, refined.particles()[i].pose, centre);
     CHECK((moved - correction).norm() < 1e-9);
+    on_refined_pose += translation_error(refined.particles()[i].pose, after.pose) < 1e-12 &&
+                       rotation_error(refined.particles()[i].pose, after.pose) < 1e-9;
   }
+  // The heaviest particle's children sit exactly on the refined pose.
+  CHECK(on_refined_pose >= 1);
 }

@@ -260,6 +260,9 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   k.weigh->set_arg(8, static_cast<float>(time_));
   k.weigh->set_arg(9, static_cast<float>(dt));
   k.weigh->set_arg(10, atlas_source_->layout().kernel_args());
+  // The occlusion priors for the refinement go to the resampling's scratch, free until it gathers.
+  compute::set_arg(*k.weigh, 11, scratch_occlusion_);
+  k.weigh->set_arg(12, static_cast<unsigned>(config_.refine.enabled));
   const compute::EventPtr weighed = queue_->launch(*k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize));
 
   compute::set_arg(*k.summarize, 0, state_);
@@ -359,21 +362,25 @@ compute::EventPtr DeviceFilter::refine() {
                         r.iterations,
                         static_cast<unsigned>(count_)};
   compute::set_arg(*k.refine, 0, estimate_);
-  compute::set_arg(*k.refine, 1, weights_);
-  compute::set_arg(*k.refine, 2, observed_);
-  compute::set_arg(*k.refine, 3, occlusion_);
-  compute::set_arg(*k.refine, 4, occlusion_time_);
-  compute::set_arg(*k.refine, 5, refine_mesh_->vertices);
-  compute::set_arg(*k.refine, 6, refine_mesh_->triangles);
-  compute::set_arg(*k.refine, 7, refine_mesh_->planes);
-  k.refine->set_arg(8, refine_mesh_->triangle_count());
-  k.refine->set_arg(9, raster_camera_args(camera_, config_));
-  k.refine->set_arg(10, model_args(config_));
-  k.refine->set_arg(11, args);
-  compute::set_arg(*k.refine, 12, refine_pose_);
-  compute::set_arg(*k.refine, 13, refine_tile_);
-  compute::set_arg(*k.refine, 14, refine_ids_);
-  compute::set_arg(*k.refine, 15, correction_);
+  compute::set_arg(*k.refine, 1, state_);
+  compute::set_arg(*k.refine, 2, weights_);
+  compute::set_arg(*k.refine, 3, observed_);
+  compute::set_arg(*k.refine, 4, occlusion_);
+  compute::set_arg(*k.refine, 5, occlusion_time_);
+  compute::set_arg(*k.refine, 6, scratch_occlusion_);  // weigh's priors
+  compute::set_arg(*k.refine, 7, atlas_);
+  k.refine->set_arg(8, atlas_source_->layout().kernel_args());
+  compute::set_arg(*k.refine, 9, refine_mesh_->vertices);
+  compute::set_arg(*k.refine, 10, refine_mesh_->triangles);
+  compute::set_arg(*k.refine, 11, refine_mesh_->planes);
+  k.refine->set_arg(12, refine_mesh_->triangle_count());
+  k.refine->set_arg(13, raster_camera_args(camera_, config_));
+  k.refine->set_arg(14, model_args(config_));
+  k.refine->set_arg(15, args);
+  compute::set_arg(*k.refine, 16, refine_pose_);
+  compute::set_arg(*k.refine, 17, refine_tile_);
+  compute::set_arg(*k.refine, 18, refine_ids_);
+  compute::set_arg(*k.refine, 19, correction_);
   return queue_->launch(*k.refine, compute::NdRange::linear(kGroupSize, kGroupSize));
 }
 

@@ -9,6 +9,14 @@
 
 namespace depthtrack::reference {
 
+namespace {
+// A step is kept unless it lowers the log-likelihood by more than this (nats). Near the optimum
+// steps change it by less than float rounding does (~1e-4 over a thousand pixels), so a strict
+// comparison would let the float device and the double reference decide differently and end one
+// step apart; with the tolerance both keep such steps. cl/refine.cl uses the same value.
+constexpr double kStepTolerance = 0.01;
+}  // namespace
+
 bool depth_jacobian(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, const Eigen::Vector3d& ray,
                     const Eigen::Vector3d& centre, double min_incidence, Vector6d& row) {
   const double incidence = normal.dot(ray);
@@ -93,7 +101,7 @@ RefinedPose PoseRefiner::refine(const Pose& start, const DepthImage& depth, std:
     if (step.isZero()) break;
     const Pose candidate = apply_twist(best.pose, centre_, step);
     const NormalEquations at_candidate = normal_equations(candidate, depth, occlusion);
-    if (at_candidate.objective >= at_best.objective) {
+    if (at_candidate.objective >= at_best.objective - kStepTolerance) {
       best.pose = candidate;
       at_best = at_candidate;
       lambda = config_.refine.damping;

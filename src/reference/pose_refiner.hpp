@@ -56,7 +56,8 @@ class PoseRefiner {
 
   // occlusion: each pixel's occlusion probability for this frame, or empty for none.
   NormalEquations normal_equations(const Pose& pose, const DepthImage& depth, std::span<const double> occlusion) const;
-  // config.refine.iterations damped steps from start; the result is the best pose evaluated.
+  // config.refine.iterations damped steps from start, each kept unless it lowers the log-likelihood
+  // (more than rounding could); the result is the last pose kept.
   RefinedPose refine(const Pose& start, const DepthImage& depth, std::span<const double> occlusion) const;
 
  private:

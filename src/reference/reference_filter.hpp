@@ -38,9 +38,11 @@ class ReferenceFilter final : public FilterBackend {
   // Renders and weighs particle i; returns its log-likelihood and updates its occlusion state.
   double weigh_particle(size_t i, const DepthImage& depth, double dt, double& render_ms, double& magnitude);
   void resample(const std::vector<double>& normalized);
-  // Each pixel's occlusion probability for this frame as particle i holds it after its update.
+  // Each pixel's occlusion probability for this frame as particle i held it before this frame's
+  // Bayes update (its prior, aged to now); priors_ must hold i's covered pixels.
   std::vector<double> occlusion_map(size_t i) const;
-  // Fits e.pose to the likelihood's maximum and shifts every particle by the same correction.
+  // Fits the heaviest particle's pose to the likelihood's maximum, reports it in e and shifts every
+  // particle by the same correction.
   void refine(Estimate& e, const DepthImage& depth, size_t heaviest);
 
   TrackerConfig config_;
@@ -56,6 +58,13 @@ class ReferenceFilter final : public FilterBackend {
   std::vector<float> occlusion_time_;
   std::vector<float> scratch_occlusion_, scratch_occlusion_time_;  // resampling's gather targets
   std::vector<float> rendered_;                                    // scratch: one particle's rendering
+  // The occlusion priors of the pixels a particle's Bayes update changed: the particle being weighed
+  // (weighing_) and the heaviest so far (priors_), for the refinement's occlusion map.
+  struct PixelPrior {
+    size_t pixel;
+    double p;
+  };
+  std::vector<PixelPrior> weighing_, priors_;
   std::vector<double> last_log_likelihoods_, last_magnitudes_;
   std::vector<int> last_parents_;
   std::vector<double> last_normalized_;
