@@ -47,7 +47,7 @@ struct MotionModel {
 struct Refinement {
   bool enabled = true;
   int iterations = 8;           // Gauss-Newton steps per frame (each renders the pose once more)
-  double damping = 1e-3;        // Levenberg-Marquardt lambda on diag(H); grown tenfold after a rejected step
+  double damping = 1e-2;        // Levenberg-Marquardt lambda on diag(H); grown tenfold after a rejected step
   double min_incidence = 0.15;  // pixels whose |cos| between surface normal and ray is below this are dropped
 };
 
