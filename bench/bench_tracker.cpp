@@ -1,8 +1,9 @@
-// Time per frame of the tracker on one backend, split into propagate, render, hand-off, weigh and resample,
+// Time per frame of the tracker on one backend, split into propagate, render, hand-off, weigh, resample
+// and refine (the pose refinement with the shift of the cloud; refine_share is its % of the frame),
 // with the handset (the thesis' object) on a synthetic occluded sequence. Prints CSV rows.
 // render is the atlas draw (GL waited for); handoff moves poses to GL and the atlas to the kernels.
 // Usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] [--resolution WxH[,...]]
-//                         [--frames N]
+//                         [--frames N] [--refine on|off] [--refine-iterations N]
 //   default: the reference at 80x60 (200 particles) and 640x480 (50 particles).
 #include <cstdio>
 #include <cstring>
@@ -24,7 +25,7 @@ struct Case {
 };
 
 void run(const Mesh& mesh, const std::string& mesh_name, const std::string& backend, const std::string& renderer,
-         const Case& c, int frames) {
+         const Refinement& refine, const Case& c, int frames) {
   SynthConfig synth;
   synth.frames = frames;
   synth.occluder_fraction = 0.3;
@@ -35,9 +36,10 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
   config.width = c.width;
   config.height = c.height;
   config.particles = c.particles;
+  config.refine = refine;
   Tracker tracker(mesh, synth.camera, config);
   tracker.initialize(scene.ground_truth(0.0));
-  std::vector<double> propagate, render, handoff, weigh, resample, total;
+  std::vector<double> propagate, render, handoff, weigh, resample, refined, total;
   for (int i = 0; i < frames; ++i) {
     const SynthFrame f = scene.frame(i);
     const Estimate e = tracker.update(f.depth, f.timestamp);
@@ -47,11 +49,13 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
     handoff.push_back(e.timings.handoff_ms);
     weigh.push_back(e.timings.weigh_ms);
     resample.push_back(e.timings.resample_ms);
+    refined.push_back(e.timings.refine_ms);
     total.push_back(e.timings.total_ms);
   }
   const std::string device = tracker.backend_description();
   const std::string test = (backend == "reference" ? "" : renderer + "_") + mesh_name + "_" + std::to_string(c.width) +
-                           "x" + std::to_string(c.height) + "_" + std::to_string(c.particles) + "p";
+                           "x" + std::to_string(c.height) + "_" + std::to_string(c.particles) + "p" +
+                           (refine.enabled ? "_refine" + std::to_string(refine.iterations) : "_norefine");
   const std::string platform = backend == "reference" ? "cpu" : backend;
   const std::string name = backend == "reference" ? bench::cpu_name() : device;
   for (const auto& [metric, samples] : {std::pair{"propagate", &propagate},
@@ -59,18 +63,21 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
                                         {"handoff", &handoff},
                                         {"weigh", &weigh},
                                         {"resample", &resample},
+                                        {"refine", &refined},
                                         {"total", &total}}) {
     const double ms = bench::median(*samples);
     bench::print_row({backend, platform, name, "-", test, std::string(metric) + "_ms", "ms", ms});
     bench::print_row(
         {backend, platform, name, "-", test, std::string(metric) + "_per_particle", "us", 1000.0 * ms / c.particles});
   }
+  bench::print_row(
+      {backend, platform, name, "-", test, "refine_share", "%", 100.0 * bench::median(refined) / bench::median(total)});
   bench::print_row({backend, platform, name, "-", test, "frames_per_second", "Hz", 1000.0 / bench::median(total)});
 }
 
 const char* const kUsage =
     "usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] "
-    "[--resolution WxH[,...]] [--frames N]\n"
+    "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N]\n"
     "Times tracker frames on a synthetic occluded handset sequence, split into propagate / render / hand-off /\n"
     "weigh / resample; prints CSV rows backend,platform,device,driver,test,metric,unit,value.\n"
     "  --backend NAME         reference (default), opencl, opencl:pocl, cuda, ... (`depthtrack info`)\n"
@@ -78,6 +85,8 @@ const char* const kUsage =
     "  --particles N[,N...]   particle counts (default 200)\n"
     "  --resolution WxH[,...] working resolutions (default 80x60)\n"
     "  --frames N             frames per case, the first two not timed (default 20, at least 4)\n"
+    "  --refine on|off        the pose refinement (default on; refine_share is its % of the frame)\n"
+    "  --refine-iterations N  refinement steps per frame (default: TrackerConfig's)\n"
     "Without --particles and --resolution: the reference at 80x60 (200 particles) and 640x480 (50).\n";
 
 }  // namespace
@@ -87,6 +96,7 @@ int main(int argc, char** argv) {
   std::vector<int> particle_counts;
   std::vector<std::pair<int, int>> sizes;
   int frames = 20;
+  Refinement refine;
   try {
     bench::ArgReader args(argc, argv);
     for (std::string arg = args.next(); !arg.empty(); arg = args.next()) {
@@ -104,6 +114,12 @@ int main(int argc, char** argv) {
         for (const std::string& r : bench::split(args.value())) sizes.push_back(bench::parse_size(r, arg));
       else if (arg == "--frames")
         frames = bench::parse_positive(args.value(), arg);
+      else if (arg == "--refine") {
+        const std::string value = args.value();
+        if (value != "on" && value != "off") throw bench::UsageError{"--refine takes on or off, not '" + value + "'"};
+        refine.enabled = value == "on";
+      } else if (arg == "--refine-iterations")
+        refine.iterations = bench::parse_positive(args.value(), arg);
       else
         throw bench::UsageError{"unknown option '" + arg + "'"};
     }
@@ -129,7 +145,7 @@ int main(int argc, char** argv) {
       // A case the device cannot run (too many particles for its memory) gets a status row, and
       // the others still run.
       try {
-        run(mesh, name, backend, renderer, c, std::max(frames, 4));
+        run(mesh, name, backend, renderer, refine, c, std::max(frames, 4));
       } catch (const Error& e) {
         ++failed;
         const std::string test = renderer + "_" + name + "_" + std::to_string(c.width) + "x" +

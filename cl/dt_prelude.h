@@ -23,6 +23,7 @@ typedef ulong dt_u64;
 #define dt_sinpif sinpi
 #define dt_divide(a, b) ((a) / (b))                  /* float division to OpenCL's default 2.5 ulp */
 #define dt_as_uint as_uint                           /* a float's bits */
+#define dt_as_float as_float                         /* the float of some bits */
 #define dt_atomic_min_u32(p, v) atomic_min((p), (v)) /* 32-bit uint, global or local memory */
 #elif defined(__CUDACC__) || defined(__CUDACC_RTC__)
 /* CUDA (NVRTC compiles the same text): OpenCL C's words in CUDA's terms. */
@@ -59,6 +60,7 @@ __device__ inline uint dt_dim3(dim3 v, uint d) {
 #define dt_sinpif sinpif
 #define dt_divide(a, b) __fdividef((a), (b)) /* 2 ulp; CUDA's `/` rounds correctly, and slowly */
 #define dt_as_uint __float_as_uint
+#define dt_as_float __uint_as_float
 #define dt_atomic_min_u32(p, v) atomicMin((p), (v))
 #else /* host C++ */
 #include <cmath>

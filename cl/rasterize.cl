@@ -61,9 +61,10 @@ typedef struct {
 } dt_plane;
 
 /* Keeps, at every pixel of the tile whose centre lies inside triangle abc, the nearer of its depth
- * and the tile's. */
+ * and the tile's. With ids (a second pass over a finished tile, for the pose refinement), it instead
+ * writes triangle where its depth is the tile's: the lowest such index wins, as atomic min. */
 DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_plane plane, dt_camera cam,
-                                     __global uint* tile) {
+                                     __global uint* tile, __global uint* ids, uint triangle) {
   /* Pixel centres in the bounding box, clamped in float so that far-off vertices do not overflow the
    * conversion to int; most triangles of a fine mesh hold none. */
   const int u0 = DT_CAST(int, fmax(0.0f, ceil(fmin(a.u, fmin(b.u, c.u)))));
@@ -87,7 +88,12 @@ DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_plan
       if (!dt_edge_admits(bc, pu, pv) || !dt_edge_admits(ca, pu, pv) || !dt_edge_admits(ab, pu, pv)) continue;
       const float z = dt_divide(plane.d, plane.nx * ((pu - cam.cx) * inverse_fx) + plane.ny * ray_y + plane.nz);
       if (!(z >= cam.near && z <= cam.far)) continue;
-      dt_atomic_min_u32(tile + DT_CAST(uint, v) * cam.width + DT_CAST(uint, u), dt_as_uint(z));
+      const uint k = DT_CAST(uint, v) * cam.width + DT_CAST(uint, u);
+      if (ids) {
+        if (tile[k] == dt_as_uint(z)) dt_atomic_min_u32(ids + k, triangle);
+      } else {
+        dt_atomic_min_u32(tile + k, dt_as_uint(z));
+      }
     }
   }
 }
@@ -110,7 +116,7 @@ DT_DEVICE_FN dt_vec3 dt_cut(dt_vec3 inside, dt_vec3 outside, float near) {
 /* Triangle abc (camera frame) that crosses z = near: cut there (Sutherland-Hodgman against one
  * plane, 3 or 4 vertices remain), then drawn as a fan. */
 DT_DEVICE_FN void dt_draw_cut_triangle(dt_vec3 a, dt_vec3 b, dt_vec3 c, dt_plane plane, dt_camera cam,
-                                       __global uint* tile) {
+                                       __global uint* tile, __global uint* ids, uint triangle) {
   const dt_vec3 p[3] = {a, b, c};
   dt_vec3 kept[4];
   int n = 0;
@@ -122,7 +128,7 @@ DT_DEVICE_FN void dt_draw_cut_triangle(dt_vec3 a, dt_vec3 b, dt_vec3 c, dt_plane
   }
   const dt_point first = dt_project(kept[0], cam);
   for (int i = 1; i + 1 < n; ++i)
-    dt_raster_triangle(first, dt_project(kept[i], cam), dt_project(kept[i + 1], cam), plane, cam, tile);
+    dt_raster_triangle(first, dt_project(kept[i], cam), dt_project(kept[i + 1], cam), plane, cam, tile, ids, triangle);
 }
 
 /* camera_from_object as the rows of [R | t]. */
@@ -171,6 +177,23 @@ DT_DEVICE_FN dt_plane dt_triangle_plane(dt_rigid m, __global const float* planes
   return p;
 }
 
+/* Triangle t of the mesh placed by pose, cut at the near plane where it crosses it (tile and ids as
+ * for dt_raster_triangle, t its triangle index). */
+DT_DEVICE_FN void dt_draw_triangle(dt_rigid pose, __global const float* vertices, __global const uint* triangles,
+                                   __global const float* planes, uint t, dt_camera cam, __global uint* tile,
+                                   __global uint* ids) {
+  __global const uint* corners = triangles + 3 * DT_CAST(ulong, t);
+  const dt_vec3 a = dt_vertex(pose, vertices, corners[0]), b = dt_vertex(pose, vertices, corners[1]),
+                c = dt_vertex(pose, vertices, corners[2]);
+  const int in_front = (a.z >= cam.near) + (b.z >= cam.near) + (c.z >= cam.near);
+  if (in_front == 0) return;
+  const dt_plane plane = dt_triangle_plane(pose, planes, t);
+  if (in_front == 3)
+    dt_raster_triangle(dt_project(a, cam), dt_project(b, cam), dt_project(c, cam), plane, cam, tile, ids, t);
+  else
+    dt_draw_cut_triangle(a, b, c, plane, cam, tile, ids, t);
+}
+
 /* vertices: 3 floats each, object frame; triangles: 3 vertex indices each; planes: object-frame
  * unit normal and offset (n . x = d) of each triangle. The atlas is written as the floats' bits. */
 __kernel void rasterize(__global const float* states, __global const float* vertices, __global const uint* triangles,
@@ -184,18 +207,8 @@ __kernel void rasterize(__global const float* states, __global const float* vert
   barrier(CLK_GLOBAL_MEM_FENCE);
 
   const dt_rigid pose = dt_particle_pose(states + DT_CAST(ulong, particle) * DT_STATE_STRIDE);
-  for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE) {
-    __global const uint* corners = triangles + 3 * DT_CAST(ulong, t);
-    const dt_vec3 a = dt_vertex(pose, vertices, corners[0]), b = dt_vertex(pose, vertices, corners[1]),
-                  c = dt_vertex(pose, vertices, corners[2]);
-    const int in_front = (a.z >= cam.near) + (b.z >= cam.near) + (c.z >= cam.near);
-    if (in_front == 0) continue;
-    const dt_plane plane = dt_triangle_plane(pose, planes, t);
-    if (in_front == 3)
-      dt_raster_triangle(dt_project(a, cam), dt_project(b, cam), dt_project(c, cam), plane, cam, tile);
-    else
-      dt_draw_cut_triangle(a, b, c, plane, cam, tile);
-  }
+  for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
+    dt_draw_triangle(pose, vertices, triangles, planes, t, cam, tile, 0);
   barrier(CLK_GLOBAL_MEM_FENCE);
 
   for (uint k = lid; k < pixels; k += DT_GROUP_SIZE)

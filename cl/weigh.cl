@@ -3,6 +3,8 @@
  *   DT_GROUP_SIZE     work-items per group (power of two)
  *   DT_OCCLUSION      0 per-pixel time, 1 global time, 2 off
  * The atlas lies in the renderer's page layout (dt_atlas.h); occlusion state is particle-major.
+ * With keep_prior, each updated pixel's occlusion probability before its Bayes update goes to prior
+ * (particle-major too): the pose refinement's occlusion map (refine.cl).
  * Reference: ReferenceFilter::weigh_particle. */
 #include "dt_prelude.h"
 #include "dt_model.h"
@@ -15,7 +17,8 @@
 
 __kernel void weigh(__global const float* atlas, __global const float* observed, __global float* occlusion,
                     __global float* occlusion_time, __global float* log_likelihood, __global float* log_weight,
-                    uint pixels, dt_model m, float now, float dt, dt_atlas_layout layout) {
+                    uint pixels, dt_model m, float now, float dt, dt_atlas_layout layout, __global float* prior,
+                    uint keep_prior) {
   __local float scratch[DT_GROUP_SIZE];
   const uint particle = get_group_id(0);
   const ulong base = DT_CAST(ulong, particle) * pixels;
@@ -36,6 +39,7 @@ __kernel void weigh(__global const float* atlas, __global const float* observed,
     float posterior;
     sum += dt_pixel_log_ratio(m, y, y_hat, p, &posterior);
 #if DT_OCCLUSION != DT_OCCLUSION_OFF
+    if (keep_prior) prior[base + k] = p;
     occlusion[base + k] = posterior;
 #endif
 #if DT_OCCLUSION == DT_PER_PIXEL_TIME

@@ -92,7 +92,7 @@ void compare_with_reference(const std::string& renderer) {
     const InitialSpread spread{0.01, 0.05};
     reference.initialize(scene.frames[0].ground_truth, spread);
     device.initialize(scene.frames[0].ground_truth, spread);
-    double worst_ll = 0, worst_t = 0, worst_r = 0;
+    double worst_ll = 0, worst_t = 0, worst_r = 0, worst_ess = 0, worst_sd = 0;
     int resamplings = 0, ties = 0, coverage_flips = 0, compared_frames = 0;
     for (size_t f = 0; f < scene.frames.size(); ++f) {
       const double dt = f == 0 ? 0.0 : scene.frames[f].timestamp - scene.frames[f - 1].timestamp;
@@ -163,19 +163,30 @@ void compare_with_reference(const std::string& renderer) {
       // GL computes depth in float (~1e-6 relative), moving log-likelihoods by a few 0.01 nats and
       // weights by a few percent; the host rasterizer's atlas keeps ESS within 1e-3.
       const double ess_tolerance = renderer == "gl" ? 2e-2 : 1e-3;
+      worst_ess = std::max(worst_ess, std::abs(b.effective_sample_size - a.effective_sample_size) /
+                                          std::max(1.0, a.effective_sample_size));
       REQUIRE(b.effective_sample_size == Approx(a.effective_sample_size).epsilon(ess_tolerance).margin(1e-3));
+      // The refined pose's covariance: per-axis standard deviations from the float normal equations.
+      for (int axis = 0; axis < 6; ++axis) {
+        const double sd_ref = std::sqrt(a.covariance(axis, axis)), sd_dev = std::sqrt(b.covariance(axis, axis));
+        REQUIRE(std::isfinite(sd_ref));
+        worst_sd = std::max(worst_sd, std::abs(sd_dev - sd_ref) / sd_ref);
+        REQUIRE(sd_dev == Approx(sd_ref).epsilon(1e-3));
+      }
     }
     std::printf(
         "%s, %s, renderer %s on %s: worst relative log-likelihood difference %.2g, estimates within %.2g m / %.2g rad, "
+        "ESS within %.2g, refined standard deviations within %.2g (relative), "
         "%d resamplings, ancestry identical but for %d numerical ties; %d silhouette coverage flips; "
         "ancestry and estimates compared in %d of %zu frames\n",
         scene.name.c_str(), to_string(mode), renderer.c_str(), device.description().c_str(), worst_ll, worst_t, worst_r,
-        resamplings, ties, coverage_flips, compared_frames, scene.frames.size());
+        worst_ess, worst_sd, resamplings, ties, coverage_flips, compared_frames, scene.frames.size());
     CHECK(resamplings > 0);
     CHECK(ties <= (renderer == "gl" ? 4 : 2));
     // GL rasterizes in fixed point (llvmpipe: 1/256 px), so its silhouettes differ from the double
-    // reference at about one pixel in 500 particle tiles; each is checked above.
-    CHECK(coverage_flips <= (renderer == "gl" ? 300 : 3));
+    // reference at about one pixel in 500 particle tiles; each is checked above. With the refinement
+    // the cloud also moves by a float correction (~1e-7 m from the reference's): PoCL saw 0-3 flips.
+    CHECK(coverage_flips <= (renderer == "gl" ? 300 : 6));
     CHECK(compared_frames >= (renderer == "gl" ? 10 : 15));
   }
 }

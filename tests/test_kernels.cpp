@@ -139,7 +139,7 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
     dt_u32 tile_width, tile_height, tiles_per_row, tiles_per_page;
   };
   const std::pair<std::vector<float>*, Layout> layouts[] = {{&atlas, {80, 60, 1, static_cast<dt_u32>(count)}},
-                                                             {&paged, {80, 60, 3, 6}}};
+                                                            {&paged, {80, 60, 3, 6}}};
   for (int run = 0; run < 6; ++run) {
     const int mode = run % 3;
     const auto& [laid_out, layout] = layouts[run / 3];
@@ -147,7 +147,7 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
     auto program = build(*q, "weigh.cl", mode);
     auto kernel = program->kernel("weigh");
     compute::Buffer<float> a(*q, laid_out->size()), o(*q, pixels), occ(*q, occlusion.size()), tim(*q, times.size()),
-        ll(*q, count), lw(*q, count);
+        ll(*q, count), lw(*q, count), prior(*q, occlusion.size());
     a.upload(*laid_out);
     o.upload(observed);
     occ.upload(occlusion);
@@ -159,8 +159,10 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
     kernel->set_arg(8, static_cast<float>(now));
     kernel->set_arg(9, static_cast<float>(dt));
     kernel->set_arg(10, layout);
+    compute::set_arg(*kernel, 11, prior);
+    kernel->set_arg(12, 1u);  // keep each updated pixel's prior (the refinement's occlusion map)
     q->launch(*kernel, compute::NdRange::linear(count * kGroup, kGroup))->wait();
-    const auto got_ll = ll.download(), got_lw = lw.download(), got_occ = occ.download();
+    const auto got_ll = ll.download(), got_lw = lw.download(), got_occ = occ.download(), got_prior = prior.download();
     const OcclusionModel chain;
     for (size_t i = 0; i < count; ++i) {
       double expected = 0;
@@ -179,6 +181,7 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
           if (mode != 2) updated = reference::occlusion_posterior(d, p);
         }
         if (mode != 2 && (used || mode == 1)) REQUIRE(got_occ[at] == Approx(updated).epsilon(1e-4).margin(1e-6));
+        if (mode != 2 && used) REQUIRE(got_prior[at] == Approx(p).epsilon(1e-4).margin(1e-6));
       }
       INFO("mode " << mode << " particle " << i);
       REQUIRE(got_ll[i] == Approx(expected).epsilon(1e-4).margin(1e-3));

@@ -14,11 +14,13 @@ namespace {
 const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.9375, 29.9375);
 const Pose truth({0.0, 0.0, 0.8}, Eigen::Quaterniond(Eigen::AngleAxisd(0.6, Eigen::Vector3d(1, 1, 0).normalized())));
 
-TrackerConfig small_config(OcclusionStorage mode, int particles = 50) {
+// Without the pose refinement unless asked: these tests state the particle filter's own steps.
+TrackerConfig small_config(OcclusionStorage mode, int particles = 50, bool refine = false) {
   TrackerConfig c;
   c.particles = particles;
   c.occlusion_storage = mode;
   c.seed = 11;
+  c.refine.enabled = refine;
   return c;
 }
 }  // namespace
@@ -105,4 +107,34 @@ TEST_CASE("the filter resamples a degenerate cloud and children copy their paren
   const auto& ll = filter.last_log_likelihoods();
   const int best = static_cast<int>(std::max_element(ll.begin(), ll.end()) - ll.begin());
   CHECK(std::count(parents.begin(), parents.end(), best) >= 2);
+}
+
+TEST_CASE("with refinement every particle moves by the one twist that puts the heaviest on the refined pose",
+          "[filter][refine]") {
+  const Mesh mesh = builtin_demo_mesh();
+  const Eigen::Vector3d centre = mesh.centre().cast<double>();
+  ReferenceFilter plain(mesh, camera, small_config(OcclusionStorage::PerPixelTime, 40));
+  ReferenceFilter refined(mesh, camera, small_config(OcclusionStorage::PerPixelTime, 40, true));
+  plain.initialize(truth, InitialSpread{0.01, 0.05});
+  refined.initialize(truth, InitialSpread{0.01, 0.05});
+  const DepthImage depth = test::render_scene(mesh, camera, truth);
+  const Estimate before = plain.update(depth, 0.0);  // the same frame without the refinement
+  const Estimate after = refined.update(depth, 0.0);
+  // The refined pose is nearer the truth the scene was rendered at, and has a covariance.
+  CHECK(translation_error(after.pose, truth) < 0.2 * translation_error(before.pose, truth));
+  CHECK(translation_error(after.pose, truth) < 1e-4);
+  CHECK(after.covariance.allFinite());
+  CHECK(std::isnan(before.covariance(0, 0)));
+  REQUIRE(plain.last_parents() == refined.last_parents());
+  const Vector6d correction = twist_between(plain.particles()[0].pose, refined.particles()[0].pose, centre);
+  CHECK(correction.head<3>().norm() > 1e-5);  // the refinement did move the cloud
+  int on_refined_pose = 0;
+  for (size_t i = 0; i < plain.particles().size(); ++i) {
+    const Vector6d moved = twist_between(plain.particles()[i].pose, refined.particles()[i].pose, centre);
+    CHECK((moved - correction).norm() < 1e-9);
+    on_refined_pose += translation_error(refined.particles()[i].pose, after.pose) < 1e-12 &&
+                       rotation_error(refined.particles()[i].pose, after.pose) < 1e-9;
+  }
+  // The heaviest particle's children sit exactly on the refined pose.
+  CHECK(on_refined_pose >= 1);
 }

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <depthtrack/synth.hpp>
+#include <string>
 #include <vector>
 
 #include "reference/rasterizer.hpp"
@@ -137,4 +138,29 @@ TEST_CASE("pixels at the silhouette go missing at the edge dropout rate, interio
                      << interior_rate);
   CHECK(silhouette_rate == Approx(0.6).margin(0.08));
   CHECK(interior_rate < 0.02);
+}
+
+TEST_CASE("the ideal sensor reports the scene's exact z-depth, with no holes", "[synth]") {
+  const Mesh mesh = builtin_demo_mesh();
+  SynthConfig c;
+  c.camera = kSmall;
+  c.frames = 3;
+  c.sensor.kind = SensorKind::Ideal;
+  c.background_depth = 1.6;
+  const Synthesizer scene(mesh, c);
+  const SynthFrame f = scene.frame(2);
+  // Independent expectation: the reference rasterizer at the ground-truth pose, the wall elsewhere.
+  reference::Rasterizer r(mesh, kSmall, 0.05, 10.0);
+  std::vector<float> object(static_cast<size_t>(kSmall.pixel_count()));
+  r.render(f.ground_truth, object);
+  int on_object = 0;
+  for (size_t k = 0; k < object.size(); ++k) {
+    const float expected = object[k] > 0 && object[k] < 1.6f ? object[k] : 1.6f;
+    REQUIRE(f.depth.data()[k] == expected);
+    on_object += object[k] > 0;
+  }
+  CHECK(on_object > 100);
+  CHECK(sensor_kind_from_string("ideal") == SensorKind::Ideal);
+  CHECK(std::string(to_string(SensorKind::StructuredLight)) == "structured-light");
+  CHECK_THROWS_WITH(sensor_kind_from_string("lidar"), Catch::Contains("unknown sensor 'lidar'"));
 }

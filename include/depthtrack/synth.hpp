@@ -11,11 +11,20 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <string>
 
 namespace depthtrack {
 
-// A Kinect-like structured-light sensor: depth z = focal * baseline / disparity.
+// What the simulated camera reports: a Kinect-like structured-light sensor (the default), or the
+// scene's exact z-depth with no noise, no quantization and no holes (for measuring precision).
+enum class SensorKind { StructuredLight, Ideal };
+const char* to_string(SensorKind kind);
+SensorKind sensor_kind_from_string(const std::string& name);  // throws InputError
+
+// A Kinect-like structured-light sensor: depth z = focal * baseline / disparity. An ideal sensor
+// ignores every other field.
 struct SensorModel {
+  SensorKind kind = SensorKind::StructuredLight;
   double baseline = 0.075;                  // metres
   double disparity_step = 0.125;            // pixels: disparity is quantized to 1/8 px
   double disparity_noise = 0.07;            // pixels, gaussian, before quantization

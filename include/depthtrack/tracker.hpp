@@ -1,5 +1,6 @@
 #pragma once
 // The particle filter: one update() per depth frame.
+#include <cmath>
 #include <depthtrack/camera.hpp>
 #include <depthtrack/depth_image.hpp>
 #include <depthtrack/mesh.hpp>
@@ -12,18 +13,26 @@ namespace depthtrack {
 // Wall-clock (reference) or device (compute backends) time of each step of the last update, ms.
 // Milliseconds per step. render: drawing the atlas (GL, or the host rasterizer); handoff: moving
 // poses to the renderer and the atlas to the compute kernels (0 for the reference tracker).
+// refine: the pose refinement and the shift of the particle cloud (TrackerConfig::refine).
 struct StepTimings {
   double propagate_ms = 0, render_ms = 0, handoff_ms = 0, weigh_ms = 0, resample_ms = 0, total_ms = 0;
+  double refine_ms = 0;
 };
 
 struct Estimate {
-  Pose pose;                                                   // weighted mean camera_from_object
+  Pose pose;  // camera_from_object: the refined pose, or the weighted mean when refinement is off
   Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   // m/s, object's local frame
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // rad/s, object's local frame
   double effective_sample_size = 0;                            // 1 / sum w^2 before resampling
   double max_log_likelihood = 0;                               // best particle's log L of this frame
   double mean_log_likelihood = 0;                              // weighted mean of log L
   bool resampled = false;
+  // Covariance of the refined pose from the fit's normal equations (inverse Gauss-Newton Hessian of
+  // the log-likelihood), as a twist in the camera frame about the mesh's centre: rows/columns
+  // 0-2 the centre's position (m), 3-5 the rotation vector (rad). It treats pixels as independent,
+  // so it is a lower bound on the real uncertainty. NaN when refinement is off or the fit had too
+  // few pixels.
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Constant(std::nan(""));
   StepTimings timings;
 };
 

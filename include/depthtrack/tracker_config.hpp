@@ -40,10 +40,22 @@ struct MotionModel {
   double reference_rate = 30.0;  // Hz at which the three numbers above are given
 };
 
+// After weighting, a few Gauss-Newton / Levenberg-Marquardt steps move the heaviest particle's pose to the maximum
+// of the same per-pixel likelihood (IRLS: each pixel weighted by the responsibility of its visible
+// component, with the heaviest particle's occlusion probabilities before this frame's update), and the whole particle
+// cloud is shifted by the correction so the filter stays consistent with the reported pose.
+struct Refinement {
+  bool enabled = true;
+  int iterations = 8;           // Gauss-Newton steps per frame (each renders the pose once more)
+  double damping = 1e-2;        // Levenberg-Marquardt lambda on diag(H); grown tenfold after a rejected step
+  double min_incidence = 0.15;  // pixels whose |cos| between surface normal and ray is below this are dropped
+};
+
 struct TrackerConfig {
   ObservationModel observation;
   OcclusionModel occlusion;
   MotionModel motion;
+  Refinement refine;
   OcclusionStorage occlusion_storage = OcclusionStorage::PerPixelTime;
   int particles = 200;
   int width = 80;  // working resolution: the sensor image is decimated to it

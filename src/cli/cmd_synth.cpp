@@ -16,7 +16,7 @@ namespace depthtrack::cli {
 
 namespace {
 struct SynthOptions {
-  std::string out, mesh, resolution = "640x480";
+  std::string out, mesh, resolution = "640x480", sensor = "structured-light";
   double unit_scale = 1.0;
   bool builtin = false;
   int frames = 150;
@@ -41,6 +41,7 @@ void run(const SynthOptions& o) {
   config.occluder_fraction = o.occluder;
   config.background_depth = o.background;
   config.seed = o.seed;
+  config.sensor.kind = sensor_kind_from_string(o.sensor);
 
   ProgressBar bar("synth", config.frames);
   double occluded_sum = 0;
@@ -75,6 +76,10 @@ void add_synth_command(CLI::App& app) {
   cmd->add_option("--rate", options->rate, "Frame rate (Hz); timestamps are frame / rate")->capture_default_str();
   cmd->add_option("--occluder", options->occluder,
                   "Share of the object's pixels a bar in front of it hides (0 = no occluder, at most 0.9)")
+      ->capture_default_str();
+  cmd->add_option("--sensor", options->sensor,
+                  "structured-light (quantized disparity, noise, holes) or ideal (exact z-depth: no noise, no "
+                  "quantization beyond the PNG's 0.1 mm, no holes)")
       ->capture_default_str();
   cmd->add_option("--seed", options->seed, "Seed of the sensor noise; equal seeds give identical images")
       ->capture_default_str();

@@ -28,6 +28,13 @@ void TrackerOptions::add_to(CLI::App& command) {
                   "Occlusion model storage: per-pixel-time (p and last update time per pixel), global-time "
                   "(p only, every pixel propagated each frame) or off")
       ->capture_default_str();
+  command
+      .add_option("--refine", refine,
+                  "on: after weighting, fit the estimate to the likelihood's maximum (damped Gauss-Newton on the "
+                  "per-pixel depth residuals) and shift the particle cloud with it; off: the particle filter alone")
+      ->capture_default_str();
+  command.add_option("--refine-iterations", config.refine.iterations, "Gauss-Newton steps per frame of the refinement")
+      ->capture_default_str();
   command.add_option("--seed", config.seed, "Random seed: the same seed gives the same particles on every backend")
       ->capture_default_str();
 }
@@ -36,6 +43,8 @@ TrackerConfig TrackerOptions::resolve() const {
   TrackerConfig c = config;
   std::tie(c.width, c.height) = parse_resolution(resolution);
   c.occlusion_storage = occlusion_storage_from_string(occlusion);
+  if (refine != "on" && refine != "off") throw InputError("--refine '" + refine + "' is not on or off");
+  c.refine.enabled = refine == "on";
   c.validate();
   // The reference filter always draws with its own rasterizer: say so rather than ignore the choice.
   if (renderer_option && renderer_option->count() > 0 && c.resolved_backend() == "reference")

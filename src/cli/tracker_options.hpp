@@ -11,6 +11,7 @@ struct TrackerOptions {
   std::string resolution = "80x60";
   std::string occlusion = "per-pixel-time";
   CLI::Option* renderer_option = nullptr;  // to tell an explicit --renderer from the default
+  std::string refine = "on";
 
   void add_to(CLI::App& command);
   // Fills config from the parsed strings; throws InputError for malformed values.

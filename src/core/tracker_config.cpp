@@ -62,6 +62,9 @@ void TrackerConfig::validate() const {
   require(std::isfinite(resample_kl_threshold) && resample_kl_threshold >= 0, "resampling threshold must be >= 0");
   require(renderer == "cpu" || renderer == "gl" || renderer == "kernel",
           "renderer '" + renderer + "' is not cpu, gl or kernel");
+  require(refine.iterations >= 0 && refine.iterations <= 100, "refine iterations must be in [0, 100]");
+  require(std::isfinite(refine.damping) && refine.damping >= 0, "refine damping must be >= 0");
+  require(probability(refine.min_incidence) && refine.min_incidence < 1, "refine min incidence must be in [0, 1)");
   require(positive(near_plane) && near_plane < observation.max_depth, "near plane must be in (0, max depth)");
 }
 

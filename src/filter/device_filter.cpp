@@ -25,6 +25,23 @@ struct ModelArgs {
 struct MotionArgs {
   float keep, linear_std, angular_std, dt, centre_x, centre_y, centre_z;
 };
+struct RefineArgs {  // cl/refine.cl's dt_refine_args
+  float damping, min_incidence, centre_x, centre_y, centre_z, now;
+  int iterations;
+  unsigned count;
+};
+
+ModelArgs model_args(const TrackerConfig& config) {
+  const ObservationModel& o = config.observation;
+  const OcclusionModel& oc = config.occlusion;
+  return {static_cast<float>(o.sigma_constant),
+          static_cast<float>(o.sigma_quadratic),
+          static_cast<float>(o.tail_weight / o.max_depth),
+          static_cast<float>(1.0 - o.tail_weight),
+          static_cast<float>(o.occluder_rate),
+          static_cast<float>(std::log(oc.p_occluded_stays - oc.p_visible_to_occluded)),
+          static_cast<float>(reference::occlusion_steady_state(oc))};
+}
 
 size_t round_up(size_t n, size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
@@ -44,9 +61,10 @@ int occlusion_define(OcclusionStorage mode) {
 }  // namespace
 
 struct DeviceFilter::Kernels {
-  std::unique_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program;
+  std::unique_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
+      refine_program;
   std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state, gather_pixels,
-      fill;
+      fill, refine, shift_particles;
 };
 
 DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
@@ -75,6 +93,11 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
   k.gather_state = k.resample_program->kernel("gather_state");
   k.gather_pixels = k.resample_program->kernel("gather_pixels");
   k.fill = k.resample_program->kernel("fill");
+  if (config.refine.enabled) {
+    k.refine_program = queue_->build("refine.cl", compute::kernel_source("refine.cl"), defines);
+    k.refine = k.refine_program->kernel("refine");
+    k.shift_particles = k.refine_program->kernel("shift_particles");
+  }
 
   compute::Queue& q = *queue_;
   state_ = compute::Buffer<float>(q, count_ * DT_STATE_STRIDE);
@@ -94,6 +117,13 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
   scratch_occlusion_ = compute::Buffer<float>(q, occlusion ? count_ * pixels_ : 1);
   occlusion_time_ = compute::Buffer<float>(q, times ? count_ * pixels_ : 1);
   scratch_occlusion_time_ = compute::Buffer<float>(q, times ? count_ * pixels_ : 1);
+  if (config.refine.enabled) {
+    refine_mesh_ = std::make_unique<MeshBuffers>(q, mesh);
+    refine_pose_ = compute::Buffer<float>(q, DT_STATE_STRIDE);
+    correction_ = compute::Buffer<float>(q, 6);
+    refine_tile_ = compute::Buffer<unsigned>(q, pixels_);
+    refine_ids_ = compute::Buffer<unsigned>(q, pixels_);
+  }
 }
 
 DeviceFilter::~DeviceFilter() = default;
@@ -148,6 +178,7 @@ void DeviceFilter::initialize(const Pose& pose, const InitialSpread& spread) {
   frame_ = 0;
   time_ = 0;
   last_resampled_ = false;
+  weighed_in_scratch_ = false;
 }
 
 void DeviceFilter::set_state(const std::vector<reference::ParticleState>& particles,
@@ -171,7 +202,7 @@ std::vector<reference::ParticleState> DeviceFilter::particles() const {
 
 // Resampling gathers into the scratch buffer and swaps, so the weighed states are left there.
 std::vector<reference::ParticleState> DeviceFilter::weighed_particles() const {
-  return unpack(last_resampled_ ? scratch_state_ : state_);
+  return unpack(weighed_in_scratch_ ? scratch_state_ : state_);
 }
 
 // Timed to the end of the hand-off, so that the per-step split holds for asynchronous paths too.
@@ -217,15 +248,7 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   render_atlas(e.timings);
   observed_.upload(depth.data());
 
-  const ObservationModel& o = config_.observation;
-  const OcclusionModel& oc = config_.occlusion;
-  const ModelArgs model{static_cast<float>(o.sigma_constant),
-                        static_cast<float>(o.sigma_quadratic),
-                        static_cast<float>(o.tail_weight / o.max_depth),
-                        static_cast<float>(1.0 - o.tail_weight),
-                        static_cast<float>(o.occluder_rate),
-                        static_cast<float>(std::log(oc.p_occluded_stays - oc.p_visible_to_occluded)),
-                        static_cast<float>(reference::occlusion_steady_state(oc))};
+  const ModelArgs model = model_args(config_);
   compute::set_arg(*k.weigh, 0, atlas_);
   compute::set_arg(*k.weigh, 1, observed_);
   compute::set_arg(*k.weigh, 2, occlusion_);
@@ -237,6 +260,9 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   k.weigh->set_arg(8, static_cast<float>(time_));
   k.weigh->set_arg(9, static_cast<float>(dt));
   k.weigh->set_arg(10, atlas_source_->layout().kernel_args());
+  // The occlusion priors for the refinement go to the resampling's scratch, free until it gathers.
+  compute::set_arg(*k.weigh, 11, scratch_occlusion_);
+  k.weigh->set_arg(12, static_cast<unsigned>(config_.refine.enabled));
   const compute::EventPtr weighed = queue_->launch(*k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize));
 
   compute::set_arg(*k.summarize, 0, state_);
@@ -249,6 +275,7 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   k.summarize->set_arg(7, static_cast<float>(centre_.y()));
   k.summarize->set_arg(8, static_cast<float>(centre_.z()));
   const compute::EventPtr summarized = queue_->launch(*k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize));
+  const compute::EventPtr refined = config_.refine.enabled ? refine() : nullptr;
 
   float est[DT_EST_SIZE];
   estimate_.download(std::span<float>(est, DT_EST_SIZE));
@@ -260,13 +287,19 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   e.max_log_likelihood = est[DT_EST_MAX_LL];
   e.mean_log_likelihood = est[DT_EST_MEAN_LL];
   e.resampled = est[DT_EST_KL] > config_.resample_kl_threshold;
+  if (config_.refine.enabled)
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 6; ++c) e.covariance(r, c) = est[DT_EST_COV + 6 * r + c];
   last_resampled_ = e.resampled;
+  weighed_in_scratch_ = e.resampled;
   std::vector<compute::EventPtr> resampling;
   if (e.resampled) resampling = resample();
+  const compute::EventPtr shifted = config_.refine.enabled ? shift_particles() : nullptr;
   if (propagated) e.timings.propagate_ms = propagated->elapsed_ms();
   e.timings.weigh_ms = weighed->elapsed_ms();
   e.timings.resample_ms = summarized->elapsed_ms();
   for (const auto& event : resampling) e.timings.resample_ms += event->elapsed_ms();
+  if (refined) e.timings.refine_ms = refined->elapsed_ms() + shifted->elapsed_ms();
   e.timings.total_ms = frame_clock.elapsed_ms();
   ++frame_;
   return e;
@@ -315,6 +348,57 @@ std::vector<compute::EventPtr> DeviceFilter::resample() {
   k.fill->set_arg(2, 0.0f);
   events.push_back(queue_->launch(*k.fill, linear));
   return events;
+}
+
+compute::EventPtr DeviceFilter::refine() {
+  Kernels& k = *kernels_;
+  const Refinement& r = config_.refine;
+  const RefineArgs args{static_cast<float>(r.damping),
+                        static_cast<float>(r.min_incidence),
+                        static_cast<float>(centre_.x()),
+                        static_cast<float>(centre_.y()),
+                        static_cast<float>(centre_.z()),
+                        static_cast<float>(time_),
+                        r.iterations,
+                        static_cast<unsigned>(count_)};
+  compute::set_arg(*k.refine, 0, estimate_);
+  compute::set_arg(*k.refine, 1, state_);
+  compute::set_arg(*k.refine, 2, weights_);
+  compute::set_arg(*k.refine, 3, observed_);
+  compute::set_arg(*k.refine, 4, occlusion_);
+  compute::set_arg(*k.refine, 5, occlusion_time_);
+  compute::set_arg(*k.refine, 6, scratch_occlusion_);  // weigh's priors
+  compute::set_arg(*k.refine, 7, atlas_);
+  k.refine->set_arg(8, atlas_source_->layout().kernel_args());
+  compute::set_arg(*k.refine, 9, refine_mesh_->vertices);
+  compute::set_arg(*k.refine, 10, refine_mesh_->triangles);
+  compute::set_arg(*k.refine, 11, refine_mesh_->planes);
+  k.refine->set_arg(12, refine_mesh_->triangle_count());
+  k.refine->set_arg(13, raster_camera_args(camera_, config_));
+  k.refine->set_arg(14, model_args(config_));
+  k.refine->set_arg(15, args);
+  compute::set_arg(*k.refine, 16, refine_pose_);
+  compute::set_arg(*k.refine, 17, refine_tile_);
+  compute::set_arg(*k.refine, 18, refine_ids_);
+  compute::set_arg(*k.refine, 19, correction_);
+  return queue_->launch(*k.refine, compute::NdRange::linear(kGroupSize, kGroupSize));
+}
+
+compute::EventPtr DeviceFilter::shift_particles() {
+  Kernels& k = *kernels_;
+  // After resampling the weighed states are in the scratch buffer already: shift in place.
+  compute::set_arg(*k.shift_particles, 0, state_);
+  compute::set_arg(*k.shift_particles, 1, weighed_in_scratch_ ? state_ : scratch_state_);
+  k.shift_particles->set_arg(2, static_cast<unsigned>(count_));
+  compute::set_arg(*k.shift_particles, 3, correction_);
+  k.shift_particles->set_arg(4, static_cast<float>(centre_.x()));
+  k.shift_particles->set_arg(5, static_cast<float>(centre_.y()));
+  k.shift_particles->set_arg(6, static_cast<float>(centre_.z()));
+  const compute::EventPtr event =
+      queue_->launch(*k.shift_particles, compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup));
+  if (!weighed_in_scratch_) std::swap(state_, scratch_state_);
+  weighed_in_scratch_ = true;
+  return event;
 }
 
 std::vector<double> DeviceFilter::last_log_likelihoods() const {

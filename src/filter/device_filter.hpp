@@ -10,6 +10,7 @@
 #include "compute/buffer.hpp"
 #include "filter/atlas_source.hpp"
 #include "filter/filter_backend.hpp"
+#include "filter/raster_inputs.hpp"
 #include "reference/particle.hpp"
 
 namespace depthtrack {
@@ -46,6 +47,11 @@ class DeviceFilter final : public FilterBackend {
   std::vector<reference::ParticleState> unpack(const compute::Buffer<float>& state) const;
   // Enqueues the resampling kernels; their events, for timing.
   std::vector<compute::EventPtr> resample();
+  // Enqueues the pose refinement (cl/refine.cl); its event.
+  compute::EventPtr refine();
+  // Enqueues the shift of the cloud by the refinement's correction, leaving the weighed states in
+  // scratch_state_ (where resampling left them, or copied there); its event.
+  compute::EventPtr shift_particles();
 
   std::unique_ptr<compute::Queue> queue_;
   TrackerConfig config_;
@@ -58,7 +64,12 @@ class DeviceFilter final : public FilterBackend {
   compute::Buffer<unsigned> parents_;
   compute::Buffer<float> atlas_, observed_;
   compute::Buffer<float> occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_;
+  // The refinement's mesh, one-pose scratch (state, depth bits, triangle ids) and correction twist.
+  std::unique_ptr<MeshBuffers> refine_mesh_;
+  compute::Buffer<float> refine_pose_, correction_;
+  compute::Buffer<unsigned> refine_tile_, refine_ids_;
   bool last_resampled_ = false;
+  bool weighed_in_scratch_ = false;  // the last update left the weighed states in scratch_state_
   unsigned frame_ = 0;
   double time_ = 0;
 };

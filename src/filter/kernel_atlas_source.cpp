@@ -8,7 +8,7 @@
 #include "core/stopwatch.hpp"
 #include "dt_state.h"
 #include "filter/atlas_source.hpp"
-#include "render/triangle_planes.hpp"
+#include "filter/raster_inputs.hpp"
 
 namespace depthtrack {
 
@@ -17,33 +17,17 @@ namespace {
 // handset at 80x60 (64: 10 % slower; 256 gains only at 640x480, 5-17 %); PoCL does not care.
 constexpr size_t kGroupSize = 128;
 
-struct CameraArgs {  // cl/rasterize.cl's dt_camera
-  float fx, fy, cx, cy, near, far;
-  unsigned width, height;
-};
-
 class KernelAtlasSource final : public AtlasSource {
  public:
   KernelAtlasSource(compute::Queue& queue, const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
       : queue_(queue),
         // Particle-major: cl/rasterize.cl writes each tile as one contiguous block.
         layout_(render::AtlasLayout::particle_major(config.particles, camera.width, camera.height)),
-        camera_{static_cast<float>(camera.fx),         static_cast<float>(camera.fy),
-                static_cast<float>(camera.cx),         static_cast<float>(camera.cy),
-                static_cast<float>(config.near_plane), static_cast<float>(config.observation.max_depth),
-                static_cast<unsigned>(camera.width),   static_cast<unsigned>(camera.height)},
+        camera_(raster_camera_args(camera, config)),
         program_(queue.build("rasterize.cl", compute::kernel_source("rasterize.cl"),
                              {"DT_GROUP_SIZE=" + std::to_string(kGroupSize)})),
         kernel_(program_->kernel("rasterize")),
-        vertices_(queue, mesh.vertices.size() * 3),
-        triangles_(queue, mesh.triangles.size() * 3),
-        planes_(queue, mesh.triangles.size() * 4) {
-    // Eigen's Vector3f and Vector3i are packed: the mesh uploads as it is.
-    vertices_.upload(std::span<const float>(mesh.vertices.front().data(), vertices_.size()));
-    triangles_.upload(
-        std::span<const unsigned>(reinterpret_cast<const unsigned*>(mesh.triangles.front().data()), triangles_.size()));
-    planes_.upload(render::triangle_planes(mesh));
-  }
+        mesh_(queue, mesh) {}
 
   const render::AtlasLayout& layout() const override { return layout_; }
 
@@ -54,10 +38,10 @@ class KernelAtlasSource final : public AtlasSource {
                        " particles need");
     Stopwatch clock;
     compute::set_arg(*kernel_, 0, states);
-    compute::set_arg(*kernel_, 1, vertices_);
-    compute::set_arg(*kernel_, 2, triangles_);
-    compute::set_arg(*kernel_, 3, planes_);
-    kernel_->set_arg(4, static_cast<unsigned>(planes_.size() / 4));
+    compute::set_arg(*kernel_, 1, mesh_.vertices);
+    compute::set_arg(*kernel_, 2, mesh_.triangles);
+    compute::set_arg(*kernel_, 3, mesh_.planes);
+    kernel_->set_arg(4, mesh_.triangle_count());
     kernel_->set_arg(5, camera_);
     kernel_->set_arg(6, layout_.kernel_args());
     compute::set_arg(*kernel_, 7, atlas);  // written as the depths' bits
@@ -73,12 +57,10 @@ class KernelAtlasSource final : public AtlasSource {
  private:
   compute::Queue& queue_;
   render::AtlasLayout layout_;
-  CameraArgs camera_;
+  RasterCameraArgs camera_;
   std::unique_ptr<compute::Program> program_;
   std::unique_ptr<compute::Kernel> kernel_;
-  compute::Buffer<float> vertices_;
-  compute::Buffer<unsigned> triangles_;
-  compute::Buffer<float> planes_;
+  MeshBuffers mesh_;
 };
 }  // namespace
 

@@ -29,10 +29,12 @@ inline bool owns_edge(double au, double av, double bu, double bv) {
 }
 }  // namespace
 
-PixelBox Rasterizer::render(const Pose& pose, std::span<float> depth) const {
-  if (depth.size() != static_cast<size_t>(camera_.pixel_count()))
+PixelBox Rasterizer::render(const Pose& pose, std::span<float> depth, std::span<int> triangle_ids) const {
+  if (depth.size() != static_cast<size_t>(camera_.pixel_count()) ||
+      (!triangle_ids.empty() && triangle_ids.size() != depth.size()))
     throw InputError("rasterizer output has the wrong size");
   std::fill(depth.begin(), depth.end(), 0.0f);
+  std::fill(triangle_ids.begin(), triangle_ids.end(), -1);
   const Eigen::Matrix3d r = pose.rotation.toRotationMatrix();
   for (size_t i = 0; i < vertices_.size(); ++i) transformed_[i] = r * vertices_[i] + pose.translation;
 
@@ -40,14 +42,16 @@ PixelBox Rasterizer::render(const Pose& pose, std::span<float> depth) const {
     return ScreenVertex{camera_.fx * p.x() / p.z() + camera_.cx, camera_.fy * p.y() / p.z() + camera_.cy, 1.0 / p.z()};
   };
   PixelBox box{camera_.width, camera_.height, 0, 0};
-  for (const auto& t : triangles_) {
+  for (size_t index = 0; index < triangles_.size(); ++index) {
+    const Eigen::Vector3i& t = triangles_[index];
+    const int id = static_cast<int>(index);
     const std::array<Eigen::Vector3d, 3> p{transformed_[static_cast<size_t>(t[0])],
                                            transformed_[static_cast<size_t>(t[1])],
                                            transformed_[static_cast<size_t>(t[2])]};
     const int in_front = (p[0].z() >= near_) + (p[1].z() >= near_) + (p[2].z() >= near_);
     if (in_front == 0) continue;
     if (in_front == 3) {
-      rasterize_triangle(to_screen(p[0]), to_screen(p[1]), to_screen(p[2]), depth, box);
+      rasterize_triangle(to_screen(p[0]), to_screen(p[1]), to_screen(p[2]), id, depth, triangle_ids, box);
       continue;
     }
     // Cut the triangle at z = near (Sutherland-Hodgman against one plane): 3 or 4 vertices remain.
@@ -62,14 +66,15 @@ PixelBox Rasterizer::render(const Pose& pose, std::span<float> depth) const {
     }
     for (int i = 1; i + 1 < n; ++i)
       rasterize_triangle(to_screen(clipped[0]), to_screen(clipped[static_cast<size_t>(i)]),
-                         to_screen(clipped[static_cast<size_t>(i + 1)]), depth, box);
+                         to_screen(clipped[static_cast<size_t>(i + 1)]), id, depth, triangle_ids, box);
   }
   if (box.empty()) return PixelBox{};
   return box;
 }
 
 void Rasterizer::rasterize_triangle(const ScreenVertex& a, const ScreenVertex& b_in, const ScreenVertex& c_in,
-                                    std::span<float> depth, PixelBox& box) const {
+                                    int triangle, std::span<float> depth, std::span<int> triangle_ids,
+                                    PixelBox& box) const {
   ScreenVertex b = b_in, c = c_in;
   double area = edge(a.u, a.v, b.u, b.v, c.u, c.v);
   if (area == 0 || !std::isfinite(area)) return;
@@ -93,9 +98,11 @@ void Rasterizer::rasterize_triangle(const ScreenVertex& a, const ScreenVertex& b
       const double inv_z = (w_a * a.inv_z + w_b * b.inv_z + w_c * c.inv_z) / area;
       const double z = 1.0 / inv_z;
       if (z < near_ || z > far_) continue;
-      float& out = depth[static_cast<size_t>(v) * static_cast<size_t>(camera_.width) + static_cast<size_t>(u)];
+      const size_t k = static_cast<size_t>(v) * static_cast<size_t>(camera_.width) + static_cast<size_t>(u);
+      float& out = depth[k];
       if (out == 0.0f || z < out) {
         out = static_cast<float>(z);
+        if (!triangle_ids.empty()) triangle_ids[k] = triangle;
         box.u0 = std::min(box.u0, u);
         box.v0 = std::min(box.v0, v);
         box.u1 = std::max(box.u1, u + 1);

@@ -26,7 +26,9 @@ class Rasterizer {
   Rasterizer(const Mesh& mesh, const Camera& camera, double near, double far);
 
   // Writes camera.width * camera.height depths (row-major) into depth; returns the covered box.
-  PixelBox render(const Pose& camera_from_object, std::span<float> depth) const;
+  // triangle_ids, when not empty (same size as depth), receives the index of the mesh triangle whose
+  // depth each pixel kept, -1 where none: what a pose refinement needs for surface normals.
+  PixelBox render(const Pose& camera_from_object, std::span<float> depth, std::span<int> triangle_ids = {}) const;
 
   const Camera& camera() const { return camera_; }
 
@@ -34,8 +36,8 @@ class Rasterizer {
   struct ScreenVertex {
     double u, v, inv_z;
   };
-  void rasterize_triangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, std::span<float> depth,
-                          PixelBox& box) const;
+  void rasterize_triangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, int triangle,
+                          std::span<float> depth, std::span<int> triangle_ids, PixelBox& box) const;
 
   std::vector<Eigen::Vector3d> vertices_;
   std::vector<Eigen::Vector3i> triangles_;

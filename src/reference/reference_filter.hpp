@@ -6,6 +6,7 @@
 
 #include "filter/filter_backend.hpp"
 #include "reference/particle.hpp"
+#include "reference/pose_refiner.hpp"
 #include "reference/rasterizer.hpp"
 
 namespace depthtrack::reference {
@@ -37,11 +38,18 @@ class ReferenceFilter final : public FilterBackend {
   // Renders and weighs particle i; returns its log-likelihood and updates its occlusion state.
   double weigh_particle(size_t i, const DepthImage& depth, double dt, double& render_ms, double& magnitude);
   void resample(const std::vector<double>& normalized);
+  // Each pixel's occlusion probability for this frame as particle i held it before this frame's
+  // Bayes update (its prior, aged to now); priors_ must hold i's covered pixels.
+  std::vector<double> occlusion_map(size_t i) const;
+  // Fits the heaviest particle's pose to the likelihood's maximum, reports it in e and shifts every
+  // particle by the same correction.
+  void refine(Estimate& e, const DepthImage& depth, size_t heaviest);
 
   TrackerConfig config_;
   Camera camera_;
   Eigen::Vector3d centre_;
   Rasterizer rasterizer_;
+  PoseRefiner refiner_;
   std::vector<ParticleState> particles_, scratch_particles_;  // scratch: resampling's gather target
   std::vector<double> log_weights_;
   // Occlusion state per particle per pixel: probability, and (per-pixel-time mode) the time of its
@@ -50,6 +58,13 @@ class ReferenceFilter final : public FilterBackend {
   std::vector<float> occlusion_time_;
   std::vector<float> scratch_occlusion_, scratch_occlusion_time_;  // resampling's gather targets
   std::vector<float> rendered_;                                    // scratch: one particle's rendering
+  // The occlusion priors of the pixels a particle's Bayes update changed: the particle being weighed
+  // (weighing_) and the heaviest so far (priors_), for the refinement's occlusion map.
+  struct PixelPrior {
+    size_t pixel;
+    double p;
+  };
+  std::vector<PixelPrior> weighing_, priors_;
   std::vector<double> last_log_likelihoods_, last_magnitudes_;
   std::vector<int> last_parents_;
   std::vector<double> last_normalized_;

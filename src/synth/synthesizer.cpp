@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "reference/rasterizer.hpp"
+#include "synth/ideal_sensor.hpp"
 #include "synth/occluder.hpp"
 #include "synth/random.hpp"
 #include "synth/structured_light_sensor.hpp"
@@ -70,6 +71,10 @@ SynthFrame Synthesizer::frame(int index) const {
   out.occluded_fraction =
       synth::add_occluder(scene, object, c.camera.width, c.camera.height, c.occluder_fraction, out.timestamp);
 
+  if (c.sensor.kind == SensorKind::Ideal) {
+    out.depth = DepthImage::from_metres(c.camera.width, c.camera.height, synth::ideal_depth(scene));
+    return out;
+  }
   std::mt19937_64 rng = synth::frame_rng(c.seed, index);
   out.depth =
       DepthImage::from_metres(c.camera.width, c.camera.height, synth::sense_depth(c.sensor, c.camera, scene, rng));

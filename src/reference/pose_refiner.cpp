@@ -1,0 +1,123 @@
+#include "reference/pose_refiner.hpp"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <limits>
+
+#include "reference/observation_model.hpp"
+#include "render/triangle_planes.hpp"
+
+namespace depthtrack::reference {
+
+namespace {
+// A step is kept unless it lowers the log-likelihood by more than this (nats). Near the optimum
+// steps change it by less than float rounding does (~1e-4 over a thousand pixels), so a strict
+// comparison would let the float device and the double reference decide differently and end one
+// step apart; with the tolerance both keep such steps. cl/refine.cl uses the same value.
+constexpr double kStepTolerance = 0.01;
+}  // namespace
+
+bool depth_jacobian(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, const Eigen::Vector3d& ray,
+                    const Eigen::Vector3d& centre, double min_incidence, Vector6d& row) {
+  const double incidence = normal.dot(ray);
+  if (std::abs(incidence) < min_incidence * ray.norm()) return false;
+  row.head<3>() = normal / incidence;
+  row.tail<3>() = (point - centre).cross(normal) / incidence;
+  return true;
+}
+
+Pose apply_twist(const Pose& pose, const Eigen::Vector3d& centre, const Vector6d& twist) {
+  const Eigen::Vector3d moved_centre = pose.apply(centre) + twist.head<3>();
+  const Eigen::Quaterniond rotation = (rotation_exp(twist.tail<3>()) * pose.rotation).normalized();
+  return Pose(moved_centre - rotation * centre, rotation);
+}
+
+Vector6d twist_between(const Pose& from, const Pose& to, const Eigen::Vector3d& centre) {
+  Vector6d twist;
+  twist.head<3>() = to.apply(centre) - from.apply(centre);
+  twist.tail<3>() = rotation_log(to.rotation * from.rotation.conjugate());
+  return twist;
+}
+
+Vector6d damped_step(const NormalEquations& e, double lambda) {
+  Matrix6d a = e.h;
+  a.diagonal() *= 1.0 + lambda;
+  const Eigen::LDLT<Matrix6d> solver(a);
+  if (solver.info() != Eigen::Success || !solver.isPositive() || e.pixels < 6) return Vector6d::Zero();
+  const Vector6d step = solver.solve(e.g);
+  return step.allFinite() ? step : Vector6d::Zero();
+}
+
+PoseRefiner::PoseRefiner(const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
+    : config_(config),
+      camera_(camera),
+      centre_(mesh.centre().cast<double>()),
+      rasterizer_(mesh, camera, config.near_plane, config.observation.max_depth),
+      planes_(render::triangle_planes(mesh)),
+      rendered_(static_cast<size_t>(camera.pixel_count())),
+      triangle_ids_(static_cast<size_t>(camera.pixel_count())) {}
+
+NormalEquations PoseRefiner::normal_equations(const Pose& pose, const DepthImage& depth,
+                                              std::span<const double> occlusion) const {
+  NormalEquations e;
+  const PixelBox box = rasterizer_.render(pose, rendered_, triangle_ids_);
+  const Eigen::Matrix3d rotation = pose.rotation.toRotationMatrix();
+  const Eigen::Vector3d centre = pose.apply(centre_);
+  const ObservationModel& m = config_.observation;
+  const double tail = m.tail_weight / m.max_depth;
+  for (int v = box.v0; v < box.v1; ++v) {
+    for (int u = box.u0; u < box.u1; ++u) {
+      const size_t k = static_cast<size_t>(v) * static_cast<size_t>(camera_.width) + static_cast<size_t>(u);
+      const double y_hat = rendered_[k], y = depth.data()[k];
+      if (y_hat <= 0 || !DepthImage::is_valid(static_cast<float>(y))) continue;
+      const double p = occlusion.empty() ? 0.0 : occlusion[k];
+      const PixelDensities d = pixel_densities(m, y, y_hat);
+      e.objective += pixel_log_ratio(d, p);
+      // E-step: the share of this pixel's density that the visible gaussian explains.
+      const double responsibility = (1.0 - p) * (d.visible - tail) / ((1.0 - p) * d.visible + p * d.occluded);
+      const double sigma = depth_sigma(m, y);
+      const float* plane = &planes_[4 * static_cast<size_t>(triangle_ids_[k])];
+      const Eigen::Vector3d normal = rotation * Eigen::Vector3d(plane[0], plane[1], plane[2]);
+      const Eigen::Vector3d ray((u - camera_.cx) / camera_.fx, (v - camera_.cy) / camera_.fy, 1.0);
+      Vector6d row;
+      if (!depth_jacobian(y_hat * ray, normal, ray, centre, config_.refine.min_incidence, row)) continue;
+      const double w = responsibility / (sigma * sigma);
+      e.h.selfadjointView<Eigen::Lower>().rankUpdate(row, w);
+      e.g += (w * (y - y_hat)) * row;
+      ++e.pixels;
+    }
+  }
+  e.h = e.h.selfadjointView<Eigen::Lower>();
+  return e;
+}
+
+RefinedPose PoseRefiner::refine(const Pose& start, const DepthImage& depth, std::span<const double> occlusion) const {
+  RefinedPose best;
+  best.pose = start;
+  NormalEquations at_best = normal_equations(start, depth, occlusion);
+  double lambda = config_.refine.damping;
+  for (int iteration = 0; iteration < config_.refine.iterations; ++iteration) {
+    const Vector6d step = damped_step(at_best, lambda);
+    if (step.isZero()) break;
+    const Pose candidate = apply_twist(best.pose, centre_, step);
+    const NormalEquations at_candidate = normal_equations(candidate, depth, occlusion);
+    if (at_candidate.objective >= at_best.objective - kStepTolerance) {
+      best.pose = candidate;
+      at_best = at_candidate;
+      lambda = config_.refine.damping;
+      ++best.accepted_steps;
+    } else {
+      lambda = std::max(10.0 * lambda, 1e-3);  // a rejected step: lean towards gradient descent
+    }
+  }
+  best.objective = at_best.objective;
+  best.pixels = at_best.pixels;
+  const Eigen::LDLT<Matrix6d> solver(at_best.h);
+  if (at_best.pixels >= 6 && solver.info() == Eigen::Success && solver.isPositive())
+    best.covariance = solver.solve(Matrix6d::Identity());
+  else
+    best.covariance.setConstant(std::numeric_limits<double>::quiet_NaN());
+  return best;
+}
+
+}  // namespace depthtrack::reference

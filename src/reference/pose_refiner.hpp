@@ -1,0 +1,76 @@
+#pragma once
+// Local refinement of a pose to the maximum of the per-pixel likelihood (MODEL.md) for a fixed
+// occlusion map: iteratively reweighted Gauss-Newton (EM on the pixel mixture) with
+// Levenberg-Marquardt damping. The pose moves by a twist (dt, dw) in the camera frame about the
+// mesh's centre: the centre moves by dt, the object rotates by exp(dw) about it.
+#include <Eigen/Core>
+#include <depthtrack/camera.hpp>
+#include <depthtrack/depth_image.hpp>
+#include <depthtrack/mesh.hpp>
+#include <depthtrack/pose.hpp>
+#include <depthtrack/tracker_config.hpp>
+#include <span>
+#include <vector>
+
+#include "reference/rasterizer.hpp"
+
+namespace depthtrack::reference {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+// Derivative of a pixel's rendered depth with respect to the twist, at the surface point (camera
+// frame) with unit normal, seen along ray (its z is 1) with the centre at centre (camera frame):
+// d depth / d dt = n / (n . ray), d depth / d dw = ((point - centre) x n) / (n . ray). Returns false
+// for a grazing view, |cos(normal, ray)| < min_incidence, where the derivative is unreliable.
+bool depth_jacobian(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, const Eigen::Vector3d& ray,
+                    const Eigen::Vector3d& centre, double min_incidence, Vector6d& row);
+
+// The pose after the camera-frame twist about centre (object frame).
+Pose apply_twist(const Pose& pose, const Eigen::Vector3d& centre, const Vector6d& twist);
+
+// The twist that takes pose `from` to pose `to` (inverse of apply_twist).
+Vector6d twist_between(const Pose& from, const Pose& to, const Eigen::Vector3d& centre);
+
+// One pose's Gauss-Newton system: h = sum w J J^T, g = sum w J r over the pixels it covers with a
+// valid observation, w = responsibility of the visible gaussian / sigma^2, r = y - y_hat; objective
+// is the log-likelihood of those pixels with the given occlusion map.
+struct NormalEquations {
+  Matrix6d h = Matrix6d::Zero();
+  Vector6d g = Vector6d::Zero();
+  double objective = 0;
+  int pixels = 0;  // pixels in h (covered, valid, not grazing)
+};
+
+struct RefinedPose {
+  Pose pose;
+  Matrix6d covariance;  // inverse of h at the pose: camera-frame twist about the centre (m, rad)
+  double objective = 0;
+  int pixels = 0;
+  int accepted_steps = 0;
+};
+
+class PoseRefiner {
+ public:
+  PoseRefiner(const Mesh& mesh, const Camera& camera, const TrackerConfig& config);
+
+  // occlusion: each pixel's occlusion probability for this frame, or empty for none.
+  NormalEquations normal_equations(const Pose& pose, const DepthImage& depth, std::span<const double> occlusion) const;
+  // config.refine.iterations damped steps from start, each kept unless it lowers the log-likelihood
+  // (more than rounding could); the result is the last pose kept.
+  RefinedPose refine(const Pose& start, const DepthImage& depth, std::span<const double> occlusion) const;
+
+ private:
+  TrackerConfig config_;
+  Camera camera_;
+  Eigen::Vector3d centre_;
+  Rasterizer rasterizer_;
+  std::vector<float> planes_;            // per triangle: object-frame unit normal and offset
+  mutable std::vector<float> rendered_;  // scratch
+  mutable std::vector<int> triangle_ids_;
+};
+
+// The step the damped system gives: (h + lambda diag(h)) step = g; zero when it is singular.
+Vector6d damped_step(const NormalEquations& e, double lambda);
+
+}  // namespace depthtrack::reference
