@@ -16,6 +16,11 @@ struct StepTimings {
   double propagate_ms = 0, render_ms = 0, handoff_ms = 0, weigh_ms = 0, resample_ms = 0, total_ms = 0;
 };
 
+// What a frame's estimate rests on. NoData: the frame had no valid pixel (a sensor dropout), so the
+// filter only predicted: the pose is the motion model's guess.
+enum class TrackStatus { Tracking, Lost, NoData };
+const char* to_string(TrackStatus status);  // "tracking", "lost", "no-data"
+
 struct Estimate {
   Pose pose;                                                   // weighted mean camera_from_object
   Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   // m/s, object's local frame
@@ -24,6 +29,7 @@ struct Estimate {
   double max_log_likelihood = 0;                               // best particle's log L of this frame
   double mean_log_likelihood = 0;                              // weighted mean of log L
   bool resampled = false;
+  TrackStatus status = TrackStatus::Tracking;
   StepTimings timings;
 };
 
@@ -46,7 +52,10 @@ class Tracker {
 
   // Draws the particles around pose (gaussian, per-axis, about the mesh's centre, local frame).
   void initialize(const Pose& pose, const InitialSpread& spread = {});
-  // Runs one frame. depth must have the sensor's size; timestamps (seconds) must increase.
+  // Runs one frame. depth must have the sensor's size; timestamps (seconds) must increase. Depths
+  // beyond the model's max_depth count as missing; a frame with no valid pixel is a dropout: the
+  // filter predicts only and the estimate's status is NoData. An estimate that is not finite is an
+  // InputError naming the frame.
   Estimate update(const DepthImage& depth, double timestamp);
 
   const Camera& working_camera() const;
@@ -62,6 +71,7 @@ class Tracker {
   bool initialized_ = false;
   bool has_previous_ = false;
   double previous_timestamp_ = 0;
+  size_t frames_since_initialize_ = 0;
 };
 
 }  // namespace depthtrack

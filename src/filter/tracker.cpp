@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <depthtrack/error.hpp>
 #include <depthtrack/tracker.hpp>
@@ -6,6 +7,39 @@
 #include "filter/filter_backend.hpp"
 
 namespace depthtrack {
+
+const char* to_string(TrackStatus status) {
+  switch (status) {
+    case TrackStatus::Tracking:
+      return "tracking";
+    case TrackStatus::Lost:
+      return "lost";
+    case TrackStatus::NoData:
+      return "no-data";
+  }
+  return "?";
+}
+
+namespace {
+
+// Depths beyond max_depth are outside the observation model (its uniform tail ends there, and far
+// readings would overflow it): they count as missing. Copies only when some pixel is that deep.
+DepthImage without_depths_beyond(const DepthImage& depth, double max_depth) {
+  const auto& data = depth.data();
+  if (std::none_of(data.begin(), data.end(), [&](float z) { return z > max_depth; })) return depth;
+  DepthImage kept(depth.width(), depth.height());
+  for (int v = 0; v < depth.height(); ++v)
+    for (int u = 0; u < depth.width(); ++u)
+      if (depth.at(u, v) <= max_depth) kept.at(u, v) = depth.at(u, v);
+  return kept;
+}
+
+bool is_finite(const Estimate& e) {
+  return e.pose.translation.allFinite() && e.pose.rotation.coeffs().allFinite() && e.linear_velocity.allFinite() &&
+         e.angular_velocity.allFinite() && std::isfinite(e.effective_sample_size);
+}
+
+}  // namespace
 
 Tracker::Tracker(const Mesh& mesh, const Camera& sensor, const TrackerConfig& config) : sensor_(sensor) {
   sensor.validate();
@@ -30,6 +64,7 @@ void Tracker::initialize(const Pose& pose, const InitialSpread& spread) {
   backend_->initialize(pose, spread);
   initialized_ = true;
   has_previous_ = false;
+  frames_since_initialize_ = 0;
 }
 
 Estimate Tracker::update(const DepthImage& depth, double timestamp) {
@@ -48,18 +83,24 @@ Estimate Tracker::update(const DepthImage& depth, double timestamp) {
     throw InputError(m.str());
   }
   // Decimate only when needed: at the sensor's resolution the caller's image is used as it is.
-  DepthImage decimated;
-  if (decimation_ > 1) decimated = depth.decimated(decimation_);
-  const DepthImage& working = decimation_ > 1 ? decimated : depth;
-  if (working.valid_count() == 0) {
+  const DepthImage working =
+      without_depths_beyond(decimation_ > 1 ? depth.decimated(decimation_) : depth, config_.observation.max_depth);
+  const double dt = has_previous_ ? timestamp - previous_timestamp_ : 0.0;
+  // A dropout: every pixel adds 0 to every particle's log-likelihood, so the weights stay as they
+  // are and resampling, decided on them, cannot trigger: the filter propagates only.
+  const bool dropout = working.valid_count() == 0;
+  Estimate e = backend_->update(working, dt);
+  if (dropout) e.status = TrackStatus::NoData;
+  if (!is_finite(e)) {
     std::ostringstream m;
-    m << "depth frame at " << timestamp << " s has no valid pixel (all missing) at the working resolution";
+    m.precision(17);
+    m << "frame " << frames_since_initialize_ << " (at " << timestamp
+      << " s): the estimate is not finite; the input or the configuration is outside what the model handles";
     throw InputError(m.str());
   }
-  const double dt = has_previous_ ? timestamp - previous_timestamp_ : 0.0;
-  Estimate e = backend_->update(working, dt);
   previous_timestamp_ = timestamp;
   has_previous_ = true;
+  ++frames_since_initialize_;
   return e;
 }
 
