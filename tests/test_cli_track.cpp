@@ -6,25 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "cli_sequence.hpp"
 #include "support.hpp"
 
 using namespace depthtrack;
 
 namespace {
-// A short synthetic sequence of the built-in object at 160x120, written once per test.
-std::filesystem::path write_sequence(const std::string& name, int frames = 6) {
-  const auto dir = test::temp_dir(name);
-  SynthConfig c;
-  c.camera = Camera::make(160, 120, 131.25, 131.25, 79.875, 59.875);
-  c.frames = frames;
-  write_synthetic_sequence(dir / "seq", builtin_demo_mesh(), c);
-  // The built-in mesh as an OBJ, since track takes a mesh file.
-  std::ofstream obj(dir / "object.obj");
-  const Mesh mesh = builtin_demo_mesh();
-  for (const auto& v : mesh.vertices) obj << "v " << v.x() << " " << v.y() << " " << v.z() << "\n";
-  for (const auto& t : mesh.triangles) obj << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
-  return dir;
-}
+using test::write_sequence;
 
 std::vector<std::string> lines_of(const std::filesystem::path& path) {
   std::ifstream in(path);
@@ -45,12 +33,13 @@ TEST_CASE("track writes one CSV row per frame with the contract's columns", "[cl
   REQUIRE(status == 0);
   const auto lines = lines_of(dir / "out.csv");
   REQUIRE(lines.size() == 7);
-  CHECK(lines[0] == "frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess,err_t_mm,err_r_deg");
+  CHECK(lines[0] == "frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess,err_t_mm,err_r_deg,status");
   // Row 3: frame name, timestamp 2/30 s, and a translation error under 1 cm.
   std::stringstream row(lines[3]);
   std::vector<std::string> cells;
   for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-  REQUIRE(cells.size() == 12);
+  REQUIRE(cells.size() == 13);
+  CHECK(cells[12] == "tracking");
   CHECK(cells[0] == "000002");
   CHECK(std::stod(cells[1]) == Approx(2.0 / 30));
   CHECK(std::stod(cells[4]) == Approx(0.8).margin(0.15));  // tz near the trajectory's 0.8 m

@@ -1,4 +1,5 @@
 // depthtrack track: run the tracker over a recorded sequence and write the estimates as CSV.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <depthtrack/error.hpp>
@@ -60,11 +61,14 @@ void run_track(const TrackArgs& a) {
   if (a.init.empty() && !a.init_from_gt) throw InputError("give --init POSE or --init-from-gt");
   if (!a.init.empty() && a.init_from_gt) throw InputError("--init and --init-from-gt exclude each other");
   const TrackerConfig config = a.tracker.resolve();
+  const Sequence seq = load_sequence(a.sequence, a.object);
+  // Opened before any work, so that a bad --out fails at once; rows are streamed as frames are tracked.
+  TrackingCsvWriter csv(a.out, !seq.frames.empty() && std::all_of(seq.frames.begin(), seq.frames.end(),
+                                                                  [](const auto& f) { return f.ground_truth; }));
   const Mesh mesh = Mesh::load(a.mesh, a.unit_scale);
   if (mesh.dropped_degenerate > 0)
     std::fprintf(stderr, "depthtrack: note: dropped %zu degenerate triangles of '%s'\n", mesh.dropped_degenerate,
                  a.mesh.c_str());
-  const Sequence seq = load_sequence(a.sequence, a.object);
   const Pose start = initial_pose(a, seq, mesh);
   const auto spread_values = parse_numbers(a.init_spread, 2, "--init-spread");
   const InitialSpread spread{spread_values[0], spread_values[1] * std::numbers::pi / 180.0};
@@ -72,13 +76,14 @@ void run_track(const TrackArgs& a) {
   ProgressBar bar("tracking", static_cast<int>(seq.frames.size()));
   const auto begin = std::chrono::steady_clock::now();
   const auto frames = track_sequence(seq, mesh, config, start, spread, [&](size_t i, const TrackedFrame& f) {
+    csv.write(f);
     char text[64] = "";
     if (f.ground_truth) std::snprintf(text, sizeof text, "err %.1f mm", 1000 * f.translation_error);
     bar.update(static_cast<int>(i + 1), text);
   });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   bar.finish();
-  write_tracking_csv(a.out, frames);
+  csv.finish();
   print_summary(frames, mesh, seconds);
   std::printf("wrote %s\n", a.out.c_str());
 }
@@ -95,9 +100,11 @@ void add_track_command(CLI::App& app) {
                 "Sequence folder: depthtrack's own (sequence.json, what `depthtrack synth` writes) or a "
                 "YCB-Video clip (NNNNNN-depth.png + gt.json)")
       ->required();
-  c->add_option("--out", args->out,
-                "CSV to write: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess (camera-from-object, metres), plus "
-                "err_t_mm,err_r_deg when ground truth is known")
+  c->add_option(
+       "--out", args->out,
+       "CSV to write: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess (camera-from-object, metres), plus "
+       "err_t_mm,err_r_deg when ground truth is known, then status (tracking, lost, no-data); written to FILE.partial "
+       "and renamed when all frames are done")
       ->required();
   c->add_option("--object", args->object, "Which object's ground truth to use in a multi-object clip (e.g. 025_mug)");
   c->add_option("--init", args->init, "Initial pose \"tx ty tz qw qx qy qz\" (camera-from-object, metres)");
