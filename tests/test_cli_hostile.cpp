@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli_sequence.hpp"
+#include "device_support.hpp"
 #include "support.hpp"
 
 using namespace depthtrack;
@@ -94,4 +95,35 @@ TEST_CASE("a sensor dropout mid-sequence is tracked through: its row says no-dat
   }
   CHECK(no_data == 1);
   CHECK(tracking == 3);
+}
+
+TEST_CASE("track refuses an absurd initial spread and a zero quaternion instead of writing NaN or q = 0 rows",
+          "[cli][robustness]") {
+  const auto dir = test::write_sequence("cli_bad_start", 2);
+  const auto [spread_status, spread_output] = track(dir, "--init-from-gt --init-spread \"1e300 1e300\"");
+  CHECK(spread_status == 1);
+  CHECK_THAT(spread_output, Contains("initial spread"));
+  const auto [zero_status, zero_output] = track(dir, "--init \"0 0 0.8 0 0 0 0\"");
+  CHECK(zero_status == 1);
+  CHECK_THAT(zero_output, Contains("zero quaternion"));
+  const auto [behind_status, behind_output] = track(dir, "--init \"0 0 -0.8 1 0 0 0\"");
+  CHECK(behind_status == 1);
+  CHECK_THAT(behind_output, Contains("behind"));
+  CHECK_FALSE(fs::exists(dir / "out.csv"));
+  CHECK_FALSE(fs::exists(dir / "out.csv.partial"));
+}
+
+TEST_CASE("the off-screen start (an object 10,000 km to the side) tracks at once on the device", "[cli][robustness]") {
+  // The device rasterizer looped over 2^31 columns per triangle (> 7 minutes for one particle).
+  if (!test::device_available()) return;
+  const auto dir = test::write_sequence("cli_offscreen", 3);
+  const auto start = std::chrono::steady_clock::now();
+  const auto [status, output] =
+      test::run_cli("track --mesh " + (dir / "object.obj").string() + " --sequence " + (dir / "seq").string() +
+                        " --resolution 80x60 --out " + (dir / "out.csv").string() +
+                        " --init \"1e7 0 0.06 1 0 0 0\" --particles 1 --backend " + test::device_selector(),
+                    dir / "log.txt");
+  INFO(output);
+  CHECK(status == 0);
+  CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 60);  // a hang guard
 }

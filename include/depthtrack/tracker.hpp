@@ -51,6 +51,8 @@ class Tracker {
   Tracker& operator=(Tracker&&) noexcept;
 
   // Draws the particles around pose (gaussian, per-axis, about the mesh's centre, local frame).
+  // The quaternion is normalized (zero is an InputError); the mesh's centre must lie at a depth in
+  // [near_plane, max_depth]; the spread must be finite, at most max_depth and a full turn.
   void initialize(const Pose& pose, const InitialSpread& spread = {});
   // Runs one frame. depth must have the sensor's size; timestamps (seconds) must increase. Depths
   // beyond the model's max_depth count as missing; a frame with no valid pixel is a dropout: the
@@ -72,6 +74,7 @@ class Tracker {
   bool has_previous_ = false;
   double previous_timestamp_ = 0;
   size_t frames_since_initialize_ = 0;
+  Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();  // the mesh's, where initialize() checks the start
 };
 
 }  // namespace depthtrack
