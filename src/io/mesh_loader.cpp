@@ -79,11 +79,29 @@ void check_triangle_limit(const aiScene& scene, const std::string& name) {
                      " depthtrack takes (every particle renders every triangle each frame): simplify the mesh");
 }
 
-bool is_obj(const std::filesystem::path& path) {
+std::string lower_extension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".obj";
+  return ext;
+}
+
+bool is_obj(const std::filesystem::path& path) {
+  return lower_extension(path) == ".obj";
+}
+
+// assimp's PLY reader loops forever on a header it cannot finish: a PLY must say "ply" and end its
+// header within its first MiB (real headers take a few hundred bytes). Clearer, and at once.
+void check_ply_header(const std::filesystem::path& path, const std::string& name) {
+  if (lower_extension(path) != ".ply") return;
+  std::ifstream in(path, std::ios::binary);
+  std::string head(1 << 20, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  if (head.rfind("ply", 0) != 0) throw InputError(name + " is not a PLY file: it does not start with 'ply'");
+  const size_t end = head.find("end_header");
+  if (end == std::string::npos || head.find_first_not_of(" \t\r\n", end + 10) < head.find('\n', end))
+    throw InputError(name + ": its PLY header has no 'end_header' line within the first MiB");
 }
 
 // The OBJ text with every face corner reduced to its position index ("f 1/1/1 2/2/7" -> "f 1 2").
@@ -158,8 +176,8 @@ Mesh import_with_assimp(const std::filesystem::path& path, double unit_scale, co
   check_triangle_limit(*scene, name);
   // ValidateDataStructure runs first and rejects out-of-range indices, which the other steps would follow;
   // PreTransformVertices bakes node transforms into the vertices; Triangulate splits polygons.
-  scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                       aiProcess_PreTransformVertices);
+  scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+                                       aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices);
   if (!scene) throw InputError("cannot read " + name + ": " + importer.GetErrorString());
 
   Mesh mesh;
@@ -184,6 +202,7 @@ Mesh load_mesh(const std::filesystem::path& path, double unit_scale, std::chrono
   if (!std::filesystem::is_regular_file(path, error))
     throw InputError("mesh file '" + path.string() + "' is not a file");
 
+  check_ply_header(path, name);
   // assimp crashes, aborts or loops on some malformed files (the fuzzer finds many): it runs in a
   // child process, so that any of those becomes an InputError naming the file.
   Mesh mesh = deserialize(
