@@ -105,7 +105,7 @@ Estimate Tracker::update(const DepthImage& depth, double timestamp) {
     m << "timestamps must increase: " << timestamp << " s follows " << previous_timestamp_ << " s";
     throw InputError(m.str());
   }
-  // Decimate only when needed: at the sensor's resolution the caller's image is used as it is.
+  // At the working resolution, without the readings the model has no density for.
   const DepthImage working =
       without_depths_beyond(decimation_ > 1 ? depth.decimated(decimation_) : depth, config_.observation.max_depth);
   // A gap longer than max_time_step is propagated as that long (TrackerConfig says why).
