@@ -17,13 +17,17 @@ typedef struct {
 DT_FN float dt_pixel_log_ratio(const dt_model m, float y, float y_hat, float p, float* posterior) {
   const float sigma = m.sigma_constant + m.sigma_quadratic * y * y;
   const float z = (y - y_hat) / sigma;
-  const float visible = m.tail_density + m.keep * exp(-0.5f * z * z) / (2.5066282746f * sigma);
   const float ls2 = m.lambda * sigma * sigma;
-  const float occluded =
-      m.tail_density + m.keep * m.lambda * exp(m.lambda * (y_hat - y) + 0.5f * m.lambda * ls2) *
-                           (1.0f + erf((y_hat - y + ls2) / (1.4142135624f * sigma))) /
-                           (2.0f * expm1(m.lambda * y_hat));
-  const float background = m.tail_density + m.keep * m.lambda * exp(-m.lambda * y + 0.5f * m.lambda * ls2);
+  /* All three densities divided by exp(log_scale), as in the reference: lambda exp(exponent), the
+   * background, overflows in float for depths beyond ~150 m. */
+  const float exponent = m.lambda * (0.5f * ls2 - y);
+  const float log_scale = fmax(0.0f, exponent);
+  const float scale = exp(-log_scale);
+  const float background_part = m.keep * m.lambda * exp(exponent - log_scale);
+  const float in_front = erfc(-(y_hat - y + ls2) / (1.4142135624f * sigma)) / (-2.0f * expm1(-m.lambda * y_hat));
+  const float visible = (m.tail_density + m.keep * exp(-0.5f * z * z) / (2.5066282746f * sigma)) * scale;
+  const float occluded = m.tail_density * scale + background_part * in_front;
+  const float background = m.tail_density * scale + background_part;
   const float mixture = (1.0f - p) * visible + p * occluded;
   *posterior = p * occluded / mixture;
   return log(mixture / background);

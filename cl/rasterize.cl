@@ -65,15 +65,17 @@ typedef struct {
  * writes triangle where its depth is the tile's: the lowest such index wins, as atomic min. */
 DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_plane plane, dt_camera cam,
                                      __global uint* tile, __global uint* ids, uint triangle) {
-  /* Pixel centres in the bounding box, clamped in float so that far-off vertices do not overflow the
-   * conversion to int; most triangles of a fine mesh hold none. */
-  const int u0 = DT_CAST(int, fmax(0.0f, ceil(fmin(a.u, fmin(b.u, c.u)))));
-  const int u1 = DT_CAST(int, fmin(DT_CAST(float, cam.width - 1), floor(fmax(a.u, fmax(b.u, c.u)))));
-  const int v0 = DT_CAST(int, fmax(0.0f, ceil(fmin(a.v, fmin(b.v, c.v)))));
-  const int v1 = DT_CAST(int, fmin(DT_CAST(float, cam.height - 1), floor(fmax(a.v, fmax(b.v, c.v)))));
-  if (u0 > u1 || v0 > v1) return;
   const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
   if (area == 0.0f || !isfinite(area)) return;
+  /* Pixel centres in the bounding box, clamped in float to [-1, size] before the conversion to int,
+   * which is undefined beyond int's range (PoCL then looped over 2^31 columns); a box off the image
+   * comes out empty. Most triangles of a fine mesh hold no centre. */
+  const float last_u = DT_CAST(float, cam.width - 1), last_v = DT_CAST(float, cam.height - 1);
+  const int u0 = DT_CAST(int, fmin(fmax(0.0f, ceil(fmin(a.u, fmin(b.u, c.u)))), last_u + 1.0f));
+  const int u1 = DT_CAST(int, fmax(fmin(last_u, floor(fmax(a.u, fmax(b.u, c.u)))), -1.0f));
+  const int v0 = DT_CAST(int, fmin(fmax(0.0f, ceil(fmin(a.v, fmin(b.v, c.v)))), last_v + 1.0f));
+  const int v1 = DT_CAST(int, fmax(fmin(last_v, floor(fmax(a.v, fmax(b.v, c.v)))), -1.0f));
+  if (u0 > u1 || v0 > v1) return;
   if (area < 0.0f) { /* no culling: give every triangle the same orientation */
     const dt_point t = b;
     b = c;

@@ -45,8 +45,10 @@ TEST_CASE("a mesh spanning more than 5 m or less than 1 mm gets a warning naming
   test::write_obj(dir / "tiny.obj", builtin_demo_mesh(), 0.001);
   const auto [mm_status, mm] = test::run_cli(track_args(dir, "millimetres.obj"), dir / "log.txt");
   INFO(mm);
-  CHECK(mm_status == 0);
+  // The warning comes first; then the start, 1000x too far from the mesh's centre, is refused.
+  CHECK(mm_status == 1);
   CHECK(contains(mm, "warning: mesh '" + (dir / "millimetres.obj").string() + "' spans 160 m"));
+  CHECK(contains(mm, "behind or too close to the camera"));
   CHECK(contains(mm, "check --unit-scale"));
   // The right factor silences it.
   const auto [fixed_status, fixed] =

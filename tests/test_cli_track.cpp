@@ -20,12 +20,13 @@ TEST_CASE("track writes one CSV row per frame with the contract's columns", "[cl
   REQUIRE(status == 0);
   const auto lines = test::lines_of(dir / "out.csv");
   REQUIRE(lines.size() == 7);
-  CHECK(lines[0] == "frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess,err_t_mm,err_r_deg,adds_mm");
+  CHECK(lines[0] == "frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess,err_t_mm,err_r_deg,adds_mm,status");
   // Row 3: frame name, timestamp 2/30 s, and a translation error under 1 cm.
   std::stringstream row(lines[3]);
   std::vector<std::string> cells;
   for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-  REQUIRE(cells.size() == 13);
+  REQUIRE(cells.size() == 14);
+  CHECK(cells[13] == "tracking");
   CHECK(cells[0] == "000002");
   CHECK(std::stod(cells[1]) == Approx(2.0 / 30));
   CHECK(std::stod(cells[4]) == Approx(0.8).margin(0.15));  // tz near the trajectory's 0.8 m

@@ -133,3 +133,24 @@ TEST_CASE("rasterize.cl compiles as CUDA", "[cuda][kernel]") {
   CHECK(ptx.find(".global.min.u32") != std::string::npos);  // the atomic minimum (atom or red)
 }
 #endif
+
+TEST_CASE("Poses that project far beyond int's range draw nothing, at once, in the kernel and the reference",
+          "[kernels][robustness]") {
+  // Vertices at u ~ 1e9 .. 1e16 pixels: a conversion to int without clamping is undefined there
+  // (PoCL looped over 2^31 columns per triangle).
+  const Mesh mesh = builtin_demo_mesh();
+  std::vector<Pose> poses;
+  for (const Eigen::Vector3d& t : {Eigen::Vector3d(1e7, 0, 0.06), Eigen::Vector3d(-1e7, 0, 0.06),
+                                   Eigen::Vector3d(0, 1e12, 0.06), Eigen::Vector3d(-3e9, -3e9, 0.2)})
+    poses.emplace_back(t, Eigen::Quaterniond::Identity());
+  const reference::Rasterizer rasterizer(mesh, camera80, 0.05, 10.0);
+  std::vector<float> depth(static_cast<size_t>(camera80.pixel_count()));
+  for (const Pose& pose : poses) {
+    INFO("translation " << pose.translation.transpose());
+    CHECK(rasterizer.render(pose, depth).empty());
+    CHECK(std::count(depth.begin(), depth.end(), 0.0f) == camera80.pixel_count());
+  }
+  if (!test::device_available()) return;
+  const std::vector<float> atlas = kernel_atlas(mesh, camera80, poses, 0.05, 10.0);
+  CHECK(std::count(atlas.begin(), atlas.end(), 0.0f) == static_cast<std::ptrdiff_t>(atlas.size()));
+}

@@ -190,6 +190,57 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
   }
 }
 
+TEST_CASE("weigh kernel stays finite and equal to the reference for observations far beyond the sensor's range",
+          "[device][kernels][robustness]") {
+  // The densities' exp overflows in float beyond ~150 m (in double ~250 m): both scale it away.
+  if (!test::device_available()) return;
+  auto q = compute::open_device(test::device_selector());
+  const std::vector<float> observed = {0.5f, 1.0f, 40.0f, 160.0f, 300.0f, 1000.0f, 1e4f, 3e5f};
+  const std::vector<float> atlas = {0.5f, 0.9f, 1.0f, 1.0f, 6.0f, 2.0f, 1.0f, 0.3f};
+  const size_t pixels = observed.size();
+  auto program = build(*q, "weigh.cl", 0);
+  auto kernel = program->kernel("weigh");
+  const std::vector<float> occlusion(pixels, 0.3f), times(pixels, 0.0f);
+  compute::Buffer<float> a(*q, pixels), o(*q, pixels), occ(*q, pixels), tim(*q, pixels), ll(*q, 1), lw(*q, 1);
+  a.upload(atlas);
+  o.upload(observed);
+  occ.upload(occlusion);
+  tim.upload(times);
+  lw.upload(std::vector<float>(1, 0.0f));
+  for (unsigned k = 0; k < 6; ++k) compute::set_arg(*kernel, k, std::array{&a, &o, &occ, &tim, &ll, &lw}[k][0]);
+  kernel->set_arg(6, static_cast<unsigned>(pixels));
+  kernel->set_arg(7, model_args());
+  kernel->set_arg(8, 0.0f);
+  kernel->set_arg(9, 0.0f);
+  struct Layout {
+    dt_u32 tile_width, tile_height, tiles_per_row, tiles_per_page;
+  };
+  kernel->set_arg(10, Layout{static_cast<dt_u32>(pixels), 1, 1, 1});
+  compute::Buffer<float> prior(*q, pixels);
+  compute::set_arg(*kernel, 11, prior);
+  kernel->set_arg(12, 0u);  // the refinement's prior map is not asked for here
+  q->launch(*kernel, compute::NdRange::linear(kGroup, kGroup))->wait();
+  double expected = 0;
+  for (size_t k = 0; k < pixels; ++k) {
+    const auto d = reference::pixel_densities(ObservationModel{}, observed[k], atlas[k]);
+    const double term = reference::pixel_log_ratio(d, 0.3);
+    INFO("y " << observed[k] << " y_hat " << atlas[k]);
+    REQUIRE(std::isfinite(term));
+    REQUIRE(std::isfinite(reference::occlusion_posterior(d, 0.3)));
+    expected += term;
+  }
+  const auto got_occ = occ.download();
+  for (size_t k = 0; k < pixels; ++k) {
+    INFO("pixel " << k);
+    REQUIRE(std::isfinite(got_occ[k]));
+    CHECK(got_occ[k] == Approx(reference::occlusion_posterior(
+                                   reference::pixel_densities(ObservationModel{}, observed[k], atlas[k]), 0.3))
+                            .epsilon(1e-4)
+                            .margin(1e-6));
+  }
+  CHECK(ll.download()[0] == Approx(expected).epsilon(1e-4).margin(1e-3));
+}
+
 TEST_CASE("summarize kernel equals the reference normalization and mean pose", "[device][kernels]") {
   if (!test::device_available()) return;
   auto q = compute::open_device(test::device_selector());

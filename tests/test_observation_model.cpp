@@ -69,3 +69,45 @@ TEST_CASE("occlusion chain: MODEL.md's one-frame steps and its fixed point", "[m
   CHECK(propagate_occlusion(m, propagate_occlusion(m, p, 0.1), 0.25) == Approx(propagate_occlusion(m, p, 0.35)));
   CHECK(propagate_occlusion(m, p, 0.0) == Approx(p));
 }
+
+namespace {
+// MODEL.md's formulas as written, in long double, whose exp reaches e^11356: the statement the scaled
+// double implementation is checked against where double's exp would overflow.
+long double naive_log_ratio(const ObservationModel& m, long double y, long double y_hat, long double p,
+                            long double& posterior) {
+  const long double sigma = m.sigma_constant + m.sigma_quadratic * y * y, lambda = m.occluder_rate;
+  const long double tail = m.tail_weight / m.max_depth, keep = 1 - m.tail_weight, z = (y - y_hat) / sigma;
+  const long double visible = tail + keep * std::exp(-0.5L * z * z) / (std::sqrt(2 * M_PIl) * sigma);
+  const long double occluded =
+      tail + keep * lambda * std::exp(lambda * (y_hat - y) + 0.5L * lambda * lambda * sigma * sigma) *
+                 (1 + std::erf((y_hat - y + lambda * sigma * sigma) / (std::sqrt(2.0L) * sigma))) /
+                 (2 * std::expm1(lambda * y_hat));
+  const long double background = tail + keep * lambda * std::exp(-lambda * y + 0.5L * lambda * lambda * sigma * sigma);
+  posterior = p * occluded / ((1 - p) * visible + p * occluded);
+  return std::log(((1 - p) * visible + p * occluded) / background);
+}
+}  // namespace
+
+TEST_CASE("log-ratio and posterior stay finite and exact for observations far beyond the sensor's range", "[model]") {
+  // exp(lambda^2 sigma^2 / 2) overflows double from y ~ 250 m: the densities are scaled, not the ratio.
+  ObservationModel m;
+  for (const double y : {0.7, 5.0, 60.0, 150.0, 250.0, 300.0}) {  // beyond 320 m long double overflows too
+    for (const double y_hat : {0.3, 1.0, 5.9}) {
+      INFO("y " << y << " y_hat " << y_hat);
+      const PixelDensities d = pixel_densities(m, y, y_hat);
+      long double posterior = 0;
+      const long double expected = naive_log_ratio(m, y, y_hat, 0.3L, posterior);
+      REQUIRE(std::isfinite(pixel_log_ratio(d, 0.3)));
+      CHECK(pixel_log_ratio(d, 0.3) == Approx(static_cast<double>(expected)).epsilon(1e-9).margin(1e-9));
+      CHECK(occlusion_posterior(d, 0.3) == Approx(static_cast<double>(posterior)).epsilon(1e-9).margin(1e-12));
+    }
+  }
+  for (const double y : {1e3, 1e5, 1e7}) {
+    INFO("y " << y);
+    CHECK(std::isfinite(pixel_log_ratio(pixel_densities(m, y, 1.0), 0.3)));
+    CHECK(std::isfinite(occlusion_posterior(pixel_densities(m, y, 1.0), 0.3)));
+  }
+  // Within the range the densities are the unscaled ones.
+  CHECK(pixel_densities(m, 5.0, 1.0).log_scale == 0.0);
+  CHECK(pixel_densities(m, 300.0, 1.0).log_scale > 709);
+}

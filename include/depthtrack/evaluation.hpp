@@ -53,7 +53,8 @@ class AddsMetric {
 enum class QuaternionOrder { Wxyz, Xyzw };
 
 // CSV with a header and a row per frame: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess (qx,qy,qz,qw with
-// Xyzw) and, when every frame has ground truth, err_t_mm,err_r_deg,adds_mm.
+// Xyzw) and, when every frame has ground truth, err_t_mm,err_r_deg,adds_mm; then status (tracking,
+// lost, no-data). Written through TrackingCsvWriter (below).
 void write_tracking_csv(const std::filesystem::path& path, const std::vector<TrackedFrame>& frames,
                         QuaternionOrder order = QuaternionOrder::Wxyz);
 
@@ -64,5 +65,29 @@ void write_tracking_csv(const std::filesystem::path& path, const std::vector<Tra
 void check_bop_exportable(const Sequence& sequence);
 void write_bop_csv(const std::filesystem::path& path, const Sequence& sequence, const std::vector<TrackedFrame>& frames,
                    int particles);
+
+// The same CSV, row by row while tracking, so that output that cannot lie: the constructor checks
+// the place (an existing folder, path not a folder) before any work; rows go to PATH.partial, which
+// finish() renames to PATH; without finish() (an error, an exception) the partial file is removed
+// and an earlier PATH stays untouched. A device such as /dev/stdout or /dev/full is written directly.
+// Every write and the final flush are checked: a failure is an Error naming the file.
+class TrackingCsvWriter {
+ public:
+  TrackingCsvWriter(const std::filesystem::path& path, bool with_ground_truth,
+                    QuaternionOrder order = QuaternionOrder::Wxyz);
+  ~TrackingCsvWriter();
+  TrackingCsvWriter(const TrackingCsvWriter&) = delete;
+  TrackingCsvWriter& operator=(const TrackingCsvWriter&) = delete;
+
+  void write(const TrackedFrame& frame);
+  void finish();
+
+ private:
+  struct Stream;
+  std::unique_ptr<Stream> stream_;
+  std::filesystem::path path_, partial_;
+  bool with_ground_truth_;
+  QuaternionOrder order_;
+};
 
 }  // namespace depthtrack

@@ -19,6 +19,11 @@ struct StepTimings {
   double refine_ms = 0;
 };
 
+// What a frame's estimate rests on. NoData: the frame had no valid pixel (a sensor dropout), so the
+// filter only predicted: the pose is the motion model's guess.
+enum class TrackStatus { Tracking, Lost, NoData };
+const char* to_string(TrackStatus status);  // "tracking", "lost", "no-data"
+
 struct Estimate {
   Pose pose;  // camera_from_object: the refined pose, or the weighted mean when refinement is off
   Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   // m/s, object's local frame
@@ -33,6 +38,7 @@ struct Estimate {
   // so it is a lower bound on the real uncertainty. NaN when refinement is off or the fit had too
   // few pixels.
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Constant(std::nan(""));
+  TrackStatus status = TrackStatus::Tracking;
   StepTimings timings;
 };
 
@@ -54,8 +60,13 @@ class Tracker {
   Tracker& operator=(Tracker&&) noexcept;
 
   // Draws the particles around pose (gaussian, per-axis, about the mesh's centre, local frame).
+  // The quaternion is normalized (zero is an InputError); the mesh's centre must lie at a depth in
+  // [near_plane, max_depth]; the spread must be finite, at most max_depth and a full turn.
   void initialize(const Pose& pose, const InitialSpread& spread = {});
-  // Runs one frame. depth must have the sensor's size; timestamps (seconds) must increase.
+  // Runs one frame. depth must have the sensor's size; timestamps (seconds) must increase. Depths
+  // beyond the model's max_depth count as missing; a frame with no valid pixel is a dropout: the
+  // filter predicts only and the estimate's status is NoData. An estimate that is not finite is an
+  // InputError naming the frame.
   Estimate update(const DepthImage& depth, double timestamp);
 
   const Camera& working_camera() const;
@@ -71,6 +82,8 @@ class Tracker {
   bool initialized_ = false;
   bool has_previous_ = false;
   double previous_timestamp_ = 0;
+  size_t frames_since_initialize_ = 0;
+  Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();  // the mesh's, where initialize() checks the start
 };
 
 }  // namespace depthtrack

@@ -62,6 +62,10 @@ struct TrackerConfig {
   int height = 60;
   double resample_kl_threshold = 2.0;  // resample when log N - H(w) exceeds this
   double near_plane = 0.05;            // metres: rendering clips geometry closer than this
+  // Seconds: a longer gap between frames is propagated as this long. The motion noise grows with
+  // the gap without bound (a 1e6 s gap spread the particles over kilometres); after a second the
+  // track is as good as lost anyway, and the cloud stays where the object can still be seen.
+  double max_time_step = 1.0;
   uint64_t seed = 1;
   // reference, opencl, opencl:pocl, opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n>;
   // empty: the environment's DEPTHTRACK_DEVICE if set, else reference (see resolved_backend()).

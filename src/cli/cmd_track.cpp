@@ -1,4 +1,5 @@
 // depthtrack track: run the tracker over a recorded sequence and write the estimates as CSV.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <depthtrack/error.hpp>
@@ -69,6 +70,11 @@ void run_track(const TrackArgs& a) {
   const TrackerConfig config = a.tracker.resolve();
   const Sequence seq = load_sequence(a.sequence, a.object);
   if (!a.bop_out.empty()) check_bop_exportable(seq);
+  // Opened before any work, so that a bad --out fails at once; rows are streamed as frames are tracked.
+  TrackingCsvWriter csv(a.out,
+                        !seq.frames.empty() && std::all_of(seq.frames.begin(), seq.frames.end(),
+                                                           [](const auto& f) { return f.ground_truth.has_value(); }),
+                        order);
   // BOP models are in millimetres by the format's definition.
   const bool bop_units = seq.format == "bop" && a.unit_scale_option->count() == 0;
   const double unit_scale = bop_units ? 0.001 : a.unit_scale;
@@ -90,6 +96,7 @@ void run_track(const TrackArgs& a) {
   ProgressBar bar("tracking", static_cast<int>(seq.frames.size()));
   const auto begin = std::chrono::steady_clock::now();
   const auto frames = track_sequence(seq, mesh, config, start, spread, [&](size_t i, const TrackedFrame& f) {
+    csv.write(f);
     char text[64] = "";
     if (f.ground_truth) std::snprintf(text, sizeof text, "err %.1f mm", 1000 * f.translation_error);
     bar.update(static_cast<int>(i + 1), text);
@@ -102,7 +109,7 @@ void run_track(const TrackArgs& a) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count() - overlay_seconds;
   bar.finish();
-  write_tracking_csv(a.out, frames, order);
+  csv.finish();
   if (!a.bop_out.empty()) write_bop_csv(a.bop_out, seq, frames, config.particles);
   const RunStats stats = run_stats(frames, seconds);
   print_summary(stats, frames.empty() ? nullptr : &frames.back());
@@ -127,7 +134,8 @@ void add_track_command(CLI::App& app) {
       ->required();
   c->add_option("--out", args->out,
                 "CSV to write: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess (camera-from-object, metres), plus "
-                "err_t_mm,err_r_deg,adds_mm when ground truth is known")
+                "err_t_mm,err_r_deg,adds_mm when ground truth is known, then status (tracking, lost, no-data); "
+                "written to FILE.partial and renamed when all frames are done")
       ->required();
   c->add_option("--summary", args->summary,
                 "Also write a one-line JSON summary of the run (frames, mean/max errors, fps, backend) to this "

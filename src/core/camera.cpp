@@ -1,6 +1,7 @@
 #include <cmath>
 #include <depthtrack/camera.hpp>
 #include <depthtrack/error.hpp>
+#include <sstream>
 #include <string>
 
 namespace depthtrack {
@@ -24,6 +25,14 @@ void Camera::validate() const {
   if (!std::isfinite(fx) || fx <= 0) fail("focal length fx = " + std::to_string(fx) + " must be positive");
   if (!std::isfinite(fy) || fy <= 0) fail("focal length fy = " + std::to_string(fy) + " must be positive");
   if (!std::isfinite(cx) || !std::isfinite(cy)) fail("principal point must be finite");
+  // Real lenses put it near the image centre; a point far outside is a unit or field mix-up
+  // (millimetres, or fx and cx swapped). Half an image of margin on each side is allowed.
+  if (cx < -0.5 * width || cx > 1.5 * width || cy < -0.5 * height || cy > 1.5 * height) {
+    std::ostringstream m;
+    m << "principal point (" << cx << ", " << cy << ") is far outside the " << width << "x" << height
+      << " image (allowed: within half an image of it)";
+    fail(m.str());
+  }
 }
 
 Camera Camera::decimated(int factor) const {

@@ -49,7 +49,8 @@ void TrackerConfig::validate() const {
               observation.sigma_quadratic >= 0,
           "depth noise sigma must be positive");
   require(probability(observation.tail_weight) && observation.tail_weight < 1, "tail weight must be in [0, 1)");
-  require(positive(observation.max_depth), "max depth must be positive");
+  require(positive(observation.max_depth) && observation.max_depth <= 1000,
+          "max depth must be in (0, 1000] metres");
   require(positive(observation.occluder_rate), "occluder rate must be positive");
   require(probability(occlusion.p_occluded_stays) && probability(occlusion.p_visible_to_occluded) &&
               occlusion.p_occluded_stays > occlusion.p_visible_to_occluded && occlusion.p_occluded_stays < 1,
@@ -66,6 +67,7 @@ void TrackerConfig::validate() const {
   require(std::isfinite(refine.damping) && refine.damping >= 0, "refine damping must be >= 0");
   require(probability(refine.min_incidence) && refine.min_incidence < 1, "refine min incidence must be in [0, 1)");
   require(positive(near_plane) && near_plane < observation.max_depth, "near plane must be in (0, max depth)");
+  require(positive(max_time_step), "max time step must be positive");
 }
 
 }  // namespace depthtrack

@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <depthtrack/error.hpp>
 #include <depthtrack/evaluation.hpp>
 
 namespace depthtrack {
@@ -26,6 +28,11 @@ std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& m
     frames.push_back(out);
     if (on_frame) on_frame(i, frames.back());
   }
+  // Dropouts are tracked through, but a sequence that never shows a valid pixel holds no data at all.
+  if (!frames.empty() && std::all_of(frames.begin(), frames.end(),
+                                     [](const TrackedFrame& f) { return f.estimate.status == TrackStatus::NoData; }))
+    throw InputError("no frame of the sequence has a valid depth pixel (within max_depth " +
+                     std::to_string(config.observation.max_depth) + " m) at the working resolution");
   return frames;
 }
 

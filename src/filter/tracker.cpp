@@ -1,11 +1,46 @@
+#include <algorithm>
 #include <cmath>
 #include <depthtrack/error.hpp>
 #include <depthtrack/tracker.hpp>
+#include <numbers>
 #include <sstream>
 
 #include "filter/filter_backend.hpp"
 
 namespace depthtrack {
+
+const char* to_string(TrackStatus status) {
+  switch (status) {
+    case TrackStatus::Tracking:
+      return "tracking";
+    case TrackStatus::Lost:
+      return "lost";
+    case TrackStatus::NoData:
+      return "no-data";
+  }
+  return "?";
+}
+
+namespace {
+
+// Depths beyond max_depth are outside the observation model (its uniform tail ends there, and far
+// readings would overflow it): they count as missing. Copies only when some pixel is that deep.
+DepthImage without_depths_beyond(const DepthImage& depth, double max_depth) {
+  const auto& data = depth.data();
+  if (std::none_of(data.begin(), data.end(), [&](float z) { return z > max_depth; })) return depth;
+  DepthImage kept(depth.width(), depth.height());
+  for (int v = 0; v < depth.height(); ++v)
+    for (int u = 0; u < depth.width(); ++u)
+      if (depth.at(u, v) <= max_depth) kept.at(u, v) = depth.at(u, v);
+  return kept;
+}
+
+bool is_finite(const Estimate& e) {
+  return e.pose.translation.allFinite() && e.pose.rotation.coeffs().allFinite() && e.linear_velocity.allFinite() &&
+         e.angular_velocity.allFinite() && std::isfinite(e.effective_sample_size);
+}
+
+}  // namespace
 
 Tracker::Tracker(const Mesh& mesh, const Camera& sensor, const TrackerConfig& config) : sensor_(sensor) {
   sensor.validate();
@@ -15,6 +50,7 @@ Tracker::Tracker(const Mesh& mesh, const Camera& sensor, const TrackerConfig& co
   decimation_ = sensor.decimation_factor_for(config.width, config.height);
   working_ = sensor.decimated(decimation_);
   config_ = config;
+  centre_ = checked.centre().cast<double>();
   backend_ = make_filter_backend(checked, working_, config);
 }
 
@@ -25,11 +61,33 @@ Tracker& Tracker::operator=(Tracker&&) noexcept = default;
 void Tracker::initialize(const Pose& pose, const InitialSpread& spread) {
   if (!pose.translation.allFinite() || !pose.rotation.coeffs().allFinite())
     throw InputError("initial pose is not finite");
-  if (!(std::isfinite(spread.metres) && spread.metres >= 0 && std::isfinite(spread.radians) && spread.radians >= 0))
-    throw InputError("initial spread must be finite and non-negative");
-  backend_->initialize(pose, spread);
+  // A zero quaternion is no rotation at all (its rows would read q = 0); any other is normalized.
+  const double norm = pose.rotation.norm();
+  if (!(norm > 1e-9)) throw InputError("initial rotation is a zero quaternion (qw qx qy qz all 0)");
+  Pose start = pose;
+  start.rotation.normalize();
+  // The object must start where the camera can see it: its centre in front, within max_depth.
+  const double depth = (start.rotation * centre_ + start.translation).z();
+  if (!(depth >= config_.near_plane && depth <= config_.observation.max_depth)) {
+    std::ostringstream m;
+    m << "initial pose puts the object's centre at depth z = " << depth << " m, "
+      << (depth < config_.near_plane ? "behind or too close to the camera" : "beyond max depth") << ": it must be in ["
+      << config_.near_plane << ", " << config_.observation.max_depth << "] m";
+    throw InputError(m.str());
+  }
+  // Wider than the depth range or a full turn, the cloud says nothing about where the object is.
+  if (!(std::isfinite(spread.metres) && spread.metres >= 0 && spread.metres <= config_.observation.max_depth &&
+        std::isfinite(spread.radians) && spread.radians >= 0 && spread.radians <= 2 * std::numbers::pi)) {
+    std::ostringstream m;
+    m << "initial spread " << spread.metres << " m, " << spread.radians
+      << " rad must be finite and non-negative, at most max depth (" << config_.observation.max_depth
+      << " m) and a full turn (2 pi rad)";
+    throw InputError(m.str());
+  }
+  backend_->initialize(start, spread);
   initialized_ = true;
   has_previous_ = false;
+  frames_since_initialize_ = 0;
 }
 
 Estimate Tracker::update(const DepthImage& depth, double timestamp) {
@@ -47,19 +105,26 @@ Estimate Tracker::update(const DepthImage& depth, double timestamp) {
     m << "timestamps must increase: " << timestamp << " s follows " << previous_timestamp_ << " s";
     throw InputError(m.str());
   }
-  // Decimate only when needed: at the sensor's resolution the caller's image is used as it is.
-  DepthImage decimated;
-  if (decimation_ > 1) decimated = depth.decimated(decimation_);
-  const DepthImage& working = decimation_ > 1 ? decimated : depth;
-  if (working.valid_count() == 0) {
+  // At the working resolution, without the readings the model has no density for.
+  const DepthImage working =
+      without_depths_beyond(decimation_ > 1 ? depth.decimated(decimation_) : depth, config_.observation.max_depth);
+  // A gap longer than max_time_step is propagated as that long (TrackerConfig says why).
+  const double dt = has_previous_ ? std::min(timestamp - previous_timestamp_, config_.max_time_step) : 0.0;
+  // A dropout: every pixel adds 0 to every particle's log-likelihood, so the weights stay as they
+  // are and resampling, decided on them, cannot trigger: the filter propagates only.
+  const bool dropout = working.valid_count() == 0;
+  Estimate e = backend_->update(working, dt);
+  if (dropout) e.status = TrackStatus::NoData;
+  if (!is_finite(e)) {
     std::ostringstream m;
-    m << "depth frame at " << timestamp << " s has no valid pixel (all missing) at the working resolution";
+    m.precision(17);
+    m << "frame " << frames_since_initialize_ << " (at " << timestamp
+      << " s): the estimate is not finite; the input or the configuration is outside what the model handles";
     throw InputError(m.str());
   }
-  const double dt = has_previous_ ? timestamp - previous_timestamp_ : 0.0;
-  Estimate e = backend_->update(working, dt);
   previous_timestamp_ = timestamp;
   has_previous_ = true;
+  ++frames_since_initialize_;
   return e;
 }
 

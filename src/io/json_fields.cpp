@@ -47,6 +47,7 @@ double JsonField::number() const {
 
 int JsonField::integer() const {
   if (!value_.is_number_integer()) fail("must be an integer");
+  if (value_.is_number_unsigned() && value_.get<uint64_t>() > 2147483647u) fail("is out of range");
   const auto x = value_.get<int64_t>();
   if (x < -2147483647 || x > 2147483647) fail("is out of range");
   return static_cast<int>(x);

@@ -1,6 +1,7 @@
 // Picks the sequence reader from the files present, and loads a frame's depth.
 #include <depthtrack/error.hpp>
 
+#include "io/png_depth.hpp"
 #include "io/sequence_formats.hpp"
 
 namespace depthtrack {
@@ -22,12 +23,13 @@ DepthImage Sequence::load_depth(size_t i) const {
     throw InputError("frame index " + std::to_string(i) + " is out of range: the sequence has " +
                      std::to_string(frames.size()) + " frames");
   const auto& path = frames[i].depth_path;
-  DepthImage depth = DepthImage::load_png(path, metres_per_unit);
-  if (depth.width() != camera.width || depth.height() != camera.height)
-    throw InputError("depth image '" + path.string() + "' is " + std::to_string(depth.width()) + "x" +
-                     std::to_string(depth.height()) + " but the camera is " + std::to_string(camera.width) + "x" +
+  // The size is checked from the header, before a wrong (or hostile, 16384x16384) image is decoded.
+  const io::ImageSize size = io::read_depth_png_size(path);
+  if (size.width != camera.width || size.height != camera.height)
+    throw InputError("depth image '" + path.string() + "' is " + std::to_string(size.width) + "x" +
+                     std::to_string(size.height) + " but the camera is " + std::to_string(camera.width) + "x" +
                      std::to_string(camera.height));
-  return depth;
+  return DepthImage::load_png(path, metres_per_unit);
 }
 
 }  // namespace depthtrack

@@ -116,8 +116,9 @@ io::ImageSize checked_header(PngFile& f, const std::filesystem::path& path) {
                      " and colour type " + colour_type_name(colour_type) +
                      "; a depth image must be a 16-bit single-channel greyscale PNG");
   const png_uint_32 width = png_get_image_width(f.png, f.info), height = png_get_image_height(f.png, f.info);
-  // libpng already caps each side at 10^6; a corrupt header could still ask for terabytes.
-  if (static_cast<uint64_t>(width) * height > (uint64_t{1} << 28))
+  // libpng already caps each side at 10^6; a corrupt header could still ask for terabytes. 2^26
+  // pixels (8192x8192, 384 MiB decoded) is far beyond any depth sensor.
+  if (static_cast<uint64_t>(width) * height > (uint64_t{1} << 26))
     throw InputError("depth image " + quoted(path) + " claims an implausible size of " + std::to_string(width) + "x" +
                      std::to_string(height));
   return {static_cast<int>(width), static_cast<int>(height)};

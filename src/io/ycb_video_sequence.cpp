@@ -14,8 +14,13 @@ namespace {
 
 constexpr double kFrameRate = 30.0;  // YCB-Video was recorded at 30 Hz; gt.json has no timestamps
 
+// 0 .. 999999999 (nine digits, as the names are): differences between frame numbers cannot overflow.
 int frame_number(const io::JsonField& f) {
-  if (f.json().is_number_integer()) return f.integer();
+  if (f.json().is_number_integer()) {
+    const int n = f.integer();
+    if (n < 0 || n > 999'999'999) f.fail("must be a frame number from 0 to 999999999");
+    return n;
+  }
   const std::string text = f.string();
   if (text.empty() || text.size() > 9 ||
       !std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c); }))
@@ -84,6 +89,9 @@ Sequence io::load_ycb_video_sequence(const std::filesystem::path& dir, const std
     const JsonField objects = frames[i]["objects"];
     for (size_t j = 0; j < objects.size(); ++j) {
       const std::string name = objects[j]["name"].string();
+      // Two poses for one object: which is the truth? (Before, the last silently won.)
+      for (size_t k = 0; k < j; ++k)
+        if (objects[k]["name"].string() == name) objects[j]["name"].fail("repeats object '" + name + "' of this frame");
       if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
     }
   }

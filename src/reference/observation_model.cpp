@@ -1,5 +1,6 @@
 #include "reference/observation_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -12,17 +13,23 @@ double depth_sigma(const ObservationModel& m, double y) {
 PixelDensities pixel_densities(const ObservationModel& m, double y, double y_hat) {
   const double sigma = depth_sigma(m, y);
   const double tail = m.tail_weight / m.max_depth;
+  const double keep = 1.0 - m.tail_weight;
   const double lambda = m.occluder_rate;
   const double z = (y - y_hat) / sigma;
   const double gaussian = std::exp(-0.5 * z * z) / (std::sqrt(2.0 * std::numbers::pi) * sigma);
-  // Exponential occluder prior on [0, y_hat] convolved with the sensor's gaussian.
-  const double occluded = lambda * std::exp(lambda * (y_hat - y) + 0.5 * lambda * lambda * sigma * sigma) *
-                          (1.0 + std::erf((y_hat - y + lambda * sigma * sigma) / (std::numbers::sqrt2 * sigma))) /
-                          (2.0 * std::expm1(lambda * y_hat));
-  // The same prior on [0, infinity): what a pixel without the object sees.
-  const double background = lambda * std::exp(-lambda * y + 0.5 * lambda * lambda * sigma * sigma);
-  const double keep = 1.0 - m.tail_weight;
-  return {tail + keep * gaussian, tail + keep * occluded, tail + keep * background};
+  // The exponential occluder prior on [0, infinity) convolved with the sensor's gaussian, what a pixel
+  // without the object sees: lambda exp(exponent). exp overflows once sigma grows large (y beyond
+  // ~250 m in double, ~150 m in float), so all three densities are stored divided by exp(log_scale):
+  // ratios, log ratio and posterior keep their values, and the densities are exact while exponent <= 0.
+  const double exponent = lambda * (0.5 * lambda * sigma * sigma - y);
+  const double log_scale = std::max(0.0, exponent);
+  const double scale = std::exp(-log_scale);
+  const double background = keep * lambda * std::exp(exponent - log_scale);
+  // The same prior on [0, y_hat]: the background's times the part of it in front of y_hat,
+  // erfc(-x) / (2 (1 - exp(-lambda y_hat))), which no longer overflows.
+  const double in_front = std::erfc(-(y_hat - y + lambda * sigma * sigma) / (std::numbers::sqrt2 * sigma)) /
+                          (-2.0 * std::expm1(-lambda * y_hat));
+  return {(tail + keep * gaussian) * scale, tail * scale + background * in_front, tail * scale + background, log_scale};
 }
 
 double pixel_log_ratio(const PixelDensities& d, double p) {

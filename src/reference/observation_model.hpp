@@ -8,6 +8,9 @@ struct PixelDensities {
   double visible;     // p_vis(y | y_hat): the object is seen at this pixel
   double occluded;    // p_occ(y | y_hat): something in front of the object is seen
   double background;  // p_bg(y): no object at this pixel
+  // The three are stored divided by exp(log_scale), so that they stay finite at any depth (0 within a
+  // sensor's range): their ratios, the log ratio and the posterior do not depend on it.
+  double log_scale = 0;
 };
 
 // Depth noise sigma(y) grows with the observed depth y.

@@ -82,10 +82,19 @@ void Rasterizer::rasterize_triangle(const ScreenVertex& a, const ScreenVertex& b
     std::swap(b, c);
     area = -area;
   }
-  const int u_min = std::max(0, static_cast<int>(std::ceil(std::min({a.u, b.u, c.u}))));
-  const int u_max = std::min(camera_.width - 1, static_cast<int>(std::floor(std::max({a.u, b.u, c.u}))));
-  const int v_min = std::max(0, static_cast<int>(std::ceil(std::min({a.v, b.v, c.v}))));
-  const int v_max = std::min(camera_.height - 1, static_cast<int>(std::floor(std::max({a.v, b.v, c.v}))));
+  // Clamped to [-1, size] before the conversion to int, which is undefined beyond int's range: a box
+  // off the image comes out empty (u_min > u_max) whatever the vertices' magnitude.
+  auto first = [](double lowest, int size) {
+    return static_cast<int>(std::clamp(std::ceil(lowest), 0.0, static_cast<double>(size)));
+  };
+  auto last = [](double highest, int size) {
+    return static_cast<int>(std::clamp(std::floor(highest), -1.0, static_cast<double>(size - 1)));
+  };
+  const int u_min = first(std::min({a.u, b.u, c.u}), camera_.width);
+  const int u_max = last(std::max({a.u, b.u, c.u}), camera_.width);
+  const int v_min = first(std::min({a.v, b.v, c.v}), camera_.height);
+  const int v_max = last(std::max({a.v, b.v, c.v}), camera_.height);
+  if (u_min > u_max || v_min > v_max) return;
   const bool own_bc = owns_edge(b.u, b.v, c.u, c.v), own_ca = owns_edge(c.u, c.v, a.u, a.v),
              own_ab = owns_edge(a.u, a.v, b.u, b.v);
   for (int v = v_min; v <= v_max; ++v) {

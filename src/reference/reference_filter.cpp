@@ -1,8 +1,12 @@
 #include "reference/reference_filter.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <limits>
+#include <depthtrack/error.hpp>
 #include <numeric>
+#include <sstream>
 
 #include "core/stopwatch.hpp"
 #include "philox.h"
@@ -13,12 +17,40 @@
 
 namespace depthtrack::reference {
 
+namespace {
+
+// Checked before allocating, like the device filter's memory check: 2e9 particles used to end in
+// std::bad_alloc, or in the system's out-of-memory killer.
+void check_host_memory(const TrackerConfig& config, const Camera& camera) {
+  const bool occlusion = config.occlusion_storage != OcclusionStorage::Off;
+  const bool times = config.occlusion_storage == OcclusionStorage::PerPixelTime;
+  // Occlusion probabilities and times, each with a resampling twin, plus the particle, its twin,
+  // and the per-particle weights and likelihoods.
+  const double per_particle =
+      4.0 * static_cast<double>(camera.pixel_count()) * ((occlusion ? 2 : 0) + (times ? 2 : 0)) +
+      2.0 * sizeof(ParticleState) + 6 * sizeof(double) + sizeof(int) + sizeof(Pose);
+  const double needed = per_particle * config.particles;
+  const double available =
+      static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+  if (available > 0 && needed > 0.8 * available) {
+    std::ostringstream m;
+    m.precision(3);
+    m << config.particles << " particles at " << camera.width << "x" << camera.height << " need " << needed / (1 << 30)
+      << " GiB of memory for the reference filter but this machine has " << available / (1 << 30)
+      << " GiB; at most about " << static_cast<long long>(0.8 * available / per_particle) << " particles fit";
+    throw InputError(m.str());
+  }
+}
+
+}  // namespace
+
 ReferenceFilter::ReferenceFilter(const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
     : config_(config),
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       rasterizer_(mesh, camera, config.near_plane, config.observation.max_depth),
       refiner_(mesh, camera, config) {
+  check_host_memory(config, camera);
   const size_t n = static_cast<size_t>(config.particles), pixels = static_cast<size_t>(camera.pixel_count());
   particles_.resize(n);
   log_weights_.assign(n, 0.0);
