@@ -2,6 +2,7 @@
 // The particle filter: one update() per depth frame.
 #include <depthtrack/camera.hpp>
 #include <depthtrack/depth_image.hpp>
+#include <depthtrack/init_hint.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/pose.hpp>
 #include <depthtrack/tracker_config.hpp>
@@ -14,7 +15,14 @@ namespace depthtrack {
 // poses to the renderer and the atlas to the compute kernels (0 for the reference tracker).
 struct StepTimings {
   double propagate_ms = 0, render_ms = 0, handoff_ms = 0, weigh_ms = 0, resample_ms = 0, total_ms = 0;
+  // Global search (initialize_global, or recovery while lost), wall-clock; included in total_ms.
+  double search_ms = 0;
 };
+
+// Whether the estimate is trusted: lost once the confidence stayed low for a few frames
+// (TrackerConfig::loss), tracking again once a search finds the object.
+enum class TrackStatus { Tracking, Lost };
+const char* to_string(TrackStatus status);
 
 struct Estimate {
   Pose pose;                                                   // weighted mean camera_from_object
@@ -25,6 +33,12 @@ struct Estimate {
   double mean_log_likelihood = 0;                              // weighted mean of log L
   bool resampled = false;
   StepTimings timings;
+  // Share of the estimate's rendered silhouette (pixels with valid depth) that the depth explains
+  // as the object's visible surface, in [0, 1]: low when the object is hidden or the depth is seen
+  // behind where the estimate puts it.
+  double confidence = 0;
+  TrackStatus status = TrackStatus::Tracking;
+  bool recovered = false;  // this frame re-seeded the filter from a global search
 };
 
 // Spread of the initial particle cloud: per-axis standard deviations.
@@ -33,7 +47,8 @@ struct InitialSpread {
   double radians = 0.05;
 };
 
-class FilterBackend;  // the per-backend implementation (reference, compute layer)
+class FilterBackend;    // the per-backend implementation (reference, compute layer)
+class TrackSupervisor;  // confidence, loss and global search (backend-independent)
 
 class Tracker {
  public:
@@ -46,7 +61,14 @@ class Tracker {
 
   // Draws the particles around pose (gaussian, per-axis, about the mesh's centre, local frame).
   void initialize(const Pose& pose, const InitialSpread& spread = {});
+  // Finds the object in this frame without a pose: scores a coarse-to-fine set of pose hypotheses
+  // (translations from the depth inside the hint's region, rotations covering SO(3)), seeds the
+  // particles around the best and runs this frame's update; returns its estimate. InputError for
+  // an empty box, a box outside the image, or no valid depth in the region.
+  Estimate initialize_global(const DepthImage& depth, double timestamp, const InitHint& hint = {});
   // Runs one frame. depth must have the sensor's size; timestamps (seconds) must increase.
+  // While the status is lost (and config.recovery.enabled), the frame first runs a global search
+  // within config.recovery.budget_ms and re-seeds the filter when it finds the object.
   Estimate update(const DepthImage& depth, double timestamp);
 
   const Camera& working_camera() const;
@@ -54,7 +76,12 @@ class Tracker {
   std::string backend_description() const;
 
  private:
+  // The working-resolution frame (decimated only when needed); InputError for a wrong size.
+  const DepthImage& working_frame(const DepthImage& depth, DepthImage& storage) const;
+  Estimate run_frame(const DepthImage& working, double timestamp);
+
   std::unique_ptr<FilterBackend> backend_;
+  std::unique_ptr<TrackSupervisor> supervisor_;
   Camera sensor_;
   Camera working_;
   TrackerConfig config_;
@@ -62,6 +89,7 @@ class Tracker {
   bool initialized_ = false;
   bool has_previous_ = false;
   double previous_timestamp_ = 0;
+  unsigned search_round_ = 0;  // varies each recovery search's perturbations
 };
 
 }  // namespace depthtrack
