@@ -49,8 +49,8 @@ TEST_CASE("device pose scores equal the reference's", "[global][device]") {
     DeviceFilter device(compute::open_device(test::device_selector()), mesh, working, config);
     // More poses than a CPU device's batch, so that a partly filled batch is checked too.
     const std::vector<Pose> poses = test_poses(frame.ground_truth, mesh.centre().cast<double>(), 700);
-    const std::vector<double> expected = reference.score_poses(poses, depth);
-    const std::vector<double> got = device.score_poses(poses, depth);
+    const std::vector<double> expected = reference.score_poses(poses, depth, config.observation);
+    const std::vector<double> got = device.score_poses(poses, depth, config.observation);
     REQUIRE(got.size() == poses.size());
     const auto& scale = reference.last_score_magnitudes();
     double worst = 0;
@@ -64,5 +64,53 @@ TEST_CASE("device pose scores equal the reference's", "[global][device]") {
     CHECK(expected.back() == 0.0);  // the pose behind the camera covers nothing
     // The true pose beats the far ones: the scores mean something.
     CHECK(expected.front() > *std::min_element(expected.begin(), expected.end()) + 100);
+  }
+}
+
+namespace {
+struct YcbObject {
+  std::string name;
+  int label = 0;  // cls_index: the object's id in the label images
+};
+
+std::vector<YcbObject> ycb_objects(const std::filesystem::path& gt) {
+  std::ifstream in(gt);
+  const auto json = nlohmann::json::parse(in);
+  std::vector<YcbObject> out;
+  for (const auto& o : json["frames"][0]["objects"]) out.push_back({o["name"], o["cls_index"]});
+  return out;
+}
+}  // namespace
+
+TEST_CASE("YCB-Video clip 0000: each object found from its 2D box in the first frame, and from nothing",
+          "[global][accuracy]") {
+  const auto clip = test::shared_data("sequences/ycbv-0000/gt.json");
+  if (!clip) return;
+  const bool no_hint = std::getenv("DEPTHTRACK_TEST_GLOBAL_NO_HINT") != nullptr;
+  std::printf(
+      "\nycbv-0000 at 80x60, 200 particles, reference  start    search s   poses  last: t mm   r deg  ADD-S mm\n");
+  for (const YcbObject& object : ycb_objects(*clip)) {
+    const auto mesh_path = test::shared_data("meshes/ycb/" + object.name + ".obj");
+    if (!mesh_path) return;
+    const Mesh mesh = Mesh::load(*mesh_path);
+    const AddsMetric adds(mesh);
+    const Sequence sequence = load_sequence(clip->parent_path(), object.name);
+    const auto box = test::label_box(clip->parent_path() / "000001-label.png", object.label);
+    REQUIRE(box);
+    std::vector<std::pair<std::string, InitHint>> starts = {
+        {"box", InitHint::box((*box)[0], (*box)[1], (*box)[2], (*box)[3])}};
+    if (no_hint) starts.push_back({"none", InitHint::anywhere()});
+    for (const auto& [start, hint] : starts) {
+      TrackerConfig config;
+      config.backend = "reference";
+      const auto frames = track_sequence_global(sequence, mesh, config, hint);
+      const TrackedFrame& last = frames.back();
+      const double last_adds = adds(last.estimate.pose, *last.ground_truth);
+      std::printf("  %-16s %26s %9.2f %9zu %10.2f %7.2f %9.2f\n", object.name.c_str(), start.c_str(),
+                  frames.front().estimate.timings.search_ms / 1000, frames.front().estimate.search_poses,
+                  1000 * last.translation_error, kDegrees * last.rotation_error, 1000 * last_adds);
+      CHECK(last_adds <= 0.010);
+      for (const TrackedFrame& f : frames) CHECK(f.estimate.status == TrackStatus::Tracking);
+    }
   }
 }

@@ -29,6 +29,12 @@ std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& m
                                          const Pose& initial, const InitialSpread& spread,
                                          const std::function<void(size_t, const TrackedFrame&)>& on_frame = {});
 
+// Tracks every frame of the sequence without an initial pose: the first frame is searched within
+// hint (Tracker::initialize_global), the rest are tracked.
+std::vector<TrackedFrame> track_sequence_global(const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config,
+                                                const InitHint& hint,
+                                                const std::function<void(size_t, const TrackedFrame&)>& on_frame = {});
+
 // pose moved by exactly `metres` in a direction and rotated by exactly `degrees` about an axis
 // through the mesh's centre, both drawn from seed: a reproducible "start from perturbed ground truth".
 Pose perturb_pose(const Pose& pose, const Eigen::Vector3d& centre, double metres, double degrees, uint64_t seed);
@@ -48,7 +54,7 @@ class AddsMetric {
 };
 
 // CSV with a header and a row per frame: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess and, when every
-// frame has ground truth, err_t_mm,err_r_deg.
+// frame has ground truth, err_t_mm,err_r_deg; then confidence,status (tracking or lost).
 void write_tracking_csv(const std::filesystem::path& path, const std::vector<TrackedFrame>& frames);
 
 }  // namespace depthtrack

@@ -38,7 +38,8 @@ struct Estimate {
   // behind where the estimate puts it.
   double confidence = 0;
   TrackStatus status = TrackStatus::Tracking;
-  bool recovered = false;  // this frame re-seeded the filter from a global search
+  bool recovered = false;   // this frame re-seeded the filter from a global search
+  size_t search_poses = 0;  // poses this frame's global search scored (0: none ran)
 };
 
 // Spread of the initial particle cloud: per-axis standard deviations.

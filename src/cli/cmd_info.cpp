@@ -1,8 +1,8 @@
 // depthtrack info: every compute device of every backend, and what it offers depthtrack.
 #include <cstdio>
 #include <depthtrack/camera.hpp>
-#include <depthtrack/mesh.hpp>
 #include <depthtrack/error.hpp>
+#include <depthtrack/mesh.hpp>
 #include <memory>
 #include <string>
 #include <vector>

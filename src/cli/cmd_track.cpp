@@ -1,5 +1,7 @@
 // depthtrack track: run the tracker over a recorded sequence and write the estimates as CSV.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <depthtrack/error.hpp>
 #include <depthtrack/evaluation.hpp>
@@ -16,9 +18,9 @@ namespace depthtrack::cli {
 namespace {
 
 struct TrackArgs {
-  std::string mesh, sequence, out, object, init, init_perturb, init_spread = "0.01 5";
+  std::string mesh, sequence, out, object, init, init_perturb, init_spread = "0.01 5", init_box;
   double unit_scale = 1.0;
-  bool init_from_gt = false;
+  bool init_from_gt = false, init_global = false, no_recover = false;
   TrackerOptions tracker;
 };
 
@@ -56,30 +58,51 @@ void print_summary(const std::vector<TrackedFrame>& frames, const Mesh& mesh, do
               deg * last.rotation_error, 1000 * AddsMetric(mesh)(last.estimate.pose, *last.ground_truth));
 }
 
+// The hint of --init-box (inclusive sensor pixels of the first frame) or --init-global (none).
+InitHint init_hint(const TrackArgs& a) {
+  if (a.init_box.empty()) return InitHint::anywhere();
+  const auto v = parse_numbers(a.init_box, 4, "--init-box");
+  for (double x : v)
+    if (x != std::floor(x))
+      throw InputError("--init-box takes whole pixel numbers \"u0 v0 u1 v1\", got '" + a.init_box + "'");
+  return InitHint::box(static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]), static_cast<int>(v[3]));
+}
+
 void run_track(const TrackArgs& a) {
-  if (a.init.empty() && !a.init_from_gt) throw InputError("give --init POSE or --init-from-gt");
-  if (!a.init.empty() && a.init_from_gt) throw InputError("--init and --init-from-gt exclude each other");
-  const TrackerConfig config = a.tracker.resolve();
+  const int starts = !a.init.empty() + a.init_from_gt + !a.init_box.empty() + a.init_global;
+  if (starts == 0) throw InputError("give --init POSE, --init-from-gt, --init-box \"u0 v0 u1 v1\" or --init-global");
+  if (starts > 1) throw InputError("--init, --init-from-gt, --init-box and --init-global exclude each other");
+  TrackerConfig config = a.tracker.resolve();
+  config.recovery.enabled = !a.no_recover;
   const Mesh mesh = Mesh::load(a.mesh, a.unit_scale);
   if (mesh.dropped_degenerate > 0)
     std::fprintf(stderr, "depthtrack: note: dropped %zu degenerate triangles of '%s'\n", mesh.dropped_degenerate,
                  a.mesh.c_str());
   const Sequence seq = load_sequence(a.sequence, a.object);
-  const Pose start = initial_pose(a, seq, mesh);
+  const bool global = !a.init_box.empty() || a.init_global;
+  const InitHint hint = init_hint(a);
   const auto spread_values = parse_numbers(a.init_spread, 2, "--init-spread");
   const InitialSpread spread{spread_values[0], spread_values[1] * std::numbers::pi / 180.0};
 
   ProgressBar bar("tracking", static_cast<int>(seq.frames.size()));
   const auto begin = std::chrono::steady_clock::now();
-  const auto frames = track_sequence(seq, mesh, config, start, spread, [&](size_t i, const TrackedFrame& f) {
+  const auto progress = [&](size_t i, const TrackedFrame& f) {
     char text[64] = "";
     if (f.ground_truth) std::snprintf(text, sizeof text, "err %.1f mm", 1000 * f.translation_error);
     bar.update(static_cast<int>(i + 1), text);
-  });
+  };
+  const auto frames = global ? track_sequence_global(seq, mesh, config, hint, progress)
+                             : track_sequence(seq, mesh, config, initial_pose(a, seq, mesh), spread, progress);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   bar.finish();
   write_tracking_csv(a.out, frames);
   print_summary(frames, mesh, seconds);
+  if (global && !frames.empty())
+    std::printf("global initialization: %.2f s, %zu poses scored\n", frames.front().estimate.timings.search_ms / 1000,
+                frames.front().estimate.search_poses);
+  const auto lost = std::count_if(frames.begin(), frames.end(),
+                                  [](const TrackedFrame& f) { return f.estimate.status == TrackStatus::Lost; });
+  if (lost > 0) std::printf("lost in %lld of %zu frames\n", static_cast<long long>(lost), frames.size());
   std::printf("wrote %s\n", a.out.c_str());
 }
 
@@ -97,11 +120,17 @@ void add_track_command(CLI::App& app) {
       ->required();
   c->add_option("--out", args->out,
                 "CSV to write: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess (camera-from-object, metres), plus "
-                "err_t_mm,err_r_deg when ground truth is known")
+                "err_t_mm,err_r_deg when ground truth is known, then confidence,status")
       ->required();
   c->add_option("--object", args->object, "Which object's ground truth to use in a multi-object clip (e.g. 025_mug)");
   c->add_option("--init", args->init, "Initial pose \"tx ty tz qw qx qy qz\" (camera-from-object, metres)");
   c->add_flag("--init-from-gt", args->init_from_gt, "Start from the first frame's ground-truth pose");
+  c->add_option("--init-box", args->init_box,
+                "Find the object inside this box of the first frame: \"u0 v0 u1 v1\", inclusive sensor pixels "
+                "(what a detector gives); no pose needed");
+  c->add_flag("--init-global", args->init_global, "Find the object anywhere in the first frame; no pose needed");
+  c->add_flag("--no-recover", args->no_recover,
+              "Do not search for the object again while it is lost (status stays lost until the filter finds it)");
   c->add_option("--init-perturb", args->init_perturb,
                 "With --init-from-gt: move the start by exactly \"METRES DEGREES\" in a seeded random direction");
   c->add_option("--init-spread", args->init_spread,

@@ -2,11 +2,11 @@
 
 namespace depthtrack {
 
-std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config,
-                                         const Pose& initial, const InitialSpread& spread,
-                                         const std::function<void(size_t, const TrackedFrame&)>& on_frame) {
-  Tracker tracker(mesh, sequence.camera, config);
-  tracker.initialize(initial, spread);
+namespace {
+// The loop both starts share; first(tracker, depth, timestamp) runs frame 0.
+template <typename First>
+std::vector<TrackedFrame> track_frames(const Sequence& sequence, Tracker& tracker, const First& first,
+                                       const std::function<void(size_t, const TrackedFrame&)>& on_frame) {
   std::vector<TrackedFrame> frames;
   frames.reserve(sequence.frames.size());
   for (size_t i = 0; i < sequence.frames.size(); ++i) {
@@ -14,7 +14,8 @@ std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& m
     TrackedFrame out;
     out.name = f.name;
     out.timestamp = f.timestamp;
-    out.estimate = tracker.update(sequence.load_depth(i), f.timestamp);
+    const DepthImage depth = sequence.load_depth(i);
+    out.estimate = i == 0 ? first(tracker, depth, f.timestamp) : tracker.update(depth, f.timestamp);
     out.ground_truth = f.ground_truth;
     if (f.ground_truth) {
       out.translation_error = translation_error(out.estimate.pose, *f.ground_truth);
@@ -24,6 +25,25 @@ std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& m
     if (on_frame) on_frame(i, frames.back());
   }
   return frames;
+}
+}  // namespace
+
+std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config,
+                                         const Pose& initial, const InitialSpread& spread,
+                                         const std::function<void(size_t, const TrackedFrame&)>& on_frame) {
+  Tracker tracker(mesh, sequence.camera, config);
+  tracker.initialize(initial, spread);
+  return track_frames(
+      sequence, tracker, [](Tracker& t, const DepthImage& d, double ts) { return t.update(d, ts); }, on_frame);
+}
+
+std::vector<TrackedFrame> track_sequence_global(const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config,
+                                                const InitHint& hint,
+                                                const std::function<void(size_t, const TrackedFrame&)>& on_frame) {
+  Tracker tracker(mesh, sequence.camera, config);
+  return track_frames(
+      sequence, tracker,
+      [&hint](Tracker& t, const DepthImage& d, double ts) { return t.initialize_global(d, ts, hint); }, on_frame);
 }
 
 }  // namespace depthtrack

@@ -135,9 +135,10 @@ void DeviceFilter::initialize(const Pose& pose, const InitialSpread& spread) {
   initialize_modes(std::span<const Pose>(&pose, 1), spread);
 }
 
-std::vector<double> DeviceFilter::score_poses(std::span<const Pose> poses, const DepthImage& depth) {
+std::vector<double> DeviceFilter::score_poses(std::span<const Pose> poses, const DepthImage& depth,
+                                              const ObservationModel& model) {
   if (!scorer_) scorer_ = std::make_unique<DevicePoseScorer>(*queue_, mesh_, camera_, config_);
-  return scorer_->score(poses, depth);
+  return scorer_->score(poses, depth, model);
 }
 
 void DeviceFilter::initialize_modes(std::span<const Pose> modes, const InitialSpread& spread) {

@@ -51,9 +51,12 @@ DevicePoseScorer::DevicePoseScorer(compute::Queue& queue, const Mesh& mesh, cons
 
 DevicePoseScorer::~DevicePoseScorer() = default;
 
-std::vector<double> DevicePoseScorer::score(std::span<const Pose> poses, const DepthImage& depth) {
+std::vector<double> DevicePoseScorer::score(std::span<const Pose> poses, const DepthImage& depth,
+                                            const ObservationModel& observation) {
   observed_.upload(depth.data());
-  const ModelArgs model = model_args(config_);
+  TrackerConfig config = config_;
+  config.observation = observation;
+  const ModelArgs model = model_args(config);
   const float p = static_cast<float>(reference::fresh_occlusion(config_));
   std::vector<double> out;
   out.reserve(poses.size());

@@ -22,8 +22,8 @@ class DevicePoseScorer {
   DevicePoseScorer(compute::Queue& queue, const Mesh& mesh, const Camera& camera, const TrackerConfig& config);
   ~DevicePoseScorer();
 
-  // One log-likelihood per pose, in order.
-  std::vector<double> score(std::span<const Pose> poses, const DepthImage& depth);
+  // One log-likelihood per pose, in order, under `model`.
+  std::vector<double> score(std::span<const Pose> poses, const DepthImage& depth, const ObservationModel& model);
   // Poses drawn and scored per kernel launch (sized to fit device memory).
   size_t batch_size() const { return batch_; }
 

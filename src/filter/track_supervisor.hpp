@@ -19,8 +19,10 @@ class TrackSupervisor {
   TrackSupervisor(const Mesh& mesh, const Camera& sensor, const Camera& working, int decimation,
                   const TrackerConfig& config);
 
-  // Searches one frame. sensor_depth: as received (the hint's box is in its pixels); working: the
-  // frame the backend scores. budget_ms 0: the whole coarse grid.
+  // Searches one frame: the coarse grid and its refinement scored with a simplified copy of the
+  // mesh (search::simplify_mesh), the last stage and the final ranking with the full mesh through
+  // `backend`. sensor_depth: as received (the hint's box is in its pixels); working: the frame
+  // scored. budget_ms 0: the whole coarse grid.
   search::SearchResult search(FilterBackend& backend, const DepthImage& sensor_depth, const DepthImage& working,
                               const InitHint& hint, double budget_ms, unsigned round) const;
   // The candidates to seed the filter with: the best, and the runners-up nearly as likely.
@@ -37,6 +39,7 @@ class TrackSupervisor {
   Camera sensor_, working_;
   int decimation_;
   search::SearchObject object_;
+  std::unique_ptr<FilterBackend> coarse_;  // scores with the simplified mesh
   reference::Rasterizer rasterizer_;
   std::vector<float> scratch_;
   TrackStatus status_ = TrackStatus::Tracking;

@@ -75,6 +75,7 @@ Estimate Tracker::initialize_global(const DepthImage& depth, double timestamp, c
   Estimate e = run_frame(working, timestamp);
   e.timings.search_ms += search_ms;
   e.timings.total_ms += search_ms;
+  e.search_poses = found.poses_scored;
   return e;
 }
 
@@ -96,6 +97,7 @@ Estimate Tracker::update(const DepthImage& depth, double timestamp) {
   }
   // While lost, search this frame; a candidate the depth explains well enough re-seeds the filter.
   double search_ms = 0;
+  size_t search_poses = 0;
   bool recovered = false;
   if (supervisor_->status() == TrackStatus::Lost && config_.recovery.enabled) {
     const Stopwatch clock;
@@ -109,9 +111,11 @@ Estimate Tracker::update(const DepthImage& depth, double timestamp) {
       recovered = true;
     }
     search_ms = clock.elapsed_ms();
+    search_poses = found.poses_scored;
   }
   Estimate e = run_frame(working, timestamp);
   e.recovered = recovered;
+  e.search_poses = search_poses;
   e.timings.search_ms += search_ms;
   e.timings.total_ms += search_ms;
   return e;

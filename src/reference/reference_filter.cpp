@@ -43,11 +43,14 @@ void ReferenceFilter::initialize_modes(std::span<const Pose> modes, const Initia
   time_ = 0;
 }
 
-std::vector<double> ReferenceFilter::score_poses(std::span<const Pose> poses, const DepthImage& depth) {
+std::vector<double> ReferenceFilter::score_poses(std::span<const Pose> poses, const DepthImage& depth,
+                                                 const ObservationModel& model) {
+  TrackerConfig config = config_;
+  config.observation = model;
   std::vector<double> scores(poses.size());
   last_score_magnitudes_.resize(poses.size());
   for (size_t i = 0; i < poses.size(); ++i) {
-    const PoseScore s = score_pose(rasterizer_, config_, poses[i], depth, rendered_);
+    const PoseScore s = score_pose(rasterizer_, config, poses[i], depth, rendered_);
     scores[i] = s.log_likelihood;
     last_score_magnitudes_[i] = s.magnitude;
   }

@@ -16,7 +16,8 @@ class ReferenceFilter final : public FilterBackend {
 
   void initialize(const Pose& pose, const InitialSpread& spread) override;
   void initialize_modes(std::span<const Pose> modes, const InitialSpread& spread) override;
-  std::vector<double> score_poses(std::span<const Pose> poses, const DepthImage& depth) override;
+  std::vector<double> score_poses(std::span<const Pose> poses, const DepthImage& depth,
+                                  const ObservationModel& model) override;
   Estimate update(const DepthImage& depth, double dt) override;
   std::string description() const override { return "reference (sequential CPU)"; }
 

@@ -80,21 +80,29 @@ std::vector<Candidate> refine_candidates(std::vector<Candidate> candidates, cons
   return candidates;
 }
 
+GridResolution grid_resolution(const SearchObject& object, const Camera& camera,
+                               std::span<const Eigen::Vector3d> surface, const SearchSettings& settings) {
+  if (surface.empty()) return {};
+  // One working pixel is metres_per_pixel at the surface's nearer depths (the first quartile: an
+  // object stands in front of what is behind it), and turns the farthest vertex by
+  // radians_per_pixel.
+  std::vector<double> depths(surface.size());
+  for (size_t i = 0; i < surface.size(); ++i) depths[i] = surface[i].z();
+  std::nth_element(depths.begin(), depths.begin() + static_cast<std::ptrdiff_t>(depths.size() / 4), depths.end());
+  const double metres_per_pixel = depths[depths.size() / 4] / camera.fx;
+  const double radians_per_pixel = metres_per_pixel / std::max(object.radius, 1e-3);
+  return {std::clamp(settings.coarse_pixels * radians_per_pixel, 0.15, 0.4), settings.coarse_pixels * metres_per_pixel};
+}
+
 SearchResult global_search(const SearchObject& object, const Camera& camera, std::span<const Eigen::Vector3d> surface,
                            const ScoreFunction& score, const SearchSettings& settings) {
   const Stopwatch clock;
   SearchResult result;
   if (surface.empty()) return result;
-  // The grid's resolution from the object's size and depth: one working pixel is metres_per_pixel
-  // at the surface's median depth, and turns the farthest vertex by radians_per_pixel.
-  std::vector<double> depths(surface.size());
-  for (size_t i = 0; i < surface.size(); ++i) depths[i] = surface[i].z();
-  std::nth_element(depths.begin(), depths.begin() + static_cast<std::ptrdiff_t>(depths.size() / 2), depths.end());
-  const double z = depths[depths.size() / 2];
-  const double metres_per_pixel = z / camera.fx;
-  const double radians_per_pixel = metres_per_pixel / std::max(object.radius, 1e-3);
-  result.rotation_radius = std::clamp(settings.coarse_pixels * radians_per_pixel, 0.15, 0.6);
-  result.translation_spacing = settings.coarse_pixels * metres_per_pixel;
+  const GridResolution grid = grid_resolution(object, camera, surface, settings);
+  result.rotation_radius = grid.rotation_radius;
+  result.translation_spacing = grid.translation_spacing;
+  const double metres_per_pixel = grid.translation_spacing / settings.coarse_pixels;
 
   const std::vector<Eigen::Quaterniond> rotations = uniform_rotations(rotations_for_radius(result.rotation_radius));
   std::vector<double> offsets(rotations.size());

@@ -27,7 +27,7 @@ struct SearchObject {
 struct SearchSettings {
   // Spacing of the coarse grid in working pixels: neighbouring rotations move the farthest vertex
   // about this far, neighbouring translations lie this far apart.
-  double coarse_pixels = 3.0;
+  double coarse_pixels = 4.0;
   double finest_pixels = 0.25;  // refinement stops when its steps are this small
   int keep = 12;                // distinct candidates carried from the coarse grid
   int perturbations = 40;       // poses tried around each candidate per refinement stage
@@ -41,6 +41,14 @@ struct SearchResult {
   size_t coarse_poses = 0, poses_scored = 0;
   double rotation_radius = 0, translation_spacing = 0;  // of the coarse grid: radians, metres
 };
+
+// The coarse grid's steps, from the object's size and the surface's depth.
+struct GridResolution {
+  double rotation_radius = 0;      // radians: no rotation farther than this from a grid rotation
+  double translation_spacing = 0;  // metres between neighbouring translations
+};
+GridResolution grid_resolution(const SearchObject& object, const Camera& camera,
+                               std::span<const Eigen::Vector3d> surface, const SearchSettings& settings);
 
 // surface: observed camera-frame points (search::surface_points); camera: the working camera
 // scores are computed in (sets the resolution of the grid).
