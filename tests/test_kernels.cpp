@@ -139,7 +139,7 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
     dt_u32 tile_width, tile_height, tiles_per_row, tiles_per_page;
   };
   const std::pair<std::vector<float>*, Layout> layouts[] = {{&atlas, {80, 60, 1, static_cast<dt_u32>(count)}},
-                                                             {&paged, {80, 60, 3, 6}}};
+                                                            {&paged, {80, 60, 3, 6}}};
   for (int run = 0; run < 6; ++run) {
     const int mode = run % 3;
     const auto& [laid_out, layout] = layouts[run / 3];

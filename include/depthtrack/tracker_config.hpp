@@ -42,10 +42,11 @@ struct MotionModel {
 
 // When an estimate counts as lost, from its confidence (Estimate::confidence).
 struct LossModel {
-  double pixel_sigmas = 3.0;  // |y - y_hat| within this many sigma(y): the object is seen there
-  double lost_below = 0.3;    // a frame below this confidence is a bad frame
-  int lost_after = 3;         // this many bad frames in a row raise lost
-  double found_above = 0.6;   // a search candidate this confident ends lost
+  double pixel_sigmas = 3.0;   // |y - y_hat| within this many sigma(y): the object is seen there
+  double lost_below = 0.3;     // a frame below this confidence is a bad frame
+  int lost_after = 3;          // this many bad frames in a row raise lost
+  double found_above = 0.75;   // a search candidate this confident ends lost
+  double found_outline = 0.5;  // and this share of its outline sees past its edge (TrackSupervisor::found)
 };
 
 // Global search while lost.

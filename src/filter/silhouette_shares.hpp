@@ -15,6 +15,11 @@ struct SilhouetteShares {
   double occluded = 0;      // y in front of the surface: something hides it
   double contradicted = 0;  // y behind the surface: the camera sees through where the object would be
   double missing = 0;       // of all silhouette pixels: no valid depth
+  // Of the outline's outer neighbours (uncovered pixels next to a covered one): the share where
+  // the camera sees past the object's edge (depth behind it, or none: sensors drop pixels at
+  // depth edges). An object stands out from what is behind it; a pose pressed flat into a wall
+  // has a surface that fits but no outline.
+  double separated = 0;
   // visible share of the pixels with valid depth; 0 for an empty or unmeasured silhouette.
   double confidence() const { return visible; }
 };

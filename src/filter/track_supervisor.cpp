@@ -25,6 +25,7 @@ TrackerConfig scoring_config(TrackerConfig config) {
 // weight to kTemperedTail, so such a pose still rises above it (built-in object at 80x60, 10 px
 // across: from -75..+18 to +82..+174 against about 90 for the best wall poses).
 constexpr double kTemperedTail = 0.1;
+constexpr size_t kFewPoints = 48;
 ObservationModel tempered(ObservationModel m, double translation_spacing) {
   m.sigma_constant = std::max(m.sigma_constant, 0.5 * translation_spacing);
   m.tail_weight = std::max(m.tail_weight, kTemperedTail);
@@ -63,8 +64,11 @@ search::SearchResult TrackSupervisor::search(FilterBackend& backend, const Depth
   // Surface points one coarse grid step apart, found in the sensor's pixels (a box may be smaller
   // than one working pixel).
   const int stride = std::max(1, static_cast<int>(std::lround(settings.coarse_pixels * decimation_)));
-  const std::vector<Eigen::Vector3d> surface =
-      search::surface_points(sensor_depth, sensor_, hint, object_.radius, stride);
+  std::vector<Eigen::Vector3d> surface = search::surface_points(sensor_depth, sensor_, hint, object_.radius, stride);
+  // Without a box, few points standing out mean a small object: a denser grid, down to one point
+  // per working pixel, puts enough of them on it. (A box's points all lie on or near the object.)
+  for (int s = stride / 2; hint.kind != InitHint::Kind::Box && surface.size() < kFewPoints && s >= decimation_; s /= 2)
+    surface = search::surface_points(sensor_depth, sensor_, hint, object_.radius, s);
   const ObservationModel soft =
       tempered(config_.observation, search::grid_resolution(object_, working_, surface, settings).translation_spacing);
   const search::ScoreFunction coarse = [&](std::span<const Pose> p) { return coarse_->score_poses(p, working, soft); };
@@ -101,6 +105,11 @@ std::vector<Pose> TrackSupervisor::seeds(const search::SearchResult& result) {
 
 SilhouetteShares TrackSupervisor::assess(const Pose& pose, const DepthImage& working) {
   return silhouette_shares(rasterizer_, config_.observation, config_.loss.pixel_sigmas, pose, working, scratch_);
+}
+
+bool TrackSupervisor::found(const Pose& pose, const DepthImage& working) {
+  const SilhouetteShares s = assess(pose, working);
+  return s.confidence() >= config_.loss.found_above && s.separated >= config_.loss.found_outline;
 }
 
 TrackStatus TrackSupervisor::observe(double confidence) {

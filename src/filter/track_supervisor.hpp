@@ -29,6 +29,9 @@ class TrackSupervisor {
   static std::vector<Pose> seeds(const search::SearchResult& result);
 
   SilhouetteShares assess(const Pose& pose, const DepthImage& working);
+  // Whether a search candidate ends lost: the depth explains its silhouette (confidence at least
+  // loss.found_above) and it stands out from its surroundings (loss.found_outline of its outline).
+  bool found(const Pose& pose, const DepthImage& working);
   // Takes this frame's confidence; returns the status after it.
   TrackStatus observe(double confidence);
   void reset();  // tracking, no bad frame counted

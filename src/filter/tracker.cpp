@@ -65,7 +65,10 @@ Estimate Tracker::initialize_global(const DepthImage& depth, double timestamp, c
   const DepthImage& working = working_frame(depth, storage);
   const Stopwatch clock;
   const search::SearchResult found = supervisor_->search(*backend_, depth, working, hint, 0.0, 0u);
-  if (found.candidates.empty()) throw InputError("global initialization found no pose to score");
+  if (found.candidates.empty())
+    throw InputError(
+        "global initialization: nothing in the frame stands out in front of its surroundings by half the "
+        "object's size; give a box or a point");
   const std::vector<Pose> seeds = TrackSupervisor::seeds(found);
   backend_->initialize_modes(seeds, kSearchSpread);
   const double search_ms = clock.elapsed_ms();
@@ -103,8 +106,7 @@ Estimate Tracker::update(const DepthImage& depth, double timestamp) {
     const Stopwatch clock;
     const search::SearchResult found = supervisor_->search(*backend_, depth, working, InitHint::anywhere(),
                                                            config_.recovery.budget_ms, ++search_round_);
-    if (!found.candidates.empty() &&
-        supervisor_->assess(found.candidates.front().pose, working).confidence() >= config_.loss.found_above) {
+    if (!found.candidates.empty() && supervisor_->found(found.candidates.front().pose, working)) {
       backend_->initialize_modes(TrackSupervisor::seeds(found), kSearchSpread);
       supervisor_->reset();
       has_previous_ = false;

@@ -43,6 +43,23 @@ Region checked_region(const DepthImage& depth, const Camera& camera, const InitH
 bool admitted(const InitHint& hint, const Eigen::Vector3d& p, double radius) {
   return hint.kind != InitHint::Kind::Point || (p - hint.point).norm() <= radius;
 }
+
+// Whether the depth within the object's reach of pixel (u, v) lies farther than z by half the
+// object's radius somewhere: an object stands in front of what is behind it. Without a hint only
+// such points are tried, which keeps a flat wall (where a flat face fits as well as anywhere)
+// out of the search and the grid small.
+bool in_front(const DepthImage& depth, const Camera& camera, int u, int v, float z, double radius, int stride) {
+  const int reach = static_cast<int>(std::ceil(camera.fx * radius / z));
+  const int step = std::max(1, std::min(stride, reach / 4));
+  for (int dv = -reach; dv <= reach; dv += step)
+    for (int du = -reach; du <= reach; du += step) {
+      const int nu = u + du, nv = v + dv;
+      if (nu < 0 || nv < 0 || nu >= depth.width() || nv >= depth.height()) continue;
+      const float y = depth.at(nu, nv);
+      if (DepthImage::is_valid(y) && y > z + 0.5 * radius) return true;
+    }
+  return false;
+}
 }  // namespace
 
 std::vector<Eigen::Vector3d> surface_points(const DepthImage& depth, const Camera& camera, const InitHint& hint,
@@ -57,9 +74,10 @@ std::vector<Eigen::Vector3d> surface_points(const DepthImage& depth, const Camer
       const float z = depth.at(u, v);
       if (!DepthImage::is_valid(z)) continue;
       const Eigen::Vector3d p = camera.back_project(u, v, z);
+      if (hint.kind == InitHint::Kind::None && !in_front(depth, camera, u, v, z, radius, stride)) continue;
       if (admitted(hint, p, radius)) points.push_back(p);
     }
-  if (!points.empty()) return points;
+  if (!points.empty() || hint.kind == InitHint::Kind::None) return points;
   // A region narrower than the stride: every valid pixel of it.
   for (int v = r.v0; v <= r.v1; ++v)
     for (int u = r.u0; u <= r.u1; ++u) {
