@@ -114,3 +114,37 @@ TEST_CASE("YCB-Video clip 0000: each object found from its 2D box in the first f
     }
   }
 }
+
+TEST_CASE("global initialization refuses a bad box with a reason", "[global][errors]") {
+  const Mesh mesh = builtin_demo_mesh();
+  SynthConfig synth;
+  synth.camera = Camera::make(160, 120, 131.25, 131.25, 79.875, 59.875);
+  synth.frames = 1;
+  const SynthFrame frame = Synthesizer(mesh, synth).frame(0);
+  // A hole of missing depth in the top-left corner.
+  std::vector<float> metres = frame.depth.data();
+  for (int v = 0; v < 20; ++v)
+    for (int u = 0; u < 30; ++u) metres[static_cast<size_t>(v * 160 + u)] = NAN;
+  const DepthImage holed = DepthImage::from_metres(160, 120, metres);
+  const DepthImage wall = DepthImage::from_metres(160, 120, std::vector<float>(160 * 120, 1.5f));
+  TrackerConfig config;
+  Tracker tracker(mesh, synth.camera, config);
+  using Catch::Matchers::Contains;
+  CHECK_THROWS_WITH(tracker.initialize_global(holed, 0.0, InitHint::box(50, 40, 20, 60)), Contains("is empty"));
+  CHECK_THROWS_WITH(tracker.initialize_global(holed, 0.0, InitHint::box(100, 50, 160, 90)),
+                    Contains("is not inside the 160x120 image"));
+  CHECK_THROWS_WITH(tracker.initialize_global(holed, 0.0, InitHint::box(-1, 0, 10, 10)), Contains("is not inside"));
+  CHECK_THROWS_WITH(tracker.initialize_global(holed, 0.0, InitHint::box(2, 3, 25, 15)),
+                    Contains("holds no valid depth"));
+  CHECK_THROWS_WITH(tracker.initialize_global(holed, 0.0, InitHint::near_point({0, 0, -1})),
+                    Contains("in front of the camera"));
+  CHECK_THROWS_WITH(tracker.initialize_global(wall, 0.0), Contains("nothing in the frame stands out"));
+  // update() before any initialization is still refused.
+  CHECK_THROWS_WITH(tracker.update(holed, 0.0), Contains("before initialize"));
+  // A point on the object finds it.
+  const Estimate e = tracker.initialize_global(
+      frame.depth, 0.0, InitHint::near_point(frame.ground_truth.apply(mesh.centre().cast<double>())));
+  CHECK(translation_error(e.pose, frame.ground_truth) <= 0.02);
+  CHECK(e.timings.search_ms > 0);
+  CHECK(e.search_poses > 0);
+}
