@@ -33,6 +33,13 @@ TEST_CASE("synthetic handset vanishes for 1 s and returns 22 cm over: lost, then
   REQUIRE(!frames[vanish - 1].hidden);
   REQUIRE(frames[vanish].hidden);
   REQUIRE(!frames[back].hidden);
+  // While hidden only the wall (1.6 m) is seen; the path resumes shifted by the offset.
+  for (float z : frames[vanish + 10].depth.data())
+    if (DepthImage::is_valid(z)) REQUIRE(z > 1.5f);
+  const Synthesizer unshifted(mesh, SynthConfig{});
+  CHECK((frames[back].ground_truth.translation - unshifted.ground_truth(frames[back].timestamp).translation -
+         synth.reappear_offset)
+            .norm() < 1e-12);
   const double moved = (frames[back].ground_truth.translation - frames[vanish - 1].ground_truth.translation).norm();
   REQUIRE(moved >= 0.15);
 
