@@ -25,7 +25,7 @@ TrackerConfig scoring_config(TrackerConfig config) {
 // weight to kTemperedTail, so such a pose still rises above it (built-in object at 80x60, 10 px
 // across: from -75..+18 to +82..+174 against about 90 for the best wall poses).
 constexpr double kTemperedTail = 0.1;
-constexpr size_t kFewPoints = 48;
+constexpr size_t kFewPoints = 48, kFewPointsInBox = 12;
 ObservationModel tempered(ObservationModel m, double translation_spacing) {
   m.sigma_constant = std::max(m.sigma_constant, 0.5 * translation_spacing);
   m.tail_weight = std::max(m.tail_weight, kTemperedTail);
@@ -65,9 +65,10 @@ search::SearchResult TrackSupervisor::search(FilterBackend& backend, const Depth
   // than one working pixel).
   const int stride = std::max(1, static_cast<int>(std::lround(settings.coarse_pixels * decimation_)));
   std::vector<Eigen::Vector3d> surface = search::surface_points(sensor_depth, sensor_, hint, object_.radius, stride);
-  // Without a box, few points standing out mean a small object: a denser grid, down to one point
-  // per working pixel, puts enough of them on it. (A box's points all lie on or near the object.)
-  for (int s = stride / 2; hint.kind != InitHint::Kind::Box && surface.size() < kFewPoints && s >= decimation_; s /= 2)
+  // Few points mean a small object or box: a denser grid, down to one point per working pixel,
+  // puts enough of them on it (a box's points lie on or near the object, so fewer suffice).
+  const size_t enough = hint.kind == InitHint::Kind::Box ? kFewPointsInBox : kFewPoints;
+  for (int s = stride / 2; surface.size() < enough && s >= decimation_; s /= 2)
     surface = search::surface_points(sensor_depth, sensor_, hint, object_.radius, s);
   const ObservationModel soft =
       tempered(config_.observation, search::grid_resolution(object_, working_, surface, settings).translation_spacing);

@@ -45,9 +45,9 @@ bool admitted(const InitHint& hint, const Eigen::Vector3d& p, double radius) {
 }
 
 // Whether the depth within the object's reach of pixel (u, v) lies farther than z by half the
-// object's radius somewhere: an object stands in front of what is behind it. Without a hint only
-// such points are tried, which keeps a flat wall (where a flat face fits as well as anywhere)
-// out of the search and the grid small.
+// object's radius somewhere: an object stands in front of what is behind it. Only such points are
+// tried when there are any (without a hint: only ever), which keeps a flat wall (where a flat face
+// fits as well as anywhere) out of the search and the grid small.
 bool in_front(const DepthImage& depth, const Camera& camera, int u, int v, float z, double radius, int stride) {
   const int reach = static_cast<int>(std::ceil(camera.fx * radius / z));
   const int step = std::max(1, std::min(stride, reach / 4));
@@ -66,7 +66,7 @@ std::vector<Eigen::Vector3d> surface_points(const DepthImage& depth, const Camer
                                             double radius, int stride) {
   const Region r = checked_region(depth, camera, hint, radius);
   stride = std::max(stride, 1);
-  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Vector3d> points, behind;  // standing out in front of their surroundings, or not
   // Centred in the region, so a small box still gets its middle.
   const int su = r.u0 + ((r.u1 - r.u0) % stride) / 2, sv = r.v0 + ((r.v1 - r.v0) % stride) / 2;
   for (int v = sv; v <= r.v1; v += stride)
@@ -74,10 +74,13 @@ std::vector<Eigen::Vector3d> surface_points(const DepthImage& depth, const Camer
       const float z = depth.at(u, v);
       if (!DepthImage::is_valid(z)) continue;
       const Eigen::Vector3d p = camera.back_project(u, v, z);
-      if (hint.kind == InitHint::Kind::None && !in_front(depth, camera, u, v, z, radius, stride)) continue;
-      if (admitted(hint, p, radius)) points.push_back(p);
+      if (!admitted(hint, p, radius)) continue;
+      (in_front(depth, camera, u, v, z, radius, stride) ? points : behind).push_back(p);
     }
+  // A box or point region whose points all lie flat (an object pressed against a wall, or one
+  // filling the box) keeps them all.
   if (!points.empty() || hint.kind == InitHint::Kind::None) return points;
+  if (!behind.empty()) return behind;
   // A region narrower than the stride: every valid pixel of it.
   for (int v = r.v0; v <= r.v1; ++v)
     for (int u = r.u0; u <= r.u1; ++u) {
