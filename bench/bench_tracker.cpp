@@ -5,9 +5,13 @@
 // Usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] [--resolution WxH[,...]]
 //                         [--frames N] [--refine on|off] [--refine-iterations N]
 //   default: the reference at 80x60 (200 particles) and 640x480 (50 particles).
+// Then global initialization at 80x60 (from the object's box, and from no hint), unless --no-global.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <depthtrack/error.hpp>
+#include <depthtrack/init_hint.hpp>
 #include <depthtrack/synth.hpp>
 #include <depthtrack/tracker.hpp>
 #include <string>
@@ -77,7 +81,7 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
 
 const char* const kUsage =
     "usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] "
-    "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N]\n"
+    "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N] [--no-global]\n"
     "Times tracker frames on a synthetic occluded handset sequence, split into propagate / render / hand-off /\n"
     "weigh / resample; prints CSV rows backend,platform,device,driver,test,metric,unit,value.\n"
     "  --backend NAME         reference (default), opencl, opencl:pocl, cuda, ... (`depthtrack info`)\n"
@@ -87,7 +91,50 @@ const char* const kUsage =
     "  --frames N             frames per case, the first two not timed (default 20, at least 4)\n"
     "  --refine on|off        the pose refinement (default on; refine_share is its % of the frame)\n"
     "  --refine-iterations N  refinement steps per frame (default: TrackerConfig's)\n"
+    "  --no-global            leave out the global initialization rows (box hint and no hint, 80x60)\n"
     "Without --particles and --resolution: the reference at 80x60 (200 particles) and 640x480 (50).\n";
+
+// The sensor-pixel box around the object's projected vertices: what a detector would give.
+InitHint object_box(const Mesh& mesh, const Camera& camera, const Pose& pose) {
+  double u0 = camera.width, v0 = camera.height, u1 = 0, v1 = 0;
+  for (const auto& v : mesh.vertices) {
+    const Eigen::Vector2d p = camera.project(pose.apply(v.cast<double>()));
+    u0 = std::min(u0, p.x());
+    v0 = std::min(v0, p.y());
+    u1 = std::max(u1, p.x());
+    v1 = std::max(v1, p.y());
+  }
+  auto clamp = [](double x, int size) { return std::clamp(static_cast<int>(std::lround(x)), 0, size - 1); };
+  return InitHint::box(clamp(u0, camera.width), clamp(v0, camera.height), clamp(u1, camera.width),
+                       clamp(v1, camera.height));
+}
+
+// Global initialization (Tracker::initialize_global) at 80x60 on the first synthetic frame, from
+// the object's box and from no hint: search time, poses scored, and the error it starts from.
+void run_global(const Mesh& mesh, const std::string& mesh_name, const std::string& backend, int particles) {
+  SynthConfig synth;
+  synth.frames = 1;
+  synth.occluder_fraction = 0.3;
+  const SynthFrame f = Synthesizer(mesh, synth).frame(0);
+  TrackerConfig config;
+  config.backend = backend;
+  config.particles = particles;
+  for (const auto& [start, hint] :
+       {std::pair{"box", object_box(mesh, synth.camera, f.ground_truth)}, std::pair{"none", InitHint::anywhere()}}) {
+    Tracker tracker(mesh, synth.camera, config);
+    const Estimate e = tracker.initialize_global(f.depth, f.timestamp, hint);
+    const std::string test = std::string("global_init_") + start + "_" + mesh_name + "_80x60";
+    const std::string platform = backend == "reference" ? "cpu" : backend;
+    const std::string name = backend == "reference" ? bench::cpu_name() : tracker.backend_description();
+    bench::print_row({backend, platform, name, "-", test, "search_ms", "ms", e.timings.search_ms});
+    bench::print_row(
+        {backend, platform, name, "-", test, "poses_scored", "poses", static_cast<double>(e.search_poses)});
+    bench::print_row({backend, platform, name, "-", test, "poses_per_second", "1/s",
+                      1000.0 * static_cast<double>(e.search_poses) / e.timings.search_ms});
+    bench::print_row({backend, platform, name, "-", test, "error_after_first_frame", "mm",
+                      1000 * translation_error(e.pose, f.ground_truth)});
+  }
+}
 
 }  // namespace
 
@@ -97,6 +144,7 @@ int main(int argc, char** argv) {
   std::vector<std::pair<int, int>> sizes;
   int frames = 20;
   Refinement refine;
+  bool global = true;
   try {
     bench::ArgReader args(argc, argv);
     for (std::string arg = args.next(); !arg.empty(); arg = args.next()) {
@@ -120,6 +168,8 @@ int main(int argc, char** argv) {
         refine.enabled = value == "on";
       } else if (arg == "--refine-iterations")
         refine.iterations = bench::parse_positive(args.value(), arg);
+      else if (arg == "--no-global")
+        global = false;
       else
         throw bench::UsageError{"unknown option '" + arg + "'"};
     }
@@ -151,6 +201,14 @@ int main(int argc, char** argv) {
         const std::string test = renderer + "_" + name + "_" + std::to_string(c.width) + "x" +
                                  std::to_string(c.height) + "_" + std::to_string(c.particles) + "p";
         bench::print_status(backend, test, e.what());
+      }
+    }
+    if (global) {
+      try {
+        run_global(mesh, name, backend, cases.front().particles);
+      } catch (const Error& e) {
+        ++failed;
+        bench::print_status(backend, "global_init_" + name + "_80x60", e.what());
       }
     }
     return failed == 0 ? 0 : 1;

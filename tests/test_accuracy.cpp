@@ -19,6 +19,8 @@ constexpr double kDegrees = 180.0 / std::numbers::pi;
 
 struct RunErrors {
   double mean_t = 0, max_t = 0, mean_r = 0;  // metres, metres, radians
+  int lost_frames = 0;                       // frames whose status was lost
+  double min_confidence = 1;
 };
 
 // The reference filter, and the device filter on the test device when one opens.
@@ -39,7 +41,10 @@ RunErrors track_frames(const Mesh& mesh, const SynthConfig& synth, const std::ve
   const double counted = static_cast<double>(frames.size() - first);
   for (size_t i = 0; i < frames.size(); ++i) {
     const SynthFrame& f = frames[i];
-    const Pose estimate = tracker.update(f.depth, f.timestamp).pose;
+    const Estimate update = tracker.update(f.depth, f.timestamp);
+    const Pose& estimate = update.pose;
+    e.lost_frames += update.status == TrackStatus::Lost;
+    e.min_confidence = std::min(e.min_confidence, update.confidence);
     if (i < first) continue;
     const double t = translation_error(estimate, f.ground_truth);
     e.mean_t += t / counted;
@@ -135,6 +140,8 @@ TEST_CASE("synthetic handset with a 30% moving occluder: 200 particles at 80x60"
       CHECK(e.mean_t <= 0.0012);
       CHECK(e.max_t <= 0.006);
       CHECK(kDegrees * e.mean_r <= 1.2);
+      std::printf("    lowest confidence %.2f, lost in %d frames\n", e.min_confidence, e.lost_frames);
+      CHECK(e.lost_frames == 0);  // no false loss: the object is tracked throughout
     }
     TrackerConfig no_occlusion = operating_point(backend, 1, true);
     no_occlusion.occlusion_storage = OcclusionStorage::Off;
@@ -172,6 +179,12 @@ TEST_CASE("YCB-Video clip 0000: each object from ground truth perturbed by 1 cm 
       REQUIRE(kDegrees * rotation_error(start, truth0) == Approx(5.0));
       const auto frames = track_sequence(sequence, mesh, config, start, InitialSpread{0.01, 5.0 / kDegrees});
       const TrackedFrame& last = frames.back();
+      double min_confidence = 1;
+      for (const TrackedFrame& f : frames) {
+        CHECK(f.estimate.status == TrackStatus::Tracking);  // no false loss
+        min_confidence = std::min(min_confidence, f.estimate.confidence);
+      }
+      std::printf("  %-16s lowest confidence %.2f\n", object, min_confidence);
       const double adds = AddsMetric(mesh)(last.estimate.pose, *last.ground_truth);
       const DepthImage depth = sequence.load_depth(frames.size() - 1);
       const double fit_estimate = median_depth_residual(mesh, sequence.camera, last.estimate.pose, depth);

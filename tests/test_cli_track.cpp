@@ -20,14 +20,15 @@ TEST_CASE("track writes one CSV row per frame with the contract's columns", "[cl
   REQUIRE(status == 0);
   const auto lines = test::lines_of(dir / "out.csv");
   REQUIRE(lines.size() == 7);
-  CHECK(lines[0] == "frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess,err_t_mm,err_r_deg,adds_mm,status");
+  CHECK(lines[0] == "frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess,err_t_mm,err_r_deg,adds_mm,confidence,status");
   // Row 3: frame name, timestamp 2/30 s, and a translation error under 1 cm.
   std::stringstream row(lines[3]);
   std::vector<std::string> cells;
   for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-  REQUIRE(cells.size() == 14);
-  CHECK(cells[13] == "tracking");
+  REQUIRE(cells.size() == 15);
   CHECK(cells[0] == "000002");
+  CHECK(std::stod(cells[13]) > 0.5);  // confidence: the object is in view and tracked
+  CHECK(cells[14] == "tracking");
   CHECK(std::stod(cells[1]) == Approx(2.0 / 30));
   CHECK(std::stod(cells[4]) == Approx(0.8).margin(0.15));  // tz near the trajectory's 0.8 m
   CHECK(std::stod(cells[10]) < 10.0);
@@ -44,6 +45,27 @@ TEST_CASE("track --init starts from a given pose, and its CSV then has no error 
   REQUIRE(status == 0);
   // Ground truth is still known from the sequence, so the error columns stay.
   CHECK(test::lines_of(dir / "out.csv")[0].find("err_t_mm") != std::string::npos);
+}
+
+TEST_CASE("track --init-global and --init-box find the object without a pose", "[cli][global]") {
+  const auto dir = test::write_cli_sequence("cli_track_global", 4);
+  for (const std::string start : {"--init-global", "--init-box \"40 20 120 100\""}) {
+    const auto [status, output] =
+        test::run_cli("track --mesh " + (dir / "object.obj").string() + " --sequence " + (dir / "seq").string() +
+                          " --out " + (dir / "out.csv").string() + " --resolution 80x60 " + start,
+                      dir / "log.txt");
+    INFO(start << "\n" << output);
+    REQUIRE(status == 0);
+    CHECK(output.find("global initialization:") != std::string::npos);
+    const auto lines = test::lines_of(dir / "out.csv");
+    REQUIRE(lines.size() == 5);
+    std::stringstream row(lines.back());
+    std::vector<std::string> cells;
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    REQUIRE(cells.size() == 15);
+    CHECK(std::stod(cells[10]) < 10.0);  // last frame within 1 cm of ground truth
+    CHECK(cells[14] == "tracking");
+  }
 }
 
 TEST_CASE("track explains every option", "[cli]") {
@@ -70,6 +92,10 @@ TEST_CASE("track refuses bad input with a reason and a non-zero exit code", "[cl
       {base + mesh + " --init-from-gt --occlusion sometimes", "unknown occlusion mode 'sometimes'"},
       {base + mesh + " --init \"0 0 0.8 1 0\"", "takes 7 numbers"},
       {base + mesh + " --init-from-gt --backend quantum", "unknown backend 'quantum'"},
+      {base + mesh + " --init-box \"50 40 20 60\"", "is empty"},
+      {base + mesh + " --init-box \"100 50 170 90\"", "is not inside the 160x120 image"},
+      {base + mesh + " --init-box \"1 2 3\"", "takes 4 numbers"},
+      {base + mesh + " --init-from-gt --init-global", "exclude each other"},
       {"track --sequence " + (dir / "nowhere").string() + " --out " + (dir / "o.csv").string() + mesh +
            " --init-from-gt",
        "does not exist"},

@@ -30,6 +30,12 @@ std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& m
                                          const Pose& initial, const InitialSpread& spread,
                                          const std::function<void(size_t, const TrackedFrame&)>& on_frame = {});
 
+// Tracks every frame of the sequence without an initial pose: the first frame is searched within
+// hint (Tracker::initialize_global), the rest are tracked.
+std::vector<TrackedFrame> track_sequence_global(const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config,
+                                                const InitHint& hint,
+                                                const std::function<void(size_t, const TrackedFrame&)>& on_frame = {});
+
 // pose moved by exactly `metres` in a direction and rotated by exactly `degrees` about an axis
 // through the mesh's centre, both drawn from seed: a reproducible "start from perturbed ground truth".
 Pose perturb_pose(const Pose& pose, const Eigen::Vector3d& centre, double metres, double degrees, uint64_t seed);
@@ -53,7 +59,7 @@ class AddsMetric {
 enum class QuaternionOrder { Wxyz, Xyzw };
 
 // CSV with a header and a row per frame: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess (qx,qy,qz,qw with
-// Xyzw) and, when every frame has ground truth, err_t_mm,err_r_deg,adds_mm; then status (tracking,
+// Xyzw) and, when every frame has ground truth, err_t_mm,err_r_deg,adds_mm; then confidence,status (tracking,
 // lost, no-data). Written through TrackingCsvWriter (below).
 void write_tracking_csv(const std::filesystem::path& path, const std::vector<TrackedFrame>& frames,
                         QuaternionOrder order = QuaternionOrder::Wxyz);

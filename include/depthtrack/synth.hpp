@@ -52,6 +52,13 @@ struct SynthConfig {
   double background_depth = 1.6;    // metres: a wall behind the object; <= 0 for none
   double metres_per_unit = 0.0001;  // PNG scale written (0.1 mm)
   uint64_t seed = 7;
+  // The object is absent (only the wall, and the occluder, are seen) for timestamps in
+  // [hidden_from, hidden_until), seconds; from hidden_until on its path is shifted by
+  // reappear_offset (camera frame, metres): it left the view and came back elsewhere.
+  // hidden_until <= hidden_from: never hidden.
+  double hidden_from = 0, hidden_until = 0;
+  Eigen::Vector3d reappear_offset = Eigen::Vector3d::Zero();
+  bool hides(double t) const { return hidden_until > hidden_from && t >= hidden_from && t < hidden_until; }
 };
 
 struct SynthFrame {
@@ -59,6 +66,7 @@ struct SynthFrame {
   Pose ground_truth;             // camera_from_object
   DepthImage depth;              // what the sensor saw, metres
   double occluded_fraction = 0;  // measured share of object pixels the occluder hid
+  bool hidden = false;           // the object was not in the scene (SynthConfig::hidden_from)
 };
 
 class Synthesizer {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <depthtrack/camera.hpp>
 #include <depthtrack/depth_image.hpp>
+#include <depthtrack/init_hint.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/pose.hpp>
 #include <depthtrack/tracker_config.hpp>
@@ -17,10 +18,14 @@ namespace depthtrack {
 struct StepTimings {
   double propagate_ms = 0, render_ms = 0, handoff_ms = 0, weigh_ms = 0, resample_ms = 0, total_ms = 0;
   double refine_ms = 0;
+  // Global search (initialize_global, or recovery while lost), wall-clock; included in total_ms.
+  double search_ms = 0;
 };
 
-// What a frame's estimate rests on. NoData: the frame had no valid pixel (a sensor dropout), so the
-// filter only predicted: the pose is the motion model's guess.
+// What a frame's estimate rests on. Tracking: the filter follows the object. Lost: the confidence
+// stayed low for a few frames (TrackerConfig::loss); a search finding the object ends it. NoData: the
+// frame had no valid pixel (a sensor dropout), so the filter only predicted: the pose is the motion
+// model's guess.
 enum class TrackStatus { Tracking, Lost, NoData };
 const char* to_string(TrackStatus status);  // "tracking", "lost", "no-data"
 
@@ -38,8 +43,14 @@ struct Estimate {
   // so it is a lower bound on the real uncertainty. NaN when refinement is off or the fit had too
   // few pixels.
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Constant(std::nan(""));
-  TrackStatus status = TrackStatus::Tracking;
   StepTimings timings;
+  // Share of the estimate's rendered silhouette (pixels with valid depth) that the depth explains
+  // as the object's visible surface, in [0, 1]: low when the object is hidden or the depth is seen
+  // behind where the estimate puts it.
+  double confidence = 0;
+  TrackStatus status = TrackStatus::Tracking;
+  bool recovered = false;   // this frame re-seeded the filter from a global search
+  size_t search_poses = 0;  // poses this frame's global search scored (0: none ran)
 };
 
 // Spread of the initial particle cloud: per-axis standard deviations.
@@ -48,7 +59,8 @@ struct InitialSpread {
   double radians = 0.05;
 };
 
-class FilterBackend;  // the per-backend implementation (reference, compute layer)
+class FilterBackend;    // the per-backend implementation (reference, compute layer)
+class TrackSupervisor;  // confidence, loss and global search (backend-independent)
 
 class Tracker {
  public:
@@ -63,10 +75,17 @@ class Tracker {
   // The quaternion is normalized (zero is an InputError); the mesh's centre must lie at a depth in
   // [near_plane, max_depth]; the spread must be finite, at most max_depth and a full turn.
   void initialize(const Pose& pose, const InitialSpread& spread = {});
+  // Finds the object in this frame without a pose: scores a coarse-to-fine set of pose hypotheses
+  // (translations from the depth inside the hint's region, rotations covering SO(3)), seeds the
+  // particles around the best and runs this frame's update; returns its estimate. InputError for
+  // an empty box, a box outside the image, or no valid depth in the region.
+  Estimate initialize_global(const DepthImage& depth, double timestamp, const InitHint& hint = {});
   // Runs one frame. depth must have the sensor's size; timestamps (seconds) must increase. Depths
   // beyond the model's max_depth count as missing; a frame with no valid pixel is a dropout: the
   // filter predicts only and the estimate's status is NoData. An estimate that is not finite is an
   // InputError naming the frame.
+  // While the status is lost (and config.recovery.enabled), the frame first runs a global search
+  // within config.recovery.budget_ms and re-seeds the filter when it finds the object.
   Estimate update(const DepthImage& depth, double timestamp);
 
   const Camera& working_camera() const;
@@ -74,7 +93,12 @@ class Tracker {
   std::string backend_description() const;
 
  private:
+  // The working-resolution frame (decimated only when needed); InputError for a wrong size.
+  const DepthImage& working_frame(const DepthImage& depth, DepthImage& storage) const;
+  Estimate run_frame(const DepthImage& working, double timestamp);
+
   std::unique_ptr<FilterBackend> backend_;
+  std::unique_ptr<TrackSupervisor> supervisor_;
   Camera sensor_;
   Camera working_;
   TrackerConfig config_;
@@ -84,6 +108,7 @@ class Tracker {
   double previous_timestamp_ = 0;
   size_t frames_since_initialize_ = 0;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();  // the mesh's, where initialize() checks the start
+  unsigned search_round_ = 0;  // varies each recovery search's perturbations
 };
 
 }  // namespace depthtrack

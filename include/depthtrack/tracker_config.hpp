@@ -51,6 +51,21 @@ struct Refinement {
   double min_incidence = 0.15;  // pixels whose |cos| between surface normal and ray is below this are dropped
 };
 
+// When an estimate counts as lost, from its confidence (Estimate::confidence).
+struct LossModel {
+  double pixel_sigmas = 3.0;   // |y - y_hat| within this many sigma(y): the object is seen there
+  double lost_below = 0.3;     // a frame below this confidence is a bad frame
+  int lost_after = 3;          // this many bad frames in a row raise lost
+  double found_above = 0.75;   // a search candidate this confident ends lost
+  double found_outline = 0.5;  // and this share of its outline sees past its edge (TrackSupervisor::found)
+};
+
+// Global search while lost.
+struct RecoveryModel {
+  bool enabled = true;
+  double budget_ms = 500;  // wall-clock per lost frame for the search
+};
+
 struct TrackerConfig {
   ObservationModel observation;
   OcclusionModel occlusion;
@@ -75,6 +90,8 @@ struct TrackerConfig {
   // EGL surfaceless or OSMesa, DEPTHTRACK_GL picks one; the atlas reaches the kernels by CUDA-GL
   // interop, a GL-OpenCL bridge or a staged copy) or "cpu" (the reference rasterizer on the host).
   std::string renderer = "kernel";
+  LossModel loss;
+  RecoveryModel recovery;
 
   // Throws InputError naming the first impossible value.
   void validate() const;

@@ -21,6 +21,7 @@ struct SynthOptions {
   bool builtin = false;
   int frames = 150;
   double rate = 30.0, occluder = 0.0, background = 1.6;
+  std::string hide, reappear_offset;
   uint64_t seed = SynthConfig{}.seed;
 };
 
@@ -42,6 +43,17 @@ void run(const SynthOptions& o) {
   config.background_depth = o.background;
   config.seed = o.seed;
   config.sensor.kind = sensor_kind_from_string(o.sensor);
+  if (!o.hide.empty()) {
+    const auto v = parse_numbers(o.hide, 2, "--hide");
+    if (!(v[1] > v[0])) throw InputError("--hide \"FROM UNTIL\" needs UNTIL > FROM, got '" + o.hide + "'");
+    config.hidden_from = v[0];
+    config.hidden_until = v[1];
+  }
+  if (!o.reappear_offset.empty()) {
+    if (o.hide.empty()) throw InputError("--reappear-offset needs --hide (it applies from the end of the hidden time)");
+    const auto v = parse_numbers(o.reappear_offset, 3, "--reappear-offset");
+    config.reappear_offset = Eigen::Vector3d(v[0], v[1], v[2]);
+  }
 
   ProgressBar bar("synth", config.frames);
   double occluded_sum = 0;
@@ -81,6 +93,10 @@ void add_synth_command(CLI::App& app) {
                   "structured-light (quantized disparity, noise, holes) or ideal (exact z-depth: no noise, no "
                   "quantization beyond the PNG's 0.1 mm, no holes)")
       ->capture_default_str();
+  cmd->add_option("--hide", options->hide,
+                  "\"FROM UNTIL\" seconds: the object is not in the scene then (only the wall is seen)");
+  cmd->add_option("--reappear-offset", options->reappear_offset,
+                  "\"DX DY DZ\" metres (camera frame): after --hide the object comes back moved by this");
   cmd->add_option("--seed", options->seed, "Seed of the sensor noise; equal seeds give identical images")
       ->capture_default_str();
   cmd->add_option("--resolution", options->resolution,

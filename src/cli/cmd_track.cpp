@@ -1,6 +1,7 @@
 // depthtrack track: run the tracker over a recorded sequence and write the estimates as CSV.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <depthtrack/error.hpp>
 #include <depthtrack/evaluation.hpp>
@@ -21,10 +22,11 @@ namespace depthtrack::cli {
 namespace {
 
 struct TrackArgs {
-  std::string mesh, sequence, out, object, init, init_perturb, init_spread = "0.01 5", summary, overlay, bop_out;
+  std::string mesh, sequence, out, object, init, init_perturb, init_spread = "0.01 5", init_box, summary, overlay,
+      bop_out;
   std::string quaternion = "wxyz";
   double unit_scale = 1.0;
-  bool init_from_gt = false;
+  bool init_from_gt = false, init_global = false, no_recover = false;
   CLI::Option* unit_scale_option = nullptr;  // to tell an explicit --unit-scale from the default
   TrackerOptions tracker;
 };
@@ -63,11 +65,23 @@ void print_summary(const RunStats& s, const TrackedFrame* last) {
               deg * last->rotation_error, 1000 * last->adds);
 }
 
+// The hint of --init-box (inclusive sensor pixels of the first frame) or --init-global (none).
+InitHint init_hint(const TrackArgs& a) {
+  if (a.init_box.empty()) return InitHint::anywhere();
+  const auto v = parse_numbers(a.init_box, 4, "--init-box");
+  for (double x : v)
+    if (x != std::floor(x))
+      throw InputError("--init-box takes whole pixel numbers \"u0 v0 u1 v1\", got '" + a.init_box + "'");
+  return InitHint::box(static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]), static_cast<int>(v[3]));
+}
+
 void run_track(const TrackArgs& a) {
-  if (a.init.empty() && !a.init_from_gt) throw InputError("give --init POSE or --init-from-gt");
-  if (!a.init.empty() && a.init_from_gt) throw InputError("--init and --init-from-gt exclude each other");
+  const int starts = !a.init.empty() + a.init_from_gt + !a.init_box.empty() + a.init_global;
+  if (starts == 0) throw InputError("give --init POSE, --init-from-gt, --init-box \"u0 v0 u1 v1\" or --init-global");
+  if (starts > 1) throw InputError("--init, --init-from-gt, --init-box and --init-global exclude each other");
   const QuaternionOrder order = quaternion_order(a.quaternion);
-  const TrackerConfig config = a.tracker.resolve();
+  TrackerConfig config = a.tracker.resolve();
+  config.recovery.enabled = !a.no_recover;
   const Sequence seq = load_sequence(a.sequence, a.object);
   if (!a.bop_out.empty()) check_bop_exportable(seq);
   // Opened before any work, so that a bad --out fails at once; rows are streamed as frames are tracked.
@@ -85,7 +99,8 @@ void run_track(const TrackArgs& a) {
   if (mesh.dropped_degenerate > 0)
     std::fprintf(stderr, "depthtrack: note: dropped %zu degenerate triangles of '%s'\n", mesh.dropped_degenerate,
                  a.mesh.c_str());
-  const Pose start = initial_pose(a, seq, mesh);
+  const bool global = !a.init_box.empty() || a.init_global;
+  const InitHint hint = init_hint(a);
   const auto spread_values = parse_numbers(a.init_spread, 2, "--init-spread");
   const InitialSpread spread{spread_values[0], spread_values[1] * std::numbers::pi / 180.0};
 
@@ -95,7 +110,7 @@ void run_track(const TrackArgs& a) {
 
   ProgressBar bar("tracking", static_cast<int>(seq.frames.size()));
   const auto begin = std::chrono::steady_clock::now();
-  const auto frames = track_sequence(seq, mesh, config, start, spread, [&](size_t i, const TrackedFrame& f) {
+  const auto on_frame = [&](size_t i, const TrackedFrame& f) {
     csv.write(f);
     char text[64] = "";
     if (f.ground_truth) std::snprintf(text, sizeof text, "err %.1f mm", 1000 * f.translation_error);
@@ -104,7 +119,9 @@ void run_track(const TrackArgs& a) {
     const auto drawing = std::chrono::steady_clock::now();
     overlay->write(i, f, config.particles);
     overlay_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - drawing).count();
-  });
+  };
+  const auto frames = global ? track_sequence_global(seq, mesh, config, hint, on_frame)
+                             : track_sequence(seq, mesh, config, initial_pose(a, seq, mesh), spread, on_frame);
   // Frames per second of the tracking, not of drawing the pictures.
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count() - overlay_seconds;
@@ -113,6 +130,12 @@ void run_track(const TrackArgs& a) {
   if (!a.bop_out.empty()) write_bop_csv(a.bop_out, seq, frames, config.particles);
   const RunStats stats = run_stats(frames, seconds);
   print_summary(stats, frames.empty() ? nullptr : &frames.back());
+  if (global && !frames.empty())
+    std::printf("global initialization: %.2f s, %zu poses scored\n", frames.front().estimate.timings.search_ms / 1000,
+                frames.front().estimate.search_poses);
+  const auto lost = std::count_if(frames.begin(), frames.end(),
+                                  [](const TrackedFrame& f) { return f.estimate.status == TrackStatus::Lost; });
+  if (lost > 0) std::printf("lost in %lld of %zu frames\n", static_cast<long long>(lost), frames.size());
   if (!a.summary.empty()) write_summary(a.summary, summary_json(stats, config, a.sequence, a.mesh));
   std::printf("wrote %s\n", a.out.c_str());
 }
@@ -134,8 +157,8 @@ void add_track_command(CLI::App& app) {
       ->required();
   c->add_option("--out", args->out,
                 "CSV to write: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess (camera-from-object, metres), plus "
-                "err_t_mm,err_r_deg,adds_mm when ground truth is known, then status (tracking, lost, no-data); "
-                "written to FILE.partial and renamed when all frames are done")
+                "err_t_mm,err_r_deg,adds_mm when ground truth is known, then confidence,status (tracking, lost, "
+                "no-data); written to FILE.partial and renamed when all frames are done")
       ->required();
   c->add_option("--summary", args->summary,
                 "Also write a one-line JSON summary of the run (frames, mean/max errors, fps, backend) to this "
@@ -156,6 +179,12 @@ void add_track_command(CLI::App& app) {
                 "Initial pose \"tx ty tz qw qx qy qz\" (camera-from-object, metres; qx qy qz qw with --quaternion "
                 "xyzw)");
   c->add_flag("--init-from-gt", args->init_from_gt, "Start from the first frame's ground-truth pose");
+  c->add_option("--init-box", args->init_box,
+                "Find the object inside this box of the first frame: \"u0 v0 u1 v1\", inclusive sensor pixels "
+                "(what a detector gives); no pose needed");
+  c->add_flag("--init-global", args->init_global, "Find the object anywhere in the first frame; no pose needed");
+  c->add_flag("--no-recover", args->no_recover,
+              "Do not search for the object again while it is lost (status stays lost until the filter finds it)");
   c->add_option("--init-perturb", args->init_perturb,
                 "With --init-from-gt: move the start by exactly \"METRES DEGREES\" in a seeded random direction");
   c->add_option("--init-spread", args->init_spread,

@@ -68,6 +68,12 @@ void TrackerConfig::validate() const {
   require(probability(refine.min_incidence) && refine.min_incidence < 1, "refine min incidence must be in [0, 1)");
   require(positive(near_plane) && near_plane < observation.max_depth, "near plane must be in (0, max depth)");
   require(positive(max_time_step), "max time step must be positive");
+  require(positive(loss.pixel_sigmas), "loss pixel_sigmas must be positive");
+  require(probability(loss.lost_below) && probability(loss.found_above) && loss.lost_below <= loss.found_above,
+          "loss thresholds need 0 <= lost_below <= found_above <= 1");
+  require(probability(loss.found_outline), "loss found_outline must be in [0, 1]");
+  require(loss.lost_after >= 1, "loss lost_after must be at least 1 frame");
+  require(std::isfinite(recovery.budget_ms) && recovery.budget_ms > 0, "recovery budget must be positive (ms)");
 }
 
 }  // namespace depthtrack

@@ -4,11 +4,11 @@
 
 namespace depthtrack {
 
-std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config,
-                                         const Pose& initial, const InitialSpread& spread,
-                                         const std::function<void(size_t, const TrackedFrame&)>& on_frame) {
-  Tracker tracker(mesh, sequence.camera, config);
-  tracker.initialize(initial, spread);
+namespace {
+// The loop both starts share; first(tracker, depth, timestamp) runs frame 0.
+template <typename First>
+std::vector<TrackedFrame> track_frames(const Sequence& sequence, const Mesh& mesh, Tracker& tracker, const First& first,
+                                       const std::function<void(size_t, const TrackedFrame&)>& on_frame) {
   std::vector<TrackedFrame> frames;
   frames.reserve(sequence.frames.size());
   std::optional<AddsMetric> adds;  // built only when some frame has ground truth to score against
@@ -17,7 +17,8 @@ std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& m
     TrackedFrame out;
     out.name = f.name;
     out.timestamp = f.timestamp;
-    out.estimate = tracker.update(sequence.load_depth(i), f.timestamp);
+    const DepthImage depth = sequence.load_depth(i);
+    out.estimate = i == 0 ? first(tracker, depth, f.timestamp) : tracker.update(depth, f.timestamp);
     out.ground_truth = f.ground_truth;
     if (f.ground_truth) {
       out.translation_error = translation_error(out.estimate.pose, *f.ground_truth);
@@ -32,8 +33,27 @@ std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& m
   if (!frames.empty() && std::all_of(frames.begin(), frames.end(),
                                      [](const TrackedFrame& f) { return f.estimate.status == TrackStatus::NoData; }))
     throw InputError("no frame of the sequence has a valid depth pixel (within max_depth " +
-                     std::to_string(config.observation.max_depth) + " m) at the working resolution");
+                     std::to_string(tracker.config().observation.max_depth) + " m) at the working resolution");
   return frames;
+}
+}  // namespace
+
+std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config,
+                                         const Pose& initial, const InitialSpread& spread,
+                                         const std::function<void(size_t, const TrackedFrame&)>& on_frame) {
+  Tracker tracker(mesh, sequence.camera, config);
+  tracker.initialize(initial, spread);
+  return track_frames(
+      sequence, mesh, tracker, [](Tracker& t, const DepthImage& d, double ts) { return t.update(d, ts); }, on_frame);
+}
+
+std::vector<TrackedFrame> track_sequence_global(const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config,
+                                                const InitHint& hint,
+                                                const std::function<void(size_t, const TrackedFrame&)>& on_frame) {
+  Tracker tracker(mesh, sequence.camera, config);
+  return track_frames(
+      sequence, mesh, tracker,
+      [&hint](Tracker& t, const DepthImage& d, double ts) { return t.initialize_global(d, ts, hint); }, on_frame);
 }
 
 }  // namespace depthtrack

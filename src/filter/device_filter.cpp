@@ -8,6 +8,8 @@
 #include "compute/kernel_sources.hpp"
 #include "core/stopwatch.hpp"
 #include "dt_state.h"
+#include "filter/device_pose_scorer.hpp"
+#include "filter/model_args.hpp"
 #include "filter/particle_packing.hpp"
 #include "philox.h"
 #include "reference/occlusion_chain.hpp"
@@ -18,10 +20,7 @@ namespace {
 constexpr size_t kGroupSize = 128;   // work-items per group in weigh, summarize and the gathers
 constexpr size_t kLinearGroup = 64;  // work-items per group in the per-particle kernels
 
-// Host mirrors of the structs the kernels take by value (cl/dt_model.h, cl/propagate.cl).
-struct ModelArgs {
-  float sigma_constant, sigma_quadratic, tail_density, keep, lambda, log_c, p_inf;
-};
+// Host mirror of the struct cl/propagate.cl takes by value.
 struct MotionArgs {
   float keep, linear_std, angular_std, dt, centre_x, centre_y, centre_z;
 };
@@ -30,18 +29,6 @@ struct RefineArgs {  // cl/refine.cl's dt_refine_args
   int iterations;
   unsigned count;
 };
-
-ModelArgs model_args(const TrackerConfig& config) {
-  const ObservationModel& o = config.observation;
-  const OcclusionModel& oc = config.occlusion;
-  return {static_cast<float>(o.sigma_constant),
-          static_cast<float>(o.sigma_quadratic),
-          static_cast<float>(o.tail_weight / o.max_depth),
-          static_cast<float>(1.0 - o.tail_weight),
-          static_cast<float>(o.occluder_rate),
-          static_cast<float>(std::log(oc.p_occluded_stays - oc.p_visible_to_occluded)),
-          static_cast<float>(reference::occlusion_steady_state(oc))};
-}
 
 size_t round_up(size_t n, size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
@@ -75,7 +62,8 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
       centre_(mesh.centre().cast<double>()),
       pixels_(static_cast<size_t>(camera.pixel_count())),
       count_(checked_particle_count()),
-      atlas_source_(make_atlas_source(*queue_, mesh, camera, config)) {
+      atlas_source_(make_atlas_source(*queue_, mesh, camera, config)),
+      mesh_(mesh) {
   const std::vector<std::string> defines = {
       "DT_GROUP_SIZE=" + std::to_string(kGroupSize),
       "DT_OCCLUSION=" + std::to_string(occlusion_define(config.occlusion_storage))};
@@ -162,12 +150,22 @@ void DeviceFilter::upload_particles(const std::vector<reference::ParticleState>&
 }
 
 void DeviceFilter::initialize(const Pose& pose, const InitialSpread& spread) {
+  initialize_modes(std::span<const Pose>(&pose, 1), spread);
+}
+
+std::vector<double> DeviceFilter::score_poses(std::span<const Pose> poses, const DepthImage& depth,
+                                              const ObservationModel& model) {
+  if (!scorer_) scorer_ = std::make_unique<DevicePoseScorer>(*queue_, mesh_, camera_, config_);
+  return scorer_->score(poses, depth, model);
+}
+
+void DeviceFilter::initialize_modes(std::span<const Pose> modes, const InitialSpread& spread) {
   // Drawn on the host exactly as the reference draws them, then converted to float.
   std::vector<reference::ParticleState> particles(count_);
   for (size_t i = 0; i < count_; ++i) {
     float normals[6];
     dt_normals6(config_.seed, static_cast<dt_u32>(i), 0u, DT_STREAM_INIT, normals);
-    particles[i] = reference::initial_particle(pose, spread, centre_, normals);
+    particles[i] = reference::initial_particle(modes[i % modes.size()], spread, centre_, normals);
   }
   upload_particles(particles);
   log_weight_.upload(std::vector<float>(count_, 0.0f));

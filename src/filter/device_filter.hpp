@@ -15,6 +15,8 @@
 
 namespace depthtrack {
 
+class DevicePoseScorer;
+
 class DeviceFilter final : public FilterBackend {
  public:
   DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
@@ -22,6 +24,10 @@ class DeviceFilter final : public FilterBackend {
   ~DeviceFilter() override;
 
   void initialize(const Pose& pose, const InitialSpread& spread) override;
+  void initialize_modes(std::span<const Pose> modes, const InitialSpread& spread) override;
+  // Through a DevicePoseScorer made on first use (its atlas is separate from the filter's).
+  std::vector<double> score_poses(std::span<const Pose> poses, const DepthImage& depth,
+                                  const ObservationModel& model) override;
   Estimate update(const DepthImage& depth, double dt) override;
   std::string description() const override;
 
@@ -60,6 +66,8 @@ class DeviceFilter final : public FilterBackend {
   size_t pixels_, count_;
   std::unique_ptr<AtlasSource> atlas_source_;
   std::unique_ptr<Kernels> kernels_;
+  std::unique_ptr<DevicePoseScorer> scorer_;
+  Mesh mesh_;  // kept for the scorer, made only when global search runs
   compute::Buffer<float> state_, scratch_state_, log_weight_, log_likelihood_, weights_, cumulative_, estimate_;
   compute::Buffer<unsigned> parents_;
   compute::Buffer<float> atlas_, observed_;

@@ -6,7 +6,9 @@
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/tracker.hpp>
 #include <memory>
+#include <span>
 #include <string>
+#include <vector>
 
 namespace depthtrack {
 
@@ -14,6 +16,14 @@ class FilterBackend {
  public:
   virtual ~FilterBackend() = default;
   virtual void initialize(const Pose& pose, const InitialSpread& spread) = 0;
+  // Draws the particles around several poses: particle i around modes[i % modes.size()].
+  virtual void initialize_modes(std::span<const Pose> modes, const InitialSpread& spread) = 0;
+  // Log-likelihood of each pose against depth with the weigh step's per-pixel terms but a fresh
+  // occlusion prior (occlusion.initial at every pixel), under `model` (the configuration's own,
+  // or a tempered one for a coarse search); reads and writes no filter state. What global search
+  // ranks hypotheses by.
+  virtual std::vector<double> score_poses(std::span<const Pose> poses, const DepthImage& depth,
+                                          const ObservationModel& model) = 0;
   // dt: seconds since the previous frame, 0 for the first frame after initialize().
   virtual Estimate update(const DepthImage& depth, double dt) = 0;
   virtual std::string description() const = 0;

@@ -37,9 +37,7 @@ class GlAtlasSource final : public AtlasSource {
     handoff_->receive_atlas(atlas);
     timings.handoff_ms += clock.lap_ms();
   }
-  std::string description() const override {
-    return "GL (" + context_.describe() + "); hand-off: " + handoff_->name();
-  }
+  std::string description() const override { return "GL (" + context_.describe() + "); hand-off: " + handoff_->name(); }
 
  private:
   render::GlContext context_;

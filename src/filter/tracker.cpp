@@ -5,9 +5,22 @@
 #include <numbers>
 #include <sstream>
 
+#include "core/stopwatch.hpp"
 #include "filter/filter_backend.hpp"
+#include "filter/track_supervisor.hpp"
 
 namespace depthtrack {
+
+namespace {
+// Particle spread around search candidates: the search's last steps are finer than this, the
+// filter's first frames settle the rest.
+constexpr InitialSpread kSearchSpread{0.005, 0.05};
+
+bool is_finite(const Estimate& e) {
+  return e.pose.translation.allFinite() && e.pose.rotation.coeffs().allFinite() && e.linear_velocity.allFinite() &&
+         e.angular_velocity.allFinite() && std::isfinite(e.effective_sample_size);
+}
+}  // namespace
 
 const char* to_string(TrackStatus status) {
   switch (status) {
@@ -21,27 +34,6 @@ const char* to_string(TrackStatus status) {
   return "?";
 }
 
-namespace {
-
-// Depths beyond max_depth are outside the observation model (its uniform tail ends there, and far
-// readings would overflow it): they count as missing. Copies only when some pixel is that deep.
-DepthImage without_depths_beyond(const DepthImage& depth, double max_depth) {
-  const auto& data = depth.data();
-  if (std::none_of(data.begin(), data.end(), [&](float z) { return z > max_depth; })) return depth;
-  DepthImage kept(depth.width(), depth.height());
-  for (int v = 0; v < depth.height(); ++v)
-    for (int u = 0; u < depth.width(); ++u)
-      if (depth.at(u, v) <= max_depth) kept.at(u, v) = depth.at(u, v);
-  return kept;
-}
-
-bool is_finite(const Estimate& e) {
-  return e.pose.translation.allFinite() && e.pose.rotation.coeffs().allFinite() && e.linear_velocity.allFinite() &&
-         e.angular_velocity.allFinite() && std::isfinite(e.effective_sample_size);
-}
-
-}  // namespace
-
 Tracker::Tracker(const Mesh& mesh, const Camera& sensor, const TrackerConfig& config) : sensor_(sensor) {
   sensor.validate();
   config.validate();
@@ -52,6 +44,7 @@ Tracker::Tracker(const Mesh& mesh, const Camera& sensor, const TrackerConfig& co
   config_ = config;
   centre_ = checked.centre().cast<double>();
   backend_ = make_filter_backend(checked, working_, config);
+  supervisor_ = std::make_unique<TrackSupervisor>(checked, sensor_, working_, decimation_, config);
 }
 
 Tracker::~Tracker() = default;
@@ -85,19 +78,66 @@ void Tracker::initialize(const Pose& pose, const InitialSpread& spread) {
     throw InputError(m.str());
   }
   backend_->initialize(start, spread);
+  supervisor_->reset();
   initialized_ = true;
   has_previous_ = false;
   frames_since_initialize_ = 0;
 }
 
-Estimate Tracker::update(const DepthImage& depth, double timestamp) {
-  if (!initialized_) throw InputError("Tracker::update called before initialize()");
+const DepthImage& Tracker::working_frame(const DepthImage& depth, DepthImage& storage) const {
   if (depth.width() != sensor_.width || depth.height() != sensor_.height) {
     std::ostringstream m;
     m << "depth image is " << depth.width() << "x" << depth.height() << " but the camera is " << sensor_.width << "x"
       << sensor_.height;
     throw InputError(m.str());
   }
+  // Decimate only when needed: at the sensor's resolution the caller's image is used as it is.
+  const DepthImage* working = &depth;
+  if (decimation_ > 1) {
+    storage = depth.decimated(decimation_);
+    working = &storage;
+  }
+  // Depths beyond max_depth are outside the observation model (its uniform tail ends there, and far
+  // readings would overflow it): they count as missing. Copied only when some pixel is that deep.
+  const float max_depth = static_cast<float>(config_.observation.max_depth);
+  const auto& data = working->data();
+  if (std::none_of(data.begin(), data.end(), [&](float z) { return z > max_depth; })) return *working;
+  DepthImage kept(working->width(), working->height());
+  for (int v = 0; v < kept.height(); ++v)
+    for (int u = 0; u < kept.width(); ++u)
+      if (working->at(u, v) <= max_depth) kept.at(u, v) = working->at(u, v);
+  storage = std::move(kept);
+  return storage;
+}
+
+Estimate Tracker::initialize_global(const DepthImage& depth, double timestamp, const InitHint& hint) {
+  if (!std::isfinite(timestamp)) throw InputError("timestamp is not finite");
+  DepthImage storage;
+  const DepthImage& working = working_frame(depth, storage);
+  const Stopwatch clock;
+  const search::SearchResult found = supervisor_->search(*backend_, depth, working, hint, 0.0, 0u);
+  if (found.candidates.empty())
+    throw InputError(
+        "global initialization: nothing in the frame stands out in front of its surroundings by half the "
+        "object's size; give a box or a point");
+  const std::vector<Pose> seeds = TrackSupervisor::seeds(found);
+  backend_->initialize_modes(seeds, kSearchSpread);
+  const double search_ms = clock.elapsed_ms();
+  supervisor_->reset();
+  initialized_ = true;
+  has_previous_ = false;
+  frames_since_initialize_ = 0;
+  Estimate e = run_frame(working, timestamp);
+  e.timings.search_ms += search_ms;
+  e.timings.total_ms += search_ms;
+  e.search_poses = found.poses_scored;
+  return e;
+}
+
+Estimate Tracker::update(const DepthImage& depth, double timestamp) {
+  if (!initialized_) throw InputError("Tracker::update called before initialize()");
+  DepthImage storage;
+  const DepthImage& working = working_frame(depth, storage);
   if (!std::isfinite(timestamp)) throw InputError("timestamp is not finite");
   if (has_previous_ && timestamp <= previous_timestamp_) {
     std::ostringstream m;
@@ -105,16 +145,39 @@ Estimate Tracker::update(const DepthImage& depth, double timestamp) {
     m << "timestamps must increase: " << timestamp << " s follows " << previous_timestamp_ << " s";
     throw InputError(m.str());
   }
-  // At the working resolution, without the readings the model has no density for.
-  const DepthImage working =
-      without_depths_beyond(decimation_ > 1 ? depth.decimated(decimation_) : depth, config_.observation.max_depth);
+  // While lost, search this frame; a candidate the depth explains well enough re-seeds the filter.
+  // A dropout frame has nothing to search.
+  double search_ms = 0;
+  size_t search_poses = 0;
+  bool recovered = false;
+  if (supervisor_->status() == TrackStatus::Lost && config_.recovery.enabled && working.valid_count() > 0) {
+    const Stopwatch clock;
+    const search::SearchResult found = supervisor_->search(*backend_, depth, working, InitHint::anywhere(),
+                                                           config_.recovery.budget_ms, ++search_round_);
+    if (!found.candidates.empty() && supervisor_->found(found.candidates.front().pose, working)) {
+      backend_->initialize_modes(TrackSupervisor::seeds(found), kSearchSpread);
+      supervisor_->reset();
+      has_previous_ = false;
+      recovered = true;
+    }
+    search_ms = clock.elapsed_ms();
+    search_poses = found.poses_scored;
+  }
+  Estimate e = run_frame(working, timestamp);
+  e.recovered = recovered;
+  e.search_poses = search_poses;
+  e.timings.search_ms += search_ms;
+  e.timings.total_ms += search_ms;
+  return e;
+}
+
+Estimate Tracker::run_frame(const DepthImage& working, double timestamp) {
   // A gap longer than max_time_step is propagated as that long (TrackerConfig says why).
   const double dt = has_previous_ ? std::min(timestamp - previous_timestamp_, config_.max_time_step) : 0.0;
   // A dropout: every pixel adds 0 to every particle's log-likelihood, so the weights stay as they
   // are and resampling, decided on them, cannot trigger: the filter propagates only.
   const bool dropout = working.valid_count() == 0;
   Estimate e = backend_->update(working, dt);
-  if (dropout) e.status = TrackStatus::NoData;
   if (!is_finite(e)) {
     std::ostringstream m;
     m.precision(17);
@@ -125,6 +188,14 @@ Estimate Tracker::update(const DepthImage& depth, double timestamp) {
   previous_timestamp_ = timestamp;
   has_previous_ = true;
   ++frames_since_initialize_;
+  if (dropout) {
+    // Nothing was seen: no evidence for or against the track, so the loss hysteresis is left alone.
+    e.confidence = 0;
+    e.status = TrackStatus::NoData;
+    return e;
+  }
+  e.confidence = supervisor_->assess(e.pose, working).confidence();
+  e.status = supervisor_->observe(e.confidence);
   return e;
 }
 

@@ -13,6 +13,7 @@
 #include "reference/observation_model.hpp"
 #include "reference/occlusion_chain.hpp"
 #include "reference/pose_mean.hpp"
+#include "reference/pose_score.hpp"
 #include "reference/weights.hpp"
 
 namespace depthtrack::reference {
@@ -60,16 +61,34 @@ ReferenceFilter::ReferenceFilter(const Mesh& mesh, const Camera& camera, const T
 }
 
 void ReferenceFilter::initialize(const Pose& pose, const InitialSpread& spread) {
+  initialize_modes(std::span<const Pose>(&pose, 1), spread);
+}
+
+void ReferenceFilter::initialize_modes(std::span<const Pose> modes, const InitialSpread& spread) {
   for (size_t i = 0; i < particles_.size(); ++i) {
     float normals[6];
     dt_normals6(config_.seed, static_cast<dt_u32>(i), 0u, DT_STREAM_INIT, normals);
-    particles_[i] = initial_particle(pose, spread, centre_, normals);
+    particles_[i] = initial_particle(modes[i % modes.size()], spread, centre_, normals);
   }
   std::fill(log_weights_.begin(), log_weights_.end(), 0.0);
   std::fill(occlusion_.begin(), occlusion_.end(), static_cast<float>(config_.occlusion.initial));
   std::fill(occlusion_time_.begin(), occlusion_time_.end(), 0.0f);
   frame_ = 0;
   time_ = 0;
+}
+
+std::vector<double> ReferenceFilter::score_poses(std::span<const Pose> poses, const DepthImage& depth,
+                                                 const ObservationModel& model) {
+  TrackerConfig config = config_;
+  config.observation = model;
+  std::vector<double> scores(poses.size());
+  last_score_magnitudes_.resize(poses.size());
+  for (size_t i = 0; i < poses.size(); ++i) {
+    const PoseScore s = score_pose(rasterizer_, config, poses[i], depth, rendered_);
+    scores[i] = s.log_likelihood;
+    last_score_magnitudes_[i] = s.magnitude;
+  }
+  return scores;
 }
 
 void ReferenceFilter::propagate(double dt) {

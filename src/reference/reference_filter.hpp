@@ -16,6 +16,9 @@ class ReferenceFilter final : public FilterBackend {
   ReferenceFilter(const Mesh& mesh, const Camera& camera, const TrackerConfig& config);
 
   void initialize(const Pose& pose, const InitialSpread& spread) override;
+  void initialize_modes(std::span<const Pose> modes, const InitialSpread& spread) override;
+  std::vector<double> score_poses(std::span<const Pose> poses, const DepthImage& depth,
+                                  const ObservationModel& model) override;
   Estimate update(const DepthImage& depth, double dt) override;
   std::string description() const override { return "reference (sequential CPU)"; }
 
@@ -32,6 +35,8 @@ class ReferenceFilter final : public FilterBackend {
   const std::vector<float>& occlusion_state() const { return occlusion_; }
   const std::vector<float>& occlusion_times() const { return occlusion_time_; }
   const std::vector<double>& log_weights() const { return log_weights_; }
+  // Per pose of the last score_poses, the sum of the absolute per-pixel terms.
+  const std::vector<double>& last_score_magnitudes() const { return last_score_magnitudes_; }
 
  private:
   void propagate(double dt);
@@ -68,6 +73,7 @@ class ReferenceFilter final : public FilterBackend {
   std::vector<double> last_log_likelihoods_, last_magnitudes_;
   std::vector<int> last_parents_;
   std::vector<double> last_normalized_;
+  std::vector<double> last_score_magnitudes_;
   unsigned frame_ = 0;
   double time_ = 0;  // seconds since the first frame
 };

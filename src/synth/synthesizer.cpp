@@ -43,7 +43,10 @@ const SynthConfig& Synthesizer::config() const {
 }
 
 Pose Synthesizer::ground_truth(double timestamp) const {
-  return synth::trajectory_pose(impl_->config.trajectory, impl_->mesh_centre, timestamp);
+  const SynthConfig& c = impl_->config;
+  Pose pose = synth::trajectory_pose(c.trajectory, impl_->mesh_centre, timestamp);
+  if (c.hidden_until > c.hidden_from && timestamp >= c.hidden_until) pose.translation += c.reappear_offset;
+  return pose;
 }
 
 SynthFrame Synthesizer::frame(int index) const {
@@ -56,8 +59,9 @@ SynthFrame Synthesizer::frame(int index) const {
   out.ground_truth = ground_truth(out.timestamp);
 
   const size_t pixels = static_cast<size_t>(c.camera.pixel_count());
-  std::vector<float> object(pixels);
-  impl_->rasterizer.render(out.ground_truth, object);
+  std::vector<float> object(pixels, 0.0f);
+  out.hidden = c.hides(out.timestamp);
+  if (!out.hidden) impl_->rasterizer.render(out.ground_truth, object);
   // The wall: what the camera sees where the object is not; it also hides object parts behind it.
   std::vector<float> scene(object);
   if (c.background_depth > 0) {

@@ -31,6 +31,9 @@ void validate_config(const SynthConfig& c) {
   require(std::isfinite(c.background_depth), "background_depth", c.background_depth, "must be finite (<= 0 for none)");
   require(std::isfinite(c.metres_per_unit) && c.metres_per_unit > 0, "metres_per_unit", c.metres_per_unit,
           "must be positive");
+  require(std::isfinite(c.hidden_from), "hidden_from", c.hidden_from, "must be finite (seconds)");
+  require(std::isfinite(c.hidden_until), "hidden_until", c.hidden_until, "must be finite (seconds)");
+  if (!c.reappear_offset.allFinite()) fail("reappear_offset", c.reappear_offset.norm(), "must be finite (metres)");
 
   const SensorModel& s = c.sensor;
   require(std::isfinite(s.baseline) && s.baseline > 0, "sensor.baseline", s.baseline, "must be positive");

@@ -1,0 +1,32 @@
+#pragma once
+// Where global initialization looks for the object: anywhere, inside a 2D box of the sensor image
+// (what a detector gives), or near a 3D point.
+#include <Eigen/Core>
+
+namespace depthtrack {
+
+struct InitHint {
+  enum class Kind { None, Box, Point };
+  Kind kind = Kind::None;
+  int u0 = 0, v0 = 0, u1 = 0, v1 = 0;               // Box: inclusive sensor pixels, u0 <= u1, v0 <= v1
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // Point: camera frame, metres, on or near the object
+
+  static InitHint anywhere() { return {}; }
+  static InitHint box(int u0, int v0, int u1, int v1) {
+    InitHint h;
+    h.kind = Kind::Box;
+    h.u0 = u0;
+    h.v0 = v0;
+    h.u1 = u1;
+    h.v1 = v1;
+    return h;
+  }
+  static InitHint near_point(const Eigen::Vector3d& p) {
+    InitHint h;
+    h.kind = Kind::Point;
+    h.point = p;
+    return h;
+  }
+};
+
+}  // namespace depthtrack

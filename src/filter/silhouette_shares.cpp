@@ -1,0 +1,62 @@
+#include "filter/silhouette_shares.hpp"
+
+#include "reference/observation_model.hpp"
+
+namespace depthtrack {
+
+SilhouetteShares silhouette_shares(const reference::Rasterizer& rasterizer, const ObservationModel& model,
+                                   double pixel_sigmas, const Pose& pose, const DepthImage& depth,
+                                   std::span<float> scratch) {
+  const reference::PixelBox box = rasterizer.render(pose, scratch);
+  const int width = rasterizer.camera().width;
+  int visible = 0, occluded = 0, contradicted = 0, missing = 0;
+  for (int v = box.v0; v < box.v1; ++v)
+    for (int u = box.u0; u < box.u1; ++u) {
+      const size_t k = static_cast<size_t>(v) * static_cast<size_t>(width) + static_cast<size_t>(u);
+      const double y_hat = scratch[k];
+      if (y_hat <= 0) continue;
+      const float y = depth.data()[k];
+      if (!DepthImage::is_valid(y)) {
+        ++missing;
+        continue;
+      }
+      const double band = pixel_sigmas * reference::depth_sigma(model, y);
+      if (y < y_hat - band)
+        ++occluded;
+      else if (y > y_hat + band)
+        ++contradicted;
+      else
+        ++visible;
+    }
+  // The outline: each uncovered 4-neighbour of a covered pixel, once per covered neighbour.
+  const int height = rasterizer.camera().height;
+  int outline = 0, past_edge = 0;
+  for (int v = box.v0; v < box.v1; ++v)
+    for (int u = box.u0; u < box.u1; ++u) {
+      const double y_hat = scratch[static_cast<size_t>(v) * static_cast<size_t>(width) + static_cast<size_t>(u)];
+      if (y_hat <= 0) continue;
+      const int du[4] = {1, -1, 0, 0}, dv[4] = {0, 0, 1, -1};
+      for (int n = 0; n < 4; ++n) {
+        const int nu = u + du[n], nv = v + dv[n];
+        if (nu < 0 || nv < 0 || nu >= width || nv >= height) continue;
+        const size_t k = static_cast<size_t>(nv) * static_cast<size_t>(width) + static_cast<size_t>(nu);
+        if (scratch[k] > 0) continue;
+        ++outline;
+        const float y = depth.data()[k];
+        past_edge += !DepthImage::is_valid(y) || y > y_hat + pixel_sigmas * reference::depth_sigma(model, y);
+      }
+    }
+  SilhouetteShares s;
+  if (outline > 0) s.separated = static_cast<double>(past_edge) / outline;
+  s.pixels = visible + occluded + contradicted + missing;
+  const int measured = visible + occluded + contradicted;
+  if (s.pixels > 0) s.missing = static_cast<double>(missing) / s.pixels;
+  if (measured > 0) {
+    s.visible = static_cast<double>(visible) / measured;
+    s.occluded = static_cast<double>(occluded) / measured;
+    s.contradicted = static_cast<double>(contradicted) / measured;
+  }
+  return s;
+}
+
+}  // namespace depthtrack

@@ -1,0 +1,52 @@
+#pragma once
+// The Tracker's backend-independent layer above the filter: global search for a frame (through
+// the backend's score_poses), each estimate's confidence from its rendered silhouette, and the
+// lost/tracking status with hysteresis over frames.
+#include <depthtrack/camera.hpp>
+#include <depthtrack/init_hint.hpp>
+#include <depthtrack/tracker.hpp>
+#include <vector>
+
+#include "filter/filter_backend.hpp"
+#include "filter/silhouette_shares.hpp"
+#include "reference/rasterizer.hpp"
+#include "search/global_search.hpp"
+
+namespace depthtrack {
+
+class TrackSupervisor {
+ public:
+  TrackSupervisor(const Mesh& mesh, const Camera& sensor, const Camera& working, int decimation,
+                  const TrackerConfig& config);
+
+  // Searches one frame: the coarse grid and its refinement scored with a simplified copy of the
+  // mesh (search::simplify_mesh), the last stage and the final ranking with the full mesh through
+  // `backend`. sensor_depth: as received (the hint's box is in its pixels); working: the frame
+  // scored. budget_ms 0: the whole coarse grid.
+  search::SearchResult search(FilterBackend& backend, const DepthImage& sensor_depth, const DepthImage& working,
+                              const InitHint& hint, double budget_ms, unsigned round) const;
+  // The candidates to seed the filter with: the best, and the runners-up nearly as likely.
+  static std::vector<Pose> seeds(const search::SearchResult& result);
+
+  SilhouetteShares assess(const Pose& pose, const DepthImage& working);
+  // Whether a search candidate ends lost: the depth explains its silhouette (confidence at least
+  // loss.found_above) and it stands out from its surroundings (loss.found_outline of its outline).
+  bool found(const Pose& pose, const DepthImage& working);
+  // Takes this frame's confidence; returns the status after it.
+  TrackStatus observe(double confidence);
+  void reset();  // tracking, no bad frame counted
+  TrackStatus status() const { return status_; }
+
+ private:
+  TrackerConfig config_;
+  Camera sensor_, working_;
+  int decimation_;
+  search::SearchObject object_;
+  std::unique_ptr<FilterBackend> coarse_;  // scores with the simplified mesh
+  reference::Rasterizer rasterizer_;
+  std::vector<float> scratch_;
+  TrackStatus status_ = TrackStatus::Tracking;
+  int bad_frames_ = 0;
+};
+
+}  // namespace depthtrack

@@ -1,0 +1,32 @@
+#include "reference/pose_score.hpp"
+
+#include <cmath>
+
+#include "reference/observation_model.hpp"
+
+namespace depthtrack::reference {
+
+double fresh_occlusion(const TrackerConfig& config) {
+  return config.occlusion_storage == OcclusionStorage::Off ? 0.0 : config.occlusion.initial;
+}
+
+PoseScore score_pose(const Rasterizer& rasterizer, const TrackerConfig& config, const Pose& pose,
+                     const DepthImage& depth, std::span<float> scratch) {
+  const PixelBox box = rasterizer.render(pose, scratch);
+  const double p = fresh_occlusion(config);
+  const int width = rasterizer.camera().width;
+  PoseScore s;
+  for (int v = box.v0; v < box.v1; ++v) {
+    for (int u = box.u0; u < box.u1; ++u) {
+      const size_t k = static_cast<size_t>(v) * static_cast<size_t>(width) + static_cast<size_t>(u);
+      const double y_hat = scratch[k], y = depth.data()[k];
+      if (y_hat <= 0 || !DepthImage::is_valid(static_cast<float>(y))) continue;  // adds 0, as in weigh
+      const double term = pixel_log_ratio(pixel_densities(config.observation, y, y_hat), p);
+      s.log_likelihood += term;
+      s.magnitude += std::abs(term);
+    }
+  }
+  return s;
+}
+
+}  // namespace depthtrack::reference

@@ -1,0 +1,149 @@
+#include "search/global_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include "core/stopwatch.hpp"
+#include "philox.h"
+#include "reference/particle.hpp"
+#include "search/rotation_set.hpp"
+
+namespace depthtrack::search {
+
+namespace {
+// Philox stream of the search's perturbations (0-2 are the filter's: init, motion, resampling).
+constexpr dt_u32 kSearchStream = 3u;
+
+// The pose that puts the object's centre at `centre` (camera frame) with rotation q.
+Pose centred_pose(const Eigen::Quaterniond& q, const Eigen::Vector3d& centre, const SearchObject& object) {
+  return Pose(centre - q * object.centre, q);
+}
+
+// How far in front of its centre the object's surface reaches along the view axis when rotated by
+// q, times 2/3: a measured point lies on the front surface, the centre behind it (2/3 is the mean
+// over a sphere's visible disc).
+double centre_offset(const Eigen::Quaterniond& q, const SearchObject& object) {
+  const Eigen::Matrix3d r = q.toRotationMatrix();
+  double front = 0;
+  for (const auto& v : object.vertices) front = std::max(front, -(r.row(2).dot(v - object.centre)));
+  return 2.0 / 3.0 * front;
+}
+
+// Candidates best first, skipping any within both `metres` (centres) and `radians` of a kept one.
+std::vector<Candidate> best_distinct(std::vector<Candidate> all, size_t keep, const SearchObject& object, double metres,
+                                     double radians) {
+  std::sort(all.begin(), all.end(), [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
+  std::vector<Candidate> kept;
+  for (const Candidate& c : all) {
+    if (kept.size() >= keep) break;
+    const Eigen::Vector3d centre = c.pose.apply(object.centre);
+    const bool near = std::any_of(kept.begin(), kept.end(), [&](const Candidate& k) {
+      return (k.pose.apply(object.centre) - centre).norm() < metres && rotation_error(k.pose, c.pose) < radians;
+    });
+    if (!near) kept.push_back(c);
+  }
+  return kept;
+}
+
+std::vector<Candidate> scored(std::vector<Pose> poses, const ScoreFunction& score) {
+  const std::vector<double> s = score(poses);
+  std::vector<Candidate> out(poses.size());
+  for (size_t i = 0; i < poses.size(); ++i) out[i] = {poses[i], s[i]};
+  return out;
+}
+}  // namespace
+
+std::vector<Candidate> refine_candidates(std::vector<Candidate> candidates, const SearchObject& object,
+                                         const ScoreFunction& score, std::span<const RefineStage> stages,
+                                         const SearchSettings& settings, size_t* poses_scored) {
+  const size_t per = static_cast<size_t>(std::max(settings.perturbations, 0));
+  for (size_t s = 0; s < stages.size() && !candidates.empty(); ++s) {
+    const RefineStage& stage = stages[s];
+    std::vector<Pose> poses;
+    poses.reserve(candidates.size() * per);
+    for (size_t c = 0; c < candidates.size(); ++c)
+      for (size_t m = 0; m < per; ++m) {
+        float n[6];
+        dt_normals6(settings.seed, static_cast<dt_u32>(c * per + m), settings.round * 64u + static_cast<dt_u32>(s),
+                    kSearchStream, n);
+        poses.push_back(reference::move_about_centre(candidates[c].pose, object.centre,
+                                                     stage.metres * Eigen::Vector3d(n[0], n[1], n[2]),
+                                                     stage.radians * Eigen::Vector3d(n[3], n[4], n[5])));
+      }
+    std::vector<Candidate> all = scored(std::move(poses), score);
+    if (poses_scored) *poses_scored += all.size();
+    all.insert(all.end(), candidates.begin(), candidates.end());  // a candidate survives unless beaten
+    candidates = best_distinct(std::move(all), stage.keep, object, 2 * stage.metres, 2 * stage.radians);
+  }
+  return candidates;
+}
+
+GridResolution grid_resolution(const SearchObject& object, const Camera& camera,
+                               std::span<const Eigen::Vector3d> surface, const SearchSettings& settings) {
+  if (surface.empty()) return {};
+  // One working pixel is metres_per_pixel at the surface's nearer depths (the first quartile: an
+  // object stands in front of what is behind it), and turns the farthest vertex by
+  // radians_per_pixel.
+  std::vector<double> depths(surface.size());
+  for (size_t i = 0; i < surface.size(); ++i) depths[i] = surface[i].z();
+  std::nth_element(depths.begin(), depths.begin() + static_cast<std::ptrdiff_t>(depths.size() / 4), depths.end());
+  const double metres_per_pixel = depths[depths.size() / 4] / camera.fx;
+  const double radians_per_pixel = metres_per_pixel / std::max(object.radius, 1e-3);
+  return {std::clamp(settings.coarse_pixels * radians_per_pixel, 0.15, 0.4), settings.coarse_pixels * metres_per_pixel};
+}
+
+SearchResult global_search(const SearchObject& object, const Camera& camera, std::span<const Eigen::Vector3d> surface,
+                           const ScoreFunction& score, const SearchSettings& settings) {
+  const Stopwatch clock;
+  SearchResult result;
+  if (surface.empty()) return result;
+  const GridResolution grid = grid_resolution(object, camera, surface, settings);
+  result.rotation_radius = grid.rotation_radius;
+  result.translation_spacing = grid.translation_spacing;
+  const double metres_per_pixel = grid.translation_spacing / settings.coarse_pixels;
+
+  const std::vector<Eigen::Quaterniond> rotations = uniform_rotations(rotations_for_radius(result.rotation_radius));
+  std::vector<double> offsets(rotations.size());
+  for (size_t j = 0; j < rotations.size(); ++j) offsets[j] = centre_offset(rotations[j], object);
+
+  // Every (surface point, rotation) pair; under a budget, in a shuffled order, so that the part
+  // scored in time covers the whole grid evenly.
+  std::vector<size_t> order(surface.size() * rotations.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  if (settings.budget_ms > 0) {
+    std::mt19937_64 rng(settings.seed * 1000003u + settings.round);
+    std::shuffle(order.begin(), order.end(), rng);
+  }
+  const size_t chunk = 2048;
+  std::vector<Candidate> coarse;
+  for (size_t first = 0; first < order.size(); first += chunk) {
+    if (settings.budget_ms > 0 && first > 0 && clock.elapsed_ms() > 0.7 * settings.budget_ms) break;
+    std::vector<Pose> poses;
+    for (size_t k = first; k < std::min(order.size(), first + chunk); ++k) {
+      const size_t i = order[k] / rotations.size(), j = order[k] % rotations.size();
+      const Eigen::Vector3d ray = surface[i].normalized();
+      poses.push_back(centred_pose(rotations[j], surface[i] + offsets[j] * ray, object));
+    }
+    std::vector<Candidate> part = scored(std::move(poses), score);
+    coarse.insert(coarse.end(), part.begin(), part.end());
+  }
+  result.coarse_poses = coarse.size();
+  result.poses_scored = coarse.size();
+  std::vector<Candidate> kept = best_distinct(std::move(coarse), static_cast<size_t>(std::max(settings.keep, 1)),
+                                              object, 1.5 * result.translation_spacing, 1.5 * result.rotation_radius);
+
+  // Halve the steps each stage down to finest_pixels; the candidates thin out towards the end.
+  std::vector<RefineStage> stages;
+  double radians = 0.5 * result.rotation_radius, metres = 0.5 * result.translation_spacing;
+  const double finest = settings.finest_pixels * metres_per_pixel;
+  for (size_t keep = kept.size(); metres > finest; metres *= 0.5, radians *= 0.5) {
+    stages.push_back({radians, metres, keep});
+    keep = std::max<size_t>(4, keep / 2);
+  }
+  result.candidates = refine_candidates(std::move(kept), object, score, stages, settings, &result.poses_scored);
+  return result;
+}
+
+}  // namespace depthtrack::search

@@ -1,0 +1,72 @@
+#pragma once
+// Global search: which poses to score, coarse to fine. A coarse grid (observed surface points x a
+// rotation set covering SO(3)) is scored, the best distinct candidates are kept and refined by
+// scoring ever finer perturbations around them. Scoring itself is the backend's (score_poses).
+#include <depthtrack/camera.hpp>
+#include <depthtrack/pose.hpp>
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace depthtrack::search {
+
+struct Candidate {
+  Pose pose;
+  double score = 0;  // log-likelihood with a fresh occlusion prior
+};
+
+// Scores poses (camera_from_object) against the frame being searched, one value per pose.
+using ScoreFunction = std::function<std::vector<double>(std::span<const Pose>)>;
+
+struct SearchObject {
+  std::vector<Eigen::Vector3d> vertices;  // object frame
+  Eigen::Vector3d centre;                 // mean of the vertices
+  double radius = 0;                      // largest vertex distance from the centre
+};
+
+struct SearchSettings {
+  // Spacing of the coarse grid in working pixels: neighbouring rotations move the farthest vertex
+  // about this far, neighbouring translations lie this far apart.
+  double coarse_pixels = 4.0;
+  double finest_pixels = 0.25;  // refinement stops when its steps are this small
+  int keep = 12;                // distinct candidates carried from the coarse grid
+  int perturbations = 40;       // poses tried around each candidate per refinement stage
+  double budget_ms = 0;         // > 0: the coarse grid is cut short to leave time for refinement
+  uint64_t seed = 1;
+  unsigned round = 0;  // varies the perturbations (and the coarse order) between searches
+};
+
+struct SearchResult {
+  std::vector<Candidate> candidates;  // best first, distinct
+  size_t coarse_poses = 0, poses_scored = 0;
+  double rotation_radius = 0, translation_spacing = 0;  // of the coarse grid: radians, metres
+};
+
+// The coarse grid's steps, from the object's size and the surface's depth.
+struct GridResolution {
+  double rotation_radius = 0;      // radians: no rotation farther than this from a grid rotation
+  double translation_spacing = 0;  // metres between neighbouring translations
+};
+GridResolution grid_resolution(const SearchObject& object, const Camera& camera,
+                               std::span<const Eigen::Vector3d> surface, const SearchSettings& settings);
+
+// surface: observed camera-frame points (search::surface_points); camera: the working camera
+// scores are computed in (sets the resolution of the grid).
+SearchResult global_search(const SearchObject& object, const Camera& camera, std::span<const Eigen::Vector3d> surface,
+                           const ScoreFunction& score, const SearchSettings& settings);
+
+// One refinement stage's perturbation sizes (standard deviations, about the object's centre, in
+// its local frame) and how many candidates survive it.
+struct RefineStage {
+  double radians = 0, metres = 0;
+  size_t keep = 1;
+};
+
+// The seam where candidates are polished: each stage scores `perturbations` poses around every
+// candidate and keeps the best distinct ones. A local optimizer of the likelihood (Gauss-Newton of
+// the precision work) can take its place with the same signature.
+std::vector<Candidate> refine_candidates(std::vector<Candidate> candidates, const SearchObject& object,
+                                         const ScoreFunction& score, std::span<const RefineStage> stages,
+                                         const SearchSettings& settings, size_t* poses_scored = nullptr);
+
+}  // namespace depthtrack::search

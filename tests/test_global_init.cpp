@@ -1,0 +1,150 @@
+// Global initialization: batch pose scoring on every backend against the reference, and the
+// tracker started from no pose on the YCB-Video clip (from each object's 2D box, and from nothing).
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cstdio>
+#include <depthtrack/error.hpp>
+#include <depthtrack/evaluation.hpp>
+#include <depthtrack/synth.hpp>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <numbers>
+
+#include "device_support.hpp"
+#include "filter/device_filter.hpp"
+#include "label_box.hpp"
+#include "reference/reference_filter.hpp"
+#include "support.hpp"
+
+using namespace depthtrack;
+
+namespace {
+constexpr double kDegrees = 180.0 / std::numbers::pi;
+
+// Poses around and far from the object's true pose: a spread of good, bad and off-image scores.
+std::vector<Pose> test_poses(const Pose& truth, const Eigen::Vector3d& centre, size_t n) {
+  std::vector<Pose> poses;
+  for (size_t i = 0; i < n; ++i) {
+    const double metres = 0.002 * static_cast<double>(i % 20), degrees = 3.0 * static_cast<double>(i % 13);
+    poses.push_back(perturb_pose(truth, centre, metres, degrees, 100 + i));
+  }
+  poses.push_back(Pose({0, 0, -1}, Eigen::Quaterniond::Identity()));  // behind the camera: nothing drawn
+  return poses;
+}
+}  // namespace
+
+TEST_CASE("device pose scores equal the reference's", "[global][device]") {
+  if (!test::device_available()) return;
+  const Mesh mesh = builtin_demo_mesh();
+  SynthConfig synth;
+  synth.frames = 1;
+  synth.occluder_fraction = 0.3;
+  const SynthFrame frame = Synthesizer(mesh, synth).frame(0);
+  const Camera working = synth.camera.decimated(8);
+  const DepthImage depth = frame.depth.decimated(8);
+  for (const OcclusionStorage mode : {OcclusionStorage::PerPixelTime, OcclusionStorage::Off}) {
+    TrackerConfig config;
+    config.occlusion_storage = mode;
+    reference::ReferenceFilter reference(mesh, working, config);
+    DeviceFilter device(compute::open_device(test::device_selector()), mesh, working, config);
+    // More poses than a CPU device's batch, so that a partly filled batch is checked too.
+    const std::vector<Pose> poses = test_poses(frame.ground_truth, mesh.centre().cast<double>(), 700);
+    const std::vector<double> expected = reference.score_poses(poses, depth, config.observation);
+    const std::vector<double> got = device.score_poses(poses, depth, config.observation);
+    REQUIRE(got.size() == poses.size());
+    const auto& scale = reference.last_score_magnitudes();
+    double worst = 0;
+    for (size_t i = 0; i < poses.size(); ++i) {
+      // Relative to the sum of |per-pixel term|, as tests/test_device_filter.cpp compares weigh.
+      const double relative = std::abs(got[i] - expected[i]) / std::max(1.0, scale[i]);
+      worst = std::max(worst, relative);
+      CHECK(relative <= 1e-4);
+    }
+    std::printf("pose scores, %s, %zu poses: worst relative difference %.2g\n", to_string(mode), poses.size(), worst);
+    CHECK(expected.back() == 0.0);  // the pose behind the camera covers nothing
+    // The true pose beats the far ones: the scores mean something.
+    CHECK(expected.front() > *std::min_element(expected.begin(), expected.end()) + 100);
+  }
+}
+
+namespace {
+struct YcbObject {
+  std::string name;
+  int label = 0;  // cls_index: the object's id in the label images
+};
+
+std::vector<YcbObject> ycb_objects(const std::filesystem::path& gt) {
+  std::ifstream in(gt);
+  const auto json = nlohmann::json::parse(in);
+  std::vector<YcbObject> out;
+  for (const auto& o : json["frames"][0]["objects"]) out.push_back({o["name"], o["cls_index"]});
+  return out;
+}
+}  // namespace
+
+TEST_CASE("YCB-Video clip 0000: each object found from its 2D box in the first frame, and from nothing",
+          "[global][accuracy]") {
+  const auto clip = test::shared_data("sequences/ycbv-0000/gt.json");
+  if (!clip) return;
+  const bool no_hint = std::getenv("DEPTHTRACK_TEST_GLOBAL_NO_HINT") != nullptr;
+  std::printf(
+      "\nycbv-0000 at 80x60, 200 particles, reference  start    search s   poses  last: t mm   r deg  ADD-S mm\n");
+  for (const YcbObject& object : ycb_objects(*clip)) {
+    const auto mesh_path = test::shared_data("meshes/ycb/" + object.name + ".obj");
+    if (!mesh_path) return;
+    const Mesh mesh = Mesh::load(*mesh_path);
+    const AddsMetric adds(mesh);
+    const Sequence sequence = load_sequence(clip->parent_path(), object.name);
+    const auto box = test::label_box(clip->parent_path() / "000001-label.png", object.label);
+    REQUIRE(box);
+    std::vector<std::pair<std::string, InitHint>> starts = {
+        {"box", InitHint::box((*box)[0], (*box)[1], (*box)[2], (*box)[3])}};
+    if (no_hint) starts.push_back({"none", InitHint::anywhere()});
+    for (const auto& [start, hint] : starts) {
+      TrackerConfig config;
+      config.backend = "reference";
+      const auto frames = track_sequence_global(sequence, mesh, config, hint);
+      const TrackedFrame& last = frames.back();
+      const double last_adds = adds(last.estimate.pose, *last.ground_truth);
+      std::printf("  %-16s %26s %9.2f %9zu %10.2f %7.2f %9.2f\n", object.name.c_str(), start.c_str(),
+                  frames.front().estimate.timings.search_ms / 1000, frames.front().estimate.search_poses,
+                  1000 * last.translation_error, kDegrees * last.rotation_error, 1000 * last_adds);
+      CHECK(last_adds <= 0.010);
+      for (const TrackedFrame& f : frames) CHECK(f.estimate.status == TrackStatus::Tracking);
+    }
+  }
+}
+
+TEST_CASE("global initialization refuses a bad box with a reason", "[global][errors]") {
+  const Mesh mesh = builtin_demo_mesh();
+  SynthConfig synth;
+  synth.camera = Camera::make(160, 120, 131.25, 131.25, 79.875, 59.875);
+  synth.frames = 1;
+  const SynthFrame frame = Synthesizer(mesh, synth).frame(0);
+  // A hole of missing depth in the top-left corner.
+  std::vector<float> metres = frame.depth.data();
+  for (int v = 0; v < 20; ++v)
+    for (int u = 0; u < 30; ++u) metres[static_cast<size_t>(v * 160 + u)] = NAN;
+  const DepthImage holed = DepthImage::from_metres(160, 120, metres);
+  const DepthImage wall = DepthImage::from_metres(160, 120, std::vector<float>(160 * 120, 1.5f));
+  TrackerConfig config;
+  Tracker tracker(mesh, synth.camera, config);
+  using Catch::Matchers::Contains;
+  CHECK_THROWS_WITH(tracker.initialize_global(holed, 0.0, InitHint::box(50, 40, 20, 60)), Contains("is empty"));
+  CHECK_THROWS_WITH(tracker.initialize_global(holed, 0.0, InitHint::box(100, 50, 160, 90)),
+                    Contains("is not inside the 160x120 image"));
+  CHECK_THROWS_WITH(tracker.initialize_global(holed, 0.0, InitHint::box(-1, 0, 10, 10)), Contains("is not inside"));
+  CHECK_THROWS_WITH(tracker.initialize_global(holed, 0.0, InitHint::box(2, 3, 25, 15)),
+                    Contains("holds no valid depth"));
+  CHECK_THROWS_WITH(tracker.initialize_global(holed, 0.0, InitHint::near_point({0, 0, -1})),
+                    Contains("in front of the camera"));
+  CHECK_THROWS_WITH(tracker.initialize_global(wall, 0.0), Contains("nothing in the frame stands out"));
+  // update() before any initialization is still refused.
+  CHECK_THROWS_WITH(tracker.update(holed, 0.0), Contains("before initialize"));
+  // A point on the object finds it.
+  const Estimate e = tracker.initialize_global(
+      frame.depth, 0.0, InitHint::near_point(frame.ground_truth.apply(mesh.centre().cast<double>())));
+  CHECK(translation_error(e.pose, frame.ground_truth) <= 0.02);
+  CHECK(e.timings.search_ms > 0);
+  CHECK(e.search_poses > 0);
+}
