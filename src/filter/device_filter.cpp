@@ -25,6 +25,9 @@ struct ModelArgs {
 struct MotionArgs {
   float keep, linear_std, angular_std, dt, centre_x, centre_y, centre_z;
 };
+struct InitialArgs {  // cl/initialize.cl's dt_initial
+  float tx, ty, tz, qw, qx, qy, qz, metres, radians, centre_x, centre_y, centre_z;
+};
 
 size_t round_up(size_t n, size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
@@ -44,9 +47,10 @@ int occlusion_define(OcclusionStorage mode) {
 }  // namespace
 
 struct DeviceFilter::Kernels {
-  std::unique_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program;
+  std::unique_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
+      initialize_program;
   std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state, gather_pixels,
-      fill;
+      fill, initialize_particles, fill_per_particle;
 };
 
 DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
@@ -75,6 +79,9 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
   k.gather_state = k.resample_program->kernel("gather_state");
   k.gather_pixels = k.resample_program->kernel("gather_pixels");
   k.fill = k.resample_program->kernel("fill");
+  k.initialize_program = queue_->build("initialize.cl", compute::kernel_source("initialize.cl"), defines);
+  k.initialize_particles = k.initialize_program->kernel("initialize_particles");
+  k.fill_per_particle = k.initialize_program->kernel("fill_per_particle");
 
   compute::Queue& q = *queue_;
   state_ = compute::Buffer<float>(q, count_ * DT_STATE_STRIDE);
@@ -131,20 +138,46 @@ void DeviceFilter::upload_particles(const std::vector<reference::ParticleState>&
   state_.upload(pack_particles(particles));
 }
 
+// Drawn and filled on the device (cl/initialize.cl) with the reference's draws: start-up holds no
+// host copy of the particles or of their particles x pixels occlusion state.
 void DeviceFilter::initialize(const Pose& pose, const InitialSpread& spread) {
-  // Drawn on the host exactly as the reference draws them, then converted to float.
-  std::vector<reference::ParticleState> particles(count_);
-  for (size_t i = 0; i < count_; ++i) {
-    float normals[6];
-    dt_normals6(config_.seed, static_cast<dt_u32>(i), 0u, DT_STREAM_INIT, normals);
-    particles[i] = reference::initial_particle(pose, spread, centre_, normals);
-  }
-  upload_particles(particles);
-  log_weight_.upload(std::vector<float>(count_, 0.0f));
+  Kernels& k = *kernels_;
+  const Eigen::Quaterniond& q = pose.rotation;
+  const InitialArgs args{static_cast<float>(pose.translation.x()),
+                         static_cast<float>(pose.translation.y()),
+                         static_cast<float>(pose.translation.z()),
+                         static_cast<float>(q.w()),
+                         static_cast<float>(q.x()),
+                         static_cast<float>(q.y()),
+                         static_cast<float>(q.z()),
+                         static_cast<float>(spread.metres),
+                         static_cast<float>(spread.radians),
+                         static_cast<float>(centre_.x()),
+                         static_cast<float>(centre_.y()),
+                         static_cast<float>(centre_.z())};
+  const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
+  compute::set_arg(*k.initialize_particles, 0, state_);
+  k.initialize_particles->set_arg(1, static_cast<unsigned>(count_));
+  k.initialize_particles->set_arg(2, static_cast<unsigned>(config_.seed & 0xffffffffu));
+  k.initialize_particles->set_arg(3, static_cast<unsigned>(config_.seed >> 32));
+  k.initialize_particles->set_arg(4, args);
+  queue_->launch(*k.initialize_particles, linear);
+
+  compute::set_arg(*k.fill, 0, log_weight_);
+  k.fill->set_arg(1, static_cast<unsigned>(count_));
+  k.fill->set_arg(2, 0.0f);
+  queue_->launch(*k.fill, linear);
+
+  auto fill_pixels = [&](compute::Buffer<float>& values, float value) {
+    compute::set_arg(*k.fill_per_particle, 0, values);
+    k.fill_per_particle->set_arg(1, static_cast<unsigned>(pixels_));
+    k.fill_per_particle->set_arg(2, value);
+    queue_->launch(*k.fill_per_particle, compute::NdRange::linear(count_ * kGroupSize, kGroupSize));
+  };
   if (config_.occlusion_storage != OcclusionStorage::Off)
-    occlusion_.upload(std::vector<float>(count_ * pixels_, static_cast<float>(config_.occlusion.initial)));
-  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
-    occlusion_time_.upload(std::vector<float>(count_ * pixels_, 0.0f));
+    fill_pixels(occlusion_, static_cast<float>(config_.occlusion.initial));
+  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime) fill_pixels(occlusion_time_, 0.0f);
+  queue_->finish();
   frame_ = 0;
   time_ = 0;
   last_resampled_ = false;
@@ -167,6 +200,15 @@ std::vector<reference::ParticleState> DeviceFilter::unpack(const compute::Buffer
 
 std::vector<reference::ParticleState> DeviceFilter::particles() const {
   return unpack(state_);
+}
+
+std::vector<float> DeviceFilter::occlusion_state() const {
+  return config_.occlusion_storage == OcclusionStorage::Off ? std::vector<float>{} : occlusion_.download();
+}
+
+std::vector<float> DeviceFilter::occlusion_times() const {
+  return config_.occlusion_storage == OcclusionStorage::PerPixelTime ? occlusion_time_.download()
+                                                                     : std::vector<float>{};
 }
 
 // Resampling gathers into the scratch buffer and swaps, so the weighed states are left there.
