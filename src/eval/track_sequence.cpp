@@ -1,10 +1,14 @@
 #include <depthtrack/evaluation.hpp>
 
+#include "core/stopwatch.hpp"
+#include "eval/frame_reader.hpp"
+
 namespace depthtrack {
 
 std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config,
                                          const Pose& initial, const InitialSpread& spread,
                                          const std::function<void(size_t, const TrackedFrame&)>& on_frame) {
+  FrameReader reader(sequence);  // first, so that the first frames decode while the tracker starts up
   Tracker tracker(mesh, sequence.camera, config);
   tracker.initialize(initial, spread);
   std::vector<TrackedFrame> frames;
@@ -15,7 +19,10 @@ std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& m
     TrackedFrame out;
     out.name = f.name;
     out.timestamp = f.timestamp;
-    out.estimate = tracker.update(sequence.load_depth(i), f.timestamp);
+    const DepthImage depth = reader.next();
+    const Stopwatch latency;
+    out.estimate = tracker.update(depth, f.timestamp);
+    out.latency_ms = latency.elapsed_ms();
     out.ground_truth = f.ground_truth;
     if (f.ground_truth) {
       out.translation_error = translation_error(out.estimate.pose, *f.ground_truth);

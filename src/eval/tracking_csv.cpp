@@ -14,7 +14,7 @@ void write_tracking_csv(const std::filesystem::path& path, const std::vector<Tra
                                                     [](const TrackedFrame& f) { return f.ground_truth.has_value(); });
   const bool xyzw = order == QuaternionOrder::Xyzw;
   out << "frame,timestamp,tx,ty,tz," << (xyzw ? "qx,qy,qz,qw" : "qw,qx,qy,qz") << ",ess"
-      << (truth ? ",err_t_mm,err_r_deg,adds_mm" : "") << "\n";
+      << (truth ? ",err_t_mm,err_r_deg,adds_mm" : "") << ",latency_ms\n";
   out.precision(9);
   for (const auto& f : frames) {
     const Pose& p = f.estimate.pose;
@@ -29,7 +29,7 @@ void write_tracking_csv(const std::filesystem::path& path, const std::vector<Tra
     if (truth)
       out << "," << f.translation_error * 1000.0 << "," << f.rotation_error * 180.0 / std::numbers::pi << ","
           << f.adds * 1000.0;
-    out << "\n";
+    out << "," << f.latency_ms << "\n";
   }
   if (!out) throw InputError("failed writing '" + path.string() + "'");
 }
