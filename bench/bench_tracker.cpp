@@ -19,6 +19,8 @@
 
 #include "bench_args.hpp"
 #include "bench_rows.hpp"
+#include "core/stopwatch.hpp"
+#include "host_memory.hpp"
 
 using namespace depthtrack;
 
@@ -41,8 +43,14 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
   config.height = c.height;
   config.particles = c.particles;
   config.refine = refine;
+  // Start-up: construction (device buffers, kernels built or read from the driver's cache) and the
+  // initial particle and occlusion state, with the host memory it peaks at.
+  const bool peak_known = bench::reset_peak_resident();
+  const Stopwatch startup;
   Tracker tracker(mesh, synth.camera, config);
   tracker.initialize(scene.ground_truth(0.0));
+  const double startup_ms = startup.elapsed_ms();
+  const double startup_peak_mib = peak_known ? bench::peak_resident_mib() : NAN;
   std::vector<double> propagate, render, handoff, weigh, resample, refined, total;
   for (int i = 0; i < frames; ++i) {
     const SynthFrame f = scene.frame(i);
@@ -77,13 +85,16 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
   bench::print_row(
       {backend, platform, name, "-", test, "refine_share", "%", 100.0 * bench::median(refined) / bench::median(total)});
   bench::print_row({backend, platform, name, "-", test, "frames_per_second", "Hz", 1000.0 / bench::median(total)});
+  bench::print_row({backend, platform, name, "-", test, "startup_ms", "ms", startup_ms});
+  bench::print_row({backend, platform, name, "-", test, "startup_host_peak", "MiB", startup_peak_mib});
 }
 
 const char* const kUsage =
     "usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] "
     "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N] [--no-global]\n"
     "Times tracker frames on a synthetic occluded handset sequence, split into propagate / render / hand-off /\n"
-    "weigh / resample; prints CSV rows backend,platform,device,driver,test,metric,unit,value.\n"
+    "weigh / resample, and start-up (construction + initialize) with its peak host memory; prints CSV rows\n"
+    "backend,platform,device,driver,test,metric,unit,value.\n"
     "  --backend NAME         reference (default), opencl, opencl:pocl, cuda, ... (`depthtrack info`)\n"
     "  --renderer NAME        atlas renderer of device backends: kernel (default), gl, cpu\n"
     "  --particles N[,N...]   particle counts (default 200)\n"

@@ -25,10 +25,11 @@ TEST_CASE("track's adds_mm is the ADD-S of the row's pose, and --summary the run
   const auto lines = test::lines_of(dir / "out.csv");
   REQUIRE(lines.size() == 6);
   const auto header = test::cells_of(lines[0]);
-  REQUIRE(header.size() == 15);
+  REQUIRE(header.size() == 16);
   CHECK(header[10] == "err_t_mm");
   CHECK(header[11] == "err_r_deg");
   CHECK(header[12] == "adds_mm");
+  CHECK(header[13] == "latency_ms");
 
   const Sequence seq = load_sequence(dir / "seq");
   const AddsMetric adds(builtin_demo_mesh());

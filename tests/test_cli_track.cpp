@@ -20,18 +20,21 @@ TEST_CASE("track writes one CSV row per frame with the contract's columns", "[cl
   REQUIRE(status == 0);
   const auto lines = test::lines_of(dir / "out.csv");
   REQUIRE(lines.size() == 7);
-  CHECK(lines[0] == "frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess,err_t_mm,err_r_deg,adds_mm,confidence,status");
+  CHECK(lines[0] == "frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess,err_t_mm,err_r_deg,adds_mm,latency_ms,confidence,status");
   // Row 3: frame name, timestamp 2/30 s, and a translation error under 1 cm.
   std::stringstream row(lines[3]);
   std::vector<std::string> cells;
   for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-  REQUIRE(cells.size() == 15);
+  REQUIRE(cells.size() == 16);
   CHECK(cells[0] == "000002");
-  CHECK(std::stod(cells[13]) > 0.5);  // confidence: the object is in view and tracked
-  CHECK(cells[14] == "tracking");
+  CHECK(std::stod(cells[14]) > 0.5);  // confidence: the object is in view and tracked
+  CHECK(cells[15] == "tracking");
   CHECK(std::stod(cells[1]) == Approx(2.0 / 30));
   CHECK(std::stod(cells[4]) == Approx(0.8).margin(0.15));  // tz near the trajectory's 0.8 m
   CHECK(std::stod(cells[10]) < 10.0);
+  // Latency: a frame of 100 particles at 80x60 takes some time, and far less than a second.
+  CHECK(std::stod(cells[13]) > 0.0);
+  CHECK(std::stod(cells[13]) < 1000.0);
   CHECK(output.find("frames per second") != std::string::npos);
 }
 
@@ -62,9 +65,9 @@ TEST_CASE("track --init-global and --init-box find the object without a pose", "
     std::stringstream row(lines.back());
     std::vector<std::string> cells;
     for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-    REQUIRE(cells.size() == 15);
+    REQUIRE(cells.size() == 16);
     CHECK(std::stod(cells[10]) < 10.0);  // last frame within 1 cm of ground truth
-    CHECK(cells[14] == "tracking");
+    CHECK(cells[15] == "tracking");
   }
 }
 

@@ -22,10 +22,12 @@ struct TrackedFrame {
   double translation_error = NAN;  // metres, when ground truth is known
   double rotation_error = NAN;     // radians
   double adds = NAN;               // ADD-S of the estimate against the truth (metres), when known
+  double latency_ms = NAN;         // wall time from the decoded depth image handed in to the pose out
 };
 
 // Tracks every frame of the sequence from the given initial pose; on_frame(i, frame) is called
-// after each frame (progress, printing).
+// after each frame (progress, printing). Depth images are decoded on a reader thread a few frames
+// ahead, so that decoding overlaps the tracker's work.
 std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config,
                                          const Pose& initial, const InitialSpread& spread,
                                          const std::function<void(size_t, const TrackedFrame&)>& on_frame = {});
@@ -59,8 +61,8 @@ class AddsMetric {
 enum class QuaternionOrder { Wxyz, Xyzw };
 
 // CSV with a header and a row per frame: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess (qx,qy,qz,qw with
-// Xyzw) and, when every frame has ground truth, err_t_mm,err_r_deg,adds_mm; then confidence,status (tracking,
-// lost, no-data). Written through TrackingCsvWriter (below).
+// Xyzw) and, when every frame has ground truth, err_t_mm,err_r_deg,adds_mm; then latency_ms (depth in
+// to pose out), confidence and status (tracking, lost, no-data). Written through TrackingCsvWriter (below).
 void write_tracking_csv(const std::filesystem::path& path, const std::vector<TrackedFrame>& frames,
                         QuaternionOrder order = QuaternionOrder::Wxyz);
 

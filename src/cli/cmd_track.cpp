@@ -157,8 +157,9 @@ void add_track_command(CLI::App& app) {
       ->required();
   c->add_option("--out", args->out,
                 "CSV to write: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess (camera-from-object, metres), plus "
-                "err_t_mm,err_r_deg,adds_mm when ground truth is known, then confidence,status (tracking, lost, "
-                "no-data); written to FILE.partial and renamed when all frames are done")
+                "err_t_mm,err_r_deg,adds_mm when ground truth is known, then latency_ms (depth in to pose out), "
+                "confidence,status (tracking, lost, no-data); written to FILE.partial and renamed when all frames "
+                "are done")
       ->required();
   c->add_option("--summary", args->summary,
                 "Also write a one-line JSON summary of the run (frames, mean/max errors, fps, backend) to this "

@@ -2,12 +2,17 @@
 #include <depthtrack/error.hpp>
 #include <depthtrack/evaluation.hpp>
 
+#include "core/stopwatch.hpp"
+#include "eval/frame_reader.hpp"
+
 namespace depthtrack {
 
 namespace {
-// The loop both starts share; first(tracker, depth, timestamp) runs frame 0.
+// The loop both starts share; first(tracker, depth, timestamp) runs frame 0. The reader decodes
+// frames ahead on its own thread.
 template <typename First>
-std::vector<TrackedFrame> track_frames(const Sequence& sequence, const Mesh& mesh, Tracker& tracker, const First& first,
+std::vector<TrackedFrame> track_frames(const Sequence& sequence, const Mesh& mesh, FrameReader& reader,
+                                       Tracker& tracker, const First& first,
                                        const std::function<void(size_t, const TrackedFrame&)>& on_frame) {
   std::vector<TrackedFrame> frames;
   frames.reserve(sequence.frames.size());
@@ -17,8 +22,10 @@ std::vector<TrackedFrame> track_frames(const Sequence& sequence, const Mesh& mes
     TrackedFrame out;
     out.name = f.name;
     out.timestamp = f.timestamp;
-    const DepthImage depth = sequence.load_depth(i);
+    const DepthImage depth = reader.next();
+    const Stopwatch latency;
     out.estimate = i == 0 ? first(tracker, depth, f.timestamp) : tracker.update(depth, f.timestamp);
+    out.latency_ms = latency.elapsed_ms();
     out.ground_truth = f.ground_truth;
     if (f.ground_truth) {
       out.translation_error = translation_error(out.estimate.pose, *f.ground_truth);
@@ -41,18 +48,21 @@ std::vector<TrackedFrame> track_frames(const Sequence& sequence, const Mesh& mes
 std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config,
                                          const Pose& initial, const InitialSpread& spread,
                                          const std::function<void(size_t, const TrackedFrame&)>& on_frame) {
+  FrameReader reader(sequence);  // first, so that the first frames decode while the tracker starts up
   Tracker tracker(mesh, sequence.camera, config);
   tracker.initialize(initial, spread);
   return track_frames(
-      sequence, mesh, tracker, [](Tracker& t, const DepthImage& d, double ts) { return t.update(d, ts); }, on_frame);
+      sequence, mesh, reader, tracker, [](Tracker& t, const DepthImage& d, double ts) { return t.update(d, ts); },
+      on_frame);
 }
 
 std::vector<TrackedFrame> track_sequence_global(const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config,
                                                 const InitHint& hint,
                                                 const std::function<void(size_t, const TrackedFrame&)>& on_frame) {
+  FrameReader reader(sequence);
   Tracker tracker(mesh, sequence.camera, config);
   return track_frames(
-      sequence, mesh, tracker,
+      sequence, mesh, reader, tracker,
       [&hint](Tracker& t, const DepthImage& d, double ts) { return t.initialize_global(d, ts, hint); }, on_frame);
 }
 

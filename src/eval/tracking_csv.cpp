@@ -45,7 +45,7 @@ TrackingCsvWriter::TrackingCsvWriter(const fs::path& path, bool with_ground_trut
     throw InputError("cannot write " + quoted(partial_) + ": " + std::strerror(errno) + " (check the folder of --out)");
   const bool xyzw = order_ == QuaternionOrder::Xyzw;
   stream_->out << "frame,timestamp,tx,ty,tz," << (xyzw ? "qx,qy,qz,qw" : "qw,qx,qy,qz") << ",ess"
-               << (with_ground_truth_ ? ",err_t_mm,err_r_deg,adds_mm" : "") << ",confidence,status\n";
+               << (with_ground_truth_ ? ",err_t_mm,err_r_deg,adds_mm" : "") << ",latency_ms,confidence,status\n";
   stream_->out.precision(9);
   if (!stream_->out) throw Error("failed writing " + quoted(partial_));
 }
@@ -72,7 +72,7 @@ void TrackingCsvWriter::write(const TrackedFrame& f) {
   if (with_ground_truth_)
     out << "," << f.translation_error * 1000.0 << "," << f.rotation_error * 180.0 / std::numbers::pi << ","
         << f.adds * 1000.0;
-  out << "," << f.estimate.confidence << "," << to_string(f.estimate.status) << "\n";
+  out << "," << f.latency_ms << "," << f.estimate.confidence << "," << to_string(f.estimate.status) << "\n";
   if (!out) throw Error("failed writing " + quoted(partial_) + " (disk full?)");
 }
 

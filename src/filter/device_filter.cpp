@@ -29,6 +29,10 @@ struct RefineArgs {  // cl/refine.cl's dt_refine_args
   int iterations;
   unsigned count;
 };
+struct InitialArgs {  // cl/initialize.cl's dt_initial
+  float metres, radians, centre_x, centre_y, centre_z;
+  unsigned mode_count;
+};
 
 size_t round_up(size_t n, size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
@@ -49,9 +53,9 @@ int occlusion_define(OcclusionStorage mode) {
 
 struct DeviceFilter::Kernels {
   std::unique_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
-      refine_program;
+      refine_program, initialize_program;
   std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state, gather_pixels,
-      fill, refine, shift_particles;
+      fill, refine, shift_particles, initialize_particles, fill_per_particle;
 };
 
 DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
@@ -86,6 +90,9 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
     k.refine = k.refine_program->kernel("refine");
     k.shift_particles = k.refine_program->kernel("shift_particles");
   }
+  k.initialize_program = queue_->build("initialize.cl", compute::kernel_source("initialize.cl"), defines);
+  k.initialize_particles = k.initialize_program->kernel("initialize_particles");
+  k.fill_per_particle = k.initialize_program->kernel("fill_per_particle");
 
   compute::Queue& q = *queue_;
   state_ = compute::Buffer<float>(q, count_ * DT_STATE_STRIDE);
@@ -149,6 +156,8 @@ void DeviceFilter::upload_particles(const std::vector<reference::ParticleState>&
   state_.upload(pack_particles(particles));
 }
 
+// Drawn and filled on the device (cl/initialize.cl) with the reference's draws: start-up holds no
+// host copy of the particles or of their particles x pixels occlusion state.
 void DeviceFilter::initialize(const Pose& pose, const InitialSpread& spread) {
   initialize_modes(std::span<const Pose>(&pose, 1), spread);
 }
@@ -159,20 +168,50 @@ std::vector<double> DeviceFilter::score_poses(std::span<const Pose> poses, const
   return scorer_->score(poses, depth, model);
 }
 
+// Drawn on the device (cl/initialize.cl) with the reference's draws, particle i around mode
+// i % modes: no host copy of particles x pixels values at start-up.
 void DeviceFilter::initialize_modes(std::span<const Pose> modes, const InitialSpread& spread) {
-  // Drawn on the host exactly as the reference draws them, then converted to float.
-  std::vector<reference::ParticleState> particles(count_);
-  for (size_t i = 0; i < count_; ++i) {
-    float normals[6];
-    dt_normals6(config_.seed, static_cast<dt_u32>(i), 0u, DT_STREAM_INIT, normals);
-    particles[i] = reference::initial_particle(modes[i % modes.size()], spread, centre_, normals);
+  if (modes.empty()) throw InputError("initialize_modes: no pose to start from");
+  Kernels& k = *kernels_;
+  std::vector<float> mode_values;
+  mode_values.reserve(modes.size() * 7);
+  for (const Pose& m : modes) {
+    const Eigen::Quaterniond& q = m.rotation;
+    for (double v : {m.translation.x(), m.translation.y(), m.translation.z(), q.w(), q.x(), q.y(), q.z()})
+      mode_values.push_back(static_cast<float>(v));
   }
-  upload_particles(particles);
-  log_weight_.upload(std::vector<float>(count_, 0.0f));
+  compute::Buffer<float> mode_buffer(*queue_, mode_values.size());
+  mode_buffer.upload(mode_values);
+  const InitialArgs args{static_cast<float>(spread.metres),
+                         static_cast<float>(spread.radians),
+                         static_cast<float>(centre_.x()),
+                         static_cast<float>(centre_.y()),
+                         static_cast<float>(centre_.z()),
+                         static_cast<unsigned>(modes.size())};
+  const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
+  compute::set_arg(*k.initialize_particles, 0, state_);
+  k.initialize_particles->set_arg(1, static_cast<unsigned>(count_));
+  k.initialize_particles->set_arg(2, static_cast<unsigned>(config_.seed & 0xffffffffu));
+  k.initialize_particles->set_arg(3, static_cast<unsigned>(config_.seed >> 32));
+  compute::set_arg(*k.initialize_particles, 4, mode_buffer);
+  k.initialize_particles->set_arg(5, args);
+  queue_->launch(*k.initialize_particles, linear);
+
+  compute::set_arg(*k.fill, 0, log_weight_);
+  k.fill->set_arg(1, static_cast<unsigned>(count_));
+  k.fill->set_arg(2, 0.0f);
+  queue_->launch(*k.fill, linear);
+
+  auto fill_pixels = [&](compute::Buffer<float>& values, float value) {
+    compute::set_arg(*k.fill_per_particle, 0, values);
+    k.fill_per_particle->set_arg(1, static_cast<unsigned>(pixels_));
+    k.fill_per_particle->set_arg(2, value);
+    queue_->launch(*k.fill_per_particle, compute::NdRange::linear(count_ * kGroupSize, kGroupSize));
+  };
   if (config_.occlusion_storage != OcclusionStorage::Off)
-    occlusion_.upload(std::vector<float>(count_ * pixels_, static_cast<float>(config_.occlusion.initial)));
-  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
-    occlusion_time_.upload(std::vector<float>(count_ * pixels_, 0.0f));
+    fill_pixels(occlusion_, static_cast<float>(config_.occlusion.initial));
+  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime) fill_pixels(occlusion_time_, 0.0f);
+  queue_->finish();
   frame_ = 0;
   time_ = 0;
   last_resampled_ = false;
@@ -196,6 +235,15 @@ std::vector<reference::ParticleState> DeviceFilter::unpack(const compute::Buffer
 
 std::vector<reference::ParticleState> DeviceFilter::particles() const {
   return unpack(state_);
+}
+
+std::vector<float> DeviceFilter::occlusion_state() const {
+  return config_.occlusion_storage == OcclusionStorage::Off ? std::vector<float>{} : occlusion_.download();
+}
+
+std::vector<float> DeviceFilter::occlusion_times() const {
+  return config_.occlusion_storage == OcclusionStorage::PerPixelTime ? occlusion_time_.download()
+                                                                     : std::vector<float>{};
 }
 
 // Resampling gathers into the scratch buffer and swaps, so the weighed states are left there.

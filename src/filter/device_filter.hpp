@@ -35,6 +35,10 @@ class DeviceFilter final : public FilterBackend {
   std::vector<double> last_log_likelihoods() const;
   std::vector<int> last_parents() const;
   std::vector<reference::ParticleState> particles() const;
+  // The occlusion probabilities and times, particles x pixels (empty where the mode keeps none):
+  // downloaded only when asked, for tests.
+  std::vector<float> occlusion_state() const;
+  std::vector<float> occlusion_times() const;
   // The atlas the last update weighed: particles x pixels depths, tile i = particle i.
   std::vector<float> last_atlas() const;
   // The particles as the last update weighed them (before it resampled).
