@@ -67,12 +67,12 @@ void write_tracking_csv(const std::filesystem::path& path, const std::vector<Tra
                         QuaternionOrder order = QuaternionOrder::Wxyz);
 
 // BOP's result CSV (bop_toolkit): scene_id,im_id,obj_id,score,R,t,time per frame, R row-major and
-// t in mm, space-separated; score is the ESS over the particle count, time the filter's seconds for
+// t in mm, space-separated; score is the estimate's confidence, time the filter's seconds for
 // the frame. The sequence must be a BOP scene with an obj_id (check_bop_exportable throws
 // InputError otherwise).
 void check_bop_exportable(const Sequence& sequence);
-void write_bop_csv(const std::filesystem::path& path, const Sequence& sequence, const std::vector<TrackedFrame>& frames,
-                   int particles);
+void write_bop_csv(const std::filesystem::path& path, const Sequence& sequence,
+                   const std::vector<TrackedFrame>& frames);
 
 // The same CSV, row by row while tracking, so that output that cannot lie: the constructor checks
 // the place (an existing folder, path not a folder) before any work; rows go to PATH.partial, which

@@ -127,7 +127,7 @@ void run_track(const TrackArgs& a) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count() - overlay_seconds;
   bar.finish();
   csv.finish();
-  if (!a.bop_out.empty()) write_bop_csv(a.bop_out, seq, frames, config.particles);
+  if (!a.bop_out.empty()) write_bop_csv(a.bop_out, seq, frames);
   const RunStats stats = run_stats(frames, seconds);
   print_summary(stats, frames.empty() ? nullptr : &frames.back());
   if (global && !frames.empty())

@@ -1,5 +1,6 @@
 #include "cli/overlay_writer.hpp"
 
+#include <cctype>
 #include <cstdio>
 #include <depthtrack/error.hpp>
 #include <numbers>
@@ -20,6 +21,9 @@ std::vector<std::string> overlay_text(const TrackedFrame& f, int particles) {
     lines.push_back(format("ERR %.1f MM %.2f DEG  ADD-S %.1f MM", 1000 * f.translation_error,
                            f.rotation_error * 180.0 / std::numbers::pi, 1000 * f.adds));
   lines.push_back(format("ESS %.1f OF %.0f", f.estimate.effective_sample_size, particles));
+  std::string status = to_string(f.estimate.status);
+  for (char& c : status) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  lines.push_back(status + format("  CONFIDENCE %.2f", f.estimate.confidence));
   return lines;
 }
 

@@ -10,8 +10,8 @@ void check_bop_exportable(const Sequence& sequence) {
                      (sequence.object.empty() ? " with no object" : " (object '" + sequence.object + "')"));
 }
 
-void write_bop_csv(const std::filesystem::path& path, const Sequence& sequence, const std::vector<TrackedFrame>& frames,
-                   int particles) {
+void write_bop_csv(const std::filesystem::path& path, const Sequence& sequence,
+                   const std::vector<TrackedFrame>& frames) {
   check_bop_exportable(sequence);
   std::ofstream out(path);
   if (!out) throw InputError("cannot write '" + path.string() + "'");
@@ -21,7 +21,7 @@ void write_bop_csv(const std::filesystem::path& path, const Sequence& sequence, 
     const Eigen::Matrix3d r = f.estimate.pose.rotation.toRotationMatrix();
     const Eigen::Vector3d t = 1000.0 * f.estimate.pose.translation;
     out << sequence.scene_id << "," << std::stoi(f.name) << "," << sequence.object << ","
-        << f.estimate.effective_sample_size / particles << ",";
+        << f.estimate.confidence << ",";
     for (int i = 0; i < 9; ++i) out << (i ? " " : "") << r(i / 3, i % 3);
     out << "," << t.x() << " " << t.y() << " " << t.z() << "," << f.estimate.timings.total_ms / 1000.0 << "\n";
   }
