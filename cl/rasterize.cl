@@ -62,7 +62,8 @@ typedef struct {
 
 /* Keeps, at every pixel of the tile whose centre lies inside triangle abc, the nearer of its depth
  * and the tile's. With ids (a second pass over a finished tile, for the pose refinement), it instead
- * writes triangle where its depth is the tile's: the lowest such index wins, as atomic min. */
+ * writes triangle where its depth is the tile's (to 1e-6 relative): the lowest such index wins, as
+ * atomic min. */
 DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_plane plane, dt_camera cam,
                                      __global uint* tile, __global uint* ids, uint triangle) {
   const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
@@ -92,7 +93,9 @@ DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_plan
       if (!(z >= cam.near && z <= cam.far)) continue;
       const uint k = DT_CAST(uint, v) * cam.width + DT_CAST(uint, u);
       if (ids) {
-        if (tile[k] == dt_as_uint(z)) dt_atomic_min_u32(ids + k, triangle);
+        /* Within a few ulps, not bit for bit: NVRTC contracts this pass's arithmetic into FMAs
+         * differently from the depth pass's, and a pixel left without its triangle has no normal. */
+        if (fabs(dt_as_float(tile[k]) - z) <= 1e-6f * z) dt_atomic_min_u32(ids + k, triangle);
       } else {
         dt_atomic_min_u32(tile + k, dt_as_uint(z));
       }

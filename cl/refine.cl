@@ -168,6 +168,7 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
     const float z = (y - y_hat) / sigma;
     const float gaussian = m.keep * exp(-0.5f * z * z) / (2.5066282746f * sigma);
     const float responsibility = (1.0f - posterior) * gaussian / (m.tail_density + gaussian);
+    if (ids[k] >= triangle_count) continue; /* no triangle claimed the pixel: no normal to fit with */
     const dt_plane n = dt_triangle_plane(pose, planes, ids[k]);
     const float rx = (DT_CAST(float, k % cam.width) - cam.cx) / cam.fx;
     const float ry = (DT_CAST(float, k / cam.width) - cam.cy) / cam.fy;

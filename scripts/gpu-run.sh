@@ -15,14 +15,14 @@ cmake -S . -B build-gpu -G "$generator" -DCMAKE_BUILD_TYPE=Release -DDEPTHTRACK_
 cmake --build build-gpu -j"$(nproc)" >"$out/build.log" 2>&1 || { grep -E "error|Error" "$out/build.log" | head -30; exit 1; }
 ./build-gpu/depthtrack info | tee "$out/info.txt"
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | tee -a "$out/info.txt"
-for device in ${DEVICES:-cuda opencl:nvidia}; do
+for device in ${DEVICES-cuda opencl:nvidia}; do
   echo "== ctest with DEPTHTRACK_TEST_DEVICE=$device"
-  DEPTHTRACK_TEST_DEVICE=$device ctest --test-dir build-gpu -j8 --output-on-failure -V >"$out/ctest-${device//:/-}.log" 2>&1
+  DEPTHTRACK_TEST_DEVICE=$device ctest --test-dir build-gpu -j"${CTEST_JOBS:-4}" --timeout "${CTEST_TIMEOUT:-180}" --output-on-failure -V >"$out/ctest-${device//:/-}.log" 2>&1
   grep -E "tests passed|tests failed|Failed|\*\*\*|SKIPPED" "$out/ctest-${device//:/-}.log" | grep -v "^[0-9]*: SKIPPED" | tail -15
   grep -E "worst relative|^[0-9]+: +(occlusion|refine)|mean rotation error over|ADD-S|lost|found" "$out/ctest-${device//:/-}.log" |
     sed 's/^[0-9]*: //' | head -${CTEST_SUMMARY_LINES:-40}
 done
-for backend in ${BENCH_BACKENDS:-cuda opencl:nvidia}; do
+for backend in ${BENCH_BACKENDS-cuda opencl:nvidia}; do
   for renderer in ${BENCH_RENDERERS:-kernel gl}; do
     ./build-gpu/depthtrack_bench --backend "$backend" --renderer "$renderer" \
       --particles "${BENCH_PARTICLES:-200,2000,10000,100000}" --frames "${BENCH_FRAMES:-6}" |
@@ -30,7 +30,7 @@ for backend in ${BENCH_BACKENDS:-cuda opencl:nvidia}; do
   done
 done
 # The refinement's cost against the filter alone, and start-up at a million particles.
-for backend in ${BENCH_BACKENDS:-cuda opencl:nvidia}; do
+for backend in ${BENCH_BACKENDS-cuda opencl:nvidia}; do
   ./build-gpu/depthtrack_bench --backend "$backend" --particles "${REFINE_PARTICLES:-2000}" --frames 8 --refine off \
     --no-global | tee "$out/bench-${backend//:/-}-refine-off.csv" | grep -E "total_ms|Hz" | cut -d, -f1,5-
   ./build-gpu/depthtrack_bench --backend "$backend" --particles "${STARTUP_PARTICLES:-1000000}" --frames 4 \
