@@ -1,8 +1,7 @@
 /* The filter's starting state drawn and filled on the device, so that start-up never builds a host
  * copy of particles x pixels values. Reference: ReferenceFilter::initialize, initial_particle. */
 #include "dt_prelude.h"
-#include "dt_quaternion.h"
-#include "dt_state.h"
+#include "dt_pose_move.h"
 #include "philox.h"
 
 /* The spread, the mesh's centre (object frame), and how many poses the cloud spreads around. */
@@ -27,22 +26,11 @@ __kernel void initialize_particles(__global float* state, uint count, uint seed_
   q.x = mode[4];
   q.y = mode[5];
   q.z = mode[6];
-  const dt_vec3 centre = dt_vec3_make(a.centre_x, a.centre_y, a.centre_z);
-  const dt_vec3 c = dt_quat_rotate(q, centre);
-  const dt_vec3 d = dt_quat_rotate(q, dt_vec3_make(a.metres * n[0], a.metres * n[1], a.metres * n[2]));
-  const dt_vec3 moved = dt_vec3_make(mode[0] + c.x + d.x, mode[1] + c.y + d.y, mode[2] + c.z + d.z);
-  q = dt_quat_normalize(
-      dt_quat_mul(q, dt_quat_exp(dt_vec3_make(a.radians * n[3], a.radians * n[4], a.radians * n[5]))));
-  const dt_vec3 c2 = dt_quat_rotate(q, centre);
   __global float* s = state + DT_CAST(ulong, i) * DT_STATE_STRIDE;
-  for (int k = 0; k < DT_STATE_STRIDE; ++k) s[k] = 0.0f;
-  s[DT_TX] = moved.x - c2.x;
-  s[DT_TX + 1] = moved.y - c2.y;
-  s[DT_TX + 2] = moved.z - c2.z;
-  s[DT_QW] = q.w;
-  s[DT_QW + 1] = q.x;
-  s[DT_QW + 2] = q.y;
-  s[DT_QW + 3] = q.z;
+  for (int k = 0; k < DT_STATE_STRIDE; ++k) s[k] = 0.0f; /* at rest */
+  dt_store_moved_pose(s, dt_vec3_make(mode[0], mode[1], mode[2]), q, dt_vec3_make(a.centre_x, a.centre_y, a.centre_z),
+                      dt_vec3_make(a.metres * n[0], a.metres * n[1], a.metres * n[2]),
+                      dt_vec3_make(a.radians * n[3], a.radians * n[4], a.radians * n[5]));
 }
 
 /* Every particle's `pixels` values set to `value`: a work-group per particle, so that buffers of

@@ -1,8 +1,7 @@
 /* Motion model: one work-item per particle (MODEL.md "State and motion"; reference: src/reference/particle.cpp). */
 #include "dt_prelude.h"
 #include "philox.h"
-#include "dt_quaternion.h"
-#include "dt_state.h"
+#include "dt_pose_move.h"
 
 /* Per-frame constants the host derives from MotionModel and the real time step. */
 typedef struct {
@@ -28,19 +27,9 @@ __kernel void propagate(__global float* state, uint count, uint seed_lo, uint se
   q.x = s[DT_QW + 1];
   q.y = s[DT_QW + 2];
   q.z = s[DT_QW + 3];
-  const dt_vec3 centre = dt_vec3_make(m.centre_x, m.centre_y, m.centre_z);
   /* The centre moves by v dt along the object's axes; the object turns about its centre by w dt. */
-  const dt_vec3 c = dt_quat_rotate(q, centre);
-  const dt_vec3 d = dt_quat_rotate(q, dt_vec3_make(s[DT_VX] * m.dt, s[DT_VX + 1] * m.dt, s[DT_VX + 2] * m.dt));
-  const dt_vec3 moved = dt_vec3_make(s[DT_TX] + c.x + d.x, s[DT_TX + 1] + c.y + d.y, s[DT_TX + 2] + c.z + d.z);
-  q = dt_quat_normalize(
-      dt_quat_mul(q, dt_quat_exp(dt_vec3_make(s[DT_WX] * m.dt, s[DT_WX + 1] * m.dt, s[DT_WX + 2] * m.dt))));
-  const dt_vec3 c2 = dt_quat_rotate(q, centre);
-  s[DT_TX] = moved.x - c2.x;
-  s[DT_TX + 1] = moved.y - c2.y;
-  s[DT_TX + 2] = moved.z - c2.z;
-  s[DT_QW] = q.w;
-  s[DT_QW + 1] = q.x;
-  s[DT_QW + 2] = q.y;
-  s[DT_QW + 3] = q.z;
+  dt_store_moved_pose(s, dt_vec3_make(s[DT_TX], s[DT_TX + 1], s[DT_TX + 2]), q,
+                      dt_vec3_make(m.centre_x, m.centre_y, m.centre_z),
+                      dt_vec3_make(s[DT_VX] * m.dt, s[DT_VX + 1] * m.dt, s[DT_VX + 2] * m.dt),
+                      dt_vec3_make(s[DT_WX] * m.dt, s[DT_WX + 1] * m.dt, s[DT_WX + 2] * m.dt));
 }
