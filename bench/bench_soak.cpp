@@ -4,48 +4,50 @@
 // --every frames: resident memory (MiB), frames done, non-finite estimates, no-data frames, and
 // the translation error (mm) against the synthetic truth.
 // Usage: depthtrack_bench_soak [--backend NAME] [--frames 3000] [--every 500] [--particles 200]
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <depthtrack/error.hpp>
 #include <depthtrack/synth.hpp>
 #include <depthtrack/tracker.hpp>
-#include <fstream>
 #include <string>
 
+#include "bench_args.hpp"
 #include "bench_rows.hpp"
+#include "host_memory.hpp"
 
 using namespace depthtrack;
 
 namespace {
-
-double resident_mib() {
-  std::ifstream statm("/proc/self/statm");
-  double size = 0, resident = 0;
-  statm >> size >> resident;
-  return resident * static_cast<double>(::sysconf(_SC_PAGE_SIZE)) / (1 << 20);
-}
-
+const char* const kUsage =
+    "usage: depthtrack_bench_soak [--backend NAME] [--frames N] [--every N] [--particles N]\n"
+    "Tracks a long synthetic sequence with dropouts, far readings and 10 s gaps mixed in; prints resident\n"
+    "memory, non-finite estimates, no-data frames and the error every --every frames (defaults 3000, 500, 200).\n";
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string backend = "reference";
   int frames = 3000, every = 500, particles = 200;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--backend"))
-      backend = argv[i + 1];
-    else if (!std::strcmp(argv[i], "--frames"))
-      frames = std::stoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--every"))
-      every = std::stoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--particles"))
-      particles = std::stoi(argv[i + 1]);
-    else {
-      std::fprintf(stderr, "unknown option %s\n", argv[i]);
-      return 2;
+  try {
+    bench::ArgReader args(argc, argv);
+    for (std::string arg = args.next(); !arg.empty(); arg = args.next()) {
+      if (arg == "--help" || arg == "-h") {
+        std::printf("%s", kUsage);
+        return 0;
+      }
+      if (arg == "--backend")
+        backend = args.value();
+      else if (arg == "--frames")
+        frames = bench::parse_positive(args.value(), arg);
+      else if (arg == "--every")
+        every = bench::parse_positive(args.value(), arg);
+      else if (arg == "--particles")
+        particles = bench::parse_positive(args.value(), arg);
+      else
+        throw bench::UsageError{"unknown option '" + arg + "'"};
     }
+  } catch (const bench::UsageError& e) {
+    std::fprintf(stderr, "depthtrack_bench_soak: %s\n%s", e.message.c_str(), kUsage);
+    return 2;
   }
   try {
     std::string mesh_name;
@@ -79,7 +81,7 @@ int main(int argc, char** argv) {
       if ((i + 1) % every == 0 || i + 1 == frames) {
         const double done = i + 1;
         for (const auto& [metric, unit, value] : {std::tuple{"frames", "count", done},
-                                                  {"resident_memory", "MiB", resident_mib()},
+                                                  {"resident_memory", "MiB", bench::resident_mib()},
                                                   {"non_finite_estimates", "count", static_cast<double>(non_finite)},
                                                   {"no_data_frames", "count", static_cast<double>(no_data)},
                                                   {"mean_translation_error", "mm", 1000 * error_sum / done}})

@@ -13,11 +13,22 @@ bool reset_peak_resident() {
   return static_cast<bool>(clear);
 }
 
-double peak_resident_mib() {
+namespace {
+// A "Name:  1234 kB" line of /proc/self/status, in MiB.
+double status_mib(const std::string& name) {
   std::ifstream in("/proc/self/status");
   for (std::string line; std::getline(in, line);)
-    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;  // "VmHWM:  1234 kB"
+    if (line.rfind(name, 0) == 0) return std::stod(line.substr(name.size())) / 1024.0;
   return NAN;
+}
+}  // namespace
+
+double peak_resident_mib() {
+  return status_mib("VmHWM:");
+}
+
+double resident_mib() {
+  return status_mib("VmRSS:");
 }
 
 }  // namespace depthtrack::bench

@@ -7,5 +7,7 @@ namespace depthtrack::bench {
 bool reset_peak_resident();
 // Peak resident memory since the process started or the last reset, MiB (VmHWM); NaN if unknown.
 double peak_resident_mib();
+// Resident memory now, MiB (VmRSS); NaN if unknown.
+double resident_mib();
 
 }  // namespace depthtrack::bench
