@@ -24,12 +24,7 @@ DepthImage Sequence::load_depth(size_t i) const {
                      std::to_string(frames.size()) + " frames");
   const auto& path = frames[i].depth_path;
   // The size is checked from the header, before a wrong (or hostile, 16384x16384) image is decoded.
-  const io::ImageSize size = io::read_depth_png_size(path);
-  if (size.width != camera.width || size.height != camera.height)
-    throw InputError("depth image '" + path.string() + "' is " + std::to_string(size.width) + "x" +
-                     std::to_string(size.height) + " but the camera is " + std::to_string(camera.width) + "x" +
-                     std::to_string(camera.height));
-  return DepthImage::load_png(path, metres_per_unit);
+  return io::load_depth_png(path, metres_per_unit, io::ImageSize{camera.width, camera.height});
 }
 
 }  // namespace depthtrack

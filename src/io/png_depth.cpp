@@ -163,15 +163,24 @@ io::ImageSize io::read_depth_png_size(const std::filesystem::path& path) {
   return checked_header(f, path);
 }
 
-DepthImage DepthImage::load_png(const std::filesystem::path& path, double metres_per_unit) {
+DepthImage io::load_depth_png(const std::filesystem::path& path, double metres_per_unit,
+                              const std::optional<ImageSize>& camera_size) {
   check_scale(metres_per_unit);
   PngFile f;
   open_for_reading(f, path);
   const io::ImageSize size = checked_header(f, path);
+  if (camera_size && (size.width != camera_size->width || size.height != camera_size->height))
+    throw InputError("depth image '" + path.string() + "' is " + std::to_string(size.width) + "x" +
+                     std::to_string(size.height) + " but the camera is " + std::to_string(camera_size->width) + "x" +
+                     std::to_string(camera_size->height));
   std::vector<uint16_t> units(static_cast<size_t>(size.width) * static_cast<size_t>(size.height));
   std::vector<png_bytep> rows = row_pointers(units, size.width, size.height);
   if (!read_pixels(f, rows.data())) throw_libpng(f, path, "reading the pixels");
-  return from_units(size.width, size.height, units, metres_per_unit);
+  return DepthImage::from_units(size.width, size.height, units, metres_per_unit);
+}
+
+DepthImage DepthImage::load_png(const std::filesystem::path& path, double metres_per_unit) {
+  return io::load_depth_png(path, metres_per_unit, std::nullopt);
 }
 
 void DepthImage::save_png(const std::filesystem::path& path, double metres_per_unit) const {
