@@ -23,7 +23,6 @@ typedef struct {
   float centre_x, centre_y, centre_z;
   float now;      /* seconds since the first frame: the per-pixel-time occlusion mode ages p to it */
   int iterations; /* damped steps */
-  uint count;     /* particles */
 } dt_refine_args;
 
 /* Pose as translation and unit quaternion, in a work-item's registers. */
@@ -198,32 +197,22 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
   }
 }
 
-/* estimate: receives the refined pose and its covariance (dt_state.h); states: the particles; weights: the
- * normalized weights (the heaviest particle's occlusion prior is used: weigh's prior where the
- * particle's tile in atlas covers the pixel, its state elsewhere); pose_state, tile and ids:
+/* estimate: holds summarize's heaviest particle and receives the refined pose and its covariance
+ * (dt_state.h); states: the particles (the heaviest particle's occlusion prior is used: weigh's prior
+ * where the particle's tile in atlas covers the pixel, its state elsewhere); pose_state, tile and ids:
  * scratch for one pose; correction: the twist from the heaviest particle to the refined pose. */
-__kernel void refine(__global float* estimate, __global const float* states, __global const float* weights,
-                     __global const float* observed, __global const float* occlusion,
+__kernel void refine(__global float* estimate, __global const float* states, __global const float* observed, __global const float* occlusion,
                      __global const float* occlusion_time, __global const float* prior, __global const float* atlas,
                      dt_atlas_layout layout, __global const float* vertices, __global const uint* triangles,
                      __global const float* planes, uint triangle_count, dt_camera cam, dt_model m, dt_refine_args args,
                      __global float* pose_state, __global uint* tile, __global uint* ids, __global float* correction) {
   __local float sums[DT_REFINE_SUMS * DT_GROUP_SIZE];
-  __local float scratch[DT_GROUP_SIZE];
-  __local uint scratch_index[DT_GROUP_SIZE];
   __local int proceed;
   const uint lid = get_local_id(0), pixels = cam.width * cam.height;
   const dt_vec3 centre = dt_vec3_make(args.centre_x, args.centre_y, args.centre_z);
 
-  float heaviest_weight = DT_LOWEST;
-  uint heaviest_index = args.count;
-  for (uint i = lid; i < args.count; i += DT_GROUP_SIZE)
-    if (weights[i] > heaviest_weight) {
-      heaviest_weight = weights[i];
-      heaviest_index = i;
-    }
-  uint heaviest;
-  dt_group_argmax(scratch, scratch_index, heaviest_weight, heaviest_index, &heaviest);
+  /* summarize found it (the first of equal maximal log weights, as the reference): not searched again. */
+  const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
   const ulong base = DT_CAST(ulong, heaviest) * pixels;
 #if DT_OCCLUSION == 2
   __global const float* p_map = occlusion;

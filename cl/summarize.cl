@@ -89,5 +89,6 @@ __kernel void summarize(__global const float* state, __global const float* log_w
     estimate[DT_EST_KL] = log(DT_CAST(float, count)) - acc[1];
     estimate[DT_EST_MAX_LL] = max_ll;
     estimate[DT_EST_MEAN_LL] = acc[2];
+    estimate[DT_EST_HEAVIEST] = dt_as_float(heaviest); /* for refine.cl */
   }
 }

@@ -27,7 +27,6 @@ struct MotionArgs {
 struct RefineArgs {  // cl/refine.cl's dt_refine_args
   float damping, min_incidence, centre_x, centre_y, centre_z, now;
   int iterations;
-  unsigned count;
 };
 struct InitialArgs {  // cl/initialize.cl's dt_initial
   float metres, radians, centre_x, centre_y, centre_z;
@@ -405,28 +404,26 @@ compute::EventPtr DeviceFilter::refine() {
                         static_cast<float>(centre_.y()),
                         static_cast<float>(centre_.z()),
                         static_cast<float>(time_),
-                        r.iterations,
-                        static_cast<unsigned>(count_)};
+                        r.iterations};
   compute::set_arg(*k.refine, 0, estimate_);
   compute::set_arg(*k.refine, 1, state_);
-  compute::set_arg(*k.refine, 2, weights_);
-  compute::set_arg(*k.refine, 3, observed_);
-  compute::set_arg(*k.refine, 4, occlusion_);
-  compute::set_arg(*k.refine, 5, occlusion_time_);
-  compute::set_arg(*k.refine, 6, scratch_occlusion_);  // weigh's priors
-  compute::set_arg(*k.refine, 7, atlas_);
-  k.refine->set_arg(8, atlas_source_->layout().kernel_args());
-  compute::set_arg(*k.refine, 9, refine_mesh_->vertices);
-  compute::set_arg(*k.refine, 10, refine_mesh_->triangles);
-  compute::set_arg(*k.refine, 11, refine_mesh_->planes);
-  k.refine->set_arg(12, refine_mesh_->triangle_count());
-  k.refine->set_arg(13, raster_camera_args(camera_, config_));
-  k.refine->set_arg(14, model_args(config_));
-  k.refine->set_arg(15, args);
-  compute::set_arg(*k.refine, 16, refine_pose_);
-  compute::set_arg(*k.refine, 17, refine_tile_);
-  compute::set_arg(*k.refine, 18, refine_ids_);
-  compute::set_arg(*k.refine, 19, correction_);
+  compute::set_arg(*k.refine, 2, observed_);
+  compute::set_arg(*k.refine, 3, occlusion_);
+  compute::set_arg(*k.refine, 4, occlusion_time_);
+  compute::set_arg(*k.refine, 5, scratch_occlusion_);  // weigh's priors
+  compute::set_arg(*k.refine, 6, atlas_);
+  k.refine->set_arg(7, atlas_source_->layout().kernel_args());
+  compute::set_arg(*k.refine, 8, refine_mesh_->vertices);
+  compute::set_arg(*k.refine, 9, refine_mesh_->triangles);
+  compute::set_arg(*k.refine, 10, refine_mesh_->planes);
+  k.refine->set_arg(11, refine_mesh_->triangle_count());
+  k.refine->set_arg(12, raster_camera_args(camera_, config_));
+  k.refine->set_arg(13, model_args(config_));
+  k.refine->set_arg(14, args);
+  compute::set_arg(*k.refine, 15, refine_pose_);
+  compute::set_arg(*k.refine, 16, refine_tile_);
+  compute::set_arg(*k.refine, 17, refine_ids_);
+  compute::set_arg(*k.refine, 18, correction_);
   return queue_->launch(*k.refine, compute::NdRange::linear(kGroupSize, kGroupSize));
 }
 
