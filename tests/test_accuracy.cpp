@@ -11,6 +11,7 @@
 #include "device_support.hpp"
 #include "reference/rasterizer.hpp"
 #include "support.hpp"
+#include "synth_frames.hpp"
 
 using namespace depthtrack;
 
@@ -63,13 +64,6 @@ TrackerConfig operating_point(const std::string& backend, uint64_t seed, bool re
   return config;
 }
 
-std::vector<SynthFrame> synthesize(const Mesh& mesh, const SynthConfig& synth) {
-  const Synthesizer scene(mesh, synth);
-  std::vector<SynthFrame> frames;
-  for (int i = 0; i < synth.frames; ++i) frames.push_back(scene.frame(i));
-  return frames;
-}
-
 void print_row(const char* label, const RunErrors& e) {
   std::printf("  %-40s %7.2f  %7.2f  %7.2f\n", label, 1000 * e.mean_t, 1000 * e.max_t, kDegrees * e.mean_r);
 }
@@ -100,7 +94,7 @@ TEST_CASE("synthetic handset, ideal sensor: refinement reaches sub-millimetre pr
   SynthConfig synth;  // 640x480, 30 Hz, exact z-depth, no occluder
   synth.frames = 150;
   synth.sensor.kind = SensorKind::Ideal;
-  const std::vector<SynthFrame> frames = synthesize(mesh, synth);
+  const std::vector<SynthFrame> frames = test::synthesize(mesh, synth);
   const Eigen::Vector3d centre = mesh.centre().cast<double>();
   const Pose start = perturb_pose(frames.front().ground_truth, centre, 0.01, 5.0, 1);
   const InitialSpread spread{0.01, 5.0 / kDegrees};
@@ -123,7 +117,7 @@ TEST_CASE("synthetic handset with a 30% moving occluder: 200 particles at 80x60"
   SynthConfig synth;  // 640x480 structured-light sensor, 30 Hz
   synth.frames = 150;
   synth.occluder_fraction = 0.3;
-  const std::vector<SynthFrame> frames = synthesize(mesh, synth);
+  const std::vector<SynthFrame> frames = test::synthesize(mesh, synth);
   double occluded = 0;
   for (const SynthFrame& f : frames) occluded += f.occluded_fraction / synth.frames;
   REQUIRE(occluded == Approx(0.3).margin(0.02));
@@ -145,8 +139,12 @@ TEST_CASE("synthetic handset with a 30% moving occluder: 200 particles at 80x60"
     }
     TrackerConfig no_occlusion = operating_point(backend, 1, true);
     no_occlusion.occlusion_storage = OcclusionStorage::Off;
-    print_row("refine on, occlusion off, seed 1",
-              track_frames(mesh, synth, frames, no_occlusion, frames.front().ground_truth));
+    const RunErrors without_occlusion = track_frames(mesh, synth, frames, no_occlusion, frames.front().ground_truth);
+    print_row("refine on, occlusion off, seed 1", without_occlusion);
+    // Without the occlusion model the occluder pulls the fit (measured 1.4-1.6 mm mean, 16 mm max):
+    // still within the filter-alone bars, and worse than with it.
+    CHECK(without_occlusion.mean_t <= 0.005);
+    CHECK(without_occlusion.max_t <= 0.020);
     // Today's filter without refinement, for comparison (its bars: 5 mm mean, 20 mm max).
     const RunErrors off =
         track_frames(mesh, synth, frames, operating_point(backend, 1, false), frames.front().ground_truth);

@@ -22,9 +22,7 @@ TEST_CASE("track writes one CSV row per frame with the contract's columns", "[cl
   REQUIRE(lines.size() == 7);
   CHECK(lines[0] == "frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess,err_t_mm,err_r_deg,adds_mm,latency_ms,confidence,status");
   // Row 3: frame name, timestamp 2/30 s, and a translation error under 1 cm.
-  std::stringstream row(lines[3]);
-  std::vector<std::string> cells;
-  for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+  const auto cells = test::cells_of(lines[3]);
   REQUIRE(cells.size() == 16);
   CHECK(cells[0] == "000002");
   CHECK(std::stod(cells[14]) > 0.5);  // confidence: the object is in view and tracked
@@ -62,9 +60,7 @@ TEST_CASE("track --init-global and --init-box find the object without a pose", "
     CHECK(output.find("global initialization:") != std::string::npos);
     const auto lines = test::lines_of(dir / "out.csv");
     REQUIRE(lines.size() == 5);
-    std::stringstream row(lines.back());
-    std::vector<std::string> cells;
-    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    const auto cells = test::cells_of(lines.back());
     REQUIRE(cells.size() == 16);
     CHECK(std::stod(cells[10]) < 10.0);  // last frame within 1 cm of ground truth
     CHECK(cells[15] == "tracking");
