@@ -112,7 +112,7 @@ TEST_CASE("the benchmarks answer --help and refuse malformed numbers", "[cli][be
     for (const auto& l : test::lines_of(dir / "log.txt")) output += l + "\n";
     return std::pair{WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
   };
-  for (const char* program : {"depthtrack_bench", "depthtrack_bench_atlas"}) {
+  for (const char* program : {"depthtrack_bench", "depthtrack_bench_atlas", "depthtrack_bench_soak"}) {
     const auto [status, help] = run(program, "--help");
     INFO(program << "\n" << help);
     CHECK(status == 0);
@@ -132,6 +132,8 @@ TEST_CASE("the benchmarks answer --help and refuse malformed numbers", "[cli][be
       {"depthtrack_bench", "--fast", "unknown option '--fast'"},
       {"depthtrack_bench_atlas", "--repeats 0", "--repeats: '0' is not a positive integer"},
       {"depthtrack_bench_atlas", "--particles 1e3", "--particles: '1e3' is not a positive integer"},
+      {"depthtrack_bench_soak", "--frames 0", "--frames: '0' is not a positive integer"},
+      {"depthtrack_bench_soak", "--every", "--every needs a value"},
   };
   for (const Case& c : cases) {
     const auto [status, output] = run(c.program, c.arguments);
