@@ -13,6 +13,11 @@ struct Camera {
   // Checks the values and throws InputError naming the first impossible one.
   static Camera make(int width, int height, double fx, double fy, double cx, double cy);
   void validate() const;
+  // From a 3x3 intrinsic matrix K = [fx 0 cx; 0 fy cy; 0 0 1] (OpenCV's cameraMatrix, ROS
+  // CameraInfo.k): InputError for skew, any other non-zero off-diagonal entry, a last row that is not
+  // 0 0 1, a non-finite entry, or what make() rejects (non-positive focal length, impossible centre).
+  static Camera from_matrix(int width, int height, const Eigen::Matrix3d& K);
+  Eigen::Matrix3d matrix() const;  // K
 
   // The camera of an image made by keeping every factor-th pixel, starting with pixel (0, 0):
   // pixel (u', v') of the result is pixel (factor u', factor v') of the original, so

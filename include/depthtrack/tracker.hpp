@@ -3,10 +3,12 @@
 #include <cmath>
 #include <depthtrack/camera.hpp>
 #include <depthtrack/depth_image.hpp>
+#include <depthtrack/depth_view.hpp>
 #include <depthtrack/init_hint.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/pose.hpp>
 #include <depthtrack/tracker_config.hpp>
+#include <functional>
 #include <memory>
 
 namespace depthtrack {
@@ -87,6 +89,11 @@ class Tracker {
   // While the status is lost (and config.recovery.enabled), the frame first runs a global search
   // within config.recovery.budget_ms and re-seeds the filter when it finds the object.
   Estimate update(const DepthImage& depth, double timestamp);
+  // The same for a caller's buffer in place (float32 metres or uint16 units, any row stride): it is
+  // validated (DepthView::validate, the sensor's size) and read once into the working resolution; the
+  // whole image is converted only when a search runs. Same input, same estimates as a DepthImage.
+  Estimate update(const DepthView& depth, double timestamp);
+  Estimate initialize_global(const DepthView& depth, double timestamp, const InitHint& hint = {});
 
   const Camera& working_camera() const;
   const TrackerConfig& config() const;
@@ -95,6 +102,12 @@ class Tracker {
  private:
   // The working-resolution frame (decimated only when needed); InputError for a wrong size.
   const DepthImage& working_frame(const DepthImage& depth, DepthImage& storage) const;
+  // The working-resolution frame of a view, read in one pass; InputError for a wrong size.
+  DepthImage working_frame(const DepthView& depth) const;
+  // update() after the frame is at the working resolution; sensor_frame() gives the frame at the
+  // sensor's resolution, asked for only when a search runs.
+  Estimate track_frame(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame,
+                       double timestamp);
   Estimate run_frame(const DepthImage& working, double timestamp);
 
   std::unique_ptr<FilterBackend> backend_;
@@ -108,7 +121,7 @@ class Tracker {
   double previous_timestamp_ = 0;
   size_t frames_since_initialize_ = 0;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();  // the mesh's, where initialize() checks the start
-  unsigned search_round_ = 0;  // varies each recovery search's perturbations
+  unsigned search_round_ = 0;                         // varies each recovery search's perturbations
 };
 
 }  // namespace depthtrack

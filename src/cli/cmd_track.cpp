@@ -37,7 +37,7 @@ QuaternionOrder quaternion_order(const std::string& name) {
   throw InputError("--quaternion '" + name + "' is neither wxyz (depthtrack, Eigen) nor xyzw (ROS)");
 }
 
-Pose initial_pose(const TrackArgs& a, const Sequence& seq, const Mesh& mesh) {
+Pose initial_pose(const TrackArgs& a, const Sequence& seq, const Mesh& mesh, uint64_t seed) {
   if (!a.init.empty()) {
     const auto v = parse_numbers(a.init, 7, "--init");
     if (quaternion_order(a.quaternion) == QuaternionOrder::Xyzw)
@@ -50,7 +50,7 @@ Pose initial_pose(const TrackArgs& a, const Sequence& seq, const Mesh& mesh) {
   Pose pose = *seq.frames.front().ground_truth;
   if (!a.init_perturb.empty()) {
     const auto v = parse_numbers(a.init_perturb, 2, "--init-perturb");
-    pose = perturb_pose(pose, mesh.centre().cast<double>(), v[0], v[1], a.tracker.config.seed);
+    pose = perturb_pose(pose, mesh.centre().cast<double>(), v[0], v[1], seed);
   }
   return pose;
 }
@@ -81,7 +81,7 @@ void run_track(const TrackArgs& a) {
   if (starts > 1) throw InputError("--init, --init-from-gt, --init-box and --init-global exclude each other");
   const QuaternionOrder order = quaternion_order(a.quaternion);
   TrackerConfig config = a.tracker.resolve();
-  config.recovery.enabled = !a.no_recover;
+  if (a.no_recover) config.recovery.enabled = false;  // else as the --config file says
   const Sequence seq = load_sequence(a.sequence, a.object);
   if (!a.bop_out.empty()) check_bop_exportable(seq);
   // Opened before any work, so that a bad --out fails at once; rows are streamed as frames are tracked.
@@ -120,8 +120,9 @@ void run_track(const TrackArgs& a) {
     overlay->write(i, f, config.particles);
     overlay_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - drawing).count();
   };
-  const auto frames = global ? track_sequence_global(seq, mesh, config, hint, on_frame)
-                             : track_sequence(seq, mesh, config, initial_pose(a, seq, mesh), spread, on_frame);
+  const auto frames =
+      global ? track_sequence_global(seq, mesh, config, hint, on_frame)
+             : track_sequence(seq, mesh, config, initial_pose(a, seq, mesh, config.seed), spread, on_frame);
   // Frames per second of the tracking, not of drawing the pictures.
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count() - overlay_seconds;

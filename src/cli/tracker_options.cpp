@@ -2,52 +2,72 @@
 
 #include <cmath>
 #include <cstdio>
+#include <depthtrack/config_file.hpp>
 #include <depthtrack/error.hpp>
 #include <sstream>
 
 namespace depthtrack::cli {
 
 void TrackerOptions::add_to(CLI::App& command) {
-  command.add_option("--backend", config.backend,
-                     "Filter implementation: reference (sequential CPU), opencl (best OpenCL device), opencl:pocl, "
-                     "opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n> (`depthtrack info` lists devices); "
-                     "default: $DEPTHTRACK_DEVICE, else reference");
+  command
+      .add_option("--config", config_file,
+                  "JSON file of tracker parameters, any subset (`depthtrack config --dump` prints every one with "
+                  "its default); the flags below override it")
+      ->check(CLI::ExistingFile);
+  backend_option =
+      command.add_option("--backend", flags.backend,
+                         "Filter implementation: reference (sequential CPU), opencl (best OpenCL device), opencl:pocl, "
+                         "opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n> (`depthtrack info` lists devices); "
+                         "default: $DEPTHTRACK_DEVICE, else reference");
   renderer_option =
-      command.add_option("--renderer", config.renderer,
+      command.add_option("--renderer", flags.renderer,
                          "Who draws the pose atlas for device backends: kernel (a compute kernel on the device itself, "
                          "the fastest), gl (headless OpenGL; DEPTHTRACK_GL=egl-device|egl-surfaceless|osmesa picks the "
                          "path) or cpu (the reference rasterizer on the host)");
   renderer_option->capture_default_str();
-  command.add_option("--particles", config.particles, "Number of particles")->capture_default_str();
-  command
-      .add_option("--resolution", resolution,
-                  "Working resolution WxH; the sensor image is decimated to it by an integer factor")
-      ->capture_default_str();
-  command
-      .add_option("--occlusion", occlusion,
-                  "Occlusion model storage: per-pixel-time (p and last update time per pixel), global-time "
-                  "(p only, every pixel propagated each frame) or off")
-      ->capture_default_str();
-  command
-      .add_option("--refine", refine,
-                  "on: after weighting, fit the estimate to the likelihood's maximum (damped Gauss-Newton on the "
-                  "per-pixel depth residuals) and shift the particle cloud with it; off: the particle filter alone")
-      ->capture_default_str();
-  command.add_option("--refine-iterations", config.refine.iterations, "Gauss-Newton steps per frame of the refinement")
-      ->capture_default_str();
-  command.add_option("--seed", config.seed, "Random seed: the same seed gives the same particles on every backend")
-      ->capture_default_str();
+  particles_option = command.add_option("--particles", flags.particles, "Number of particles")->capture_default_str();
+  resolution_option =
+      command
+          .add_option("--resolution", resolution,
+                      "Working resolution WxH; the sensor image is decimated to it by an integer factor")
+          ->capture_default_str();
+  occlusion_option = command
+                         .add_option("--occlusion", occlusion,
+                                     "Occlusion model storage: per-pixel-time (p and last update time per pixel), "
+                                     "global-time (p only, every pixel propagated each frame) or off")
+                         ->capture_default_str();
+  refine_option =
+      command
+          .add_option("--refine", refine,
+                      "on: after weighting, fit the estimate to the likelihood's maximum (damped Gauss-Newton on the "
+                      "per-pixel depth residuals) and shift the particle cloud with it; off: the particle filter alone")
+          ->capture_default_str();
+  refine_iterations_option =
+      command
+          .add_option("--refine-iterations", flags.refine.iterations, "Gauss-Newton steps per frame of the refinement")
+          ->capture_default_str();
+  seed_option =
+      command.add_option("--seed", flags.seed, "Random seed: the same seed gives the same particles on every backend")
+          ->capture_default_str();
 }
 
 TrackerConfig TrackerOptions::resolve() const {
-  TrackerConfig c = config;
-  std::tie(c.width, c.height) = parse_resolution(resolution);
-  c.occlusion_storage = occlusion_storage_from_string(occlusion);
-  if (refine != "on" && refine != "off") throw InputError("--refine '" + refine + "' is not on or off");
-  c.refine.enabled = refine == "on";
+  TrackerConfig c = config_file.empty() ? TrackerConfig{} : load_tracker_config(config_file);
+  const auto given = [](const CLI::Option* option) { return option && option->count() > 0; };
+  if (given(backend_option)) c.backend = flags.backend;
+  if (given(renderer_option)) c.renderer = flags.renderer;
+  if (given(particles_option)) c.particles = flags.particles;
+  if (given(resolution_option)) std::tie(c.width, c.height) = parse_resolution(resolution);
+  if (given(occlusion_option)) c.occlusion_storage = occlusion_storage_from_string(occlusion);
+  if (given(refine_option)) {
+    if (refine != "on" && refine != "off") throw InputError("--refine '" + refine + "' is not on or off");
+    c.refine.enabled = refine == "on";
+  }
+  if (given(refine_iterations_option)) c.refine.iterations = flags.refine.iterations;
+  if (given(seed_option)) c.seed = flags.seed;
   c.validate();
   // The reference filter always draws with its own rasterizer: say so rather than ignore the choice.
-  if (renderer_option && renderer_option->count() > 0 && c.resolved_backend() == "reference")
+  if (given(renderer_option) && c.resolved_backend() == "reference")
     std::fprintf(stderr,
                  "depthtrack: warning: --renderer %s has no effect with the reference backend (it draws with its own "
                  "rasterizer); it applies to the opencl and cuda backends\n",

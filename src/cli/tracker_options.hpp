@@ -7,14 +7,19 @@
 namespace depthtrack::cli {
 
 struct TrackerOptions {
-  TrackerConfig config;
+  // Where the flags land; resolve() copies only the flags given over the --config file's values.
+  TrackerConfig flags;
+  std::string config_file;  // --config: TrackerConfig as JSON (depthtrack/config_file.hpp)
   std::string resolution = "80x60";
   std::string occlusion = "per-pixel-time";
-  CLI::Option* renderer_option = nullptr;  // to tell an explicit --renderer from the default
   std::string refine = "on";
+  CLI::Option *backend_option = nullptr, *renderer_option = nullptr, *particles_option = nullptr,
+              *resolution_option = nullptr, *occlusion_option = nullptr, *refine_option = nullptr,
+              *refine_iterations_option = nullptr, *seed_option = nullptr;
 
   void add_to(CLI::App& command);
-  // Fills config from the parsed strings; throws InputError for malformed values.
+  // The --config file's configuration (the defaults without one) with the flags given on the command
+  // line over it, validated; throws InputError for malformed values.
   TrackerConfig resolve() const;
 };
 

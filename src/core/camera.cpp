@@ -18,6 +18,26 @@ Camera Camera::make(int width, int height, double fx, double fy, double cx, doub
   return c;
 }
 
+Camera Camera::from_matrix(int width, int height, const Eigen::Matrix3d& K) {
+  auto fail = [&K](const std::string& what) {
+    std::ostringstream m;
+    m << "camera matrix K " << what << "; K = [" << K.row(0) << "; " << K.row(1) << "; " << K.row(2) << "]";
+    throw InputError(m.str());
+  };
+  if (!K.allFinite()) fail("has a non-finite entry");
+  if (K(0, 1) != 0) fail("has skew K[0][1] = " + std::to_string(K(0, 1)) + " (depthtrack's pinhole has none)");
+  if (K(1, 0) != 0 || K(2, 0) != 0 || K(2, 1) != 0)
+    fail("must be upper triangular with K[1][0] = K[2][0] = K[2][1] = 0");
+  if (K(2, 2) != 1) fail("must end in the row 0 0 1, got K[2][2] = " + std::to_string(K(2, 2)));
+  return make(width, height, K(0, 0), K(1, 1), K(0, 2), K(1, 2));
+}
+
+Eigen::Matrix3d Camera::matrix() const {
+  Eigen::Matrix3d K;
+  K << fx, 0, cx, 0, fy, cy, 0, 0, 1;
+  return K;
+}
+
 void Camera::validate() const {
   auto fail = [](const std::string& what) { throw InputError("impossible camera intrinsics: " + what); };
   if (width <= 0 || height <= 0)

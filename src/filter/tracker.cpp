@@ -138,6 +138,12 @@ Estimate Tracker::update(const DepthImage& depth, double timestamp) {
   if (!initialized_) throw InputError("Tracker::update called before initialize()");
   DepthImage storage;
   const DepthImage& working = working_frame(depth, storage);
+  return track_frame(
+      working, [&depth]() -> const DepthImage& { return depth; }, timestamp);
+}
+
+Estimate Tracker::track_frame(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame,
+                              double timestamp) {
   if (!std::isfinite(timestamp)) throw InputError("timestamp is not finite");
   if (has_previous_ && timestamp <= previous_timestamp_) {
     std::ostringstream m;
@@ -152,7 +158,7 @@ Estimate Tracker::update(const DepthImage& depth, double timestamp) {
   bool recovered = false;
   if (supervisor_->status() == TrackStatus::Lost && config_.recovery.enabled && working.valid_count() > 0) {
     const Stopwatch clock;
-    const search::SearchResult found = supervisor_->search(*backend_, depth, working, InitHint::anywhere(),
+    const search::SearchResult found = supervisor_->search(*backend_, sensor_frame(), working, InitHint::anywhere(),
                                                            config_.recovery.budget_ms, ++search_round_);
     if (!found.candidates.empty() && supervisor_->found(found.candidates.front().pose, working)) {
       backend_->initialize_modes(TrackSupervisor::seeds(found), kSearchSpread);

@@ -5,6 +5,8 @@
 #include <limits>
 #include <sstream>
 
+#include "io/depth_pixel.hpp"
+
 namespace depthtrack {
 
 namespace {
@@ -36,17 +38,8 @@ DepthImage::DepthImage(int width, int height) : width_(width), height_(height) {
 DepthImage DepthImage::from_metres(int width, int height, std::vector<float> metres) {
   check_size(width, height);
   check_count(width, height, metres.size());
-  for (size_t i = 0; i < metres.size(); ++i) {
-    float& z = metres[i];
-    if (std::isnan(z) || z == 0.0f || z == std::numeric_limits<float>::infinity()) {
-      z = std::numeric_limits<float>::quiet_NaN();  // the sensor's "no measurement" spellings
-    } else if (z < 0.0f) {
-      std::ostringstream message;
-      message << "depth image pixel (" << i % static_cast<size_t>(width) << ", " << i / static_cast<size_t>(width)
-              << ") has negative depth " << z << " m";
-      throw InputError(message.str());
-    }
-  }
+  const size_t w = static_cast<size_t>(width);
+  for (size_t i = 0; i < metres.size(); ++i) metres[i] = io::metres_pixel(metres[i], i % w, i / w);
   DepthImage image;
   image.width_ = width;
   image.height_ = height;
@@ -59,8 +52,7 @@ DepthImage DepthImage::from_units(int width, int height, const std::vector<uint1
     throw InputError("depth scale metres_per_unit must be finite and positive, got " + std::to_string(metres_per_unit));
   DepthImage image(width, height);
   check_count(width, height, units.size());
-  for (size_t i = 0; i < units.size(); ++i)
-    if (units[i] != 0) image.data_[i] = static_cast<float>(units[i] * metres_per_unit);  // 0 stays NaN
+  for (size_t i = 0; i < units.size(); ++i) image.data_[i] = io::units_pixel(units[i], metres_per_unit);
   return image;
 }
 

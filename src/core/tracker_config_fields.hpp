@@ -1,0 +1,135 @@
+#pragma once
+// The one list of TrackerConfig's fields: name, member and a line of help for each, nested structs
+// included. The JSON configuration file (io/config_json.cpp), its equality and the Python
+// attributes (python/src/bind_config.cpp) are all generated from it; a field added to
+// tracker_config.hpp must be added here (tests/test_config_file.cpp checks none is missing).
+#include <depthtrack/tracker_config.hpp>
+#include <tuple>
+#include <type_traits>
+
+namespace depthtrack::config_fields {
+
+template <typename Struct, typename Member>
+struct Field {
+  const char* name;
+  Member Struct::*member;
+  const char* help;
+  using struct_type = Struct;
+  using member_type = Member;
+};
+
+template <typename Struct, typename Member>
+constexpr Field<Struct, Member> field(const char* name, Member Struct::*member, const char* help) {
+  return {name, member, help};
+}
+
+inline auto fields_of(const ObservationModel*) {
+  using S = ObservationModel;
+  return std::tuple{
+      field("sigma_constant", &S::sigma_constant, "depth noise sigma(y) = sigma_constant + sigma_quadratic y^2 (m)"),
+      field("sigma_quadratic", &S::sigma_quadratic, "quadratic term of the depth noise (1/m)"),
+      field("tail_weight", &S::tail_weight, "weight of the uniform outlier tail, in [0, 1)"),
+      field("max_depth", &S::max_depth, "the tail is uniform on [0, max_depth]; deeper readings are missing (m)"),
+      field("occluder_rate", &S::occluder_rate, "exponential prior of an occluder's depth (1/m)"),
+  };
+}
+
+inline auto fields_of(const OcclusionModel*) {
+  using S = OcclusionModel;
+  return std::tuple{
+      field("p_occluded_stays", &S::p_occluded_stays, "P(occluded -> occluded) per second"),
+      field("p_visible_to_occluded", &S::p_visible_to_occluded, "P(visible -> occluded) per second"),
+      field("initial", &S::initial, "occlusion probability of a fresh particle's pixels"),
+  };
+}
+
+inline auto fields_of(const MotionModel*) {
+  using S = MotionModel;
+  return std::tuple{
+      field("damping", &S::damping, "velocity kept per reference frame, in (0, 1)"),
+      field("sigma_linear", &S::sigma_linear, "linear velocity noise per reference frame, per axis (m)"),
+      field("sigma_angular", &S::sigma_angular, "angular velocity noise per reference frame, per axis (rad)"),
+      field("reference_rate", &S::reference_rate, "rate at which the three above are given (Hz)"),
+  };
+}
+
+inline auto fields_of(const Refinement*) {
+  using S = Refinement;
+  return std::tuple{
+      field("enabled", &S::enabled, "fit the heaviest particle to the likelihood's maximum and shift the cloud"),
+      field("iterations", &S::iterations, "Gauss-Newton steps per frame, in [0, 100]"),
+      field("damping", &S::damping, "Levenberg-Marquardt lambda on diag(H)"),
+      field("min_incidence", &S::min_incidence, "pixels whose |cos(normal, ray)| is below this are left out"),
+  };
+}
+
+inline auto fields_of(const LossModel*) {
+  using S = LossModel;
+  return std::tuple{
+      field("pixel_sigmas", &S::pixel_sigmas, "|y - y_hat| within this many sigma(y): the object is seen there"),
+      field("lost_below", &S::lost_below, "a frame below this confidence is a bad frame"),
+      field("lost_after", &S::lost_after, "this many bad frames in a row raise lost"),
+      field("found_above", &S::found_above, "a search candidate this confident ends lost"),
+      field("found_outline", &S::found_outline, "and this share of its outline sees past its edge"),
+  };
+}
+
+inline auto fields_of(const RecoveryModel*) {
+  using S = RecoveryModel;
+  return std::tuple{
+      field("enabled", &S::enabled, "search the frame again while lost"),
+      field("budget_ms", &S::budget_ms, "wall-clock budget of that search per lost frame (ms)"),
+  };
+}
+
+inline auto fields_of(const TrackerConfig*) {
+  using S = TrackerConfig;
+  return std::tuple{
+      field("observation", &S::observation, "per-pixel observation model"),
+      field("occlusion", &S::occlusion, "occlusion Markov chain of each pixel"),
+      field("motion", &S::motion, "damped random walk on the velocity"),
+      field("refine", &S::refine, "pose refinement after weighting"),
+      field("occlusion_storage", &S::occlusion_storage, "per-pixel-time, global-time or off"),
+      field("particles", &S::particles, "number of particles"),
+      field("width", &S::width, "working resolution: the sensor image is decimated to it"),
+      field("height", &S::height, "working resolution height"),
+      field("resample_kl_threshold", &S::resample_kl_threshold, "resample when log N - H(w) exceeds this"),
+      field("near_plane", &S::near_plane, "rendering clips geometry closer than this (m)"),
+      field("max_time_step", &S::max_time_step, "a longer gap between frames is propagated as this long (s)"),
+      field("seed", &S::seed, "random seed: the same seed gives the same particles on every backend"),
+      field("backend", &S::backend,
+            "reference, opencl, opencl:pocl, opencl:nvidia, opencl:<p>.<d>, cuda, cuda:<n>; empty: "
+            "$DEPTHTRACK_DEVICE, else reference"),
+      field("renderer", &S::renderer, "who draws the device filters' pose atlas: kernel, gl or cpu"),
+      field("loss", &S::loss, "when an estimate counts as lost"),
+      field("recovery", &S::recovery, "global search while lost"),
+  };
+}
+
+// A struct with a field list (recursed into) rather than a value.
+template <typename T>
+concept Struct = requires {
+  fields_of(static_cast<const T*>(nullptr));
+};
+
+// Calls visit(field) for each field of S, in declaration order.
+template <Struct S, typename Visit>
+void for_each_field(Visit&& visit) {
+  std::apply([&](const auto&... f) { (visit(f), ...); }, fields_of(static_cast<const S*>(nullptr)));
+}
+
+// Field-by-field equality, nested structs included.
+template <Struct S>
+bool equal(const S& a, const S& b) {
+  bool same = true;
+  for_each_field<S>([&](const auto& f) {
+    using M = typename std::decay_t<decltype(f)>::member_type;
+    if constexpr (Struct<M>)
+      same = same && equal(a.*f.member, b.*f.member);
+    else
+      same = same && a.*f.member == b.*f.member;
+  });
+  return same;
+}
+
+}  // namespace depthtrack::config_fields
