@@ -10,9 +10,10 @@ namespace depthtrack::cli {
 
 void add_config_command(CLI::App& app) {
   auto file = std::make_shared<std::string>();
+  auto dump = std::make_shared<bool>(false);
   CLI::App* c = app.add_subcommand(
       "config", "Print every tracker parameter as JSON, the format of --config FILE on track and demo");
-  c->add_flag("--dump",
+  c->add_flag("--dump", *dump,
               "Print the configuration: the defaults, or with --config FILE that file's with the defaults "
               "filled in (checked)")
       ->required();
