@@ -1,0 +1,59 @@
+// depthtrack.Estimate: every field of the C++ Estimate, the pose as a 4x4 numpy array.
+#include <pybind11/eigen.h>
+
+#include <depthtrack/tracker.hpp>
+
+#include "bindings.hpp"
+#include "convert.hpp"
+
+namespace depthtrack::python {
+
+void bind_estimate(py::module_& m) {
+  py::class_<StepTimings>(m, "StepTimings", "Milliseconds each step of the frame took")
+      .def_readonly("propagate_ms", &StepTimings::propagate_ms)
+      .def_readonly("render_ms", &StepTimings::render_ms)
+      .def_readonly("handoff_ms", &StepTimings::handoff_ms)
+      .def_readonly("weigh_ms", &StepTimings::weigh_ms)
+      .def_readonly("resample_ms", &StepTimings::resample_ms)
+      .def_readonly("refine_ms", &StepTimings::refine_ms)
+      .def_readonly("search_ms", &StepTimings::search_ms)
+      .def_readonly("total_ms", &StepTimings::total_ms);
+
+  py::class_<Estimate>(m, "Estimate", "One frame's estimate")
+      .def_property_readonly(
+          "pose", [](const Estimate& e) { return pose_to_matrix(e.pose); }, "4x4 camera-from-object matrix, metres")
+      .def_property_readonly(
+          "translation", [](const Estimate& e) { return e.pose.translation; }, "metres, camera frame")
+      .def_property_readonly(
+          "quaternion",
+          [](const Estimate& e) {
+            const auto& q = e.pose.rotation;
+            return Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+          },
+          "rotation as qw, qx, qy, qz")
+      .def_readonly("linear_velocity", &Estimate::linear_velocity, "m/s, object's local frame")
+      .def_readonly("angular_velocity", &Estimate::angular_velocity, "rad/s, object's local frame")
+      .def_readonly("effective_sample_size", &Estimate::effective_sample_size, "1 / sum w^2 before resampling")
+      .def_property_readonly(
+          "ess", [](const Estimate& e) { return e.effective_sample_size; }, "effective_sample_size")
+      .def_readonly("max_log_likelihood", &Estimate::max_log_likelihood)
+      .def_readonly("mean_log_likelihood", &Estimate::mean_log_likelihood)
+      .def_readonly("resampled", &Estimate::resampled)
+      .def_readonly("covariance", &Estimate::covariance,
+                    "6x6 covariance of the refined pose: centre position (m), rotation vector (rad), camera frame; "
+                    "NaN with refinement off")
+      .def_readonly("timings", &Estimate::timings)
+      .def_readonly("confidence", &Estimate::confidence, "share of the silhouette the depth explains, [0, 1]")
+      .def_property_readonly(
+          "status", [](const Estimate& e) { return std::string(to_string(e.status)); }, "tracking, lost or no-data")
+      .def_readonly("recovered", &Estimate::recovered, "this frame re-seeded the filter from a global search")
+      .def_readonly("search_poses", &Estimate::search_poses, "poses this frame's global search scored")
+      .def("__repr__", [](const Estimate& e) {
+        const auto& t = e.pose.translation;
+        return "Estimate(status=" + std::string(to_string(e.status)) + ", translation=[" + std::to_string(t.x()) +
+               ", " + std::to_string(t.y()) + ", " + std::to_string(t.z()) +
+               "], confidence=" + std::to_string(e.confidence) + ")";
+      });
+}
+
+}  // namespace depthtrack::python

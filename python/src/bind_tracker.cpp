@@ -1,0 +1,80 @@
+// depthtrack.Tracker: one object's filter. update() reads the numpy depth in place and runs with the
+// GIL released; a per-tracker mutex keeps two Python threads from running one tracker at once.
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <depthtrack/error.hpp>
+#include <depthtrack/tracker.hpp>
+#include <mutex>
+#include <optional>
+
+#include "bindings.hpp"
+#include "convert.hpp"
+
+namespace depthtrack::python {
+
+namespace {
+
+class PyTracker {
+ public:
+  PyTracker(const Mesh& mesh, const Camera& camera, const TrackerConfig& config) : tracker_(mesh, camera, config) {}
+
+  void initialize(py::handle pose, double spread_metres, double spread_radians) {
+    const Pose start = pose_from_matrix(pose);
+    const std::lock_guard lock(mutex_);
+    tracker_.initialize(start, InitialSpread{spread_metres, spread_radians});
+  }
+
+  Estimate update(py::handle depth, double timestamp, std::optional<double> metres_per_unit) {
+    const DepthInput in = depth_input(depth, metres_per_unit);  // holds the array while the GIL is released
+    const py::gil_scoped_release release;
+    const std::lock_guard lock(mutex_);
+    return tracker_.update(in.view, timestamp);
+  }
+
+  Estimate initialize_global(py::handle depth, double timestamp, std::optional<double> metres_per_unit,
+                             std::optional<std::array<int, 4>> box, std::optional<Eigen::Vector3d> point) {
+    if (box && point) throw InputError("initialize_global takes a box or a point, not both");
+    const InitHint hint = box     ? InitHint::box((*box)[0], (*box)[1], (*box)[2], (*box)[3])
+                          : point ? InitHint::near_point(*point)
+                                  : InitHint::anywhere();
+    const DepthInput in = depth_input(depth, metres_per_unit);
+    const py::gil_scoped_release release;
+    const std::lock_guard lock(mutex_);
+    return tracker_.initialize_global(in.view, timestamp, hint);
+  }
+
+  Camera working_camera() const { return tracker_.working_camera(); }
+  TrackerConfig config() const { return tracker_.config(); }
+  std::string backend_description() const { return tracker_.backend_description(); }
+
+ private:
+  Tracker tracker_;
+  std::mutex mutex_;
+};
+
+}  // namespace
+
+void bind_tracker(py::module_& m) {
+  py::class_<PyTracker>(m, "Tracker",
+                        "The particle filter of one object. camera: the intrinsics of the images update() gets "
+                        "(decimated to config.width x config.height, which must divide them)")
+      .def(py::init<const Mesh&, const Camera&, const TrackerConfig&>(), py::arg("mesh"), py::arg("camera"),
+           py::arg("config") = TrackerConfig{}, py::call_guard<py::gil_scoped_release>())
+      .def("initialize", &PyTracker::initialize, py::arg("pose"), py::arg("spread_metres") = InitialSpread{}.metres,
+           py::arg("spread_radians") = InitialSpread{}.radians,
+           "Particles drawn around pose (4x4 camera-from-object, metres) with these per-axis deviations")
+      .def("update", &PyTracker::update, py::arg("depth"), py::arg("timestamp"),
+           py::arg("metres_per_unit") = py::none(),
+           "One frame: depth is float32 metres (NaN = missing) or uint16 units with metres_per_unit (0 = "
+           "missing), shape (height, width); timestamp in seconds, increasing. Returns an Estimate")
+      .def("initialize_global", &PyTracker::initialize_global, py::arg("depth"), py::arg("timestamp"),
+           py::arg("metres_per_unit") = py::none(), py::arg("box") = py::none(), py::arg("point") = py::none(),
+           "Finds the object in this frame without a pose, inside box (u0, v0, u1, v1: inclusive sensor pixels) "
+           "or near point (camera frame, metres) when given, and runs the frame")
+      .def_property_readonly("working_camera", &PyTracker::working_camera)
+      .def_property_readonly("config", &PyTracker::config, "a copy of the configuration")
+      .def_property_readonly("backend_description", &PyTracker::backend_description);
+}
+
+}  // namespace depthtrack::python

@@ -1,0 +1,150 @@
+"""The bindings give the C++ API's poses (`depthtrack track`'s CSV, same seed) for uint16 and float32
+numpy frames, contiguous or not."""
+import csv
+import math
+import subprocess
+
+import numpy as np
+import pytest
+
+import depthtrack
+from conftest import PARTICLES, SEED, SPREAD_DEGREES, SPREAD_METRES, cli, csv_pose
+
+
+def make_tracker(scene):
+    cam = scene["manifest"]["camera"]
+    camera = depthtrack.Camera(cam["width"], cam["height"], cam["fx"], cam["fy"], cam["cx"], cam["cy"])
+    config = depthtrack.TrackerConfig()
+    config.particles, config.width, config.height, config.seed = PARTICLES, 80, 60, SEED
+    tracker = depthtrack.Tracker(depthtrack.Mesh.load(str(scene["mesh"])), camera, config)
+    tracker.initialize(scene["first_pose"], spread_metres=SPREAD_METRES, spread_radians=math.radians(SPREAD_DEGREES))
+    return tracker
+
+
+def track(scene, to_input):
+    """Estimates of every frame, each frame given as to_input(units) -> (depth, metres_per_unit)."""
+    tracker = make_tracker(scene)
+    estimates = []
+    for timestamp, units in scene["frames"]:
+        depth, scale = to_input(units)
+        estimates.append(tracker.update(depth, timestamp, metres_per_unit=scale))
+    return estimates
+
+
+def metres_of(units, scale):
+    """float32 metres as the library computes them from units (double product, rounded once), NaN = missing."""
+    metres = (units.astype(np.float64) * scale).astype(np.float32)
+    metres[units == 0] = np.nan
+    return metres
+
+
+def assert_same_as_cli(scene, estimates):
+    assert len(estimates) == len(scene["rows"]) == 10
+    for estimate, row in zip(estimates, scene["rows"]):
+        expected = csv_pose(row)  # printed with 9 significant digits
+        np.testing.assert_allclose(estimate.pose[:3, 3], expected[:3, 3], rtol=0, atol=2e-8)
+        np.testing.assert_allclose(estimate.pose[:3, :3], expected[:3, :3], rtol=0, atol=2e-8)
+        assert estimate.ess == pytest.approx(float(row["ess"]), rel=1e-8)
+        assert estimate.status == row["status"]
+        assert estimate.confidence == pytest.approx(float(row["confidence"]), rel=1e-8)
+
+
+def test_uint16_frames_give_the_cli_poses(scene):
+    scale = scene["manifest"]["metres_per_unit"]
+    estimates = track(scene, lambda units: (units, scale))
+    assert_same_as_cli(scene, estimates)
+    # And they follow the object: the CSV's ground-truth errors are small.
+    assert max(float(r["err_t_mm"]) for r in scene["rows"]) < 15
+
+
+def test_float32_frames_give_the_cli_poses(scene):
+    scale = scene["manifest"]["metres_per_unit"]
+    assert_same_as_cli(scene, track(scene, lambda units: (metres_of(units, scale), None)))
+
+
+def test_a_slice_of_a_larger_array_is_read_through_its_strides(scene):
+    scale = scene["manifest"]["metres_per_unit"]
+
+    def window(units):
+        h, w = units.shape
+        big = np.full((h + 7, w + 11), 65535, np.uint16)  # far readings around the window
+        big[4 : 4 + h, 6 : 6 + w] = units
+        view = big[4 : 4 + h, 6 : 6 + w]
+        assert not view.flags.c_contiguous
+        return view, scale
+
+    assert_same_as_cli(scene, track(scene, window))
+
+
+def test_column_strided_and_fortran_arrays_are_copied_and_give_the_same_poses(scene):
+    scale = scene["manifest"]["metres_per_unit"]
+
+    def every_other_column(units):
+        h, w = units.shape
+        wide = np.zeros((h, 2 * w), np.float32)
+        wide[:, ::2] = metres_of(units, scale)
+        return wide[:, ::2], None
+
+    assert_same_as_cli(scene, track(scene, every_other_column))
+    assert_same_as_cli(scene, track(scene, lambda units: (np.asfortranarray(metres_of(units, scale)), None)))
+
+
+def test_estimate_carries_every_field_of_the_cpp_estimate(scene):
+    scale = scene["manifest"]["metres_per_unit"]
+    tracker = make_tracker(scene)
+    timestamp, units = scene["frames"][0]
+    e = tracker.update(units, timestamp, metres_per_unit=scale)
+    assert e.pose.shape == (4, 4) and e.pose.dtype == np.float64
+    np.testing.assert_allclose(e.pose[3], [0, 0, 0, 1])
+    np.testing.assert_allclose(e.pose[:3, :3] @ e.pose[:3, :3].T, np.eye(3), atol=1e-12)
+    np.testing.assert_allclose(e.pose[:3, 3], e.translation)
+    assert e.quaternion.shape == (4,) and np.linalg.norm(e.quaternion) == pytest.approx(1.0)
+    assert e.covariance.shape == (6, 6)
+    np.testing.assert_allclose(e.covariance, e.covariance.T, rtol=1e-9, atol=1e-18)
+    assert np.all(np.diag(e.covariance) > 0)  # refinement is on: a real covariance
+    assert e.linear_velocity.shape == (3,) and e.angular_velocity.shape == (3,)
+    assert 1 <= e.effective_sample_size <= PARTICLES and e.ess == e.effective_sample_size
+    assert e.max_log_likelihood >= e.mean_log_likelihood
+    assert isinstance(e.resampled, bool) and isinstance(e.recovered, bool) and e.search_poses == 0
+    assert 0 <= e.confidence <= 1 and e.status == "tracking"
+    t = e.timings
+    assert t.total_ms > 0 and t.weigh_ms > 0 and t.refine_ms > 0 and t.search_ms == 0
+    assert t.propagate_ms >= 0 and t.render_ms >= 0 and t.handoff_ms == 0 and t.resample_ms >= 0
+
+
+def test_initialize_global_with_a_box_gives_the_cli_pose(scene, tmp_path):
+    cam = scene["manifest"]["camera"]
+    camera = depthtrack.Camera(cam["width"], cam["height"], cam["fx"], cam["fy"], cam["cx"], cam["cy"])
+    mesh = depthtrack.Mesh.load(str(scene["mesh"]))
+    # The box a detector would give: the object's vertices at the true pose, projected.
+    points = scene["first_pose"][:3, :3] @ mesh.vertices.T.astype(float) + scene["first_pose"][:3, 3:]
+    u = camera.fx * points[0] / points[2] + camera.cx
+    v = camera.fy * points[1] / points[2] + camera.cy
+    box = (int(u.min()), int(v.min()), int(math.ceil(u.max())), int(math.ceil(v.max())))
+    out = tmp_path / "global.csv"
+    subprocess.run([cli(), "track", "--mesh", str(scene["mesh"]), "--sequence", str(scene["sequence"]), "--out",
+                    str(out), "--init-box", " ".join(map(str, box)), "--particles", str(PARTICLES), "--seed",
+                    str(SEED)], check=True, capture_output=True)
+    with open(out) as f:
+        first = next(csv.DictReader(f))
+
+    config = depthtrack.TrackerConfig()
+    config.particles, config.seed = PARTICLES, SEED
+    tracker = depthtrack.Tracker(mesh, camera, config)
+    timestamp, units = scene["frames"][0]
+    e = tracker.initialize_global(units, timestamp, metres_per_unit=scene["manifest"]["metres_per_unit"], box=box)
+    assert e.search_poses > 0 and e.timings.search_ms > 0
+    expected = csv_pose(first)
+    np.testing.assert_allclose(e.pose[:3, 3], expected[:3, 3], rtol=0, atol=2e-8)
+    np.testing.assert_allclose(e.pose[:3, :3], expected[:3, :3], rtol=0, atol=2e-8)
+    with pytest.raises(depthtrack.InputError, match="a box or a point, not both"):
+        tracker.initialize_global(units, timestamp + 1, metres_per_unit=1e-4, box=box, point=(0, 0, 1))
+
+
+def test_version_and_devices():
+    assert depthtrack.__version__.count(".") == 2
+    devices = depthtrack.devices()
+    assert isinstance(devices, list)
+    for d in devices:
+        assert d["backend"] in ("opencl", "cuda") and d["selector"].startswith(d["backend"])
+        assert d["global_memory_bytes"] > 0 and isinstance(d["extensions"], list)
