@@ -203,3 +203,29 @@ TEST_CASE("Camera::from_matrix reads K and rejects skew and impossible intrinsic
   CHECK_THROWS_WITH(Camera::from_matrix(640, 480, nan), Contains("non-finite"));
   CHECK_THROWS_AS(Camera::from_matrix(0, 480, K), InputError);
 }
+
+TEST_CASE("While lost a DepthView-fed tracker searches the whole view", "[depth_view][tracker]") {
+  const Mesh mesh = builtin_demo_mesh();
+  SynthConfig synth = small_scene(24);
+  synth.occluder_fraction = 0;
+  synth.hidden_from = 0.3;  // frames 9-23: only the wall
+  synth.hidden_until = 10.0;
+  const std::vector<SynthFrame> frames = test::synthesize(mesh, synth);
+  TrackerConfig config;
+  config.particles = 40;
+  config.recovery.budget_ms = 20;
+  Tracker tracker(mesh, synth.camera, config);
+  tracker.initialize(frames[0].ground_truth);
+  size_t searched = 0;
+  bool lost = false;
+  for (const SynthFrame& f : frames) {
+    const std::vector<uint16_t> units = to_units(f.depth);
+    const Estimate e = tracker.update(
+        DepthView::units(units.data(), synth.camera.width, synth.camera.height, kMetresPerUnit), f.timestamp);
+    lost = lost || e.status == TrackStatus::Lost;
+    searched += e.search_poses;
+    if (!f.hidden) CHECK(e.search_poses == 0);
+  }
+  CHECK(lost);
+  CHECK(searched > 0);  // the search ran on the view converted whole
+}
