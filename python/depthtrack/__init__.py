@@ -13,3 +13,9 @@ Errors from the library arrive as depthtrack.InputError (a ValueError) and depth
 """
 from ._depthtrack import *  # noqa: F401,F403
 from ._depthtrack import __version__  # noqa: F401
+
+# Tracebacks name depthtrack.InputError, not depthtrack._depthtrack.InputError.
+for _value in list(globals().values()):
+    if isinstance(_value, type) and _value.__module__ == __name__ + "._depthtrack":
+        _value.__module__ = __name__
+del _value
