@@ -269,10 +269,9 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
     for (int r = 0; r < 6; ++r)
       for (int c = 0; c < 6; ++c) e.covariance(r, c) = est[DT_EST_COV + 6 * r + c];
   // The per-pixel gathers ran only if the device resampled: only then is their target the state.
-  if (e.resampled) {
-    std::swap(occlusion_, scratch_occlusion_);
+  if (e.resampled && config_.occlusion_storage != OcclusionStorage::Off) std::swap(occlusion_, scratch_occlusion_);
+  if (e.resampled && config_.occlusion_storage == OcclusionStorage::PerPixelTime)
     std::swap(occlusion_time_, scratch_occlusion_time_);
-  }
   last_resampled_ = e.resampled;
   weighed_in_scratch_ = true;
 
