@@ -2,16 +2,8 @@
  * src/reference/observation_model.cpp is the double-precision statement it is tested against. */
 #ifndef DT_MODEL_H
 #define DT_MODEL_H
+#include "dt_params.h"
 #include "dt_prelude.h"
-
-typedef struct {
-  float sigma_constant, sigma_quadratic; /* sigma(y) = c + q y^2 */
-  float tail_density;                    /* w / D */
-  float keep;                            /* 1 - w */
-  float lambda;                          /* occluder rate */
-  float log_c;                           /* log(a - b) of the occlusion chain */
-  float p_inf;                           /* its fixed point b / (1 - (a - b)) */
-} dt_model;
 
 /* log(((1 - p) p_vis + p p_occ) / p_bg) for observed y, rendered y_hat; *posterior gets p's Bayes update. */
 DT_FN float dt_pixel_log_ratio(const dt_model m, float y, float y_hat, float p, float* posterior) {

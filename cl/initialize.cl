@@ -3,13 +3,7 @@
 #include "dt_prelude.h"
 #include "dt_pose_move.h"
 #include "philox.h"
-
-/* The spread, the mesh's centre (object frame), and how many poses the cloud spreads around. */
-typedef struct {
-  float metres, radians;
-  float centre_x, centre_y, centre_z;
-  uint mode_count;
-} dt_initial;
+#include "dt_params.h" /* dt_initial */
 
 /* Particle i: pose i % mode_count of modes (7 floats each: t xyz, q wxyz) moved about the mesh's
  * centre by the spread times six normals of (seed, i, frame 0, DT_STREAM_INIT), at rest; the same

@@ -2,15 +2,7 @@
 #include "dt_prelude.h"
 #include "philox.h"
 #include "dt_pose_move.h"
-
-/* Per-frame constants the host derives from MotionModel and the real time step. */
-typedef struct {
-  float keep;         /* damping^(dt * rate) */
-  float linear_std;   /* m/s added per unit normal */
-  float angular_std;  /* rad/s added per unit normal */
-  float dt;           /* seconds */
-  float centre_x, centre_y, centre_z; /* the mesh's centre, object frame */
-} dt_motion;
+#include "dt_params.h" /* dt_motion: the per-frame constants of the host's model::motion_step */
 
 __kernel void propagate(__global float* state, uint count, uint seed_lo, uint seed_hi, uint frame, dt_motion m) {
   const uint i = get_global_id(0);

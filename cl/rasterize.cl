@@ -12,13 +12,9 @@
 #include "dt_atlas.h"
 #include "dt_quaternion.h"
 #include "dt_state.h"
+#include "dt_params.h" /* dt_camera */
 
 #define DT_NO_SURFACE 0x7f800000u /* +inf's bits: above every depth until the end, then 0 */
-
-typedef struct {
-  float fx, fy, cx, cy, near, far;
-  uint width, height;
-} dt_camera;
 
 typedef struct {
   float u, v;

@@ -1,7 +1,15 @@
 /* Systematic resampling on the device: prefix sum of the normalized weights, each child's parent
- * by binary search, then gathers of the particles' state. Reference: systematic_resample. */
+ * by binary search, then gathers of the particles' state. Reference: systematic_resample.
+ * Whether to resample is decided on the device too: summarize.cl sets estimate[DT_EST_RESAMPLE],
+ * and every kernel here that takes `estimate` reads it, so that the host enqueues the same
+ * sequence each frame without waiting for the decision: without it they return at once, but
+ * gather_state copies (the host swaps the state buffers every frame). */
 #include "dt_prelude.h"
 #include "dt_state.h"
+
+DT_DEVICE_FN int dt_resampling(__global const float* estimate) {
+  return estimate[DT_EST_RESAMPLE] != 0.0f;
+}
 
 /* Float-float arithmetic: a value is hi + lo with |lo| <= ulp(hi) / 2, about 48 bits, so the
  * cumulative weights and the comparisons against them round like the reference's doubles. */
@@ -21,9 +29,11 @@ DT_DEVICE_FN void dt_ff_add(float* hi, float* lo, float value) {
 /* Inclusive prefix sum over count values in one work-group, as float-float pairs written to
  * cumulative[2i], cumulative[2i+1]: each work-item sums a contiguous chunk, work-item 0 scans the
  * chunk totals, then each writes its chunk's running sums. */
-__kernel void prefix_sum(__global const float* values, __global float* cumulative, uint count) {
+__kernel void prefix_sum(__global const float* values, __global float* cumulative, uint count,
+                         __global const float* estimate) {
   __local float start_hi[DT_GROUP_SIZE];
   __local float start_lo[DT_GROUP_SIZE];
+  if (!dt_resampling(estimate)) return; /* the same for the whole group: no barrier is split */
   const uint lid = get_local_id(0);
   const uint chunk = (count + DT_GROUP_SIZE - 1) / DT_GROUP_SIZE;
   const uint begin = min(count, lid * chunk), end = min(count, begin + chunk);
@@ -63,9 +73,10 @@ DT_DEVICE_FN int dt_exceeds(float hi, float lo, float count, float u, float chil
 }
 
 /* Child j takes the first parent whose cumulative weight exceeds (u + j) / count (the last if none). */
-__kernel void find_parents(__global const float* cumulative, __global uint* parents, uint count, float u) {
+__kernel void find_parents(__global const float* cumulative, __global uint* parents, uint count, float u,
+                           __global const float* estimate) {
   const uint child = get_global_id(0);
-  if (child >= count) return;
+  if (child >= count || !dt_resampling(estimate)) return;
   uint lo = 0, hi = count - 1; /* the answer lies in [lo, hi] */
   while (lo < hi) {
     const uint mid = lo + (hi - lo) / 2;
@@ -77,18 +88,22 @@ __kernel void find_parents(__global const float* cumulative, __global uint* pare
   parents[child] = lo;
 }
 
-/* Children copy their parent's kinematic state. */
-__kernel void gather_state(__global const float* from, __global float* to, __global const uint* parents, uint count) {
+/* Children copy their parent's kinematic state; without resampling each particle copies its own. */
+__kernel void gather_state(__global const float* from, __global float* to, __global const uint* parents, uint count,
+                           __global const float* estimate) {
   const uint child = get_global_id(0);
   if (child >= count) return;
-  __global const float* source = from + DT_CAST(ulong, parents[child]) * DT_STATE_STRIDE;
+  const uint parent = dt_resampling(estimate) ? parents[child] : child;
+  __global const float* source = from + DT_CAST(ulong, parent) * DT_STATE_STRIDE;
   __global float* target = to + DT_CAST(ulong, child) * DT_STATE_STRIDE;
   for (int k = 0; k < DT_STATE_STRIDE; ++k) target[k] = source[k];
 }
 
-/* Children copy their parent's per-pixel occlusion state: a work-group per child. */
+/* Children copy their parent's per-pixel occlusion state: a work-group per child. Without
+ * resampling nothing moves (the host swaps these buffers only after reading the decision). */
 __kernel void gather_pixels(__global const float* from, __global float* to, __global const uint* parents,
-                            uint pixels) {
+                            uint pixels, __global const float* estimate) {
+  if (!dt_resampling(estimate)) return;
   const uint child = get_group_id(0);
   __global const float* source = from + DT_CAST(ulong, parents[child]) * pixels;
   __global float* target = to + DT_CAST(ulong, child) * pixels;
@@ -98,4 +113,10 @@ __kernel void gather_pixels(__global const float* from, __global float* to, __gl
 __kernel void fill(__global float* values, uint count, float value) {
   const uint i = get_global_id(0);
   if (i < count) values[i] = value;
+}
+
+/* The weights start afresh after a resampling. */
+__kernel void fill_when_resampling(__global float* values, uint count, float value, __global const float* estimate) {
+  const uint i = get_global_id(0);
+  if (i < count && dt_resampling(estimate)) values[i] = value;
 }

@@ -1,6 +1,7 @@
 /* Normalization, degeneracy and the estimate, in one work-group of DT_GROUP_SIZE that strides over
  * all particles: log-sum-exp, ESS, KL from uniform, the weighted mean centre and velocities, and the
- * rotation mean in the tangent space of the heaviest particle (4 Karcher iterations).
+ * rotation mean in the tangent space of the heaviest particle (4 Karcher iterations), and the
+ * resampling decision (KL > kl_threshold) that resample.cl's kernels read.
  * Reference: summarize_log_weights and weighted_mean_pose. */
 #include "dt_prelude.h"
 #include "dt_quaternion.h"
@@ -19,7 +20,7 @@ DT_DEVICE_FN dt_quat dt_load_rotation(__global const float* state, uint i) {
 
 __kernel void summarize(__global const float* state, __global const float* log_weight,
                         __global const float* log_likelihood, __global float* weights, __global float* estimate,
-                        uint count, float centre_x, float centre_y, float centre_z) {
+                        uint count, float centre_x, float centre_y, float centre_z, float kl_threshold) {
   __local float scratch[DT_GROUP_SIZE];
   __local uint scratch_index[DT_GROUP_SIZE];
   const uint lid = get_local_id(0);
@@ -86,7 +87,9 @@ __kernel void summarize(__global const float* state, __global const float* log_w
     estimate[DT_EST_QW + 3] = mean.z;
     for (int k = 0; k < 6; ++k) estimate[DT_EST_VX + k] = acc[6 + k];
     estimate[DT_EST_ESS] = 1.0f / acc[0];
-    estimate[DT_EST_KL] = log(DT_CAST(float, count)) - acc[1];
+    const float kl = log(DT_CAST(float, count)) - acc[1];
+    estimate[DT_EST_KL] = kl;
+    estimate[DT_EST_RESAMPLE] = kl > kl_threshold ? 1.0f : 0.0f;
     estimate[DT_EST_MAX_LL] = max_ll;
     estimate[DT_EST_MEAN_LL] = acc[2];
     estimate[DT_EST_HEAVIEST] = dt_as_float(heaviest); /* for refine.cl */

@@ -10,10 +10,7 @@
 #include "dt_model.h"
 #include "dt_group.h"
 #include "dt_atlas.h"
-
-#define DT_PER_PIXEL_TIME 0
-#define DT_GLOBAL_TIME 1
-#define DT_OCCLUSION_OFF 2
+#include "dt_params.h" /* the DT_OCCLUSION codes */
 
 __kernel void weigh(__global const float* atlas, __global const float* observed, __global float* occlusion,
                     __global float* occlusion_time, __global float* log_likelihood, __global float* log_weight,

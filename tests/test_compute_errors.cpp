@@ -100,8 +100,7 @@ TEST_CASE("A global size not divisible by the local size is an input error", "[c
   auto program = queue->build("two", compute::kernel_source("dt_prelude.h") + kTwoKernels, {});
   auto kernel = program->kernel("alpha");
   compute::Buffer<float> x(*queue, 100);
-  compute::set_arg(*kernel, 0, x);
-  CHECK_THROWS_AS(queue->launch(*kernel, compute::NdRange::linear(100, 64)), InputError);
+  CHECK_THROWS_AS(queue->launch(*kernel, compute::NdRange::linear(100, 64), x), InputError);
   CHECK_THROWS_AS(queue->launch(*kernel, compute::NdRange::linear(100, 0)), InputError);
   // A valid range still launches afterwards.
   queue->launch(*kernel, compute::NdRange::linear(100, 4));

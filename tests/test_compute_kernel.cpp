@@ -25,11 +25,7 @@ std::vector<float> run_axpy(compute::Queue& queue, const std::string& offset, co
   auto program = queue.build("axpy", compute::kernel_source("dt_prelude.h") + kAxpy, {"OFFSET=" + offset});
   auto kernel = program->kernel("axpy");
   CHECK(kernel->name() == "axpy");
-  kernel->set_arg(0, 2.0f);
-  compute::set_arg(*kernel, 1, xs);
-  compute::set_arg(*kernel, 2, ys);
-  kernel->set_arg(3, count);
-  auto launched = queue.launch(*kernel, compute::NdRange::linear(1024, 64));
+  auto launched = queue.launch(*kernel, compute::NdRange::linear(1024, 64), 2.0f, xs, ys, count);
   if (event) *event = launched;
   return ys.download();
 }
@@ -60,9 +56,7 @@ __kernel void index2d(__global uint* out, uint width) {
   auto program = queue->build("index2d", compute::kernel_source("dt_prelude.h") + source, {});
   auto kernel = program->kernel("index2d");
   compute::Buffer<unsigned> out(*queue, 32 * 8);
-  compute::set_arg(*kernel, 0, out);
-  kernel->set_arg(1, 32u);
-  queue->launch(*kernel, compute::NdRange{{32, 8, 1}, {16, 4, 1}, 2});
+  queue->launch(*kernel, compute::NdRange{{32, 8, 1}, {16, 4, 1}, 2}, out, 32u);
   queue->finish();
   const auto result = out.download();
   for (unsigned y = 0; y < 8; ++y)

@@ -34,13 +34,7 @@ TEST_CASE("Device Philox words and normals equal the host's", "[compute]") {
   auto kernel = program->kernel("draws");
   compute::Buffer<std::uint32_t> words(*queue, 4 * count);
   compute::Buffer<float> normals(*queue, 6 * count);
-  kernel->set_arg(0, seed);
-  kernel->set_arg(1, frame);
-  kernel->set_arg(2, stream);
-  kernel->set_arg(3, count);
-  compute::set_arg(*kernel, 4, words);
-  compute::set_arg(*kernel, 5, normals);
-  queue->launch(*kernel, compute::NdRange::linear(1024, 64));
+  queue->launch(*kernel, compute::NdRange::linear(1024, 64), seed, frame, stream, count, words, normals);
   const auto device_words = words.download();
   const auto device_normals = normals.download();
 

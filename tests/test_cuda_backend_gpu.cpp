@@ -64,10 +64,7 @@ TEST_CASE("CUDA Philox equals the host's bit for bit", "[cuda]") {
   const size_t n = 4096;
   const std::uint64_t seed = 0x123456789abcdefULL;
   compute::Buffer<std::uint32_t> out(*queue, 4 * n);
-  compute::set_arg(*kernel, 0, out);
-  kernel->set_arg(1, seed);
-  kernel->set_arg(2, 7u);
-  auto event = queue->launch(*kernel, compute::NdRange::linear(n, 256));
+  auto event = queue->launch(*kernel, compute::NdRange::linear(n, 256), out, seed, 7u);
   CHECK(event->elapsed_ms() >= 0.0);
   const auto words = out.download();
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -85,9 +82,7 @@ TEST_CASE("CUDA work-group memory and barriers give group sums", "[cuda]") {
   std::iota(values.begin(), values.end(), 0.0f);
   compute::Buffer<float> in(*queue, values.size()), sums(*queue, 8);
   in.upload(values);
-  compute::set_arg(*kernel, 0, in);
-  compute::set_arg(*kernel, 1, sums);
-  queue->launch(*kernel, compute::NdRange::linear(values.size(), 128));
+  queue->launch(*kernel, compute::NdRange::linear(values.size(), 128), in, sums);
   const auto got = sums.download();
   for (size_t g = 0; g < 8; ++g)
     CHECK(got[g] == std::accumulate(values.begin() + 128 * g, values.begin() + 128 * (g + 1), 0.0f));
@@ -133,10 +128,7 @@ TEST_CASE("CUDA copies, shared memory between queues, and objects outliving thei
   auto memory = queue->allocate(256);
   program.reset();
   queue.reset();  // the context lives on in the memory, kernel and the other queue
-  kernel->set_arg(0, *memory);
-  kernel->set_arg(1, std::uint64_t{1});
-  kernel->set_arg(2, 0u);
-  other->launch(*kernel, compute::NdRange::linear(16, 16))->wait();
+  other->launch(*kernel, compute::NdRange::linear(16, 16), *memory, std::uint64_t{1}, 0u)->wait();
 }
 
 TEST_CASE("A CUDA allocation beyond free memory names both sizes", "[cuda]") {

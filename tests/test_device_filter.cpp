@@ -7,9 +7,9 @@
 
 #include "device_support.hpp"
 #include "filter/device_filter.hpp"
+#include "model/occlusion_chain.hpp"
 #include "philox.h"
 #include "reference/observation_model.hpp"
-#include "reference/occlusion_chain.hpp"
 #include "reference/reference_filter.hpp"
 #include "reference/weights.hpp"
 #include "render/gl_context.hpp"
@@ -58,9 +58,9 @@ double reference_log_likelihood(const TrackerConfig& config, std::span<const flo
     const size_t at = particle * pixels + k;
     double p = 0;
     if (config.occlusion_storage == OcclusionStorage::PerPixelTime)
-      p = reference::propagate_occlusion(config.occlusion, occlusion[at], now - times[at]);
+      p = model::propagate_occlusion(config.occlusion, occlusion[at], now - times[at]);
     if (config.occlusion_storage == OcclusionStorage::GlobalTime)
-      p = reference::propagate_occlusion(config.occlusion, occlusion[at], dt);
+      p = model::propagate_occlusion(config.occlusion, occlusion[at], dt);
     sum += reference::pixel_log_ratio(reference::pixel_densities(config.observation, y, rendered[k]), p);
   }
   return sum;

@@ -8,8 +8,8 @@
 
 #include "compute/buffer.hpp"
 #include "device_support.hpp"
-#include "filter/particle_packing.hpp"
 #include "interop/atlas_handoff.hpp"
+#include "model/particle_packing.hpp"
 #include "render/atlas_renderer.hpp"
 
 using namespace depthtrack;
@@ -27,10 +27,10 @@ std::unique_ptr<render::GlContext> context_or_skip() {
   }
 }
 
-std::vector<reference::ParticleState> random_particles(int count, unsigned seed) {
+std::vector<model::ParticleState> random_particles(int count, unsigned seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> gauss;
-  std::vector<reference::ParticleState> particles(static_cast<size_t>(count));
+  std::vector<model::ParticleState> particles(static_cast<size_t>(count));
   for (auto& p : particles) {
     p.pose = Pose(Eigen::Vector3d(0.05 * gauss(rng), 0.05 * gauss(rng), 0.7 + 0.05 * gauss(rng)),
                   Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng)));
@@ -41,7 +41,7 @@ std::vector<reference::ParticleState> random_particles(int count, unsigned seed)
 
 // Renders `particles` through `handoff` (poses from device memory) and returns the atlas buffer.
 std::vector<float> through(interop::AtlasHandoff& handoff, compute::Queue& queue, render::AtlasRenderer& renderer,
-                           const std::vector<reference::ParticleState>& particles) {
+                           const std::vector<model::ParticleState>& particles) {
   compute::Buffer<float> states(queue, particles.size() * DT_STATE_STRIDE);
   states.upload(pack_particles(particles));
   compute::Buffer<float> atlas(queue, renderer.layout().floats());

@@ -14,7 +14,7 @@
 #include "compute/buffer.hpp"
 #include "device_support.hpp"
 #include "filter/atlas_source.hpp"
-#include "filter/particle_packing.hpp"
+#include "model/particle_packing.hpp"
 #include "reference/rasterizer.hpp"
 #include "support.hpp"
 #if defined(DEPTHTRACK_WITH_CUDA)
@@ -32,7 +32,7 @@ const Camera camera160 = Camera::make(160, 120, 131.25, 131.25, 79.9375, 59.9375
 // Random poses rounded to the float state the kernel reads, so that both rasterizers draw the very
 // same pose.
 std::vector<Pose> random_poses(const Mesh& mesh, int count, double distance, unsigned seed) {
-  std::vector<reference::ParticleState> states;
+  std::vector<model::ParticleState> states;
   for (const Pose& pose : test::random_poses(mesh, count, distance, seed)) {
     states.emplace_back();
     states.back().pose = pose;
@@ -52,13 +52,14 @@ std::vector<float> kernel_atlas(const Mesh& mesh, const Camera& camera, const st
   config.near_plane = near;
   config.observation.max_depth = far;
   auto source = make_atlas_source(*queue, mesh, camera, config);
-  std::vector<reference::ParticleState> states(poses.size());
+  std::vector<model::ParticleState> states(poses.size());
   for (size_t i = 0; i < poses.size(); ++i) states[i].pose = poses[i];
   compute::Buffer<float> state(*queue, states.size() * DT_STATE_STRIDE);
   state.upload(pack_particles(states));
   compute::Buffer<float> atlas(*queue, source->layout().floats());
   StepTimings timings;
-  source->draw(state, atlas, timings);
+  // Drawn on the queue: its device time comes from the event, as the filter reads it.
+  if (const compute::EventPtr drawn = source->draw(state, atlas, timings)) timings.render_ms += drawn->elapsed_ms();
   CHECK(timings.render_ms > 0);
   CHECK(timings.handoff_ms == 0);
   return atlas.download();

@@ -5,12 +5,14 @@
 #include "compute/buffer.hpp"
 #include "compute/kernel_sources.hpp"
 #include "device_support.hpp"
+#include "dt_atlas.h"
+#include "dt_params.h"
 #include "dt_state.h"
-#include "filter/particle_packing.hpp"
+#include "model/occlusion_chain.hpp"
+#include "model/particle.hpp"
+#include "model/particle_packing.hpp"
 #include "philox.h"
 #include "reference/observation_model.hpp"
-#include "reference/occlusion_chain.hpp"
-#include "reference/particle.hpp"
 #include "reference/pose_mean.hpp"
 #include "reference/rasterizer.hpp"
 #include "reference/weights.hpp"
@@ -25,9 +27,9 @@ std::unique_ptr<compute::Program> build(compute::Queue& q, const std::string& fi
                  {"DT_GROUP_SIZE=" + std::to_string(kGroup), "DT_OCCLUSION=" + std::to_string(occlusion_mode)});
 }
 
-reference::ParticleState random_state(std::mt19937& rng) {
+model::ParticleState random_state(std::mt19937& rng) {
   std::normal_distribution<double> n;
-  reference::ParticleState s;
+  model::ParticleState s;
   s.pose =
       Pose({0.05 * n(rng), 0.05 * n(rng), 0.8 + 0.05 * n(rng)}, rotation_exp(Eigen::Vector3d(n(rng), n(rng), n(rng))));
   s.linear_velocity = Eigen::Vector3d(0.1 * n(rng), 0.1 * n(rng), 0.1 * n(rng));
@@ -35,10 +37,7 @@ reference::ParticleState random_state(std::mt19937& rng) {
   return s;
 }
 
-struct ModelArgs {  // cl/dt_model.h's dt_model
-  float sigma_constant, sigma_quadratic, tail_density, keep, lambda, log_c, p_inf;
-};
-ModelArgs model_args() {
+dt_model model_args() {
   const ObservationModel o;
   const OcclusionModel c;
   return {static_cast<float>(o.sigma_constant),
@@ -57,7 +56,7 @@ TEST_CASE("propagate kernel equals the reference motion step", "[device][kernels
   auto program = build(*q, "propagate.cl");
   auto kernel = program->kernel("propagate");
   std::mt19937 rng(3);
-  std::vector<reference::ParticleState> states(100);
+  std::vector<model::ParticleState> states(100);
   for (auto& s : states) s = random_state(rng);
   compute::Buffer<float> buffer(*q, states.size() * DT_STATE_STRIDE);
   buffer.upload(pack_particles(states));
@@ -65,28 +64,22 @@ TEST_CASE("propagate kernel equals the reference motion step", "[device][kernels
   const MotionModel m;
   const double dt = 0.05, keep = std::pow(m.damping, dt * m.reference_rate);
   const double spread = std::sqrt((1 - keep * keep) / (1 - m.damping * m.damping));
-  struct {
-    float keep, linear_std, angular_std, dt, cx, cy, cz;
-  } args{static_cast<float>(keep),
-         static_cast<float>(m.sigma_linear * 30 * spread),
-         static_cast<float>(m.sigma_angular * 30 * spread),
-         static_cast<float>(dt),
-         0.01f,
-         -0.02f,
-         0.03f};
+  const dt_motion args{static_cast<float>(keep),
+                       static_cast<float>(m.sigma_linear * 30 * spread),
+                       static_cast<float>(m.sigma_angular * 30 * spread),
+                       static_cast<float>(dt),
+                       0.01f,
+                       -0.02f,
+                       0.03f};
   const uint64_t seed = 0x123456789ull;
-  compute::set_arg(*kernel, 0, buffer);
-  kernel->set_arg(1, static_cast<unsigned>(states.size()));
-  kernel->set_arg(2, static_cast<unsigned>(seed & 0xffffffffu));
-  kernel->set_arg(3, static_cast<unsigned>(seed >> 32));
-  kernel->set_arg(4, 7u);
-  kernel->set_arg(5, args);
-  q->launch(*kernel, compute::NdRange::linear(128, 64))->wait();
+  q->launch(*kernel, compute::NdRange::linear(128, 64), buffer, static_cast<unsigned>(states.size()),
+            static_cast<unsigned>(seed & 0xffffffffu), static_cast<unsigned>(seed >> 32), 7u, args)
+      ->wait();
   const auto out = buffer.download();
   for (size_t i = 0; i < states.size(); ++i) {
     float n[6];
     dt_normals6(seed, static_cast<dt_u32>(i), 7, DT_STREAM_MOTION, n);
-    reference::propagate_particle(states[i], m, centre, dt, n);
+    model::propagate_particle(states[i], model::motion_step(m, dt), centre, n);
     const float* p = out.data() + i * DT_STATE_STRIDE;
     const Pose got({p[DT_TX], p[DT_TX + 1], p[DT_TX + 2]},
                    Eigen::Quaterniond(p[DT_QW], p[DT_QW + 1], p[DT_QW + 2], p[DT_QW + 3]));
@@ -117,8 +110,8 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
   std::vector<float> atlas(count * pixels), occlusion(count * pixels), times(count * pixels);
   for (size_t i = 0; i < count; ++i) {
     const Pose pose =
-        reference::move_about_centre(truth, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.004 * i - 0.03, 0.002 * i, 0),
-                                     Eigen::Vector3d(0, 0.02 * i, 0));
+        model::move_about_centre(truth, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.004 * i - 0.03, 0.002 * i, 0),
+                                 Eigen::Vector3d(0, 0.02 * i, 0));
     r.render(pose, std::span<float>(atlas.data() + i * pixels, pixels));
   }
   for (auto& p : occlusion) p = unit(rng);
@@ -135,9 +128,7 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
         paged[page * 6 * pixels + ((t / 3) * height + v) * page_width + (t % 3) * width + u] =
             atlas[i * pixels + v * width + u];
       }
-  struct Layout {
-    dt_u32 tile_width, tile_height, tiles_per_row, tiles_per_page;
-  };
+  using Layout = dt_atlas_layout;
   const std::pair<std::vector<float>*, Layout> layouts[] = {{&atlas, {80, 60, 1, static_cast<dt_u32>(count)}},
                                                             {&paged, {80, 60, 3, 6}}};
   for (int run = 0; run < 6; ++run) {
@@ -153,15 +144,11 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
     occ.upload(occlusion);
     tim.upload(times);
     lw.upload(std::vector<float>(count, 1.0f));
-    for (unsigned k = 0; k < 6; ++k) compute::set_arg(*kernel, k, std::array{&a, &o, &occ, &tim, &ll, &lw}[k][0]);
-    kernel->set_arg(6, static_cast<unsigned>(pixels));
-    kernel->set_arg(7, model_args());
-    kernel->set_arg(8, static_cast<float>(now));
-    kernel->set_arg(9, static_cast<float>(dt));
-    kernel->set_arg(10, layout);
-    compute::set_arg(*kernel, 11, prior);
-    kernel->set_arg(12, 1u);  // keep each updated pixel's prior (the refinement's occlusion map)
-    q->launch(*kernel, compute::NdRange::linear(count * kGroup, kGroup))->wait();
+    // The last argument: keep each updated pixel's prior (the refinement's occlusion map).
+    q->launch(*kernel, compute::NdRange::linear(count * kGroup, kGroup), a, o, occ, tim, ll, lw,
+              static_cast<unsigned>(pixels), model_args(), static_cast<float>(now), static_cast<float>(dt), layout,
+              prior, 1u)
+        ->wait();
     const auto got_ll = ll.download(), got_lw = lw.download(), got_occ = occ.download(), got_prior = prior.download();
     const OcclusionModel chain;
     for (size_t i = 0; i < count; ++i) {
@@ -169,10 +156,10 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
       for (size_t k = 0; k < pixels; ++k) {
         const size_t at = i * pixels + k;
         double p = occlusion[at];
-        if (mode == 1) p = reference::propagate_occlusion(chain, p, dt);
+        if (mode == 1) p = model::propagate_occlusion(chain, p, dt);
         const double y = observed[k], y_hat = atlas[at];
         const bool used = y_hat > 0 && DepthImage::is_valid(static_cast<float>(y));
-        if (used && mode == 0) p = reference::propagate_occlusion(chain, p, now - times[at]);
+        if (used && mode == 0) p = model::propagate_occlusion(chain, p, now - times[at]);
         if (mode == 2) p = 0;
         double updated = mode == 2 ? occlusion[at] : p;
         if (used) {
@@ -207,19 +194,11 @@ TEST_CASE("weigh kernel stays finite and equal to the reference for observations
   occ.upload(occlusion);
   tim.upload(times);
   lw.upload(std::vector<float>(1, 0.0f));
-  for (unsigned k = 0; k < 6; ++k) compute::set_arg(*kernel, k, std::array{&a, &o, &occ, &tim, &ll, &lw}[k][0]);
-  kernel->set_arg(6, static_cast<unsigned>(pixels));
-  kernel->set_arg(7, model_args());
-  kernel->set_arg(8, 0.0f);
-  kernel->set_arg(9, 0.0f);
-  struct Layout {
-    dt_u32 tile_width, tile_height, tiles_per_row, tiles_per_page;
-  };
-  kernel->set_arg(10, Layout{static_cast<dt_u32>(pixels), 1, 1, 1});
   compute::Buffer<float> prior(*q, pixels);
-  compute::set_arg(*kernel, 11, prior);
-  kernel->set_arg(12, 0u);  // the refinement's prior map is not asked for here
-  q->launch(*kernel, compute::NdRange::linear(kGroup, kGroup))->wait();
+  // The last argument: the refinement's prior map is not asked for here.
+  q->launch(*kernel, compute::NdRange::linear(kGroup, kGroup), a, o, occ, tim, ll, lw, static_cast<unsigned>(pixels),
+            model_args(), 0.0f, 0.0f, dt_atlas_layout{static_cast<dt_u32>(pixels), 1, 1, 1}, prior, 0u)
+      ->wait();
   double expected = 0;
   for (size_t k = 0; k < pixels; ++k) {
     const auto d = reference::pixel_densities(ObservationModel{}, observed[k], atlas[k]);
@@ -249,14 +228,14 @@ TEST_CASE("summarize kernel equals the reference normalization and mean pose", "
   std::mt19937 rng(11);
   std::normal_distribution<double> n;
   const size_t count = 1000;  // more than one pass of the work-group
-  std::vector<reference::ParticleState> states(count);
+  std::vector<model::ParticleState> states(count);
   std::vector<double> log_weights(count), log_likelihoods(count);
-  const reference::ParticleState base = random_state(rng);
+  const model::ParticleState base = random_state(rng);
   for (size_t i = 0; i < count; ++i) {
     states[i] = base;
-    states[i].pose = reference::move_about_centre(base.pose, Eigen::Vector3d(0, 0, 0.02),
-                                                  Eigen::Vector3d(0.01 * n(rng), 0.01 * n(rng), 0.01 * n(rng)),
-                                                  Eigen::Vector3d(0.1 * n(rng), 0.1 * n(rng), 0.1 * n(rng)));
+    states[i].pose = model::move_about_centre(base.pose, Eigen::Vector3d(0, 0, 0.02),
+                                              Eigen::Vector3d(0.01 * n(rng), 0.01 * n(rng), 0.01 * n(rng)),
+                                              Eigen::Vector3d(0.1 * n(rng), 0.1 * n(rng), 0.1 * n(rng)));
     states[i].linear_velocity = Eigen::Vector3d(n(rng), n(rng), n(rng));
     log_weights[i] = -500 + 3 * n(rng);  // far from 0: the kernel must subtract the maximum
     log_likelihoods[i] = 10 * n(rng);
@@ -266,12 +245,10 @@ TEST_CASE("summarize kernel equals the reference normalization and mean pose", "
   state.upload(pack_particles(states));
   lw.upload(std::vector<float>(log_weights.begin(), log_weights.end()));
   ll.upload(std::vector<float>(log_likelihoods.begin(), log_likelihoods.end()));
-  for (unsigned k = 0; k < 5; ++k) compute::set_arg(*kernel, k, std::array{&state, &lw, &ll, &w, &est}[k][0]);
-  kernel->set_arg(5, static_cast<unsigned>(count));
-  kernel->set_arg(6, 0.0f);
-  kernel->set_arg(7, 0.0f);
-  kernel->set_arg(8, 0.02f);
-  q->launch(*kernel, compute::NdRange::linear(kGroup, kGroup))->wait();
+  const float kl_threshold = 2.0f;
+  q->launch(*kernel, compute::NdRange::linear(kGroup, kGroup), state, lw, ll, w, est, static_cast<unsigned>(count),
+            0.0f, 0.0f, 0.02f, kl_threshold)
+      ->wait();
   const auto e = est.download();
   const auto summary = reference::summarize_log_weights(log_weights);
   std::vector<Pose> poses;
@@ -285,6 +262,7 @@ TEST_CASE("summarize kernel equals the reference normalization and mean pose", "
                  Eigen::Quaterniond(e[DT_EST_QW], e[DT_EST_QW + 1], e[DT_EST_QW + 2], e[DT_EST_QW + 3]));
   CHECK(e[DT_EST_ESS] == Approx(summary.effective_sample_size).epsilon(1e-4));
   CHECK(e[DT_EST_KL] == Approx(summary.kl_from_uniform).epsilon(1e-4));
+  CHECK(e[DT_EST_RESAMPLE] == (e[DT_EST_KL] > kl_threshold ? 1.0f : 0.0f));  // the decision resample.cl reads
   CHECK(translation_error(got, mean) < 1e-6);
   CHECK(rotation_error(got, mean) < 1e-5);
   CHECK(e[DT_EST_VX] == Approx(velocity.x()).epsilon(1e-4).margin(1e-6));
@@ -307,24 +285,82 @@ TEST_CASE("prefix-sum and find-parents kernels resample as the reference does", 
     for (auto& x : w) x /= sum;
     compute::Buffer<float> weights(*q, count), cumulative(*q, 2 * count);
     compute::Buffer<unsigned> parents(*q, count);
+    compute::Buffer<float> decision(*q, DT_EST_SIZE);  // the estimate buffer, saying "resample"
+    std::vector<float> resample_flag(DT_EST_SIZE, 0.0f);
+    resample_flag[DT_EST_RESAMPLE] = 1.0f;
+    decision.upload(resample_flag);
     // The reference gets the very floats the device sees, so only the arithmetic differs.
     const std::vector<float> w_float(w.begin(), w.end());
     weights.upload(w_float);
     w.assign(w_float.begin(), w_float.end());
-    compute::set_arg(*prefix, 0, weights);
-    compute::set_arg(*prefix, 1, cumulative);
-    prefix->set_arg(2, static_cast<unsigned>(count));
-    q->launch(*prefix, compute::NdRange::linear(kGroup, kGroup));
+    q->launch(*prefix, compute::NdRange::linear(kGroup, kGroup), weights, cumulative, static_cast<unsigned>(count),
+              decision);
     const float u = dt_uniform01(dt_random_words(4, 0, 1, DT_STREAM_RESAMPLE, 0).v[0]);
-    compute::set_arg(*find, 0, cumulative);
-    compute::set_arg(*find, 1, parents);
-    find->set_arg(2, static_cast<unsigned>(count));
-    find->set_arg(3, u);
-    q->launch(*find, compute::NdRange::linear((count + 63) / 64 * 64, 64))->wait();
+    q->launch(*find, compute::NdRange::linear((count + 63) / 64 * 64, 64), cumulative, parents,
+              static_cast<unsigned>(count), u, decision)
+        ->wait();
     const auto got = parents.download();
     const auto expected = reference::systematic_resample(w, u);
     const auto cum = cumulative.download();
     CHECK(cum[2 * count - 2] + cum[2 * count - 1] == Approx(1.0).epsilon(1e-5));
     for (size_t j = 0; j < count; ++j) REQUIRE(static_cast<int>(got[j]) == expected[j]);
+  }
+}
+
+TEST_CASE("resampling kernels follow the decision in the estimate buffer: gather, or copy and keep",
+          "[device][kernels]") {
+  if (!test::device_available()) return;
+  auto q = compute::open_device(test::device_selector());
+  auto program = build(*q, "resample.cl");
+  auto find = program->kernel("find_parents");
+  auto gather_state = program->kernel("gather_state");
+  auto gather_pixels = program->kernel("gather_pixels");
+  auto reset = program->kernel("fill_when_resampling");
+  const unsigned count = 3, pixels = 5;
+  const std::vector<unsigned> parents_in = {2, 2, 0};
+  std::vector<float> state(count * DT_STATE_STRIDE), pixel_state(count * pixels);
+  for (size_t i = 0; i < state.size(); ++i) state[i] = static_cast<float>(i);
+  for (size_t i = 0; i < pixel_state.size(); ++i) pixel_state[i] = 100.0f + static_cast<float>(i);
+  // Cumulative weights (float-float pairs) that would make every child take particle 0.
+  const std::vector<float> cumulative_in = {1.0f, 0.0f, 1.0f, 0.0f, 1.0f, 0.0f};
+  for (const bool resample : {false, true}) {
+    INFO((resample ? "resampling" : "not resampling"));
+    std::vector<float> flag(DT_EST_SIZE, 0.0f);
+    flag[DT_EST_RESAMPLE] = resample ? 1.0f : 0.0f;
+    compute::Buffer<float> decision(*q, DT_EST_SIZE), from(*q, state.size()), to(*q, state.size()),
+        pixels_from(*q, pixel_state.size()), pixels_to(*q, pixel_state.size()), weights(*q, count),
+        cumulative(*q, cumulative_in.size());
+    compute::Buffer<unsigned> parents(*q, count);
+    decision.upload(flag);
+    from.upload(state);
+    to.upload(std::vector<float>(state.size(), -1.0f));
+    pixels_from.upload(pixel_state);
+    pixels_to.upload(std::vector<float>(pixel_state.size(), -1.0f));
+    weights.upload(std::vector<float>(count, 7.0f));
+    cumulative.upload(cumulative_in);
+    parents.upload(parents_in);
+    const auto linear = compute::NdRange::linear(64, 64);
+    if (resample) {
+      q->launch(*find, linear, cumulative, parents, count, 0.5f, decision);
+      const auto found = parents.download();
+      CHECK(found == std::vector<unsigned>(count, 0u));
+      parents.upload(parents_in);
+    } else {
+      q->launch(*find, linear, cumulative, parents, count, 0.5f, decision);
+      CHECK(parents.download() == parents_in);  // untouched
+    }
+    q->launch(*gather_state, linear, from, to, parents, count, decision);
+    q->launch(*gather_pixels, compute::NdRange::linear(count * kGroup, kGroup), pixels_from, pixels_to, parents, pixels,
+              decision);
+    q->launch(*reset, linear, weights, count, 0.0f, decision);
+    const auto got_state = to.download(), got_pixels = pixels_to.download(), got_weights = weights.download();
+    for (unsigned child = 0; child < count; ++child) {
+      const unsigned source = resample ? parents_in[child] : child;
+      for (unsigned k = 0; k < DT_STATE_STRIDE; ++k)
+        REQUIRE(got_state[child * DT_STATE_STRIDE + k] == state[source * DT_STATE_STRIDE + k]);
+      for (unsigned k = 0; k < pixels; ++k)
+        REQUIRE(got_pixels[child * pixels + k] == (resample ? pixel_state[source * pixels + k] : -1.0f));
+      REQUIRE(got_weights[child] == (resample ? 0.0f : 7.0f));
+    }
   }
 }

@@ -1,11 +1,12 @@
 // The likelihood and occlusion formulas against the hand-computed values of MODEL.md.
 #include <catch2/catch.hpp>
 
+#include "model/occlusion_chain.hpp"
 #include "reference/observation_model.hpp"
-#include "reference/occlusion_chain.hpp"
 
 using namespace depthtrack;
 using namespace depthtrack::reference;
+using namespace depthtrack::model;
 
 TEST_CASE("depth noise grows with the square of the observed depth", "[model]") {
   const ObservationModel m;

@@ -13,10 +13,10 @@
 
 namespace depthtrack {
 
-// Wall-clock (reference) or device (compute backends) time of each step of the last update, ms.
-// Milliseconds per step. render: drawing the atlas (GL, or the host rasterizer); handoff: moving
-// poses to the renderer and the atlas to the compute kernels (0 for the reference tracker).
-// refine: the pose refinement and the shift of the particle cloud (TrackerConfig::refine).
+// Each step's time in the last update, ms. Reference: host clock. Compute backends enqueue the frame without waiting
+// and read device times from its events after it: propagate, weigh, resample (summarize and the resampling kernels,
+// run every frame), refine (refinement + cloud shift), render with renderer kernel. Host wall time: render with gl or
+// cpu, handoff (as far as the host waits for it; 0 with kernel and on the reference), total_ms and search_ms.
 struct StepTimings {
   double propagate_ms = 0, render_ms = 0, handoff_ms = 0, weigh_ms = 0, resample_ms = 0, total_ms = 0;
   double refine_ms = 0;

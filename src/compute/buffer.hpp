@@ -90,7 +90,7 @@ class HostOverwrite {
   bool published_ = false;
 };
 
-// Sets a buffer as a kernel argument.
+// A buffer as kernel argument `index`: for the refinement's launch, until it uses Queue::launch(k, range, args...).
 template <class T>
 void set_arg(Kernel& kernel, unsigned index, const Buffer<T>& buffer) {
   kernel.set_arg(index, buffer.memory());

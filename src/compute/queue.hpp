@@ -4,6 +4,7 @@
 // OpenCL and CUDA implement it (src/compute/opencl, src/compute/cuda); the filter knows only this.
 // Every failure throws depthtrack::BackendError naming the API call and the symbolic error
 // (CL_OUT_OF_RESOURCES, CUDA_ERROR_OUT_OF_MEMORY), or InputError for a caller's mistake.
+#include <concepts>
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -52,6 +53,29 @@ class Program {
   virtual std::unique_ptr<Kernel> kernel(const std::string& name) = 0;
 };
 
+// What a launch's arguments may be: device memory, something that holds it (a Buffer<T>: memory()),
+// or a trivially copyable value whose size the kernel's parameter has (the backends check it: a
+// host size_t for a uint parameter is an error at the launch). bool has no agreed size on devices.
+template <class T>
+concept HoldsDeviceMemory = requires(const T& t) {
+  { t.memory() } -> std::convertible_to<const DeviceMemory&>;
+};
+template <class T>
+concept KernelValue =
+    std::is_trivially_copyable_v<T> && !std::is_base_of_v<DeviceMemory, T> && !std::is_same_v<T, bool>;
+
+inline void set_launch_arg(Kernel& kernel, unsigned index, const DeviceMemory& memory) {
+  kernel.set_arg(index, memory);
+}
+template <HoldsDeviceMemory T>
+void set_launch_arg(Kernel& kernel, unsigned index, const T& holder) {
+  kernel.set_arg(index, holder.memory());
+}
+template <KernelValue T>
+void set_launch_arg(Kernel& kernel, unsigned index, const T& value) {
+  kernel.set_arg_bytes(index, &value, sizeof(T));
+}
+
 // OpenCL's nd-range: global work-items per dimension, divisible by the work-group size.
 // CUDA backends launch global/local blocks of local threads.
 struct NdRange {
@@ -88,6 +112,13 @@ class Queue {
                                          const std::vector<std::string>& definitions) = 0;
   // Enqueues a kernel with the arguments set so far; returns its event (timed on the device).
   virtual EventPtr launch(Kernel& kernel, const NdRange& range) = 0;
+  // Sets args as the kernel's arguments 0, 1, ... in order, then enqueues it.
+  template <class... Args>
+  requires(sizeof...(Args) > 0) EventPtr launch(Kernel& kernel, const NdRange& range, const Args&... args) {
+    unsigned index = 0;
+    (set_launch_arg(kernel, index++, args), ...);
+    return launch(kernel, range);
+  }
   // Waits for everything enqueued.
   virtual void finish() = 0;
 };

@@ -2,7 +2,7 @@
 #include <numbers>
 #include <random>
 
-#include "reference/particle.hpp"
+#include "model/particle.hpp"
 
 namespace depthtrack {
 
@@ -14,7 +14,7 @@ Pose perturb_pose(const Pose& pose, const Eigen::Vector3d& centre, double metres
     return Eigen::Vector3d(d.normalized());
   };
   const Eigen::Vector3d direction = random_unit(), axis = random_unit();
-  return reference::move_about_centre(pose, centre, metres * direction, degrees * std::numbers::pi / 180.0 * axis);
+  return model::move_about_centre(pose, centre, metres * direction, degrees * std::numbers::pi / 180.0 * axis);
 }
 
 }  // namespace depthtrack

@@ -20,9 +20,12 @@ class AtlasSource {
   // Fixed for the source's life: config.particles tiles.
   virtual const render::AtlasLayout& layout() const = 0;
   // Draws particle i of `states` (DT_STATE_STRIDE floats each, cl/dt_state.h) into tile i of
-  // `atlas` (layout().floats() floats), adding the host time of drawing and of the hand-off (up
-  // to the point where its work is enqueued) to `timings`.
-  virtual void draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas, StepTimings& timings) = 0;
+  // `atlas` (layout().floats() floats). Drawing on the compute queue enqueues and returns its event
+  // without waiting (the caller adds its device time to render_ms once the frame is done); drawing
+  // elsewhere adds its host time, and that of the hand-off up to the point where its work is
+  // enqueued, to `timings` and returns nullptr.
+  virtual compute::EventPtr draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas,
+                                 StepTimings& timings) = 0;
   // e.g. "GL (EGL device 0: ...); hand-off: CUDA-GL interop (zero-copy)".
   virtual std::string description() const = 0;
 };

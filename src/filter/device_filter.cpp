@@ -9,10 +9,9 @@
 #include "core/stopwatch.hpp"
 #include "dt_state.h"
 #include "filter/device_pose_scorer.hpp"
-#include "filter/model_args.hpp"
-#include "filter/particle_packing.hpp"
+#include "model/kernel_params.hpp"
+#include "model/particle_packing.hpp"
 #include "philox.h"
-#include "reference/occlusion_chain.hpp"
 
 namespace depthtrack {
 
@@ -20,33 +19,13 @@ namespace {
 constexpr size_t kGroupSize = 128;   // work-items per group in weigh, summarize and the gathers
 constexpr size_t kLinearGroup = 64;  // work-items per group in the per-particle kernels
 
-// Host mirror of the struct cl/propagate.cl takes by value.
-struct MotionArgs {
-  float keep, linear_std, angular_std, dt, centre_x, centre_y, centre_z;
-};
 struct RefineArgs {  // cl/refine.cl's dt_refine_args
   float damping, min_incidence, centre_x, centre_y, centre_z, now;
   int iterations;
 };
-struct InitialArgs {  // cl/initialize.cl's dt_initial
-  float metres, radians, centre_x, centre_y, centre_z;
-  unsigned mode_count;
-};
 
 size_t round_up(size_t n, size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
-}
-
-int occlusion_define(OcclusionStorage mode) {
-  switch (mode) {
-    case OcclusionStorage::PerPixelTime:
-      return 0;
-    case OcclusionStorage::GlobalTime:
-      return 1;
-    case OcclusionStorage::Off:
-      return 2;
-  }
-  return 2;
 }
 }  // namespace
 
@@ -54,7 +33,7 @@ struct DeviceFilter::Kernels {
   std::unique_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
       refine_program, initialize_program;
   std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state, gather_pixels,
-      fill, refine, shift_particles, initialize_particles, fill_per_particle;
+      fill, fill_when_resampling, refine, shift_particles, initialize_particles, fill_per_particle;
 };
 
 DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
@@ -67,9 +46,8 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
       count_(checked_particle_count()),
       atlas_source_(make_atlas_source(*queue_, mesh, camera, config)),
       mesh_(mesh) {
-  const std::vector<std::string> defines = {
-      "DT_GROUP_SIZE=" + std::to_string(kGroupSize),
-      "DT_OCCLUSION=" + std::to_string(occlusion_define(config.occlusion_storage))};
+  const std::vector<std::string> defines = {"DT_GROUP_SIZE=" + std::to_string(kGroupSize),
+                                            model::occlusion_definition(config.occlusion_storage)};
   kernels_ = std::make_unique<Kernels>();
   Kernels& k = *kernels_;
   k.propagate_program = queue_->build("propagate.cl", compute::kernel_source("propagate.cl"), defines);
@@ -84,6 +62,7 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
   k.gather_state = k.resample_program->kernel("gather_state");
   k.gather_pixels = k.resample_program->kernel("gather_pixels");
   k.fill = k.resample_program->kernel("fill");
+  k.fill_when_resampling = k.resample_program->kernel("fill_when_resampling");
   if (config.refine.enabled) {
     k.refine_program = queue_->build("refine.cl", compute::kernel_source("refine.cl"), defines);
     k.refine = k.refine_program->kernel("refine");
@@ -151,7 +130,7 @@ std::string DeviceFilter::description() const {
   return info.selector + " " + info.name + " (" + info.platform + "); atlas: " + atlas_source_->description();
 }
 
-void DeviceFilter::upload_particles(const std::vector<reference::ParticleState>& particles) {
+void DeviceFilter::upload_particles(const std::vector<model::ParticleState>& particles) {
   state_.upload(pack_particles(particles));
 }
 
@@ -181,31 +160,15 @@ void DeviceFilter::initialize_modes(std::span<const Pose> modes, const InitialSp
   }
   compute::Buffer<float> mode_buffer(*queue_, mode_values.size());
   mode_buffer.upload(mode_values);
-  const InitialArgs args{static_cast<float>(spread.metres),
-                         static_cast<float>(spread.radians),
-                         static_cast<float>(centre_.x()),
-                         static_cast<float>(centre_.y()),
-                         static_cast<float>(centre_.z()),
-                         static_cast<unsigned>(modes.size())};
   const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
-  compute::set_arg(*k.initialize_particles, 0, state_);
-  k.initialize_particles->set_arg(1, static_cast<unsigned>(count_));
-  k.initialize_particles->set_arg(2, static_cast<unsigned>(config_.seed & 0xffffffffu));
-  k.initialize_particles->set_arg(3, static_cast<unsigned>(config_.seed >> 32));
-  compute::set_arg(*k.initialize_particles, 4, mode_buffer);
-  k.initialize_particles->set_arg(5, args);
-  queue_->launch(*k.initialize_particles, linear);
-
-  compute::set_arg(*k.fill, 0, log_weight_);
-  k.fill->set_arg(1, static_cast<unsigned>(count_));
-  k.fill->set_arg(2, 0.0f);
-  queue_->launch(*k.fill, linear);
-
+  const unsigned count = static_cast<unsigned>(count_);
+  queue_->launch(*k.initialize_particles, linear, state_, count, static_cast<unsigned>(config_.seed & 0xffffffffu),
+                 static_cast<unsigned>(config_.seed >> 32), mode_buffer,
+                 model::initial_params(spread, centre_, modes.size()));
+  queue_->launch(*k.fill, linear, log_weight_, count, 0.0f);
   auto fill_pixels = [&](compute::Buffer<float>& values, float value) {
-    compute::set_arg(*k.fill_per_particle, 0, values);
-    k.fill_per_particle->set_arg(1, static_cast<unsigned>(pixels_));
-    k.fill_per_particle->set_arg(2, value);
-    queue_->launch(*k.fill_per_particle, compute::NdRange::linear(count_ * kGroupSize, kGroupSize));
+    queue_->launch(*k.fill_per_particle, compute::NdRange::linear(count_ * kGroupSize, kGroupSize), values,
+                   static_cast<unsigned>(pixels_), value);
   };
   if (config_.occlusion_storage != OcclusionStorage::Off)
     fill_pixels(occlusion_, static_cast<float>(config_.occlusion.initial));
@@ -217,9 +180,8 @@ void DeviceFilter::initialize_modes(std::span<const Pose> modes, const InitialSp
   weighed_in_scratch_ = false;
 }
 
-void DeviceFilter::set_state(const std::vector<reference::ParticleState>& particles,
-                             const std::vector<float>& occlusion, const std::vector<float>& occlusion_time,
-                             const std::vector<double>& log_weights) {
+void DeviceFilter::set_state(const std::vector<model::ParticleState>& particles, const std::vector<float>& occlusion,
+                             const std::vector<float>& occlusion_time, const std::vector<double>& log_weights) {
   if (particles.size() != count_ || log_weights.size() != count_)
     throw InputError("set_state: expected " + std::to_string(count_) + " particles");
   upload_particles(particles);
@@ -228,11 +190,11 @@ void DeviceFilter::set_state(const std::vector<reference::ParticleState>& partic
   if (!occlusion_time.empty()) occlusion_time_.upload(occlusion_time);
 }
 
-std::vector<reference::ParticleState> DeviceFilter::unpack(const compute::Buffer<float>& state) const {
+std::vector<model::ParticleState> DeviceFilter::unpack(const compute::Buffer<float>& state) const {
   return unpack_particles(state.download());
 }
 
-std::vector<reference::ParticleState> DeviceFilter::particles() const {
+std::vector<model::ParticleState> DeviceFilter::particles() const {
   return unpack(state_);
 }
 
@@ -246,84 +208,55 @@ std::vector<float> DeviceFilter::occlusion_times() const {
 }
 
 // Resampling gathers into the scratch buffer and swaps, so the weighed states are left there.
-std::vector<reference::ParticleState> DeviceFilter::weighed_particles() const {
+std::vector<model::ParticleState> DeviceFilter::weighed_particles() const {
   return unpack(weighed_in_scratch_ ? scratch_state_ : state_);
 }
 
-// Timed to the end of the hand-off, so that the per-step split holds for asynchronous paths too.
-void DeviceFilter::render_atlas(StepTimings& timings) {
-  atlas_source_->draw(state_, atlas_, timings);
-  const Stopwatch clock;
-  queue_->finish();
-  timings.handoff_ms += clock.elapsed_ms();
+// The atlas source's device work, timed from its event once the frame is done: nothing waits here.
+compute::EventPtr DeviceFilter::render_atlas(StepTimings& timings) {
+  return atlas_source_->draw(state_, atlas_, timings);
 }
 
 std::vector<float> DeviceFilter::last_atlas() const {
   return atlas_source_->layout().tiles_in_order(atlas_.download(), count_);
 }
 
+// One enqueue sequence per frame and one wait, the estimate's read at its end: the depth goes up
+// first (a blocking write waits for the work enqueued before it), the resampling decision is made
+// on the device (summarize.cl's flag, read by the resampling kernels), and the device times are
+// read from the events once the frame is done.
 Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   const Stopwatch frame_clock;
   Kernels& k = *kernels_;
   Estimate e;
   time_ += dt;
-  // Device timings are read once the frame's work is done: asking an event earlier would make the
-  // host wait after every kernel.
-  compute::EventPtr propagated;
-  if (dt > 0) {
-    const MotionModel& m = config_.motion;
-    const double keep = std::pow(m.damping, dt * m.reference_rate);
-    const double spread = std::sqrt((1.0 - keep * keep) / (1.0 - m.damping * m.damping));
-    const MotionArgs args{static_cast<float>(keep),
-                          static_cast<float>(m.sigma_linear * m.reference_rate * spread),
-                          static_cast<float>(m.sigma_angular * m.reference_rate * spread),
-                          static_cast<float>(dt),
-                          static_cast<float>(centre_.x()),
-                          static_cast<float>(centre_.y()),
-                          static_cast<float>(centre_.z())};
-    compute::set_arg(*k.propagate, 0, state_);
-    k.propagate->set_arg(1, static_cast<unsigned>(count_));
-    k.propagate->set_arg(2, static_cast<unsigned>(config_.seed & 0xffffffffu));
-    k.propagate->set_arg(3, static_cast<unsigned>(config_.seed >> 32));
-    k.propagate->set_arg(4, frame_);
-    k.propagate->set_arg(5, args);
-    propagated = queue_->launch(*k.propagate, compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup));
-  }
-
-  render_atlas(e.timings);
   observed_.upload(depth.data());
+  const unsigned count = static_cast<unsigned>(count_);
+  const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
+  compute::EventPtr propagated;
+  if (dt > 0)
+    propagated = queue_->launch(*k.propagate, linear, state_, count, static_cast<unsigned>(config_.seed & 0xffffffffu),
+                                static_cast<unsigned>(config_.seed >> 32), frame_,
+                                model::motion_params(model::motion_step(config_.motion, dt), centre_));
 
-  const ModelArgs model = model_args(config_);
-  compute::set_arg(*k.weigh, 0, atlas_);
-  compute::set_arg(*k.weigh, 1, observed_);
-  compute::set_arg(*k.weigh, 2, occlusion_);
-  compute::set_arg(*k.weigh, 3, occlusion_time_);
-  compute::set_arg(*k.weigh, 4, log_likelihood_);
-  compute::set_arg(*k.weigh, 5, log_weight_);
-  k.weigh->set_arg(6, static_cast<unsigned>(pixels_));
-  k.weigh->set_arg(7, model);
-  k.weigh->set_arg(8, static_cast<float>(time_));
-  k.weigh->set_arg(9, static_cast<float>(dt));
-  k.weigh->set_arg(10, atlas_source_->layout().kernel_args());
+  const compute::EventPtr rendered = render_atlas(e.timings);
+
   // The occlusion priors for the refinement go to the resampling's scratch, free until it gathers.
-  compute::set_arg(*k.weigh, 11, scratch_occlusion_);
-  k.weigh->set_arg(12, static_cast<unsigned>(config_.refine.enabled));
-  const compute::EventPtr weighed = queue_->launch(*k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize));
-
-  compute::set_arg(*k.summarize, 0, state_);
-  compute::set_arg(*k.summarize, 1, log_weight_);
-  compute::set_arg(*k.summarize, 2, log_likelihood_);
-  compute::set_arg(*k.summarize, 3, weights_);
-  compute::set_arg(*k.summarize, 4, estimate_);
-  k.summarize->set_arg(5, static_cast<unsigned>(count_));
-  k.summarize->set_arg(6, static_cast<float>(centre_.x()));
-  k.summarize->set_arg(7, static_cast<float>(centre_.y()));
-  k.summarize->set_arg(8, static_cast<float>(centre_.z()));
-  const compute::EventPtr summarized = queue_->launch(*k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize));
+  const compute::EventPtr weighed = queue_->launch(
+      *k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize), atlas_, observed_, occlusion_,
+      occlusion_time_, log_likelihood_, log_weight_, static_cast<unsigned>(pixels_), model::model_params(config_),
+      static_cast<float>(time_), static_cast<float>(dt), atlas_source_->layout().kernel_args(), scratch_occlusion_,
+      static_cast<unsigned>(config_.refine.enabled));
+  const compute::EventPtr summarized = queue_->launch(
+      *k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize), state_, log_weight_, log_likelihood_, weights_,
+      estimate_, count, static_cast<float>(centre_.x()), static_cast<float>(centre_.y()),
+      static_cast<float>(centre_.z()), model::float_threshold(config_.resample_kl_threshold));
   const compute::EventPtr refined = config_.refine.enabled ? refine() : nullptr;
+  const std::vector<compute::EventPtr> resampling = resample();
+  const compute::EventPtr shifted = config_.refine.enabled ? shift_particles() : nullptr;
 
   float est[DT_EST_SIZE];
-  estimate_.download(std::span<float>(est, DT_EST_SIZE));
+  estimate_.download(std::span<float>(est, DT_EST_SIZE));  // the frame's one wait
   e.pose = Pose({est[DT_EST_TX], est[DT_EST_TX + 1], est[DT_EST_TX + 2]},
                 Eigen::Quaterniond(est[DT_EST_QW], est[DT_EST_QW + 1], est[DT_EST_QW + 2], est[DT_EST_QW + 3]));
   e.linear_velocity = Eigen::Vector3d(est[DT_EST_VX], est[DT_EST_VX + 1], est[DT_EST_VX + 2]);
@@ -331,16 +264,19 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   e.effective_sample_size = est[DT_EST_ESS];
   e.max_log_likelihood = est[DT_EST_MAX_LL];
   e.mean_log_likelihood = est[DT_EST_MEAN_LL];
-  e.resampled = est[DT_EST_KL] > config_.resample_kl_threshold;
+  e.resampled = est[DT_EST_RESAMPLE] != 0.0f;
   if (config_.refine.enabled)
     for (int r = 0; r < 6; ++r)
       for (int c = 0; c < 6; ++c) e.covariance(r, c) = est[DT_EST_COV + 6 * r + c];
+  // The per-pixel gathers ran only if the device resampled: only then is their target the state.
+  if (e.resampled && config_.occlusion_storage != OcclusionStorage::Off) std::swap(occlusion_, scratch_occlusion_);
+  if (e.resampled && config_.occlusion_storage == OcclusionStorage::PerPixelTime)
+    std::swap(occlusion_time_, scratch_occlusion_time_);
   last_resampled_ = e.resampled;
-  weighed_in_scratch_ = e.resampled;
-  std::vector<compute::EventPtr> resampling;
-  if (e.resampled) resampling = resample();
-  const compute::EventPtr shifted = config_.refine.enabled ? shift_particles() : nullptr;
+  weighed_in_scratch_ = true;
+
   if (propagated) e.timings.propagate_ms = propagated->elapsed_ms();
+  if (rendered) e.timings.render_ms += rendered->elapsed_ms();
   e.timings.weigh_ms = weighed->elapsed_ms();
   e.timings.resample_ms = summarized->elapsed_ms();
   for (const auto& event : resampling) e.timings.resample_ms += event->elapsed_ms();
@@ -350,6 +286,10 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   return e;
 }
 
+// Enqueued every frame; the kernels read the device's decision (estimate_[DT_EST_RESAMPLE]). The
+// state is gathered, or copied without resampling, into the scratch buffer, which becomes the state:
+// the weighed states stay in scratch_state_. The per-pixel state is swapped by update() once it
+// knows the decision.
 std::vector<compute::EventPtr> DeviceFilter::resample() {
   Kernels& k = *kernels_;
   const dt_philox4 words = dt_random_words(config_.seed, 0u, frame_, DT_STREAM_RESAMPLE, 0u);
@@ -357,41 +297,19 @@ std::vector<compute::EventPtr> DeviceFilter::resample() {
   const auto per_particle_group = compute::NdRange::linear(count_ * kGroupSize, kGroupSize);
   const unsigned count = static_cast<unsigned>(count_);
   std::vector<compute::EventPtr> events;
-
-  compute::set_arg(*k.prefix_sum, 0, weights_);
-  compute::set_arg(*k.prefix_sum, 1, cumulative_);
-  k.prefix_sum->set_arg(2, count);
-  events.push_back(queue_->launch(*k.prefix_sum, compute::NdRange::linear(kGroupSize, kGroupSize)));
-
-  compute::set_arg(*k.find_parents, 0, cumulative_);
-  compute::set_arg(*k.find_parents, 1, parents_);
-  k.find_parents->set_arg(2, count);
-  k.find_parents->set_arg(3, dt_uniform01(words.v[0]));
-  events.push_back(queue_->launch(*k.find_parents, linear));
-
-  compute::set_arg(*k.gather_state, 0, state_);
-  compute::set_arg(*k.gather_state, 1, scratch_state_);
-  compute::set_arg(*k.gather_state, 2, parents_);
-  k.gather_state->set_arg(3, count);
-  events.push_back(queue_->launch(*k.gather_state, linear));
+  events.push_back(queue_->launch(*k.prefix_sum, compute::NdRange::linear(kGroupSize, kGroupSize), weights_,
+                                  cumulative_, count, estimate_));
+  events.push_back(
+      queue_->launch(*k.find_parents, linear, cumulative_, parents_, count, dt_uniform01(words.v[0]), estimate_));
+  events.push_back(queue_->launch(*k.gather_state, linear, state_, scratch_state_, parents_, count, estimate_));
   std::swap(state_, scratch_state_);
-
-  auto gather_pixels = [&](compute::Buffer<float>& state, compute::Buffer<float>& scratch) {
-    compute::set_arg(*k.gather_pixels, 0, state);
-    compute::set_arg(*k.gather_pixels, 1, scratch);
-    compute::set_arg(*k.gather_pixels, 2, parents_);
-    k.gather_pixels->set_arg(3, static_cast<unsigned>(pixels_));
-    events.push_back(queue_->launch(*k.gather_pixels, per_particle_group));
-    std::swap(state, scratch);
-  };
-  if (config_.occlusion_storage != OcclusionStorage::Off) gather_pixels(occlusion_, scratch_occlusion_);
+  if (config_.occlusion_storage != OcclusionStorage::Off)
+    events.push_back(queue_->launch(*k.gather_pixels, per_particle_group, occlusion_, scratch_occlusion_, parents_,
+                                    static_cast<unsigned>(pixels_), estimate_));
   if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
-    gather_pixels(occlusion_time_, scratch_occlusion_time_);
-
-  compute::set_arg(*k.fill, 0, log_weight_);
-  k.fill->set_arg(1, count);
-  k.fill->set_arg(2, 0.0f);
-  events.push_back(queue_->launch(*k.fill, linear));
+    events.push_back(queue_->launch(*k.gather_pixels, per_particle_group, occlusion_time_, scratch_occlusion_time_,
+                                    parents_, static_cast<unsigned>(pixels_), estimate_));
+  events.push_back(queue_->launch(*k.fill_when_resampling, linear, log_weight_, count, 0.0f, estimate_));
   return events;
 }
 
@@ -417,8 +335,8 @@ compute::EventPtr DeviceFilter::refine() {
   compute::set_arg(*k.refine, 9, refine_mesh_->triangles);
   compute::set_arg(*k.refine, 10, refine_mesh_->planes);
   k.refine->set_arg(11, refine_mesh_->triangle_count());
-  k.refine->set_arg(12, raster_camera_args(camera_, config_));
-  k.refine->set_arg(13, model_args(config_));
+  k.refine->set_arg(12, model::camera_params(camera_, config_));
+  k.refine->set_arg(13, model::model_params(config_));
   k.refine->set_arg(14, args);
   compute::set_arg(*k.refine, 15, refine_pose_);
   compute::set_arg(*k.refine, 16, refine_tile_);
@@ -427,21 +345,13 @@ compute::EventPtr DeviceFilter::refine() {
   return queue_->launch(*k.refine, compute::NdRange::linear(kGroupSize, kGroupSize));
 }
 
+// resample() left the gathered (or copied) states in state_ and the weighed ones in scratch_state_:
+// the cloud is shifted in place.
 compute::EventPtr DeviceFilter::shift_particles() {
-  Kernels& k = *kernels_;
-  // After resampling the weighed states are in the scratch buffer already: shift in place.
-  compute::set_arg(*k.shift_particles, 0, state_);
-  compute::set_arg(*k.shift_particles, 1, weighed_in_scratch_ ? state_ : scratch_state_);
-  k.shift_particles->set_arg(2, static_cast<unsigned>(count_));
-  compute::set_arg(*k.shift_particles, 3, correction_);
-  k.shift_particles->set_arg(4, static_cast<float>(centre_.x()));
-  k.shift_particles->set_arg(5, static_cast<float>(centre_.y()));
-  k.shift_particles->set_arg(6, static_cast<float>(centre_.z()));
-  const compute::EventPtr event =
-      queue_->launch(*k.shift_particles, compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup));
-  if (!weighed_in_scratch_) std::swap(state_, scratch_state_);
-  weighed_in_scratch_ = true;
-  return event;
+  return queue_->launch(*kernels_->shift_particles,
+                        compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup), state_, state_,
+                        static_cast<unsigned>(count_), correction_, static_cast<float>(centre_.x()),
+                        static_cast<float>(centre_.y()), static_cast<float>(centre_.z()));
 }
 
 std::vector<double> DeviceFilter::last_log_likelihoods() const {

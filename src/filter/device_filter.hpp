@@ -9,9 +9,9 @@
 
 #include "compute/buffer.hpp"
 #include "filter/atlas_source.hpp"
-#include "filter/filter_backend.hpp"
 #include "filter/raster_inputs.hpp"
-#include "reference/particle.hpp"
+#include "model/filter_backend.hpp"
+#include "model/particle.hpp"
 
 namespace depthtrack {
 
@@ -34,7 +34,7 @@ class DeviceFilter final : public FilterBackend {
   // What the last update computed, downloaded for comparison with the reference filter.
   std::vector<double> last_log_likelihoods() const;
   std::vector<int> last_parents() const;
-  std::vector<reference::ParticleState> particles() const;
+  std::vector<model::ParticleState> particles() const;
   // The occlusion probabilities and times, particles x pixels (empty where the mode keeps none):
   // downloaded only when asked, for tests.
   std::vector<float> occlusion_state() const;
@@ -42,25 +42,25 @@ class DeviceFilter final : public FilterBackend {
   // The atlas the last update weighed: particles x pixels depths, tile i = particle i.
   std::vector<float> last_atlas() const;
   // The particles as the last update weighed them (before it resampled).
-  std::vector<reference::ParticleState> weighed_particles() const;
+  std::vector<model::ParticleState> weighed_particles() const;
   // Replaces the whole filter state (for comparing backends from a common state). occlusion and
   // occlusion_time hold particles x pixels values, or are empty where the mode keeps none.
-  void set_state(const std::vector<reference::ParticleState>& particles, const std::vector<float>& occlusion,
+  void set_state(const std::vector<model::ParticleState>& particles, const std::vector<float>& occlusion,
                  const std::vector<float>& occlusion_time, const std::vector<double>& log_weights);
 
  private:
   struct Kernels;
-  void render_atlas(StepTimings& timings);
+  compute::EventPtr render_atlas(StepTimings& timings);
   // The per-particle device memory, checked before anything is allocated.
   size_t checked_particle_count() const;
-  void upload_particles(const std::vector<reference::ParticleState>& particles);
-  std::vector<reference::ParticleState> unpack(const compute::Buffer<float>& state) const;
-  // Enqueues the resampling kernels; their events, for timing.
+  void upload_particles(const std::vector<model::ParticleState>& particles);
+  std::vector<model::ParticleState> unpack(const compute::Buffer<float>& state) const;
+  // Enqueues the resampling kernels, which resample only if the device decided to; their events.
   std::vector<compute::EventPtr> resample();
   // Enqueues the pose refinement (cl/refine.cl); its event.
   compute::EventPtr refine();
-  // Enqueues the shift of the cloud by the refinement's correction, leaving the weighed states in
-  // scratch_state_ (where resampling left them, or copied there); its event.
+  // Enqueues the shift of the cloud by the refinement's correction (after resample(), which left
+  // the weighed states in scratch_state_); its event.
   compute::EventPtr shift_particles();
 
   std::unique_ptr<compute::Queue> queue_;

@@ -6,8 +6,8 @@
 #include "compute/kernel_sources.hpp"
 #include "core/pose_state.hpp"
 #include "dt_state.h"
-#include "filter/model_args.hpp"
-#include "reference/pose_score.hpp"
+#include "model/kernel_params.hpp"
+#include "model/occlusion_chain.hpp"
 
 namespace depthtrack {
 
@@ -56,8 +56,8 @@ std::vector<double> DevicePoseScorer::score(std::span<const Pose> poses, const D
   observed_.upload(depth.data());
   TrackerConfig config = config_;
   config.observation = observation;
-  const ModelArgs model = model_args(config);
-  const float p = static_cast<float>(reference::fresh_occlusion(config_));
+  const dt_model model = model::model_params(config);
+  const float p = static_cast<float>(model::fresh_occlusion(config_));
   std::vector<double> out;
   out.reserve(poses.size());
   std::vector<float> packed(batch_ * DT_STATE_STRIDE), scores(batch_);
@@ -77,14 +77,8 @@ std::vector<double> DevicePoseScorer::score(std::span<const Pose> poses, const D
     }
     states_.upload(packed);
     atlas_source_->draw(states_, atlas_, unused);
-    compute::set_arg(*kernel_, 0, atlas_);
-    compute::set_arg(*kernel_, 1, observed_);
-    compute::set_arg(*kernel_, 2, scores_);
-    kernel_->set_arg(3, static_cast<unsigned>(pixels_));
-    kernel_->set_arg(4, model);
-    kernel_->set_arg(5, p);
-    kernel_->set_arg(6, atlas_source_->layout().kernel_args());
-    queue_.launch(*kernel_, compute::NdRange::linear(batch_ * kGroupSize, kGroupSize));
+    queue_.launch(*kernel_, compute::NdRange::linear(batch_ * kGroupSize, kGroupSize), atlas_, observed_, scores_,
+                  static_cast<unsigned>(pixels_), model, p, atlas_source_->layout().kernel_args());
     scores_.download(std::span<float>(scores.data(), batch_));
     out.insert(out.end(), scores.begin(), scores.begin() + static_cast<std::ptrdiff_t>(n));
   }

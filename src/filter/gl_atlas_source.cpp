@@ -27,7 +27,8 @@ class GlAtlasSource final : public AtlasSource {
 
   const render::AtlasLayout& layout() const override { return renderer_.layout(); }
 
-  void draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas, StepTimings& timings) override {
+  compute::EventPtr draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas,
+                         StepTimings& timings) override {
     Stopwatch clock;
     handoff_->send_poses(states);
     timings.handoff_ms += clock.lap_ms();
@@ -36,6 +37,7 @@ class GlAtlasSource final : public AtlasSource {
     timings.render_ms += clock.lap_ms();
     handoff_->receive_atlas(atlas);
     timings.handoff_ms += clock.lap_ms();
+    return nullptr;
   }
   std::string description() const override { return "GL (" + context_.describe() + "); hand-off: " + handoff_->name(); }
 

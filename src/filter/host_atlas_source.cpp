@@ -3,7 +3,7 @@
 
 #include "core/stopwatch.hpp"
 #include "filter/atlas_source.hpp"
-#include "filter/particle_packing.hpp"
+#include "model/particle_packing.hpp"
 #include "reference/rasterizer.hpp"
 
 namespace depthtrack {
@@ -18,9 +18,10 @@ class HostAtlasSource final : public AtlasSource {
 
   const render::AtlasLayout& layout() const override { return layout_; }
 
-  void draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas, StepTimings& timings) override {
+  compute::EventPtr draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas,
+                         StepTimings& timings) override {
     Stopwatch clock;
-    const std::vector<reference::ParticleState> particles = unpack_particles(states.download());
+    const std::vector<model::ParticleState> particles = unpack_particles(states.download());
     timings.handoff_ms += clock.lap_ms();
     host_.resize(particles.size() * pixels_);
     for (size_t i = 0; i < particles.size(); ++i)
@@ -28,6 +29,7 @@ class HostAtlasSource final : public AtlasSource {
     timings.render_ms += clock.lap_ms();
     atlas.upload(host_);
     timings.handoff_ms += clock.lap_ms();
+    return nullptr;
   }
   std::string description() const override { return "reference rasterizer on the host; hand-off: upload"; }
 

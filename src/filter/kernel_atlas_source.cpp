@@ -5,10 +5,10 @@
 #include <vector>
 
 #include "compute/kernel_sources.hpp"
-#include "core/stopwatch.hpp"
 #include "dt_state.h"
 #include "filter/atlas_source.hpp"
 #include "filter/raster_inputs.hpp"
+#include "model/kernel_params.hpp"
 
 namespace depthtrack {
 
@@ -23,7 +23,7 @@ class KernelAtlasSource final : public AtlasSource {
       : queue_(queue),
         // Particle-major: cl/rasterize.cl writes each tile as one contiguous block.
         layout_(render::AtlasLayout::particle_major(config.particles, camera.width, camera.height)),
-        camera_(raster_camera_args(camera, config)),
+        camera_(model::camera_params(camera, config)),
         program_(queue.build("rasterize.cl", compute::kernel_source("rasterize.cl"),
                              {"DT_GROUP_SIZE=" + std::to_string(kGroupSize)})),
         kernel_(program_->kernel("rasterize")),
@@ -31,23 +31,15 @@ class KernelAtlasSource final : public AtlasSource {
 
   const render::AtlasLayout& layout() const override { return layout_; }
 
-  void draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas, StepTimings& timings) override {
+  // Enqueued on the filter's queue: its event times it (render_ms), nothing waits here.
+  compute::EventPtr draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas, StepTimings&) override {
     const size_t particles = static_cast<size_t>(layout_.tiles_per_page);  // one page of them all
     if (states.size() < particles * DT_STATE_STRIDE || atlas.size() < layout_.floats())
       throw InputError("kernel atlas source: the state or atlas buffer is smaller than " + std::to_string(particles) +
                        " particles need");
-    Stopwatch clock;
-    compute::set_arg(*kernel_, 0, states);
-    compute::set_arg(*kernel_, 1, mesh_.vertices);
-    compute::set_arg(*kernel_, 2, mesh_.triangles);
-    compute::set_arg(*kernel_, 3, mesh_.planes);
-    kernel_->set_arg(4, mesh_.triangle_count());
-    kernel_->set_arg(5, camera_);
-    kernel_->set_arg(6, layout_.kernel_args());
-    compute::set_arg(*kernel_, 7, atlas);  // written as the depths' bits
-    queue_.launch(*kernel_, compute::NdRange::linear(particles * kGroupSize, kGroupSize));
-    queue_.finish();  // so that render_ms is the drawing's time, as for the other sources
-    timings.render_ms += clock.lap_ms();
+    // The atlas is written as the depths' bits.
+    return queue_.launch(*kernel_, compute::NdRange::linear(particles * kGroupSize, kGroupSize), states, mesh_.vertices,
+                         mesh_.triangles, mesh_.planes, mesh_.triangle_count(), camera_, layout_.kernel_args(), atlas);
   }
 
   std::string description() const override {
@@ -57,7 +49,7 @@ class KernelAtlasSource final : public AtlasSource {
  private:
   compute::Queue& queue_;
   render::AtlasLayout layout_;
-  RasterCameraArgs camera_;
+  dt_camera camera_;
   std::unique_ptr<compute::Program> program_;
   std::unique_ptr<compute::Kernel> kernel_;
   MeshBuffers mesh_;

@@ -4,13 +4,6 @@
 
 namespace depthtrack {
 
-RasterCameraArgs raster_camera_args(const Camera& camera, const TrackerConfig& config) {
-  return {static_cast<float>(camera.fx),         static_cast<float>(camera.fy),
-          static_cast<float>(camera.cx),         static_cast<float>(camera.cy),
-          static_cast<float>(config.near_plane), static_cast<float>(config.observation.max_depth),
-          static_cast<unsigned>(camera.width),   static_cast<unsigned>(camera.height)};
-}
-
 MeshBuffers::MeshBuffers(compute::Queue& queue, const Mesh& mesh)
     : vertices(queue, mesh.vertices.size() * 3),
       triangles(queue, mesh.triangles.size() * 3),

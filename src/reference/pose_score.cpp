@@ -2,18 +2,15 @@
 
 #include <cmath>
 
+#include "model/occlusion_chain.hpp"
 #include "reference/observation_model.hpp"
 
 namespace depthtrack::reference {
 
-double fresh_occlusion(const TrackerConfig& config) {
-  return config.occlusion_storage == OcclusionStorage::Off ? 0.0 : config.occlusion.initial;
-}
-
 PoseScore score_pose(const Rasterizer& rasterizer, const TrackerConfig& config, const Pose& pose,
                      const DepthImage& depth, std::span<float> scratch) {
   const PixelBox box = rasterizer.render(pose, scratch);
-  const double p = fresh_occlusion(config);
+  const double p = model::fresh_occlusion(config);
   const int width = rasterizer.camera().width;
   PoseScore s;
   for (int v = box.v0; v < box.v1; ++v) {

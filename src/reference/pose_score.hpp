@@ -9,10 +9,6 @@
 
 namespace depthtrack::reference {
 
-// The occlusion probability a fresh particle's pixels hold: occlusion.initial, or 0 when occlusion
-// modelling is off.
-double fresh_occlusion(const TrackerConfig& config);
-
 struct PoseScore {
   double log_likelihood = 0;  // sum over covered pixels with valid depth of log(mixture / p_bg)
   double magnitude = 0;       // sum of the terms' absolute values (scale for float comparisons)

@@ -3,15 +3,15 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <limits>
 #include <depthtrack/error.hpp>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
 #include "core/stopwatch.hpp"
+#include "model/occlusion_chain.hpp"
 #include "philox.h"
 #include "reference/observation_model.hpp"
-#include "reference/occlusion_chain.hpp"
 #include "reference/pose_mean.hpp"
 #include "reference/pose_score.hpp"
 #include "reference/weights.hpp"
@@ -65,11 +65,8 @@ void ReferenceFilter::initialize(const Pose& pose, const InitialSpread& spread) 
 }
 
 void ReferenceFilter::initialize_modes(std::span<const Pose> modes, const InitialSpread& spread) {
-  for (size_t i = 0; i < particles_.size(); ++i) {
-    float normals[6];
-    dt_normals6(config_.seed, static_cast<dt_u32>(i), 0u, DT_STREAM_INIT, normals);
-    particles_[i] = initial_particle(modes[i % modes.size()], spread, centre_, normals);
-  }
+  for (size_t i = 0; i < particles_.size(); ++i)
+    particles_[i] = model::draw_initial_particle(config_.seed, i, modes, spread, centre_);
   std::fill(log_weights_.begin(), log_weights_.end(), 0.0);
   std::fill(occlusion_.begin(), occlusion_.end(), static_cast<float>(config_.occlusion.initial));
   std::fill(occlusion_time_.begin(), occlusion_time_.end(), 0.0f);
@@ -92,10 +89,11 @@ std::vector<double> ReferenceFilter::score_poses(std::span<const Pose> poses, co
 }
 
 void ReferenceFilter::propagate(double dt) {
+  const model::MotionStep step = model::motion_step(config_.motion, dt);
   for (size_t i = 0; i < particles_.size(); ++i) {
     float normals[6];
     dt_normals6(config_.seed, static_cast<dt_u32>(i), frame_, DT_STREAM_MOTION, normals);
-    propagate_particle(particles_[i], config_.motion, centre_, dt, normals);
+    model::propagate_particle(particles_[i], step, centre_, normals);
   }
 }
 
@@ -110,7 +108,7 @@ double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double
   float* occlusion_time = occlusion_time_.empty() ? nullptr : occlusion_time_.data() + i * pixels;
   if (config_.occlusion_storage == OcclusionStorage::GlobalTime && dt > 0)
     for (size_t k = 0; k < pixels; ++k)
-      occlusion[k] = static_cast<float>(propagate_occlusion(config_.occlusion, occlusion[k], dt));
+      occlusion[k] = static_cast<float>(model::propagate_occlusion(config_.occlusion, occlusion[k], dt));
 
   double log_likelihood = 0;
   magnitude = 0;
@@ -122,7 +120,7 @@ double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double
       if (y_hat <= 0 || !DepthImage::is_valid(static_cast<float>(y))) continue;  // adds 0
       double p = 0;
       if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
-        p = propagate_occlusion(config_.occlusion, occlusion[k], time_ - occlusion_time[k]);
+        p = model::propagate_occlusion(config_.occlusion, occlusion[k], time_ - occlusion_time[k]);
       else if (config_.occlusion_storage == OcclusionStorage::GlobalTime)
         p = occlusion[k];
       const PixelDensities d = pixel_densities(config_.observation, y, y_hat);
@@ -169,7 +167,7 @@ std::vector<double> ReferenceFilter::occlusion_map(size_t i) const {
                         occlusion_.begin() + static_cast<std::ptrdiff_t>((i + 1) * pixels));
   if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
     for (size_t k = 0; k < pixels; ++k)
-      p[k] = propagate_occlusion(config_.occlusion, p[k], time_ - occlusion_time_[i * pixels + k]);
+      p[k] = model::propagate_occlusion(config_.occlusion, p[k], time_ - occlusion_time_[i * pixels + k]);
   for (const PixelPrior& prior : priors_) p[prior.pixel] = prior.p;  // the pixels its update changed
   return p;
 }

@@ -4,12 +4,14 @@
 #include <depthtrack/tracker_config.hpp>
 #include <vector>
 
-#include "filter/filter_backend.hpp"
-#include "reference/particle.hpp"
+#include "model/filter_backend.hpp"
+#include "model/particle.hpp"
 #include "reference/pose_refiner.hpp"
 #include "reference/rasterizer.hpp"
 
 namespace depthtrack::reference {
+
+using model::ParticleState;
 
 class ReferenceFilter final : public FilterBackend {
  public:

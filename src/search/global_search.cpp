@@ -6,8 +6,8 @@
 #include <random>
 
 #include "core/stopwatch.hpp"
+#include "model/particle.hpp"
 #include "philox.h"
-#include "reference/particle.hpp"
 #include "search/rotation_set.hpp"
 
 namespace depthtrack::search {
@@ -68,9 +68,9 @@ std::vector<Candidate> refine_candidates(std::vector<Candidate> candidates, cons
         float n[6];
         dt_normals6(settings.seed, static_cast<dt_u32>(c * per + m), settings.round * 64u + static_cast<dt_u32>(s),
                     kSearchStream, n);
-        poses.push_back(reference::move_about_centre(candidates[c].pose, object.centre,
-                                                     stage.metres * Eigen::Vector3d(n[0], n[1], n[2]),
-                                                     stage.radians * Eigen::Vector3d(n[3], n[4], n[5])));
+        poses.push_back(model::move_about_centre(candidates[c].pose, object.centre,
+                                                 stage.metres * Eigen::Vector3d(n[0], n[1], n[2]),
+                                                 stage.radians * Eigen::Vector3d(n[3], n[4], n[5])));
       }
     std::vector<Candidate> all = scored(std::move(poses), score);
     if (poses_scored) *poses_scored += all.size();

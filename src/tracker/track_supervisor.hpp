@@ -7,10 +7,10 @@
 #include <depthtrack/tracker.hpp>
 #include <vector>
 
-#include "filter/filter_backend.hpp"
-#include "filter/silhouette_shares.hpp"
 #include "reference/rasterizer.hpp"
 #include "search/global_search.hpp"
+#include "tracker/make_filter_backend.hpp"
+#include "tracker/silhouette_shares.hpp"
 
 namespace depthtrack {
 

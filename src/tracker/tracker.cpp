@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include "core/stopwatch.hpp"
-#include "filter/filter_backend.hpp"
-#include "filter/track_supervisor.hpp"
+#include "tracker/make_filter_backend.hpp"
+#include "tracker/track_supervisor.hpp"
 
 namespace depthtrack {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <depthtrack/tracker_config.hpp>
 
-namespace depthtrack::reference {
+namespace depthtrack::model {
 
 inline double occlusion_steady_state(const OcclusionModel& m) {
   return m.p_visible_to_occluded / (1.0 - (m.p_occluded_stays - m.p_visible_to_occluded));
@@ -16,4 +16,10 @@ inline double propagate_occlusion(const OcclusionModel& m, double p, double dt) 
   return p_inf + std::pow(c, dt) * (p - p_inf);
 }
 
-}  // namespace depthtrack::reference
+// The occlusion probability a fresh particle's pixels hold: occlusion.initial, or 0 when occlusion
+// modelling is off.
+inline double fresh_occlusion(const TrackerConfig& config) {
+  return config.occlusion_storage == OcclusionStorage::Off ? 0.0 : config.occlusion.initial;
+}
+
+}  // namespace depthtrack::model

@@ -1,8 +1,10 @@
-#include "reference/particle.hpp"
+#include "model/particle.hpp"
 
 #include <cmath>
 
-namespace depthtrack::reference {
+#include "philox.h"
+
+namespace depthtrack::model {
 
 Pose move_about_centre(const Pose& pose, const Eigen::Vector3d& centre, const Eigen::Vector3d& displacement,
                        const Eigen::Vector3d& rotation_vector) {
@@ -11,18 +13,19 @@ Pose move_about_centre(const Pose& pose, const Eigen::Vector3d& centre, const Ei
   return Pose(centre_in_camera - rotation * centre, rotation);
 }
 
-void propagate_particle(ParticleState& s, const MotionModel& m, const Eigen::Vector3d& centre, double dt,
-                        const float n[6]) {
+MotionStep motion_step(const MotionModel& m, double dt) {
   const double steps = dt * m.reference_rate;  // dt in reference frames
   const double keep = std::pow(m.damping, steps);
   // Stationary variance sigma^2 / (1 - damping^2) per frame; the exact step keeps the share (1 - keep^2).
   const double spread = std::sqrt((1.0 - keep * keep) / (1.0 - m.damping * m.damping));
-  const double linear_std = m.sigma_linear * m.reference_rate * spread;    // m/s
-  const double angular_std = m.sigma_angular * m.reference_rate * spread;  // rad/s
+  return MotionStep{keep, m.sigma_linear * m.reference_rate * spread, m.sigma_angular * m.reference_rate * spread, dt};
+}
+
+void propagate_particle(ParticleState& s, const MotionStep& step, const Eigen::Vector3d& centre, const float n[6]) {
   const Eigen::Vector3d w_lin(n[0], n[1], n[2]), w_ang(n[3], n[4], n[5]);
-  s.linear_velocity = keep * s.linear_velocity + linear_std * w_lin;
-  s.angular_velocity = keep * s.angular_velocity + angular_std * w_ang;
-  s.pose = move_about_centre(s.pose, centre, s.linear_velocity * dt, s.angular_velocity * dt);
+  s.linear_velocity = step.keep * s.linear_velocity + step.linear_std * w_lin;
+  s.angular_velocity = step.keep * s.angular_velocity + step.angular_std * w_ang;
+  s.pose = move_about_centre(s.pose, centre, s.linear_velocity * step.dt, s.angular_velocity * step.dt);
 }
 
 ParticleState initial_particle(const Pose& pose, const InitialSpread& spread, const Eigen::Vector3d& centre,
@@ -33,4 +36,11 @@ ParticleState initial_particle(const Pose& pose, const InitialSpread& spread, co
   return s;
 }
 
-}  // namespace depthtrack::reference
+ParticleState draw_initial_particle(std::uint64_t seed, size_t index, std::span<const Pose> modes,
+                                    const InitialSpread& spread, const Eigen::Vector3d& centre) {
+  float normals[6];
+  dt_normals6(seed, static_cast<dt_u32>(index), 0u, DT_STREAM_INIT, normals);
+  return initial_particle(modes[index % modes.size()], spread, centre, normals);
+}
+
+}  // namespace depthtrack::model

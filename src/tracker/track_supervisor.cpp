@@ -1,4 +1,4 @@
-#include "filter/track_supervisor.hpp"
+#include "tracker/track_supervisor.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "filter/silhouette_shares.hpp"
+#include "tracker/silhouette_shares.hpp"
 
 #include "reference/observation_model.hpp"
 

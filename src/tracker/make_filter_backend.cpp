@@ -1,9 +1,10 @@
+#include "tracker/make_filter_backend.hpp"
+
 #include <cstdlib>
 #include <depthtrack/error.hpp>
 
 #include "compute/queue.hpp"
 #include "filter/device_filter.hpp"
-#include "filter/filter_backend.hpp"
 #include "reference/reference_filter.hpp"
 
 namespace depthtrack {

@@ -4,15 +4,15 @@
 
 #include "core/pose_state.hpp"
 #include "dt_state.h"
-#include "reference/particle.hpp"
+#include "model/particle.hpp"
 
 namespace depthtrack {
 
-inline std::vector<float> pack_particles(const std::vector<reference::ParticleState>& states) {
+inline std::vector<float> pack_particles(const std::vector<model::ParticleState>& states) {
   std::vector<float> out(states.size() * DT_STATE_STRIDE, 0.0f);
   for (size_t i = 0; i < states.size(); ++i) {
     float* p = out.data() + i * DT_STATE_STRIDE;
-    const reference::ParticleState& s = states[i];
+    const model::ParticleState& s = states[i];
     write_pose(s.pose, p);
     for (int k = 0; k < 3; ++k) {
       p[DT_VX + k] = static_cast<float>(s.linear_velocity[k]);
@@ -22,8 +22,8 @@ inline std::vector<float> pack_particles(const std::vector<reference::ParticleSt
   return out;
 }
 
-inline std::vector<reference::ParticleState> unpack_particles(const std::vector<float>& packed) {
-  std::vector<reference::ParticleState> out(packed.size() / DT_STATE_STRIDE);
+inline std::vector<model::ParticleState> unpack_particles(const std::vector<float>& packed) {
+  std::vector<model::ParticleState> out(packed.size() / DT_STATE_STRIDE);
   for (size_t i = 0; i < out.size(); ++i) {
     const float* p = packed.data() + i * DT_STATE_STRIDE;
     out[i].pose = read_pose(p);

@@ -1,6 +1,8 @@
 #pragma once
-// What the Tracker asks of an implementation of the particle filter. The reference filter is one;
-// the compute-layer filter (OpenCL, CUDA) is another. Inputs are already at working resolution.
+// What the Tracker asks of an implementation of the particle filter. The reference filter
+// (src/reference) is one; the compute-layer filter (src/filter: OpenCL, CUDA) is another. It lives in
+// the model layer, which both depend on and which depends on nothing but core. Inputs are already at
+// working resolution.
 #include <depthtrack/camera.hpp>
 #include <depthtrack/depth_image.hpp>
 #include <depthtrack/mesh.hpp>
@@ -28,9 +30,5 @@ class FilterBackend {
   virtual Estimate update(const DepthImage& depth, double dt) = 0;
   virtual std::string description() const = 0;
 };
-
-// The backend a TrackerConfig::backend string names; InputError listing the names otherwise.
-std::unique_ptr<FilterBackend> make_filter_backend(const Mesh& mesh, const Camera& working_camera,
-                                                   const TrackerConfig& config);
 
 }  // namespace depthtrack

@@ -1,0 +1,46 @@
+/* The parameters kernels take by value, one struct per concept, compiled by the kernels (OpenCL C,
+ * CUDA) and by the host, which builds each once from TrackerConfig (src/model/kernel_params.hpp,
+ * where static_asserts pin sizes and offsets). Only 32-bit members, so every compiler lays them out
+ * alike. The atlas layout is dt_atlas.h's dt_atlas_layout. */
+#ifndef DT_PARAMS_H
+#define DT_PARAMS_H
+#include "dt_prelude.h"
+
+/* The per-pixel observation model and the occlusion chain (MODEL.md), for dt_model.h. */
+typedef struct {
+  float sigma_constant, sigma_quadratic; /* sigma(y) = c + q y^2 */
+  float tail_density;                    /* w / D */
+  float keep;                            /* 1 - w */
+  float lambda;                          /* occluder rate */
+  float log_c;                           /* log(a - b) of the occlusion chain */
+  float p_inf;                           /* its fixed point b / (1 - (a - b)) */
+} dt_model;
+
+/* One frame's motion step (propagate.cl): the constants of model::MotionStep. */
+typedef struct {
+  float keep;                         /* damping^(dt * rate) */
+  float linear_std;                   /* m/s added per unit normal */
+  float angular_std;                  /* rad/s added per unit normal */
+  float dt;                           /* seconds */
+  float centre_x, centre_y, centre_z; /* the mesh's centre, object frame */
+} dt_motion;
+
+/* The initial draw (initialize.cl): the spread, the mesh's centre (object frame), and how many
+ * poses the cloud spreads around. */
+typedef struct {
+  float metres, radians;
+  float centre_x, centre_y, centre_z;
+  dt_u32 mode_count;
+} dt_initial;
+
+/* The working camera and clip range the rasterizer draws with (rasterize.cl). */
+typedef struct {
+  float fx, fy, cx, cy, near, far;
+  dt_u32 width, height;
+} dt_camera;
+
+/* How occlusion is stored, the value of the DT_OCCLUSION compile-time definition. */
+#define DT_PER_PIXEL_TIME 0
+#define DT_GLOBAL_TIME 1
+#define DT_OCCLUSION_OFF 2
+#endif

@@ -1,0 +1,63 @@
+#include "model/kernel_params.hpp"
+
+#include <cmath>
+
+#include "model/occlusion_chain.hpp"
+
+namespace depthtrack::model {
+
+dt_model model_params(const TrackerConfig& config) {
+  const ObservationModel& o = config.observation;
+  const OcclusionModel& oc = config.occlusion;
+  return dt_model{static_cast<float>(o.sigma_constant),
+                  static_cast<float>(o.sigma_quadratic),
+                  static_cast<float>(o.tail_weight / o.max_depth),
+                  static_cast<float>(1.0 - o.tail_weight),
+                  static_cast<float>(o.occluder_rate),
+                  static_cast<float>(std::log(oc.p_occluded_stays - oc.p_visible_to_occluded)),
+                  static_cast<float>(occlusion_steady_state(oc))};
+}
+
+dt_motion motion_params(const MotionStep& step, const Eigen::Vector3d& centre) {
+  return dt_motion{static_cast<float>(step.keep),        static_cast<float>(step.linear_std),
+                   static_cast<float>(step.angular_std), static_cast<float>(step.dt),
+                   static_cast<float>(centre.x()),       static_cast<float>(centre.y()),
+                   static_cast<float>(centre.z())};
+}
+
+dt_initial initial_params(const InitialSpread& spread, const Eigen::Vector3d& centre, size_t mode_count) {
+  return dt_initial{static_cast<float>(spread.metres), static_cast<float>(spread.radians),
+                    static_cast<float>(centre.x()),    static_cast<float>(centre.y()),
+                    static_cast<float>(centre.z()),    static_cast<dt_u32>(mode_count)};
+}
+
+dt_camera camera_params(const Camera& camera, const TrackerConfig& config) {
+  return dt_camera{static_cast<float>(camera.fx),         static_cast<float>(camera.fy),
+                   static_cast<float>(camera.cx),         static_cast<float>(camera.cy),
+                   static_cast<float>(config.near_plane), static_cast<float>(config.observation.max_depth),
+                   static_cast<dt_u32>(camera.width),     static_cast<dt_u32>(camera.height)};
+}
+
+std::string occlusion_definition(OcclusionStorage storage) {
+  int code = DT_OCCLUSION_OFF;
+  switch (storage) {
+    case OcclusionStorage::PerPixelTime:
+      code = DT_PER_PIXEL_TIME;
+      break;
+    case OcclusionStorage::GlobalTime:
+      code = DT_GLOBAL_TIME;
+      break;
+    case OcclusionStorage::Off:
+      code = DT_OCCLUSION_OFF;
+      break;
+  }
+  return "DT_OCCLUSION=" + std::to_string(code);
+}
+
+float float_threshold(double threshold) {
+  float f = static_cast<float>(threshold);
+  if (static_cast<double>(f) > threshold) f = std::nextafter(f, -INFINITY);
+  return f;
+}
+
+}  // namespace depthtrack::model

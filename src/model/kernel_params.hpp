@@ -1,0 +1,37 @@
+#pragma once
+// The kernels' by-value parameters (cl/dt_params.h), each built from the configuration by one
+// function here, for the device filter, the kernel rasterizer and the pose scorer alike.
+#include <cstddef>
+#include <depthtrack/camera.hpp>
+#include <depthtrack/tracker.hpp>
+#include <depthtrack/tracker_config.hpp>
+#include <string>
+
+#include "dt_params.h"
+#include "model/particle.hpp"
+
+namespace depthtrack::model {
+
+// The host's copies must be laid out as the kernels read them.
+static_assert(sizeof(float) == 4 && sizeof(dt_u32) == 4);
+static_assert(sizeof(dt_model) == 28 && offsetof(dt_model, keep) == 12 && offsetof(dt_model, p_inf) == 24);
+static_assert(sizeof(dt_motion) == 28 && offsetof(dt_motion, dt) == 12 && offsetof(dt_motion, centre_z) == 24);
+static_assert(sizeof(dt_initial) == 24 && offsetof(dt_initial, centre_x) == 8 &&
+              offsetof(dt_initial, mode_count) == 20);
+static_assert(sizeof(dt_camera) == 32 && offsetof(dt_camera, far) == 20 && offsetof(dt_camera, height) == 28);
+
+// Observation model and occlusion chain of config.
+dt_model model_params(const TrackerConfig& config);
+// One frame's motion step about the mesh's centre (object frame).
+dt_motion motion_params(const MotionStep& step, const Eigen::Vector3d& centre);
+// The initial draw around mode_count poses.
+dt_initial initial_params(const InitialSpread& spread, const Eigen::Vector3d& centre, size_t mode_count);
+// The working camera with the configuration's near plane and the model's far limit.
+dt_camera camera_params(const Camera& camera, const TrackerConfig& config);
+// The kernels' DT_OCCLUSION definition for the storage mode, "DT_OCCLUSION=<DT_PER_PIXEL_TIME...>".
+std::string occlusion_definition(OcclusionStorage storage);
+// The largest float not above threshold: a float x exceeds it exactly when x exceeds threshold, so a
+// float comparison on the device decides as the double comparison on the host.
+float float_threshold(double threshold);
+
+}  // namespace depthtrack::model
