@@ -14,6 +14,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "io/isolated_call.hpp"
 #include "io/mesh_import.hpp"
@@ -193,7 +194,10 @@ std::chrono::milliseconds mesh_import_time_limit(uintmax_t file_bytes) {
   return std::chrono::milliseconds(20'000 + static_cast<long long>(file_bytes / 500));
 }
 
-Mesh load_mesh(const std::filesystem::path& path, double unit_scale, std::chrono::milliseconds time_limit) {
+namespace {
+
+// What both entry points check before assimp sees the file.
+std::string checked_mesh_name(const std::filesystem::path& path, double unit_scale) {
   const std::string name = "mesh '" + path.string() + "'";
   if (!std::isfinite(unit_scale) || unit_scale <= 0)
     throw InputError(name + ": unit_scale must be finite and positive, got " + std::to_string(unit_scale));
@@ -201,15 +205,30 @@ Mesh load_mesh(const std::filesystem::path& path, double unit_scale, std::chrono
   if (!std::filesystem::exists(path, error)) throw InputError("mesh file '" + path.string() + "' does not exist");
   if (!std::filesystem::is_regular_file(path, error))
     throw InputError("mesh file '" + path.string() + "' is not a file");
-
   check_ply_header(path, name);
+  return name;
+}
+
+Mesh welded_and_clean(Mesh mesh, const std::string& name) {
+  weld(mesh, name);
+  mesh.validate_and_clean(name);
+  return mesh;
+}
+
+}  // namespace
+
+Mesh load_mesh(const std::filesystem::path& path, double unit_scale, std::chrono::milliseconds time_limit) {
+  const std::string name = checked_mesh_name(path, unit_scale);
   // assimp crashes, aborts or loops on some malformed files (the fuzzer finds many): it runs in a
   // child process, so that any of those becomes an InputError naming the file.
   Mesh mesh = deserialize(
       io::call_isolated([&] { return serialize(import_with_assimp(path, unit_scale, name)); }, time_limit, name), name);
-  weld(mesh, name);
-  mesh.validate_and_clean(name);
-  return mesh;
+  return welded_and_clean(std::move(mesh), name);
+}
+
+Mesh load_mesh_unguarded(const std::filesystem::path& path, double unit_scale) {
+  const std::string name = checked_mesh_name(path, unit_scale);
+  return welded_and_clean(import_with_assimp(path, unit_scale, name), name);
 }
 
 Mesh Mesh::load(const std::filesystem::path& path, double unit_scale) {
