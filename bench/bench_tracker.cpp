@@ -31,8 +31,14 @@ struct Case {
   int width, height, particles;
 };
 
-void run(const Mesh& mesh, const std::string& mesh_name, const std::string& backend, const std::string& renderer,
-         const Refinement& refine, const Case& c, int frames) {
+// The reference filter and its threaded form (cpu, cpu:N) run on the host: no renderer, the CPU's name.
+bool host_backend(const std::string& backend) {
+  return backend == "reference" || backend == "cpu" || backend.rfind("cpu:", 0) == 0;
+}
+
+// Prints the case's rows; returns its median frame time (ms).
+double run(const Mesh& mesh, const std::string& mesh_name, const std::string& backend, const std::string& renderer,
+           const Refinement& refine, const Case& c, int frames) {
   SynthConfig synth;
   synth.frames = frames;
   synth.occluder_fraction = 0.3;
@@ -66,11 +72,11 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
     total.push_back(e.timings.total_ms);
   }
   const std::string device = tracker.backend_description();
-  const std::string test = (backend == "reference" ? "" : renderer + "_") + mesh_name + "_" + std::to_string(c.width) +
+  const std::string test = (host_backend(backend) ? "" : renderer + "_") + mesh_name + "_" + std::to_string(c.width) +
                            "x" + std::to_string(c.height) + "_" + std::to_string(c.particles) + "p" +
                            (refine.enabled ? "_refine" + std::to_string(refine.iterations) : "_norefine");
-  const std::string platform = backend == "reference" ? "cpu" : backend;
-  const std::string name = backend == "reference" ? bench::cpu_name() : device;
+  const std::string platform = host_backend(backend) ? "cpu" : backend;
+  const std::string name = host_backend(backend) ? bench::cpu_name() : device;
   for (const auto& [metric, samples] : {std::pair{"propagate", &propagate},
                                         {"render", &render},
                                         {"handoff", &handoff},
@@ -88,6 +94,7 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
   bench::print_row({backend, platform, name, "-", test, "frames_per_second", "Hz", 1000.0 / bench::median(total)});
   bench::print_row({backend, platform, name, "-", test, "startup_ms", "ms", startup_ms});
   bench::print_row({backend, platform, name, "-", test, "startup_host_peak", "MiB", startup_peak_mib});
+  return bench::median(total);
 }
 
 const char* const kUsage =
@@ -97,7 +104,8 @@ const char* const kUsage =
     "weigh / resample, start-up (construction + initialize) with its peak host memory, and the off-screen start\n"
     "(one particle 10,000 km to the side, 5 frames); prints CSV rows\n"
     "backend,platform,device,driver,test,metric,unit,value.\n"
-    "  --backend NAME         reference (default), opencl, opencl:pocl, cuda, ... (`depthtrack info`)\n"
+    "  --backend NAME         reference (default), cpu, cpu:N, opencl, opencl:pocl, cuda, ... (`depthtrack info`);\n"
+    "                         cpu and cpu:N also time the reference on each case: speedup_over_reference\n"
     "  --renderer NAME        atlas renderer of device backends: kernel (default), gl, cpu\n"
     "  --particles N[,N...]   particle counts (default 200)\n"
     "  --resolution WxH[,...] working resolutions (default 80x60)\n"
@@ -137,8 +145,8 @@ void run_global(const Mesh& mesh, const std::string& mesh_name, const std::strin
     Tracker tracker(mesh, synth.camera, config);
     const Estimate e = tracker.initialize_global(f.depth, f.timestamp, hint);
     const std::string test = std::string("global_init_") + start + "_" + mesh_name + "_80x60";
-    const std::string platform = backend == "reference" ? "cpu" : backend;
-    const std::string name = backend == "reference" ? bench::cpu_name() : tracker.backend_description();
+    const std::string platform = host_backend(backend) ? "cpu" : backend;
+    const std::string name = host_backend(backend) ? bench::cpu_name() : tracker.backend_description();
     bench::print_row({backend, platform, name, "-", test, "search_ms", "ms", e.timings.search_ms});
     bench::print_row(
         {backend, platform, name, "-", test, "poses_scored", "poses", static_cast<double>(e.search_poses)});
@@ -177,10 +185,10 @@ void run_offscreen(const Mesh& mesh, const std::string& mesh_name, const std::st
     slowest_ms = std::max(slowest_ms, frame.elapsed_ms());
   }
   const double run_ms = run.elapsed_ms();
-  const std::string test = (backend == "reference" ? "" : renderer + "_") + mesh_name + "_offscreen_start_80x60_1p_" +
+  const std::string test = (host_backend(backend) ? "" : renderer + "_") + mesh_name + "_offscreen_start_80x60_1p_" +
                            std::to_string(frames) + "frames";
-  const std::string platform = backend == "reference" ? "cpu" : backend;
-  const std::string name = backend == "reference" ? bench::cpu_name() : tracker.backend_description();
+  const std::string platform = host_backend(backend) ? "cpu" : backend;
+  const std::string name = host_backend(backend) ? bench::cpu_name() : tracker.backend_description();
   bench::print_row({backend, platform, name, "-", test, "run_ms", "ms", run_ms});
   bench::print_row({backend, platform, name, "-", test, "slowest_frame_ms", "ms", slowest_ms});
 }
@@ -244,7 +252,16 @@ int main(int argc, char** argv) {
       // A case the device cannot run (too many particles for its memory) gets a status row, and
       // the others still run.
       try {
-        run(mesh, name, backend, renderer, refine, c, std::max(frames, 4));
+        const double ms = run(mesh, name, backend, renderer, refine, c, std::max(frames, 4));
+        // The threaded CPU path is worth its name only against the sequential reference, measured
+        // here in the same run on the same case: the speedup row.
+        if (backend != "reference" && host_backend(backend)) {
+          const double reference_ms = run(mesh, name, "reference", renderer, refine, c, std::max(frames, 4));
+          const std::string test = name + "_" + std::to_string(c.width) + "x" + std::to_string(c.height) + "_" +
+                                   std::to_string(c.particles) + "p";
+          bench::print_row(
+              {backend, "cpu", bench::cpu_name(), "-", test, "speedup_over_reference", "x", reference_ms / ms});
+        }
       } catch (const Error& e) {
         ++failed;
         const std::string test = renderer + "_" + name + "_" + std::to_string(c.width) + "x" +

@@ -9,7 +9,8 @@ namespace depthtrack::cli {
 
 void TrackerOptions::add_to(CLI::App& command) {
   command.add_option("--backend", config.backend,
-                     "Filter implementation: reference (sequential CPU), opencl (best OpenCL device), opencl:pocl, "
+                     "Filter implementation: reference (sequential CPU), cpu (the reference on every core; cpu:N: N "
+                     "threads; the same results), opencl (best OpenCL device), opencl:pocl, "
                      "opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n> (`depthtrack info` lists devices); "
                      "default: $DEPTHTRACK_DEVICE, else reference");
   renderer_option =
@@ -46,12 +47,13 @@ TrackerConfig TrackerOptions::resolve() const {
   if (refine != "on" && refine != "off") throw InputError("--refine '" + refine + "' is not on or off");
   c.refine.enabled = refine == "on";
   c.validate();
-  // The reference filter always draws with its own rasterizer: say so rather than ignore the choice.
-  if (renderer_option && renderer_option->count() > 0 && c.resolved_backend() == "reference")
+  // The reference filter (cpu: on threads) always draws with its own rasterizer: say so rather than ignore it.
+  const std::string backend = c.resolved_backend();
+  if (renderer_option && renderer_option->count() > 0 && (backend == "reference" || backend.rfind("cpu", 0) == 0))
     std::fprintf(stderr,
-                 "depthtrack: warning: --renderer %s has no effect with the reference backend (it draws with its own "
+                 "depthtrack: warning: --renderer %s has no effect with the %s backend (it draws with its own "
                  "rasterizer); it applies to the opencl and cuda backends\n",
-                 c.renderer.c_str());
+                 c.renderer.c_str(), backend == "reference" ? "reference" : "cpu");
   return c;
 }
 
