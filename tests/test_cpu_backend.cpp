@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <depthtrack/error.hpp>
 #include <depthtrack/synth.hpp>
+#include <depthtrack/tracker.hpp>
 #include <stdexcept>
 #include <vector>
 
@@ -140,5 +141,30 @@ TEST_CASE("the cpu backend is named cpu or cpu:N and refuses a bad thread count"
     } catch (const InputError& e) {
       CHECK_THAT(e.what(), Contains(bad) && Contains("thread count"));
     }
+  }
+}
+
+TEST_CASE("a Tracker on cpu:2 reports what one on the reference reports, status and confidence included", "[cpu]") {
+  const Mesh mesh = builtin_demo_mesh();
+  SynthConfig synth;
+  synth.frames = 5;
+  synth.occluder_fraction = 0.3;
+  synth.camera = Camera::make(160, 120, 131.25, 131.25, 79.875, 59.875);
+  const auto frames = test::synthesize(mesh, synth);
+  TrackerConfig config;
+  config.particles = 40;
+  Tracker sequential(mesh, synth.camera, config);
+  config.backend = "cpu:2";
+  Tracker threaded(mesh, synth.camera, config);
+  CHECK_THAT(threaded.backend_description(), Contains("2 threads"));
+  sequential.initialize(frames[0].ground_truth);
+  threaded.initialize(frames[0].ground_truth);
+  for (const SynthFrame& f : frames) {
+    const Estimate a = sequential.update(f.depth, f.timestamp);
+    const Estimate b = threaded.update(f.depth, f.timestamp);
+    CHECK(a.pose.translation == b.pose.translation);
+    CHECK(a.pose.rotation.coeffs() == b.pose.rotation.coeffs());
+    CHECK(a.confidence == b.confidence);
+    CHECK(a.status == b.status);
   }
 }
