@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <assimp/Importer.hpp>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -15,6 +16,7 @@
 #include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "io/isolated_call.hpp"
 #include "io/mesh_import.hpp"
@@ -103,6 +105,38 @@ void check_ply_header(const std::filesystem::path& path, const std::string& name
   const size_t end = head.find("end_header");
   if (end == std::string::npos || head.find_first_not_of(" \t\r\n", end + 10) < head.find('\n', end))
     throw InputError(name + ": its PLY header has no 'end_header' line within the first MiB");
+}
+
+// assimp's OFF reader reserves what the header declares before reading a face: a 60-byte file that
+// claims a billion faces makes it allocate and touch gigabytes (the fuzzer's out-of-memory and
+// time-outs). Every vertex takes at least 6 bytes ("0 0 0\n") and every face 4 ("1 0\n"), so counts
+// the file's size cannot hold are refused here, at once. Files whose header this does not
+// recognize are left to assimp.
+void check_off_counts(const std::filesystem::path& path, const std::string& name) {
+  if (lower_extension(path) != ".off") return;
+  std::ifstream in(path, std::ios::binary);
+  std::vector<std::string> tokens;  // the keyword and the three counts, comments skipped
+  for (std::string line; tokens.size() < 4 && std::getline(in, line);) {
+    std::istringstream words(line.substr(0, line.find('#')));
+    for (std::string word; tokens.size() < 4 && words >> word;) tokens.push_back(word);
+  }
+  if (tokens.size() < 3 || tokens[0].size() < 3 || tokens[0].compare(tokens[0].size() - 3, 3, "OFF") != 0) return;
+  // Leading digits, as assimp reads a count (it stops at the first other character); saturated.
+  uint64_t counts[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    const std::string& t = tokens[static_cast<size_t>(k) + 1];
+    if (t.empty() || !std::isdigit(static_cast<unsigned char>(t[0]))) return;
+    for (size_t i = 0; i < t.size() && std::isdigit(static_cast<unsigned char>(t[i])); ++i)
+      counts[k] = std::min<uint64_t>(counts[k] * 10 + static_cast<uint64_t>(t[i] - '0'), uint64_t{1} << 60);
+  }
+  std::error_code error;
+  const uintmax_t bytes = std::filesystem::file_size(path, error);
+  if (error) return;
+  const long double needed = 6.0L * counts[0] + 4.0L * counts[1];
+  if (needed > static_cast<long double>(bytes))
+    throw InputError(name + ": its OFF header declares " + std::to_string(counts[0]) + " vertices and " +
+                     std::to_string(counts[1]) + " faces, more than its " + std::to_string(bytes) +
+                     " bytes can hold (the file is cut short or malformed)");
 }
 
 // The OBJ text with every face corner reduced to its position index ("f 1/1/1 2/2/7" -> "f 1 2").
@@ -206,6 +240,7 @@ std::string checked_mesh_name(const std::filesystem::path& path, double unit_sca
   if (!std::filesystem::is_regular_file(path, error))
     throw InputError("mesh file '" + path.string() + "' is not a file");
   check_ply_header(path, name);
+  check_off_counts(path, name);
   return name;
 }
 
