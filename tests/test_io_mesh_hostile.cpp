@@ -154,3 +154,13 @@ TEST_CASE("an OFF file whose header declares more vertices or faces than its byt
   CHECK(mesh.vertices.size() == 3);
   CHECK(mesh.triangles.size() == 1);
 }
+
+TEST_CASE("a PLY header whose end_header does not open a line is refused at once", "[io][robustness]") {
+  // assimp's reader looked for the line forever (the fuzzer's 33-byte time-out).
+  const auto path =
+      write_bytes(depthtrack::test::temp_dir("mesh_ply_end") / "inline.ply", "ply\nformat ascii 1.0\npfend_header\n");
+  const auto start = std::chrono::steady_clock::now();
+  CHECK_THAT(input_error_of([&] { depthtrack::Mesh::load(path); }),
+             Contains("inline.ply") && Contains("no 'end_header' line"));
+  CHECK(seconds_since(start) < 5);
+}

@@ -102,7 +102,9 @@ void check_ply_header(const std::filesystem::path& path, const std::string& name
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<size_t>(in.gcount()));
   if (head.rfind("ply", 0) != 0) throw InputError(name + " is not a PLY file: it does not start with 'ply'");
-  const size_t end = head.find("end_header");
+  // The keyword must open a line of its own ("pfend_header" made assimp loop as well).
+  const size_t line = head.find("\nend_header");
+  const size_t end = line == std::string::npos ? line : line + 1;
   if (end == std::string::npos || head.find_first_not_of(" \t\r\n", end + 10) < head.find('\n', end))
     throw InputError(name + ": its PLY header has no 'end_header' line within the first MiB");
 }
