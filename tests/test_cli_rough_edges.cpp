@@ -23,7 +23,7 @@ TEST_CASE("an unknown backend is named once, without a stray quote", "[cli][erro
   const auto [status, output] = test::run_cli(track_args(dir) + " --backend quantum", dir / "log.txt");
   INFO(output);
   CHECK(status == 1);
-  CHECK(contains(output, "unknown backend 'quantum'; available: reference, opencl"));
+  CHECK(contains(output, "unknown backend 'quantum'; available: reference, cpu, cpu:<threads>, opencl"));
   CHECK(!contains(output, "''"));
 }
 

@@ -133,3 +133,34 @@ TEST_CASE("Mesh::load of the fuzzer's reproducers in ../shared/robustness gives 
     CHECK(seconds_since(start) < 5);
   }
 }
+
+TEST_CASE("an OFF file whose header declares more vertices or faces than its bytes hold is refused at once",
+          "[io][robustness]") {
+  // assimp's OFF reader reserved and touched gigabytes for these (the fuzzer's out-of-memory and time-outs).
+  const auto dir = depthtrack::test::temp_dir("mesh_off_counts");
+  const std::string body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const auto faces = write_bytes(dir / "faces.off", "OFF\n3 999999990 0\n" + body);
+  const auto vertices = write_bytes(dir / "vertices.off", "OFF\n# comment\n499999999 1 0\n" + body);
+  const auto digits = write_bytes(dir / "digits.off", "OFF\n3 9999999999[9OFF 0\n" + body);  // read as assimp does
+  const auto start = std::chrono::steady_clock::now();
+  CHECK_THAT(input_error_of([&] { depthtrack::Mesh::load(faces); }),
+             Contains("faces.off") && Contains("declares 3 vertices and 999999990 faces") && Contains("bytes"));
+  CHECK_THAT(input_error_of([&] { depthtrack::Mesh::load(vertices); }), Contains("declares 499999999 vertices"));
+  CHECK_THAT(input_error_of([&] { depthtrack::Mesh::load(digits); }), Contains("9999999999 faces"));
+  CHECK(seconds_since(start) < 5);
+  // The same body with its true counts loads: one triangle.
+  const auto good = write_bytes(dir / "good.off", "OFF\n3 1 0\n" + body);
+  const depthtrack::Mesh mesh = depthtrack::Mesh::load(good);
+  CHECK(mesh.vertices.size() == 3);
+  CHECK(mesh.triangles.size() == 1);
+}
+
+TEST_CASE("a PLY header whose end_header does not open a line is refused at once", "[io][robustness]") {
+  // assimp's reader looked for the line forever (the fuzzer's 33-byte time-out).
+  const auto path =
+      write_bytes(depthtrack::test::temp_dir("mesh_ply_end") / "inline.ply", "ply\nformat ascii 1.0\npfend_header\n");
+  const auto start = std::chrono::steady_clock::now();
+  CHECK_THAT(input_error_of([&] { depthtrack::Mesh::load(path); }),
+             Contains("inline.ply") && Contains("no 'end_header' line"));
+  CHECK(seconds_since(start) < 5);
+}

@@ -11,6 +11,7 @@
 #include "cli/commands.hpp"
 #include "compute/format_bytes.hpp"
 #include "compute/queue.hpp"
+#include "core/thread_pool.hpp"
 #include "interop/atlas_handoff.hpp"
 #include "render/atlas_renderer.hpp"
 #include "render/gl_context.hpp"
@@ -148,6 +149,8 @@ void print_gl() {
 constexpr std::pair<const char*, const char*> kBackends[] = {{"opencl", "OpenCL"}, {"cuda", "CUDA"}};
 
 void print_info(bool extensions) {
+  std::printf("CPU: --backend cpu runs the reference filter on %d threads (cpu:N for N; reference: one)\n",
+              hardware_threads());
   const auto devices = compute::list_devices();
   for (const auto& [backend, title] : kBackends) {
     std::vector<const compute::DeviceInfo*> mine;
@@ -164,6 +167,7 @@ void print_info(bool extensions) {
 void print_info_json() {
   nlohmann::ordered_json root;
   root["version"] = DEPTHTRACK_VERSION;
+  root["cpu"] = {{"backend", "cpu"}, {"threads", hardware_threads()}};
   const auto devices = compute::list_devices();
   for (const auto& [backend, title] : kBackends) {
     nlohmann::ordered_json list = nlohmann::json::array();

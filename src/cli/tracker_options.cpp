@@ -14,11 +14,12 @@ void TrackerOptions::add_to(CLI::App& command) {
                   "JSON file of tracker parameters, any subset (`depthtrack config --dump` prints every one with "
                   "its default); the flags below override it")
       ->check(CLI::ExistingFile);
-  backend_option =
-      command.add_option("--backend", flags.backend,
-                         "Filter implementation: reference (sequential CPU), opencl (best OpenCL device), opencl:pocl, "
-                         "opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n> (`depthtrack info` lists devices); "
-                         "default: $DEPTHTRACK_DEVICE, else reference");
+  backend_option = command.add_option(
+      "--backend", flags.backend,
+      "Filter implementation: reference (sequential CPU), cpu (the reference on every core; cpu:N: N "
+      "threads; the same results), opencl (best OpenCL device), opencl:pocl, "
+      "opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n> (`depthtrack info` lists devices); "
+      "default: $DEPTHTRACK_DEVICE, else reference");
   renderer_option =
       command.add_option("--renderer", flags.renderer,
                          "Who draws the pose atlas for device backends: kernel (a compute kernel on the device itself, "
@@ -66,12 +67,13 @@ TrackerConfig TrackerOptions::resolve() const {
   if (given(refine_iterations_option)) c.refine.iterations = flags.refine.iterations;
   if (given(seed_option)) c.seed = flags.seed;
   c.validate();
-  // The reference filter always draws with its own rasterizer: say so rather than ignore the choice.
-  if (given(renderer_option) && c.resolved_backend() == "reference")
+  // The reference filter (cpu: on threads) always draws with its own rasterizer: say so rather than ignore it.
+  const std::string backend = c.resolved_backend();
+  if (given(renderer_option) && (backend == "reference" || backend.rfind("cpu", 0) == 0))
     std::fprintf(stderr,
-                 "depthtrack: warning: --renderer %s has no effect with the reference backend (it draws with its own "
+                 "depthtrack: warning: --renderer %s has no effect with the %s backend (it draws with its own "
                  "rasterizer); it applies to the opencl and cuda backends\n",
-                 c.renderer.c_str());
+                 c.renderer.c_str(), backend == "reference" ? "reference" : "cpu");
   return c;
 }
 

@@ -17,4 +17,9 @@ std::chrono::milliseconds mesh_import_time_limit(uintmax_t file_bytes);
 // Mesh::load with the importer (assimp, in a child process) stopped after time_limit.
 Mesh load_mesh(const std::filesystem::path& path, double unit_scale, std::chrono::milliseconds time_limit);
 
+// The same checks and import in this process, without the child and its time limit: for the fuzz
+// targets only, which want the parser itself (libFuzzer's -timeout and -rss_limit_mb are their guard).
+// A file that crashes or hangs assimp takes the caller with it.
+Mesh load_mesh_unguarded(const std::filesystem::path& path, double unit_scale);
+
 }  // namespace depthtrack

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <assimp/Importer.hpp>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -14,6 +15,8 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "io/isolated_call.hpp"
 #include "io/mesh_import.hpp"
@@ -99,9 +102,43 @@ void check_ply_header(const std::filesystem::path& path, const std::string& name
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<size_t>(in.gcount()));
   if (head.rfind("ply", 0) != 0) throw InputError(name + " is not a PLY file: it does not start with 'ply'");
-  const size_t end = head.find("end_header");
+  // The keyword must open a line of its own ("pfend_header" made assimp loop as well).
+  const size_t line = head.find("\nend_header");
+  const size_t end = line == std::string::npos ? line : line + 1;
   if (end == std::string::npos || head.find_first_not_of(" \t\r\n", end + 10) < head.find('\n', end))
     throw InputError(name + ": its PLY header has no 'end_header' line within the first MiB");
+}
+
+// assimp's OFF reader reserves what the header declares before reading a face: a 60-byte file that
+// claims a billion faces makes it allocate and touch gigabytes (the fuzzer's out-of-memory and
+// time-outs). Every vertex takes at least 6 bytes ("0 0 0\n") and every face 4 ("1 0\n"), so counts
+// the file's size cannot hold are refused here, at once. Files whose header this does not
+// recognize are left to assimp.
+void check_off_counts(const std::filesystem::path& path, const std::string& name) {
+  if (lower_extension(path) != ".off") return;
+  std::ifstream in(path, std::ios::binary);
+  std::vector<std::string> tokens;  // the keyword and the three counts, comments skipped
+  for (std::string line; tokens.size() < 4 && std::getline(in, line);) {
+    std::istringstream words(line.substr(0, line.find('#')));
+    for (std::string word; tokens.size() < 4 && words >> word;) tokens.push_back(word);
+  }
+  if (tokens.size() < 3 || tokens[0].size() < 3 || tokens[0].compare(tokens[0].size() - 3, 3, "OFF") != 0) return;
+  // Leading digits, as assimp reads a count (it stops at the first other character); saturated.
+  uint64_t counts[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    const std::string& t = tokens[static_cast<size_t>(k) + 1];
+    if (t.empty() || !std::isdigit(static_cast<unsigned char>(t[0]))) return;
+    for (size_t i = 0; i < t.size() && std::isdigit(static_cast<unsigned char>(t[i])); ++i)
+      counts[k] = std::min<uint64_t>(counts[k] * 10 + static_cast<uint64_t>(t[i] - '0'), uint64_t{1} << 60);
+  }
+  std::error_code error;
+  const uintmax_t bytes = std::filesystem::file_size(path, error);
+  if (error) return;
+  const long double needed = 6.0L * counts[0] + 4.0L * counts[1];
+  if (needed > static_cast<long double>(bytes))
+    throw InputError(name + ": its OFF header declares " + std::to_string(counts[0]) + " vertices and " +
+                     std::to_string(counts[1]) + " faces, more than its " + std::to_string(bytes) +
+                     " bytes can hold (the file is cut short or malformed)");
 }
 
 // The OBJ text with every face corner reduced to its position index ("f 1/1/1 2/2/7" -> "f 1 2").
@@ -193,7 +230,10 @@ std::chrono::milliseconds mesh_import_time_limit(uintmax_t file_bytes) {
   return std::chrono::milliseconds(20'000 + static_cast<long long>(file_bytes / 500));
 }
 
-Mesh load_mesh(const std::filesystem::path& path, double unit_scale, std::chrono::milliseconds time_limit) {
+namespace {
+
+// What both entry points check before assimp sees the file.
+std::string checked_mesh_name(const std::filesystem::path& path, double unit_scale) {
   const std::string name = "mesh '" + path.string() + "'";
   if (!std::isfinite(unit_scale) || unit_scale <= 0)
     throw InputError(name + ": unit_scale must be finite and positive, got " + std::to_string(unit_scale));
@@ -201,15 +241,31 @@ Mesh load_mesh(const std::filesystem::path& path, double unit_scale, std::chrono
   if (!std::filesystem::exists(path, error)) throw InputError("mesh file '" + path.string() + "' does not exist");
   if (!std::filesystem::is_regular_file(path, error))
     throw InputError("mesh file '" + path.string() + "' is not a file");
-
   check_ply_header(path, name);
+  check_off_counts(path, name);
+  return name;
+}
+
+Mesh welded_and_clean(Mesh mesh, const std::string& name) {
+  weld(mesh, name);
+  mesh.validate_and_clean(name);
+  return mesh;
+}
+
+}  // namespace
+
+Mesh load_mesh(const std::filesystem::path& path, double unit_scale, std::chrono::milliseconds time_limit) {
+  const std::string name = checked_mesh_name(path, unit_scale);
   // assimp crashes, aborts or loops on some malformed files (the fuzzer finds many): it runs in a
   // child process, so that any of those becomes an InputError naming the file.
   Mesh mesh = deserialize(
       io::call_isolated([&] { return serialize(import_with_assimp(path, unit_scale, name)); }, time_limit, name), name);
-  weld(mesh, name);
-  mesh.validate_and_clean(name);
-  return mesh;
+  return welded_and_clean(std::move(mesh), name);
+}
+
+Mesh load_mesh_unguarded(const std::filesystem::path& path, double unit_scale) {
+  const std::string name = checked_mesh_name(path, unit_scale);
+  return welded_and_clean(import_with_assimp(path, unit_scale, name), name);
 }
 
 Mesh Mesh::load(const std::filesystem::path& path, double unit_scale) {

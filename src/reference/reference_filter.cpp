@@ -45,19 +45,40 @@ void check_host_memory(const TrackerConfig& config, const Camera& camera) {
 
 }  // namespace
 
-ReferenceFilter::ReferenceFilter(const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
-    : config_(config),
-      camera_(camera),
-      centre_(mesh.centre().cast<double>()),
-      rasterizer_(mesh, camera, config.near_plane, config.observation.max_depth),
-      refiner_(mesh, camera, config) {
+ReferenceFilter::ReferenceFilter(const Mesh& mesh, const Camera& camera, const TrackerConfig& config, int threads)
+    : config_(config), camera_(camera), centre_(mesh.centre().cast<double>()), refiner_(mesh, camera, config) {
   check_host_memory(config, camera);
   const size_t n = static_cast<size_t>(config.particles), pixels = static_cast<size_t>(camera.pixel_count());
+  pool_ = std::make_unique<ThreadPool>(threads);
+  for (int t = 0; t < threads; ++t)
+    lanes_.push_back(Lane{
+        Rasterizer(mesh, camera, config.near_plane, config.observation.max_depth), std::vector<float>(pixels), {}, {}});
   particles_.resize(n);
   log_weights_.assign(n, 0.0);
-  rendered_.resize(pixels);
   if (config.occlusion_storage != OcclusionStorage::Off) occlusion_.resize(n * pixels);
   if (config.occlusion_storage == OcclusionStorage::PerPixelTime) occlusion_time_.resize(n * pixels);
+}
+
+std::string ReferenceFilter::description() const {
+  if (lanes_.size() == 1) return "reference (sequential CPU)";
+  return "cpu (the reference filter on " + std::to_string(lanes_.size()) + " threads)";
+}
+
+size_t ReferenceFilter::chunk_count(size_t n) const {
+  return lanes_.size() == 1 ? 1 : std::min(n, 8 * lanes_.size());
+}
+
+std::pair<size_t, size_t> ReferenceFilter::chunk(size_t c, size_t n) const {
+  const size_t chunks = chunk_count(n);
+  return {n * c / chunks, n * (c + 1) / chunks};
+}
+
+template <typename F>
+void ReferenceFilter::for_chunks(size_t n, F&& f) {
+  pool_->run(chunk_count(n), [&](size_t c, int thread) {
+    const auto [first, last] = chunk(c, n);
+    f(lanes_[static_cast<size_t>(thread)], c, first, last);
+  });
 }
 
 void ReferenceFilter::initialize(const Pose& pose, const InitialSpread& spread) {
@@ -80,28 +101,31 @@ std::vector<double> ReferenceFilter::score_poses(std::span<const Pose> poses, co
   config.observation = model;
   std::vector<double> scores(poses.size());
   last_score_magnitudes_.resize(poses.size());
-  for (size_t i = 0; i < poses.size(); ++i) {
-    const PoseScore s = score_pose(rasterizer_, config, poses[i], depth, rendered_);
-    scores[i] = s.log_likelihood;
-    last_score_magnitudes_[i] = s.magnitude;
-  }
+  for_chunks(poses.size(), [&](Lane& lane, size_t, size_t first, size_t last) {
+    for (size_t i = first; i < last; ++i) {
+      const PoseScore s = score_pose(lane.rasterizer, config, poses[i], depth, lane.rendered);
+      scores[i] = s.log_likelihood;
+      last_score_magnitudes_[i] = s.magnitude;
+    }
+  });
   return scores;
 }
 
 void ReferenceFilter::propagate(double dt) {
   const model::MotionStep step = model::motion_step(config_.motion, dt);
-  for (size_t i = 0; i < particles_.size(); ++i) {
-    float normals[6];
-    dt_normals6(config_.seed, static_cast<dt_u32>(i), frame_, DT_STREAM_MOTION, normals);
-    model::propagate_particle(particles_[i], step, centre_, normals);
-  }
+  for_chunks(particles_.size(), [&](Lane&, size_t, size_t first, size_t last) {
+    for (size_t i = first; i < last; ++i) {
+      float normals[6];
+      dt_normals6(config_.seed, static_cast<dt_u32>(i), frame_, DT_STREAM_MOTION, normals);
+      model::propagate_particle(particles_[i], step, centre_, normals);
+    }
+  });
 }
 
-double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double dt, double& render_ms,
-                                       double& magnitude) {
+double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double dt, Lane& lane, double& magnitude) {
   const Stopwatch render_clock;
-  const PixelBox box = rasterizer_.render(particles_[i].pose, rendered_);
-  render_ms += render_clock.elapsed_ms();
+  const PixelBox box = lane.rasterizer.render(particles_[i].pose, lane.rendered);
+  lane.render_ms += render_clock.elapsed_ms();
 
   const size_t pixels = static_cast<size_t>(camera_.pixel_count());
   float* occlusion = occlusion_.empty() ? nullptr : occlusion_.data() + i * pixels;
@@ -112,11 +136,11 @@ double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double
 
   double log_likelihood = 0;
   magnitude = 0;
-  weighing_.clear();
+  lane.weighing.clear();
   for (int v = box.v0; v < box.v1; ++v) {
     for (int u = box.u0; u < box.u1; ++u) {
       const size_t k = static_cast<size_t>(v) * static_cast<size_t>(camera_.width) + static_cast<size_t>(u);
-      const double y_hat = rendered_[k], y = depth.data()[k];
+      const double y_hat = lane.rendered[k], y = depth.data()[k];
       if (y_hat <= 0 || !DepthImage::is_valid(static_cast<float>(y))) continue;  // adds 0
       double p = 0;
       if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
@@ -125,7 +149,7 @@ double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double
         p = occlusion[k];
       const PixelDensities d = pixel_densities(config_.observation, y, y_hat);
       const double term = pixel_log_ratio(d, p);
-      if (config_.refine.enabled) weighing_.push_back({k, p});
+      if (config_.refine.enabled) lane.weighing.push_back({k, p});
       log_likelihood += term;
       magnitude += std::abs(term);
       if (occlusion) occlusion[k] = static_cast<float>(occlusion_posterior(d, p));
@@ -143,9 +167,11 @@ void ReferenceFilter::resample(const std::vector<double>& normalized) {
   auto gather = [&](std::vector<float>& state, std::vector<float>& scratch) {
     if (state.empty()) return;
     scratch.resize(state.size());
-    for (size_t child = 0; child < particles_.size(); ++child)
-      std::copy_n(state.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(last_parents_[child]) * pixels),
-                  pixels, scratch.begin() + static_cast<std::ptrdiff_t>(child * pixels));
+    for_chunks(particles_.size(), [&](Lane&, size_t, size_t first, size_t last) {
+      for (size_t child = first; child < last; ++child)
+        std::copy_n(state.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(last_parents_[child]) * pixels),
+                    pixels, scratch.begin() + static_cast<std::ptrdiff_t>(child * pixels));
+    });
     state.swap(scratch);
   };
   gather(occlusion_, scratch_occlusion_);
@@ -185,6 +211,43 @@ void ReferenceFilter::refine(Estimate& e, const DepthImage& depth, size_t heavie
   e.covariance = fit.covariance;
 }
 
+size_t ReferenceFilter::weigh_all(const DepthImage& depth, double dt, Estimate& e) {
+  const Stopwatch weigh_clock;
+  last_log_likelihoods_.resize(particles_.size());
+  last_magnitudes_.resize(particles_.size());
+  for (Lane& lane : lanes_) lane.render_ms = 0;
+  chunk_heaviest_.resize(chunk_count(particles_.size()));
+  for_chunks(particles_.size(), [&](Lane& lane, size_t c, size_t first, size_t last) {
+    ChunkHeaviest& mine = chunk_heaviest_[c];
+    mine.found = false;
+    for (size_t i = first; i < last; ++i) {
+      last_log_likelihoods_[i] = weigh_particle(i, depth, dt, lane, last_magnitudes_[i]);
+      log_weights_[i] += last_log_likelihoods_[i];
+      // The first of equal maxima, as max_element; particle 0 is taken whatever its weight (a NaN
+      // there stays the heaviest, as in one sequential scan).
+      const double so_far = mine.found ? mine.log_weight : -std::numeric_limits<double>::infinity();
+      if (i == 0 || log_weights_[i] > so_far) {
+        mine.found = true;
+        mine.log_weight = log_weights_[i];
+        mine.index = i;
+        mine.priors.swap(lane.weighing);
+      }
+    }
+  });
+  // The chunks' heaviest in chunk order, a later one only when strictly heavier: the sequential result.
+  ChunkHeaviest* heaviest = nullptr;
+  for (ChunkHeaviest& c : chunk_heaviest_)
+    if (c.found && (!heaviest || c.log_weight > heaviest->log_weight)) heaviest = &c;
+  double render_ms = 0;
+  for (const Lane& lane : lanes_) render_ms += lane.render_ms;
+  // Render time summed over threads, per thread: the wall-clock share of the render in the weigh step.
+  e.timings.render_ms = render_ms / static_cast<double>(lanes_.size());
+  e.timings.weigh_ms = weigh_clock.elapsed_ms() - e.timings.render_ms;
+  if (!heaviest) return 0;  // no particle
+  priors_.swap(heaviest->priors);
+  return heaviest->index;
+}
+
 Estimate ReferenceFilter::update(const DepthImage& depth, double dt) {
   const Stopwatch frame_clock;
   Estimate e;
@@ -195,21 +258,7 @@ Estimate ReferenceFilter::update(const DepthImage& depth, double dt) {
     e.timings.propagate_ms = clock.elapsed_ms();
   }
 
-  const Stopwatch weigh_clock;
-  last_log_likelihoods_.resize(particles_.size());
-  last_magnitudes_.resize(particles_.size());
-  double heaviest_log_weight = -std::numeric_limits<double>::infinity();
-  size_t heaviest = 0;
-  for (size_t i = 0; i < particles_.size(); ++i) {
-    last_log_likelihoods_[i] = weigh_particle(i, depth, dt, e.timings.render_ms, last_magnitudes_[i]);
-    log_weights_[i] += last_log_likelihoods_[i];
-    if (i == 0 || log_weights_[i] > heaviest_log_weight) {  // the first of equal maxima, as max_element
-      heaviest_log_weight = log_weights_[i];
-      heaviest = i;
-      priors_.swap(weighing_);
-    }
-  }
-  e.timings.weigh_ms = weigh_clock.elapsed_ms() - e.timings.render_ms;
+  const size_t heaviest = weigh_all(depth, dt, e);
 
   const Stopwatch resample_clock;
   const WeightSummary weights = summarize_log_weights(log_weights_);

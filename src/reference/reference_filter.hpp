@@ -1,9 +1,15 @@
 #pragma once
 // The whole particle filter, sequential and single-threaded: the readable statement of the method,
 // the oracle the device kernels are tested against and the baseline speedups are quoted against.
+// With threads > 1 (`--backend cpu`, `cpu:N`) its per-particle loops (propagate, render and weigh,
+// resampling's gather, pose scoring) run in contiguous chunks on a thread pool; every particle's
+// work is independent and the reductions (the heaviest particle, the weights' sums) run in the
+// sequential order, so every result equals the single-threaded one bit for bit.
 #include <depthtrack/tracker_config.hpp>
+#include <memory>
 #include <vector>
 
+#include "core/thread_pool.hpp"
 #include "model/filter_backend.hpp"
 #include "model/particle.hpp"
 #include "reference/pose_refiner.hpp"
@@ -15,14 +21,14 @@ using model::ParticleState;
 
 class ReferenceFilter final : public FilterBackend {
  public:
-  ReferenceFilter(const Mesh& mesh, const Camera& camera, const TrackerConfig& config);
+  ReferenceFilter(const Mesh& mesh, const Camera& camera, const TrackerConfig& config, int threads = 1);
 
   void initialize(const Pose& pose, const InitialSpread& spread) override;
   void initialize_modes(std::span<const Pose> modes, const InitialSpread& spread) override;
   std::vector<double> score_poses(std::span<const Pose> poses, const DepthImage& depth,
                                   const ObservationModel& model) override;
   Estimate update(const DepthImage& depth, double dt) override;
-  std::string description() const override { return "reference (sequential CPU)"; }
+  std::string description() const override;
 
   // What the last update computed, for comparing backends: per particle, before resampling.
   const std::vector<double>& last_log_likelihoods() const { return last_log_likelihoods_; }
@@ -41,9 +47,41 @@ class ReferenceFilter final : public FilterBackend {
   const std::vector<double>& last_score_magnitudes() const { return last_score_magnitudes_; }
 
  private:
+  // The occlusion priors of the pixels a particle's Bayes update changed, for the refinement's map.
+  struct PixelPrior {
+    size_t pixel;
+    double p;
+  };
+  // What one thread needs of its own: the rasterizer (it keeps scratch), a rendering, the priors of
+  // the particle being weighed, and its render time this frame.
+  struct Lane {
+    Rasterizer rasterizer;
+    std::vector<float> rendered;
+    std::vector<PixelPrior> weighing;
+    double render_ms = 0;
+  };
+  // A chunk's heaviest particle (the first of its equal maxima) and that particle's priors.
+  struct ChunkHeaviest {
+    bool found = false;
+    double log_weight = 0;
+    size_t index = 0;
+    std::vector<PixelPrior> priors;
+  };
+  // Items [first, last) of chunk c of n: contiguous, in order.
+  std::pair<size_t, size_t> chunk(size_t c, size_t n) const;
+  // How many chunks n items are split into: a few per thread, so a thread that the system delays
+  // (a shared machine) holds up only a small share of the work.
+  size_t chunk_count(size_t n) const;
+  // Calls f(lane, c, first, last) for every chunk c of n items, in parallel; lane is the thread's own.
+  template <typename F>
+  void for_chunks(size_t n, F&& f);
+
   void propagate(double dt);
-  // Renders and weighs particle i; returns its log-likelihood and updates its occlusion state.
-  double weigh_particle(size_t i, const DepthImage& depth, double dt, double& render_ms, double& magnitude);
+  // Renders and weighs particle i on lane; returns its log-likelihood and updates its occlusion state.
+  double weigh_particle(size_t i, const DepthImage& depth, double dt, Lane& lane, double& magnitude);
+  // Weighs every particle, adds to its log weight and finds the heaviest (the first of equal maxima,
+  // as a sequential scan does), whose priors end in priors_; returns it.
+  size_t weigh_all(const DepthImage& depth, double dt, Estimate& e);
   void resample(const std::vector<double>& normalized);
   // Each pixel's occlusion probability for this frame as particle i held it before this frame's
   // Bayes update (its prior, aged to now); priors_ must hold i's covered pixels.
@@ -55,7 +93,8 @@ class ReferenceFilter final : public FilterBackend {
   TrackerConfig config_;
   Camera camera_;
   Eigen::Vector3d centre_;
-  Rasterizer rasterizer_;
+  std::vector<Lane> lanes_;  // one per thread; lanes_[0] is the caller's
+  std::unique_ptr<ThreadPool> pool_;
   PoseRefiner refiner_;
   std::vector<ParticleState> particles_, scratch_particles_;  // scratch: resampling's gather target
   std::vector<double> log_weights_;
@@ -64,14 +103,9 @@ class ReferenceFilter final : public FilterBackend {
   std::vector<float> occlusion_;
   std::vector<float> occlusion_time_;
   std::vector<float> scratch_occlusion_, scratch_occlusion_time_;  // resampling's gather targets
-  std::vector<float> rendered_;                                    // scratch: one particle's rendering
-  // The occlusion priors of the pixels a particle's Bayes update changed: the particle being weighed
-  // (weighing_) and the heaviest so far (priors_), for the refinement's occlusion map.
-  struct PixelPrior {
-    size_t pixel;
-    double p;
-  };
-  std::vector<PixelPrior> weighing_, priors_;
+  std::vector<PixelPrior> priors_;                                 // the heaviest particle's
+  std::vector<ChunkHeaviest> chunk_heaviest_;                      // weigh_all's, per chunk
+
   std::vector<double> last_log_likelihoods_, last_magnitudes_;
   std::vector<int> last_parents_;
   std::vector<double> last_normalized_;

@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# Fuzzes the mesh importer N executions per format and prints a table:
+#   format, executions, seconds (wall), cpu_seconds, crashes, timeouts, ooms, guarded
+# The libFuzzer targets fuzz_mesh_<format> run assimp in this process (fuzz/fuzz_mesh.cpp), in
+# libFuzzer's fork mode (-fork=1: one worker at a time, one core) so that a crash or hang of assimp
+# is counted, its input kept, and the campaign goes on. Every input that crashed, hung or ran out of
+# memory is then replayed through the product's guard (replay_mesh_<format>: Mesh::load's child process)
+# and must come back as an InputError in bounded time: "guarded" says how many did (of how many).
+#
+# Usage: scripts/fuzz-campaign.sh [--runs N] [--formats "obj ply stl off"] [--out DIR]
+#                                 [--fuzz-build DIR] [--replay-build DIR] [--nice N] [--max-seconds S]
+#   --runs N          executions per format (default 1000000)
+#   --max-seconds S   stop a format after S seconds even if N executions are not done (default: none)
+#   --formats LIST    formats with a fuzz_mesh_<format> target (default: obj ply stl off)
+#   --out DIR         corpora, artifacts and logs (default /tmp/depthtrack-fuzz-campaign)
+#   --fuzz-build DIR  a clang build with -DDEPTHTRACK_FUZZ=ON (default build-fuzz-mesh; configured and
+#                     built here if absent, with -DDEPTHTRACK_FUZZ_ASAN=OFF: see cmake/Sanitizers.cmake)
+#   --replay-build DIR  an ordinary build with the replay_mesh_<format> programs (default build)
+#   --nice N          niceness of the fuzzer (default 19: a shared machine)
+# Seeds: fuzz/corpus/mesh_<format>/ less the known crashers (crash_*, hang_*, oom_*), which the
+# regression tests replay; dictionary: fuzz/dict/<format>.dict. Exit status 1 if any input escaped
+# the guard (a signal or a hang reached Mesh::load's caller).
+set -euo pipefail
+
+root=$(cd "$(dirname "$0")/.." && pwd)
+runs=1000000
+formats="obj ply stl off"
+out=/tmp/depthtrack-fuzz-campaign
+fuzz_build=$root/build-fuzz-mesh
+replay_build=$root/build
+niceness=19
+max_seconds=0
+while [[ $# -gt 0 ]]; do
+  case $1 in
+    --runs) runs=$2; shift 2 ;;
+    --formats) formats=$2; shift 2 ;;
+    --out) out=$2; shift 2 ;;
+    --fuzz-build) fuzz_build=$2; shift 2 ;;
+    --replay-build) replay_build=$2; shift 2 ;;
+    --nice) niceness=$2; shift 2 ;;
+    --max-seconds) max_seconds=$2; shift 2 ;;
+    -h|--help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "fuzz-campaign: unknown option '$1'" >&2; exit 2 ;;
+  esac
+done
+[[ $runs =~ ^[1-9][0-9]*$ ]] || { echo "fuzz-campaign: --runs takes a positive integer, not '$runs'" >&2; exit 2; }
+[[ $max_seconds =~ ^[0-9]+$ ]] || { echo "fuzz-campaign: --max-seconds takes an integer, not '$max_seconds'" >&2; exit 2; }
+
+targets=()
+for f in $formats; do targets+=("fuzz_mesh_$f"); done
+if [[ ! -f $fuzz_build/CMakeCache.txt ]]; then
+  cmake -S "$root" -B "$fuzz_build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DDEPTHTRACK_FUZZ=ON \
+    -DDEPTHTRACK_FUZZ_ASAN=OFF -DDEPTHTRACK_BUILD_TESTS=OFF -DDEPTHTRACK_BUILD_BENCH=OFF \
+    -DDEPTHTRACK_WITH_CUDA=OFF >/dev/null
+fi
+nice -n "$niceness" cmake --build "$fuzz_build" -j2 --target "${targets[@]}" >/dev/null
+for f in $formats; do
+  [[ -x $replay_build/fuzz/replay_mesh_$f ]] ||
+    { echo "fuzz-campaign: $replay_build/fuzz/replay_mesh_$f is missing: build the project first" >&2; exit 2; }
+done
+
+# The last progress line of fork mode: "#N: cov: ... oom/timeout/crash: O/T/C time: Ss ..."
+last_progress() { grep -E '^#[0-9]+: cov:' "$1" | tail -1; }
+
+status=0
+printf '%-6s %12s %9s %11s %8s %9s %5s %9s\n' format executions seconds cpu_seconds crashes timeouts ooms guarded
+for f in $formats; do
+  work=$out/$f
+  rm -rf "$work"
+  mkdir -p "$work/corpus" "$work/artifacts"
+  for seed in "$root"/fuzz/corpus/mesh_"$f"/*; do
+    case $(basename "$seed") in crash_* | hang_* | oom_*) ;; *) cp "$seed" "$work/corpus/" ;; esac
+  done
+  dict=()
+  [[ -f $root/fuzz/dict/$f.dict ]] && dict=(-dict="$root/fuzz/dict/$f.dict")
+  start=$(date +%s.%N)
+  # Leaks are not findings: Mesh::load's import runs in a child process that exits.
+  /usr/bin/time -f '%U %S' -o "$work/cpu.txt" nice -n "$niceness" "$fuzz_build/fuzz/fuzz_mesh_$f" "$work/corpus" \
+    -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 -runs="$runs" -max_total_time="$max_seconds" -timeout=10 \
+    -rss_limit_mb=2048 -detect_leaks=0 "${dict[@]}" -artifact_prefix="$work/artifacts/" >"$work/log.txt" 2>&1 || true
+  seconds=$(echo "$(date +%s.%N) - $start" | bc)
+  cpu=$(tail -1 "$work/cpu.txt" | awk '{print $1 + $2}')
+  line=$(last_progress "$work/log.txt")
+  executions=$(sed -E 's/^#([0-9]+):.*/\1/' <<<"$line")
+  read -r ooms timeouts crashes < <(sed -E 's#.*oom/timeout/crash: ([0-9]+)/([0-9]+)/([0-9]+).*#\1 \2 \3#' <<<"$line")
+  # Each kept input through the guard: replay must exit 0 (an InputError inside) well within its limits.
+  found=0
+  guarded=0
+  for artifact in "$work"/artifacts/*; do
+    [[ -f $artifact ]] || continue
+    found=$((found + 1))
+    if timeout 60 "$replay_build/fuzz/replay_mesh_$f" "$artifact" >/dev/null 2>&1; then
+      guarded=$((guarded + 1))
+    else
+      echo "fuzz-campaign: $artifact escaped Mesh::load's guard" >&2
+      status=1
+    fi
+  done
+  printf '%-6s %12s %9.0f %11.0f %8s %9s %5s %9s\n' "$f" "${executions:-0}" "$seconds" "$cpu" "${crashes:-?}" \
+    "${timeouts:-?}" "${ooms:-?}" "$guarded/$found"
+done
+exit $status

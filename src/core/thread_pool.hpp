@@ -1,0 +1,46 @@
+#pragma once
+// A fixed set of worker threads that run one indexed batch of tasks at a time: what the parallel
+// reference filter (`--backend cpu`) splits its per-particle loops over. The caller's thread takes
+// part, so a pool of N threads starts N - 1 workers, and a pool of 1 runs everything in the caller.
+#include <condition_variable>
+#include <cstddef>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace depthtrack {
+
+// The threads `--backend cpu` uses: the hardware's, at least 1.
+int hardware_threads();
+
+class ThreadPool {
+ public:
+  explicit ThreadPool(int threads);
+  ~ThreadPool();
+  ThreadPool(const ThreadPool&) = delete;
+  ThreadPool& operator=(const ThreadPool&) = delete;
+
+  int size() const { return static_cast<int>(workers_.size()) + 1; }
+  // Calls task(t, thread) for t = 0 .. tasks - 1, each exactly once, handed out in order to whichever
+  // thread is free (thread: 0 .. size() - 1, the caller is 0; no two tasks run on one thread at once,
+  // so per-thread scratch may be indexed by it); returns when all are done. The first exception a task
+  // throws is rethrown here (the other tasks still run).
+  void run(size_t tasks, const std::function<void(size_t task, int thread)>& task);
+
+ private:
+  void work(int thread);        // a worker's loop
+  void take_tasks(int thread);  // runs tasks of the current batch until none is left
+
+  std::vector<std::thread> workers_;
+  std::mutex mutex_;
+  std::condition_variable start_, done_;
+  const std::function<void(size_t, int)>* task_ = nullptr;
+  size_t tasks_ = 0, next_ = 0, finished_ = 0;
+  unsigned batch_ = 0;  // counts batches, so a worker knows a new one from the one it finished
+  bool stop_ = false;
+  std::exception_ptr error_;
+};
+
+}  // namespace depthtrack
