@@ -4,11 +4,11 @@
  * camera-frame twist about the mesh's centre. Every candidate pose is drawn into one tile with the
  * atlas rasterizer, then drawn again to learn each pixel's triangle (for its normal); the normal
  * equations are a group sum and work-item 0 solves them (Cholesky of the diagonally scaled system)
- * and keeps each step unless it lowers the log-likelihood. No host round trip: the estimate buffer receives the refined
- * pose and its covariance, `correction` the twist that shift_particles applies to every particle
- * (the one that moves the heaviest particle onto the refined pose).
- * Compile-time choices as for weigh.cl (DT_GROUP_SIZE, DT_OCCLUSION).
- * Reference: PoseRefiner::refine and ReferenceFilter::refine. */
+ * and keeps each step unless it lowers the log-likelihood; it stops when the next step would move no
+ * mesh point farther than converged_motion. No host round trip: the estimate
+ * buffer receives the refined pose and its covariance, `correction` the twist that shift_particles applies to every
+ * particle (the one that moves the heaviest particle onto the refined pose). Compile-time choices as for weigh.cl
+ * (DT_GROUP_SIZE, DT_OCCLUSION). Reference: PoseRefiner::refine and ReferenceFilter::refine. */
 #include "dt_group.h"
 #include "dt_model.h"
 #include "rasterize.cl"
@@ -21,8 +21,10 @@ typedef struct {
   float damping;       /* Levenberg-Marquardt lambda on diag(H) */
   float min_incidence; /* pixels with |cos(normal, ray)| below it are left out of H */
   float centre_x, centre_y, centre_z;
-  float now;      /* seconds since the first frame: the per-pixel-time occlusion mode ages p to it */
-  int iterations; /* damped steps */
+  float now;              /* seconds since the first frame: the per-pixel-time occlusion mode ages p to it */
+  int iterations;         /* damped steps at most */
+  float radius;           /* largest vertex distance from the centre */
+  float converged_motion; /* a step moving no mesh point farther than this (metres) is not tried */
 } dt_refine_args;
 
 /* Pose as translation and unit quaternion, in a work-item's registers. */
@@ -201,13 +203,15 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
  * (dt_state.h); states: the particles (the heaviest particle's occlusion prior is used: weigh's prior
  * where the particle's tile in atlas covers the pixel, its state elsewhere); pose_state, tile and ids:
  * scratch for one pose; correction: the twist from the heaviest particle to the refined pose. */
-__kernel void refine(__global float* estimate, __global const float* states, __global const float* observed, __global const float* occlusion,
-                     __global const float* occlusion_time, __global const float* prior, __global const float* atlas,
-                     dt_atlas_layout layout, __global const float* vertices, __global const uint* triangles,
-                     __global const float* planes, uint triangle_count, dt_camera cam, dt_model m, dt_refine_args args,
-                     __global float* pose_state, __global uint* tile, __global uint* ids, __global float* correction) {
+__kernel void refine(__global float* estimate, __global const float* states, __global const float* observed,
+                     __global const float* occlusion, __global const float* occlusion_time, __global const float* prior,
+                     __global const float* atlas, dt_atlas_layout layout, __global const float* vertices,
+                     __global const uint* triangles, __global const float* planes, uint triangle_count, dt_camera cam,
+                     dt_model m, dt_refine_args args, __global float* pose_state, __global uint* tile,
+                     __global uint* ids, __global float* correction) {
   __local float sums[DT_REFINE_SUMS * DT_GROUP_SIZE];
   __local int proceed;
+  int tried = 0; /* work-item 0's count of steps evaluated */
   const uint lid = get_local_id(0), pixels = cam.width * cam.height;
   const dt_vec3 centre = dt_vec3_make(args.centre_x, args.centre_y, args.centre_z);
 
@@ -244,7 +248,15 @@ __kernel void refine(__global float* estimate, __global const float* states, __g
     if (lid == 0) {
       float step[6];
       proceed = best_sums[DT_REFINE_PIXELS] >= 6.0f && dt_solve6(best_sums, 1.0f + lambda, best_sums + 21, step);
-      if (proceed) dt_store_pose(pose_state, dt_apply_twist(best, centre, step));
+      /* PoseRefiner's step_motion: |dt| + radius |dw| */
+      if (proceed)
+        proceed = sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]) +
+                      args.radius * sqrt(step[3] * step[3] + step[4] * step[4] + step[5] * step[5]) >=
+                  args.converged_motion;
+      if (proceed) {
+        dt_store_pose(pose_state, dt_apply_twist(best, centre, step));
+        ++tried;
+      }
     }
     barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
     if (!proceed) break;
@@ -257,13 +269,14 @@ __kernel void refine(__global float* estimate, __global const float* states, __g
         for (int k = 0; k < DT_REFINE_SUMS; ++k) best_sums[k] = sums[k * DT_GROUP_SIZE];
         lambda = args.damping;
       } else {
-        lambda = fmax(10.0f * lambda, 1e-3f); /* a rejected step: lean towards gradient descent */
+        lambda = fmax(10.0f * lambda, 1.0f); /* a rejected step: PoseRefiner's damping_after_rejection */
       }
     }
   }
 
   if (lid == 0) {
     dt_store_pose(estimate, best);
+    estimate[DT_EST_REFINE_ITERATIONS] = DT_CAST(float, tried);
     const float nan = dt_as_float(0x7fc00000u);
     for (int c = 0; c < 6; ++c) {
       float unit[6] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f}, column[6];

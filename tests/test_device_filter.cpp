@@ -160,6 +160,9 @@ void compare_with_reference(const std::string& renderer) {
       worst_r = std::max(worst_r, rotation_error(a.pose, b.pose));
       REQUIRE(translation_error(a.pose, b.pose) <= 1e-5);
       REQUIRE(rotation_error(a.pose, b.pose) <= 1e-4);
+      // The same stopping rule on both: the same number of steps tried (a step's size would have to
+      // sit within float rounding of converged_motion to differ).
+      REQUIRE(b.refine_iterations == a.refine_iterations);
       // GL computes depth in float (~1e-6 relative), moving log-likelihoods by a few 0.01 nats and
       // weights by a few percent; the host rasterizer's atlas keeps ESS within 1e-3.
       const double ess_tolerance = renderer == "gl" ? 2e-2 : 1e-3;

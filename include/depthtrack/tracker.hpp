@@ -44,6 +44,7 @@ struct Estimate {
   // few pixels.
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Constant(std::nan(""));
   StepTimings timings;
+  int refine_iterations = 0;  // steps the refinement tried (each one rendering of the pose); 0 when off
   // Share of the estimate's rendered silhouette (pixels with valid depth) that the depth explains
   // as the object's visible surface, in [0, 1]: low when the object is hidden or the depth is seen
   // behind where the estimate puts it.
@@ -108,7 +109,7 @@ class Tracker {
   double previous_timestamp_ = 0;
   size_t frames_since_initialize_ = 0;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();  // the mesh's, where initialize() checks the start
-  unsigned search_round_ = 0;  // varies each recovery search's perturbations
+  unsigned search_round_ = 0;                         // varies each recovery search's perturbations
 };
 
 }  // namespace depthtrack

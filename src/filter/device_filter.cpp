@@ -9,6 +9,7 @@
 #include "core/stopwatch.hpp"
 #include "dt_state.h"
 #include "filter/device_pose_scorer.hpp"
+#include "filter/device_refiner.hpp"
 #include "filter/model_args.hpp"
 #include "filter/particle_packing.hpp"
 #include "philox.h"
@@ -23,10 +24,6 @@ constexpr size_t kLinearGroup = 64;  // work-items per group in the per-particle
 // Host mirror of the struct cl/propagate.cl takes by value.
 struct MotionArgs {
   float keep, linear_std, angular_std, dt, centre_x, centre_y, centre_z;
-};
-struct RefineArgs {  // cl/refine.cl's dt_refine_args
-  float damping, min_incidence, centre_x, centre_y, centre_z, now;
-  int iterations;
 };
 struct InitialArgs {  // cl/initialize.cl's dt_initial
   float metres, radians, centre_x, centre_y, centre_z;
@@ -52,9 +49,9 @@ int occlusion_define(OcclusionStorage mode) {
 
 struct DeviceFilter::Kernels {
   std::unique_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
-      refine_program, initialize_program;
+      initialize_program;
   std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state, gather_pixels,
-      fill, refine, shift_particles, initialize_particles, fill_per_particle;
+      fill, initialize_particles, fill_per_particle;
 };
 
 DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
@@ -84,11 +81,6 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
   k.gather_state = k.resample_program->kernel("gather_state");
   k.gather_pixels = k.resample_program->kernel("gather_pixels");
   k.fill = k.resample_program->kernel("fill");
-  if (config.refine.enabled) {
-    k.refine_program = queue_->build("refine.cl", compute::kernel_source("refine.cl"), defines);
-    k.refine = k.refine_program->kernel("refine");
-    k.shift_particles = k.refine_program->kernel("shift_particles");
-  }
   k.initialize_program = queue_->build("initialize.cl", compute::kernel_source("initialize.cl"), defines);
   k.initialize_particles = k.initialize_program->kernel("initialize_particles");
   k.fill_per_particle = k.initialize_program->kernel("fill_per_particle");
@@ -111,13 +103,8 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
   scratch_occlusion_ = compute::Buffer<float>(q, occlusion ? count_ * pixels_ : 1);
   occlusion_time_ = compute::Buffer<float>(q, times ? count_ * pixels_ : 1);
   scratch_occlusion_time_ = compute::Buffer<float>(q, times ? count_ * pixels_ : 1);
-  if (config.refine.enabled) {
-    refine_mesh_ = std::make_unique<MeshBuffers>(q, mesh);
-    refine_pose_ = compute::Buffer<float>(q, DT_STATE_STRIDE);
-    correction_ = compute::Buffer<float>(q, 6);
-    refine_tile_ = compute::Buffer<unsigned>(q, pixels_);
-    refine_ids_ = compute::Buffer<unsigned>(q, pixels_);
-  }
+  if (config.refine.enabled)
+    refiner_ = std::make_unique<DeviceRefiner>(q, mesh, camera, config, occlusion_define(config.occlusion_storage));
 }
 
 DeviceFilter::~DeviceFilter() = default;
@@ -181,12 +168,9 @@ void DeviceFilter::initialize_modes(std::span<const Pose> modes, const InitialSp
   }
   compute::Buffer<float> mode_buffer(*queue_, mode_values.size());
   mode_buffer.upload(mode_values);
-  const InitialArgs args{static_cast<float>(spread.metres),
-                         static_cast<float>(spread.radians),
-                         static_cast<float>(centre_.x()),
-                         static_cast<float>(centre_.y()),
-                         static_cast<float>(centre_.z()),
-                         static_cast<unsigned>(modes.size())};
+  const InitialArgs args{static_cast<float>(spread.metres), static_cast<float>(spread.radians),
+                         static_cast<float>(centre_.x()),   static_cast<float>(centre_.y()),
+                         static_cast<float>(centre_.z()),   static_cast<unsigned>(modes.size())};
   const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
   compute::set_arg(*k.initialize_particles, 0, state_);
   k.initialize_particles->set_arg(1, static_cast<unsigned>(count_));
@@ -320,7 +304,11 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   k.summarize->set_arg(7, static_cast<float>(centre_.y()));
   k.summarize->set_arg(8, static_cast<float>(centre_.z()));
   const compute::EventPtr summarized = queue_->launch(*k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize));
-  const compute::EventPtr refined = config_.refine.enabled ? refine() : nullptr;
+  // The occlusion priors weigh kept for the refinement are in the resampling's scratch.
+  const compute::EventPtr refined =
+      refiner_ ? refiner_->refine(estimate_, RefineInputs{state_, observed_, occlusion_, occlusion_time_,
+                                                          scratch_occlusion_, atlas_, atlas_source_->layout(), time_})
+               : nullptr;
 
   float est[DT_EST_SIZE];
   estimate_.download(std::span<float>(est, DT_EST_SIZE));
@@ -332,14 +320,16 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   e.max_log_likelihood = est[DT_EST_MAX_LL];
   e.mean_log_likelihood = est[DT_EST_MEAN_LL];
   e.resampled = est[DT_EST_KL] > config_.resample_kl_threshold;
-  if (config_.refine.enabled)
+  if (refiner_) {
     for (int r = 0; r < 6; ++r)
       for (int c = 0; c < 6; ++c) e.covariance(r, c) = est[DT_EST_COV + 6 * r + c];
+    e.refine_iterations = static_cast<int>(est[DT_EST_REFINE_ITERATIONS]);
+  }
   last_resampled_ = e.resampled;
   weighed_in_scratch_ = e.resampled;
   std::vector<compute::EventPtr> resampling;
   if (e.resampled) resampling = resample();
-  const compute::EventPtr shifted = config_.refine.enabled ? shift_particles() : nullptr;
+  const compute::EventPtr shifted = refiner_ ? shift_particles() : nullptr;
   if (propagated) e.timings.propagate_ms = propagated->elapsed_ms();
   e.timings.weigh_ms = weighed->elapsed_ms();
   e.timings.resample_ms = summarized->elapsed_ms();
@@ -395,50 +385,9 @@ std::vector<compute::EventPtr> DeviceFilter::resample() {
   return events;
 }
 
-compute::EventPtr DeviceFilter::refine() {
-  Kernels& k = *kernels_;
-  const Refinement& r = config_.refine;
-  const RefineArgs args{static_cast<float>(r.damping),
-                        static_cast<float>(r.min_incidence),
-                        static_cast<float>(centre_.x()),
-                        static_cast<float>(centre_.y()),
-                        static_cast<float>(centre_.z()),
-                        static_cast<float>(time_),
-                        r.iterations};
-  compute::set_arg(*k.refine, 0, estimate_);
-  compute::set_arg(*k.refine, 1, state_);
-  compute::set_arg(*k.refine, 2, observed_);
-  compute::set_arg(*k.refine, 3, occlusion_);
-  compute::set_arg(*k.refine, 4, occlusion_time_);
-  compute::set_arg(*k.refine, 5, scratch_occlusion_);  // weigh's priors
-  compute::set_arg(*k.refine, 6, atlas_);
-  k.refine->set_arg(7, atlas_source_->layout().kernel_args());
-  compute::set_arg(*k.refine, 8, refine_mesh_->vertices);
-  compute::set_arg(*k.refine, 9, refine_mesh_->triangles);
-  compute::set_arg(*k.refine, 10, refine_mesh_->planes);
-  k.refine->set_arg(11, refine_mesh_->triangle_count());
-  k.refine->set_arg(12, raster_camera_args(camera_, config_));
-  k.refine->set_arg(13, model_args(config_));
-  k.refine->set_arg(14, args);
-  compute::set_arg(*k.refine, 15, refine_pose_);
-  compute::set_arg(*k.refine, 16, refine_tile_);
-  compute::set_arg(*k.refine, 17, refine_ids_);
-  compute::set_arg(*k.refine, 18, correction_);
-  return queue_->launch(*k.refine, compute::NdRange::linear(kGroupSize, kGroupSize));
-}
-
 compute::EventPtr DeviceFilter::shift_particles() {
-  Kernels& k = *kernels_;
   // After resampling the weighed states are in the scratch buffer already: shift in place.
-  compute::set_arg(*k.shift_particles, 0, state_);
-  compute::set_arg(*k.shift_particles, 1, weighed_in_scratch_ ? state_ : scratch_state_);
-  k.shift_particles->set_arg(2, static_cast<unsigned>(count_));
-  compute::set_arg(*k.shift_particles, 3, correction_);
-  k.shift_particles->set_arg(4, static_cast<float>(centre_.x()));
-  k.shift_particles->set_arg(5, static_cast<float>(centre_.y()));
-  k.shift_particles->set_arg(6, static_cast<float>(centre_.z()));
-  const compute::EventPtr event =
-      queue_->launch(*k.shift_particles, compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup));
+  const compute::EventPtr event = refiner_->shift(state_, weighed_in_scratch_ ? state_ : scratch_state_, count_);
   if (!weighed_in_scratch_) std::swap(state_, scratch_state_);
   weighed_in_scratch_ = true;
   return event;

@@ -185,6 +185,7 @@ void ReferenceFilter::refine(Estimate& e, const DepthImage& depth, size_t heavie
   for (ParticleState& s : particles_) s.pose = apply_twist(s.pose, centre_, correction);
   e.pose = fit.pose;
   e.covariance = fit.covariance;
+  e.refine_iterations = fit.iterations;
 }
 
 Estimate ReferenceFilter::update(const DepthImage& depth, double dt) {
