@@ -25,7 +25,67 @@ typedef struct {
   int iterations;         /* damped steps at most */
   float radius;           /* largest vertex distance from the centre */
   float converged_motion; /* a step moving no mesh point farther than this (metres) is not tried */
+  uint vertex_count;
 } dt_refine_args;
+
+/* The pixels a pose can cover: its projected vertices' bounding box, a pixel wider on each side (the
+ * triangle passes project the same vertices, maybe contracted into FMAs differently), clamped to
+ * the image; the whole image when a vertex lies before the near plane (cut triangles). */
+typedef struct {
+  uint u0, v0, width, height; /* empty: width or height 0 */
+} dt_pixel_box;
+
+DT_DEVICE_FN dt_pixel_box dt_pose_box(dt_rigid pose, __global const float* vertices, uint vertex_count, dt_camera cam,
+                                      DT_LOCAL_PTR float* scratch) {
+  const uint lid = get_local_id(0);
+  /* minima of u, v, -u, -v and of "every vertex in front" as 0/-1 */
+  float low[5] = {-DT_LOWEST, -DT_LOWEST, -DT_LOWEST, -DT_LOWEST, 0.0f};
+  for (uint i = lid; i < vertex_count; i += DT_GROUP_SIZE) {
+    const dt_vec3 p = dt_vertex(pose, vertices, i);
+    if (!(p.z >= cam.near)) {
+      low[4] = -1.0f;
+      continue;
+    }
+    const dt_point s = dt_project(p, cam);
+    low[0] = fmin(low[0], s.u);
+    low[1] = fmin(low[1], s.v);
+    low[2] = fmin(low[2], -s.u);
+    low[3] = fmin(low[3], -s.v);
+  }
+  barrier(CLK_LOCAL_MEM_FENCE); /* the previous use of scratch is over */
+  for (int k = 0; k < 5; ++k) scratch[k * DT_GROUP_SIZE + lid] = low[k];
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (uint stride = DT_GROUP_SIZE / 2; stride > 0; stride >>= 1) {
+    if (lid < stride)
+      for (int k = 0; k < 5; ++k)
+        scratch[k * DT_GROUP_SIZE + lid] =
+            fmin(scratch[k * DT_GROUP_SIZE + lid], scratch[k * DT_GROUP_SIZE + lid + stride]);
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  dt_pixel_box box;
+  box.u0 = 0;
+  box.v0 = 0;
+  box.width = cam.width;
+  box.height = cam.height;
+  if (scratch[4 * DT_GROUP_SIZE] == 0.0f) {
+    /* clamped in float before the conversion to int, as dt_raster_triangle does */
+    const float last_u = DT_CAST(float, cam.width - 1), last_v = DT_CAST(float, cam.height - 1);
+    const float u0 = fmin(fmax(0.0f, floor(scratch[0]) - 1.0f), last_u + 1.0f);
+    const float v0 = fmin(fmax(0.0f, floor(scratch[DT_GROUP_SIZE]) - 1.0f), last_v + 1.0f);
+    const float u1 = fmax(fmin(last_u, ceil(-scratch[2 * DT_GROUP_SIZE]) + 1.0f), -1.0f);
+    const float v1 = fmax(fmin(last_v, ceil(-scratch[3 * DT_GROUP_SIZE]) + 1.0f), -1.0f);
+    box.u0 = DT_CAST(uint, u0);
+    box.v0 = DT_CAST(uint, v0);
+    box.width = u1 >= u0 ? DT_CAST(uint, u1 - u0) + 1 : 0;
+    box.height = v1 >= v0 ? DT_CAST(uint, v1 - v0) + 1 : 0;
+  }
+  return box;
+}
+
+/* The image index of the box's k-th pixel (row by row). */
+DT_DEVICE_FN uint dt_box_pixel(dt_pixel_box box, uint k, dt_camera cam) {
+  return (box.v0 + k / box.width) * cam.width + box.u0 + k % box.width;
+}
 
 /* Pose as translation and unit quaternion, in a work-item's registers. */
 typedef struct {
@@ -128,13 +188,18 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
                                      __global const uint* triangles, __global const float* planes, uint triangle_count,
                                      dt_camera cam, dt_model m, dt_refine_args args, __global uint* tile,
                                      __global uint* ids, DT_LOCAL_PTR float* sums) {
-  const uint lid = get_local_id(0), pixels = cam.width * cam.height;
-  for (uint k = lid; k < pixels; k += DT_GROUP_SIZE) {
+  const uint lid = get_local_id(0);
+  const dt_rigid pose = dt_particle_pose(pose_state);
+  /* Only the pose's box is cleared and summed: the silhouette is a small part of the image, and no
+   * triangle draws outside the box. */
+  const dt_pixel_box box = dt_pose_box(pose, vertices, args.vertex_count, cam, sums);
+  const uint pixels = box.width * box.height;
+  for (uint b = lid; b < pixels; b += DT_GROUP_SIZE) {
+    const uint k = dt_box_pixel(box, b, cam);
     tile[k] = DT_NO_SURFACE;
     ids[k] = 0xffffffffu;
   }
   barrier(CLK_GLOBAL_MEM_FENCE);
-  const dt_rigid pose = dt_particle_pose(pose_state);
   for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
     dt_draw_triangle(pose, vertices, triangles, planes, t, cam, tile, 0);
   barrier(CLK_GLOBAL_MEM_FENCE);
@@ -145,7 +210,8 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
   const dt_vec3 centre = dt_vertex_at(pose, args.centre_x, args.centre_y, args.centre_z);
   float acc[DT_REFINE_SUMS];
   for (int k = 0; k < DT_REFINE_SUMS; ++k) acc[k] = 0.0f;
-  for (uint k = lid; k < pixels; k += DT_GROUP_SIZE) {
+  for (uint b = lid; b < pixels; b += DT_GROUP_SIZE) {
+    const uint k = dt_box_pixel(box, b, cam);
     const uint bits = tile[k];
     const float y = observed[k];
     if (bits == DT_NO_SURFACE || !(y > 0.0f) || !isfinite(y)) continue;

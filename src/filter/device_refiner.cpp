@@ -17,6 +17,7 @@ struct RefineArgs {  // cl/refine.cl's dt_refine_args
   float damping, min_incidence, centre_x, centre_y, centre_z, now;
   int iterations;
   float radius, converged_motion;
+  unsigned vertex_count;
 };
 
 size_t round_up(size_t n, size_t multiple) {
@@ -52,7 +53,8 @@ compute::EventPtr DeviceRefiner::refine(compute::Buffer<float>& estimate, const 
                         static_cast<float>(in.time),
                         r.iterations,
                         static_cast<float>(radius_),
-                        static_cast<float>(r.converged_motion)};
+                        static_cast<float>(r.converged_motion),
+                        static_cast<unsigned>(mesh_.vertices.size() / 3)};
   compute::Kernel& k = *refine_;
   compute::set_arg(k, 0, estimate);
   compute::set_arg(k, 1, in.states);
