@@ -170,11 +170,15 @@ void compare_with_reference(const std::string& renderer) {
                                           std::max(1.0, a.effective_sample_size));
       REQUIRE(b.effective_sample_size == Approx(a.effective_sample_size).epsilon(ess_tolerance).margin(1e-3));
       // The refined pose's covariance: per-axis standard deviations from the float normal equations.
+      // With GL the fit's occlusion map follows GL's coverage of the heaviest tile (prior where it
+      // covers), so a flipped silhouette pixel changes a pixel's weight in H: measured up to 3 %
+      // on llvmpipe once the refinement stops at convergence (0.1 % for the host and kernel atlases).
+      const double sd_tolerance = renderer == "gl" ? 5e-2 : 1e-3;
       for (int axis = 0; axis < 6; ++axis) {
         const double sd_ref = std::sqrt(a.covariance(axis, axis)), sd_dev = std::sqrt(b.covariance(axis, axis));
         REQUIRE(std::isfinite(sd_ref));
         worst_sd = std::max(worst_sd, std::abs(sd_dev - sd_ref) / sd_ref);
-        REQUIRE(sd_dev == Approx(sd_ref).epsilon(1e-3));
+        REQUIRE(sd_dev == Approx(sd_ref).epsilon(sd_tolerance));
       }
     }
     std::printf(
