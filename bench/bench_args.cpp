@@ -1,6 +1,7 @@
 #include "bench_args.hpp"
 
 #include <charconv>
+#include <cmath>
 
 #include "bench_rows.hpp"
 
@@ -12,6 +13,15 @@ int parse_positive(const std::string& text, const std::string& option) {
   const auto [stop, error] = std::from_chars(text.data(), end, value);
   if (text.empty() || error != std::errc() || stop != end || value <= 0)
     throw UsageError{option + ": '" + text + "' is not a positive integer"};
+  return value;
+}
+
+double parse_nonnegative_double(const std::string& text, const std::string& option) {
+  double value = 0;
+  const char* end = text.data() + text.size();
+  const auto [stop, error] = std::from_chars(text.data(), end, value);
+  if (text.empty() || error != std::errc() || stop != end || !std::isfinite(value) || value < 0)
+    throw UsageError{option + ": '" + text + "' is not a number >= 0"};
   return value;
 }
 

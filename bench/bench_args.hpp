@@ -13,6 +13,8 @@ struct UsageError {
 
 // "12" -> 12; UsageError naming the option for "", "12x", "-3", "0", "1e3" or a number beyond int.
 int parse_positive(const std::string& text, const std::string& option);
+// "5e-5" -> 5e-5; UsageError naming the option for "", "1x", "-1", "nan", "inf".
+double parse_nonnegative_double(const std::string& text, const std::string& option);
 // "80x60" -> {80, 60}, each side strict as above.
 std::pair<int, int> parse_size(const std::string& text, const std::string& option);
 // "200,2000" -> {200, 2000}.

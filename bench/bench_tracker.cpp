@@ -1,9 +1,10 @@
 // Time per frame of the tracker on one backend, split into propagate, render, hand-off, weigh, resample
-// and refine (the pose refinement with the shift of the cloud; refine_share is its % of the frame),
+// and refine (the pose refinement with the shift of the cloud; refine_share is its % of the frame,
+// refine_iterations the median of the steps it tried per frame),
 // with the handset (the thesis' object) on a synthetic occluded sequence. Prints CSV rows.
 // render is the atlas draw (GL waited for); handoff moves poses to GL and the atlas to the kernels.
 // Usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] [--resolution WxH[,...]]
-//                         [--frames N] [--refine on|off] [--refine-iterations N]
+//                         [--frames N] [--refine on|off] [--refine-iterations N] [--refine-converged M]
 //   default: the reference at 80x60 (200 particles) and 640x480 (50 particles).
 // Then the off-screen start (one particle 10,000 km to the side, 5 frames) and global initialization at
 // 80x60 (from the object's box, and from no hint), unless --no-global.
@@ -58,7 +59,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
   tracker.initialize(scene.ground_truth(0.0));
   const double startup_ms = startup.elapsed_ms();
   const double startup_peak_mib = peak_known ? bench::peak_resident_mib() : NAN;
-  std::vector<double> propagate, render, handoff, weigh, resample, refined, total;
+  std::vector<double> propagate, render, handoff, weigh, resample, refined, total, refine_steps;
   for (int i = 0; i < frames; ++i) {
     const SynthFrame f = scene.frame(i);
     const Estimate e = tracker.update(f.depth, f.timestamp);
@@ -69,6 +70,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
     weigh.push_back(e.timings.weigh_ms);
     resample.push_back(e.timings.resample_ms);
     refined.push_back(e.timings.refine_ms);
+    refine_steps.push_back(e.refine_iterations);
     total.push_back(e.timings.total_ms);
   }
   const std::string device = tracker.backend_description();
@@ -91,6 +93,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
   }
   bench::print_row(
       {backend, platform, name, "-", test, "refine_share", "%", 100.0 * bench::median(refined) / bench::median(total)});
+  bench::print_row({backend, platform, name, "-", test, "refine_iterations", "steps", bench::median(refine_steps)});
   bench::print_row({backend, platform, name, "-", test, "frames_per_second", "Hz", 1000.0 / bench::median(total)});
   bench::print_row({backend, platform, name, "-", test, "startup_ms", "ms", startup_ms});
   bench::print_row({backend, platform, name, "-", test, "startup_host_peak", "MiB", startup_peak_mib});
@@ -99,7 +102,8 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
 
 const char* const kUsage =
     "usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] "
-    "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N] [--no-global]\n"
+    "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N] [--refine-converged M]\n"
+    "       [--no-global]\n"
     "Times tracker frames on a synthetic occluded handset sequence, split into propagate / render / hand-off /\n"
     "weigh / resample, start-up (construction + initialize) with its peak host memory, and the off-screen start\n"
     "(one particle 10,000 km to the side, 5 frames); prints CSV rows\n"
@@ -111,7 +115,9 @@ const char* const kUsage =
     "  --resolution WxH[,...] working resolutions (default 80x60)\n"
     "  --frames N             frames per case, the first two not timed (default 20, at least 4)\n"
     "  --refine on|off        the pose refinement (default on; refine_share is its % of the frame)\n"
-    "  --refine-iterations N  refinement steps per frame (default: TrackerConfig's)\n"
+    "  --refine-iterations N  refinement steps per frame at most (default: TrackerConfig's)\n"
+    "  --refine-converged M   the refinement stops when a step would move the mesh less than M metres\n"
+    "                         (default: TrackerConfig's; 0 takes every step)\n"
     "  --no-global            leave out the global initialization rows (box hint and no hint, 80x60)\n"
     "Without --particles and --resolution: the reference at 80x60 (200 particles) and 640x480 (50).\n";
 
@@ -225,6 +231,8 @@ int main(int argc, char** argv) {
         refine.enabled = value == "on";
       } else if (arg == "--refine-iterations")
         refine.iterations = bench::parse_positive(args.value(), arg);
+      else if (arg == "--refine-converged")
+        refine.converged_motion = bench::parse_nonnegative_double(args.value(), arg);
       else if (arg == "--no-global")
         global = false;
       else

@@ -18,6 +18,7 @@
 #define DT_EST_MEAN_LL 16
 #define DT_EST_HEAVIEST 17 /* index of the heaviest particle, its bits stored as a float (summarize.cl) */
 #define DT_EST_RESAMPLE 18 /* 1 when the KL from uniform exceeds the threshold, else 0 (summarize.cl) */
+#define DT_EST_REFINE_ITERATIONS 19 /* steps the refinement tried (refine.cl) */
 #define DT_EST_COV 20 /* 6x6 row-major covariance of the refined pose (refine.cl), NaN without one */
 #define DT_EST_SIZE 56
 #endif

@@ -4,13 +4,14 @@
  * camera-frame twist about the mesh's centre. Every candidate pose is drawn into one tile with the
  * atlas rasterizer, then drawn again to learn each pixel's triangle (for its normal); the normal
  * equations are a group sum and work-item 0 solves them (Cholesky of the diagonally scaled system)
- * and keeps each step unless it lowers the log-likelihood. No host round trip: the estimate buffer receives the refined
- * pose and its covariance, `correction` the twist that shift_particles applies to every particle
- * (the one that moves the heaviest particle onto the refined pose).
- * Compile-time choices as for weigh.cl (DT_GROUP_SIZE, DT_OCCLUSION).
- * Reference: PoseRefiner::refine and ReferenceFilter::refine. */
+ * and keeps each step unless it lowers the log-likelihood; it stops when the next step would move no
+ * mesh point farther than converged_motion. No host round trip: the estimate
+ * buffer receives the refined pose and its covariance, `correction` the twist that shift_particles applies to every
+ * particle (the one that moves the heaviest particle onto the refined pose). Compile-time choices as for weigh.cl
+ * (DT_GROUP_SIZE, DT_OCCLUSION). Reference: PoseRefiner::refine and ReferenceFilter::refine. */
 #include "dt_group.h"
 #include "dt_model.h"
+#include "dt_params.h" /* the DT_OCCLUSION codes */
 #include "rasterize.cl"
 
 #define DT_REFINE_SUMS 29 /* H's lower triangle (21), g (6), objective, pixels */
@@ -21,9 +22,71 @@ typedef struct {
   float damping;       /* Levenberg-Marquardt lambda on diag(H) */
   float min_incidence; /* pixels with |cos(normal, ray)| below it are left out of H */
   float centre_x, centre_y, centre_z;
-  float now;      /* seconds since the first frame: the per-pixel-time occlusion mode ages p to it */
-  int iterations; /* damped steps */
+  float now;              /* seconds since the first frame: the per-pixel-time occlusion mode ages p to it */
+  int iterations;         /* damped steps at most */
+  float radius;           /* largest vertex distance from the centre */
+  float converged_motion; /* a step moving no mesh point farther than this (metres) is not tried */
+  uint vertex_count;
 } dt_refine_args;
+
+/* The pixels a pose can cover: its projected vertices' bounding box, a pixel wider on each side (the
+ * triangle passes project the same vertices, maybe contracted into FMAs differently), clamped to
+ * the image; the whole image when a vertex lies before the near plane (cut triangles). */
+typedef struct {
+  uint u0, v0, width, height; /* empty: width or height 0 */
+} dt_pixel_box;
+
+DT_DEVICE_FN dt_pixel_box dt_pose_box(dt_rigid pose, __global const float* vertices, uint vertex_count, dt_camera cam,
+                                      DT_LOCAL_PTR float* scratch) {
+  const uint lid = get_local_id(0);
+  /* minima of u, v, -u, -v and of "every vertex in front" as 0/-1 */
+  float low[5] = {-DT_LOWEST, -DT_LOWEST, -DT_LOWEST, -DT_LOWEST, 0.0f};
+  for (uint i = lid; i < vertex_count; i += DT_GROUP_SIZE) {
+    const dt_vec3 p = dt_vertex(pose, vertices, i);
+    if (!(p.z >= cam.near)) {
+      low[4] = -1.0f;
+      continue;
+    }
+    const dt_point s = dt_project(p, cam);
+    low[0] = fmin(low[0], s.u);
+    low[1] = fmin(low[1], s.v);
+    low[2] = fmin(low[2], -s.u);
+    low[3] = fmin(low[3], -s.v);
+  }
+  barrier(CLK_LOCAL_MEM_FENCE); /* the previous use of scratch is over */
+  for (int k = 0; k < 5; ++k) scratch[k * DT_GROUP_SIZE + lid] = low[k];
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (uint stride = DT_GROUP_SIZE / 2; stride > 0; stride >>= 1) {
+    if (lid < stride)
+      for (int k = 0; k < 5; ++k)
+        scratch[k * DT_GROUP_SIZE + lid] =
+            fmin(scratch[k * DT_GROUP_SIZE + lid], scratch[k * DT_GROUP_SIZE + lid + stride]);
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  dt_pixel_box box;
+  box.u0 = 0;
+  box.v0 = 0;
+  box.width = cam.width;
+  box.height = cam.height;
+  if (scratch[4 * DT_GROUP_SIZE] == 0.0f) {
+    /* clamped in float before the conversion to int, as dt_raster_triangle does */
+    const float last_u = DT_CAST(float, cam.width - 1), last_v = DT_CAST(float, cam.height - 1);
+    const float u0 = fmin(fmax(0.0f, floor(scratch[0]) - 1.0f), last_u + 1.0f);
+    const float v0 = fmin(fmax(0.0f, floor(scratch[DT_GROUP_SIZE]) - 1.0f), last_v + 1.0f);
+    const float u1 = fmax(fmin(last_u, ceil(-scratch[2 * DT_GROUP_SIZE]) + 1.0f), -1.0f);
+    const float v1 = fmax(fmin(last_v, ceil(-scratch[3 * DT_GROUP_SIZE]) + 1.0f), -1.0f);
+    box.u0 = DT_CAST(uint, u0);
+    box.v0 = DT_CAST(uint, v0);
+    box.width = u1 >= u0 ? DT_CAST(uint, u1 - u0) + 1 : 0;
+    box.height = v1 >= v0 ? DT_CAST(uint, v1 - v0) + 1 : 0;
+  }
+  return box;
+}
+
+/* The image index of the box's k-th pixel (row by row). */
+DT_DEVICE_FN uint dt_box_pixel(dt_pixel_box box, uint k, dt_camera cam) {
+  return (box.v0 + k / box.width) * cam.width + box.u0 + k % box.width;
+}
 
 /* Pose as translation and unit quaternion, in a work-item's registers. */
 typedef struct {
@@ -126,13 +189,18 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
                                      __global const uint* triangles, __global const float* planes, uint triangle_count,
                                      dt_camera cam, dt_model m, dt_refine_args args, __global uint* tile,
                                      __global uint* ids, DT_LOCAL_PTR float* sums) {
-  const uint lid = get_local_id(0), pixels = cam.width * cam.height;
-  for (uint k = lid; k < pixels; k += DT_GROUP_SIZE) {
+  const uint lid = get_local_id(0);
+  const dt_rigid pose = dt_particle_pose(pose_state);
+  /* Only the pose's box is cleared and summed: the silhouette is a small part of the image, and no
+   * triangle draws outside the box. */
+  const dt_pixel_box box = dt_pose_box(pose, vertices, args.vertex_count, cam, sums);
+  const uint pixels = box.width * box.height;
+  for (uint b = lid; b < pixels; b += DT_GROUP_SIZE) {
+    const uint k = dt_box_pixel(box, b, cam);
     tile[k] = DT_NO_SURFACE;
     ids[k] = 0xffffffffu;
   }
   barrier(CLK_GLOBAL_MEM_FENCE);
-  const dt_rigid pose = dt_particle_pose(pose_state);
   for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
     dt_draw_triangle(pose, vertices, triangles, planes, t, cam, tile, 0);
   barrier(CLK_GLOBAL_MEM_FENCE);
@@ -143,18 +211,19 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
   const dt_vec3 centre = dt_vertex_at(pose, args.centre_x, args.centre_y, args.centre_z);
   float acc[DT_REFINE_SUMS];
   for (int k = 0; k < DT_REFINE_SUMS; ++k) acc[k] = 0.0f;
-  for (uint k = lid; k < pixels; k += DT_GROUP_SIZE) {
+  for (uint b = lid; b < pixels; b += DT_GROUP_SIZE) {
+    const uint k = dt_box_pixel(box, b, cam);
     const uint bits = tile[k];
     const float y = observed[k];
     if (bits == DT_NO_SURFACE || !(y > 0.0f) || !isfinite(y)) continue;
     const float y_hat = dt_as_float(bits);
     /* The heaviest particle's occlusion prior: kept by weigh where its update changed the pixel. */
     float p = 0.0f;
-#if DT_OCCLUSION != 2
+#if DT_OCCLUSION != DT_OCCLUSION_OFF
     if (atlas[dt_atlas_pixel(layout, heaviest_tile, k)] > 0.0f)
       p = prior[k];
     else
-#if DT_OCCLUSION == 0
+#if DT_OCCLUSION == DT_PER_PIXEL_TIME
       p = dt_propagate_occlusion(m, occlusion[k], args.now - occlusion_time[k]);
 #else
       p = occlusion[k];
@@ -201,24 +270,26 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
  * (dt_state.h); states: the particles (the heaviest particle's occlusion prior is used: weigh's prior
  * where the particle's tile in atlas covers the pixel, its state elsewhere); pose_state, tile and ids:
  * scratch for one pose; correction: the twist from the heaviest particle to the refined pose. */
-__kernel void refine(__global float* estimate, __global const float* states, __global const float* observed, __global const float* occlusion,
-                     __global const float* occlusion_time, __global const float* prior, __global const float* atlas,
-                     dt_atlas_layout layout, __global const float* vertices, __global const uint* triangles,
-                     __global const float* planes, uint triangle_count, dt_camera cam, dt_model m, dt_refine_args args,
-                     __global float* pose_state, __global uint* tile, __global uint* ids, __global float* correction) {
+__kernel void refine(__global float* estimate, __global const float* states, __global const float* observed,
+                     __global const float* occlusion, __global const float* occlusion_time, __global const float* prior,
+                     __global const float* atlas, dt_atlas_layout layout, __global const float* vertices,
+                     __global const uint* triangles, __global const float* planes, uint triangle_count, dt_camera cam,
+                     dt_model m, dt_refine_args args, __global float* pose_state, __global uint* tile,
+                     __global uint* ids, __global float* correction) {
   __local float sums[DT_REFINE_SUMS * DT_GROUP_SIZE];
   __local int proceed;
+  int tried = 0; /* work-item 0's count of steps evaluated */
   const uint lid = get_local_id(0), pixels = cam.width * cam.height;
   const dt_vec3 centre = dt_vec3_make(args.centre_x, args.centre_y, args.centre_z);
 
   /* summarize found it (the first of equal maximal log weights, as the reference): not searched again. */
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
   const ulong base = DT_CAST(ulong, heaviest) * pixels;
-#if DT_OCCLUSION == 2
+#if DT_OCCLUSION == DT_OCCLUSION_OFF
   __global const float* p_map = occlusion;
   __global const float* t_map = occlusion_time;
   __global const float* prior_map = prior;
-#elif DT_OCCLUSION == 1
+#elif DT_OCCLUSION == DT_GLOBAL_TIME
   __global const float* p_map = occlusion + base;
   __global const float* t_map = occlusion_time;
   __global const float* prior_map = prior + base;
@@ -244,7 +315,15 @@ __kernel void refine(__global float* estimate, __global const float* states, __g
     if (lid == 0) {
       float step[6];
       proceed = best_sums[DT_REFINE_PIXELS] >= 6.0f && dt_solve6(best_sums, 1.0f + lambda, best_sums + 21, step);
-      if (proceed) dt_store_pose(pose_state, dt_apply_twist(best, centre, step));
+      /* PoseRefiner's step_motion: |dt| + radius |dw| */
+      if (proceed)
+        proceed = sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]) +
+                      args.radius * sqrt(step[3] * step[3] + step[4] * step[4] + step[5] * step[5]) >=
+                  args.converged_motion;
+      if (proceed) {
+        dt_store_pose(pose_state, dt_apply_twist(best, centre, step));
+        ++tried;
+      }
     }
     barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
     if (!proceed) break;
@@ -257,13 +336,14 @@ __kernel void refine(__global float* estimate, __global const float* states, __g
         for (int k = 0; k < DT_REFINE_SUMS; ++k) best_sums[k] = sums[k * DT_GROUP_SIZE];
         lambda = args.damping;
       } else {
-        lambda = fmax(10.0f * lambda, 1e-3f); /* a rejected step: lean towards gradient descent */
+        lambda = fmax(10.0f * lambda, 1.0f); /* a rejected step: PoseRefiner's damping_after_rejection */
       }
     }
   }
 
   if (lid == 0) {
     dt_store_pose(estimate, best);
+    estimate[DT_EST_REFINE_ITERATIONS] = DT_CAST(float, tried);
     const float nan = dt_as_float(0x7fc00000u);
     for (int c = 0; c < 6; ++c) {
       float unit[6] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f}, column[6];

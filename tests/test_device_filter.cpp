@@ -160,6 +160,9 @@ void compare_with_reference(const std::string& renderer) {
       worst_r = std::max(worst_r, rotation_error(a.pose, b.pose));
       REQUIRE(translation_error(a.pose, b.pose) <= 1e-5);
       REQUIRE(rotation_error(a.pose, b.pose) <= 1e-4);
+      // The same stopping rule on both: the same number of steps tried (a step's size would have to
+      // sit within float rounding of converged_motion to differ).
+      REQUIRE(b.refine_iterations == a.refine_iterations);
       // GL computes depth in float (~1e-6 relative), moving log-likelihoods by a few 0.01 nats and
       // weights by a few percent; the host rasterizer's atlas keeps ESS within 1e-3.
       const double ess_tolerance = renderer == "gl" ? 2e-2 : 1e-3;
@@ -167,11 +170,15 @@ void compare_with_reference(const std::string& renderer) {
                                           std::max(1.0, a.effective_sample_size));
       REQUIRE(b.effective_sample_size == Approx(a.effective_sample_size).epsilon(ess_tolerance).margin(1e-3));
       // The refined pose's covariance: per-axis standard deviations from the float normal equations.
+      // With GL the fit's occlusion map follows GL's coverage of the heaviest tile (prior where it
+      // covers), so a flipped silhouette pixel changes a pixel's weight in H: measured up to 3 %
+      // on llvmpipe once the refinement stops at convergence (0.1 % for the host and kernel atlases).
+      const double sd_tolerance = renderer == "gl" ? 5e-2 : 1e-3;
       for (int axis = 0; axis < 6; ++axis) {
         const double sd_ref = std::sqrt(a.covariance(axis, axis)), sd_dev = std::sqrt(b.covariance(axis, axis));
         REQUIRE(std::isfinite(sd_ref));
         worst_sd = std::max(worst_sd, std::abs(sd_dev - sd_ref) / sd_ref);
-        REQUIRE(sd_dev == Approx(sd_ref).epsilon(1e-3));
+        REQUIRE(sd_dev == Approx(sd_ref).epsilon(sd_tolerance));
       }
     }
     std::printf(

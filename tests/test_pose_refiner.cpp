@@ -117,6 +117,32 @@ TEST_CASE("refinement recovers the pose a noise-free scene was rendered at, also
   }
 }
 
+TEST_CASE("refinement stops once the next step would move the mesh less than converged_motion", "[refine]") {
+  const Mesh mesh = builtin_demo_mesh();
+  const Eigen::Vector3d centre = mesh.centre().cast<double>();
+  const Pose truth = object_pose();
+  Vector6d offset;  // 4 mm and about 2 degrees off, on noise-free depth: Gauss-Newton converges fast
+  offset << 0.003, -0.002, 0.0015, 0.02, -0.015, 0.02;
+  const Pose start = reference::apply_twist(truth, centre, offset);
+  const DepthImage depth = test::render_scene(mesh, kCamera, truth);
+  TrackerConfig config;
+  config.refine.iterations = 10;
+  config.refine.converged_motion = 0;  // every step tried
+  const reference::RefinedPose all = reference::PoseRefiner(mesh, kCamera, config).refine(start, depth, {});
+  config.refine.converged_motion = 5e-5;
+  const reference::RefinedPose stopped = reference::PoseRefiner(mesh, kCamera, config).refine(start, depth, {});
+  std::printf("refinement, clear view: %d steps tried without the stopping rule, %d with it (%.3g / %.3g um off)\n",
+              all.iterations, stopped.iterations, 1e6 * translation_error(all.pose, truth),
+              1e6 * translation_error(stopped.pose, truth));
+  CHECK(all.iterations == 10);
+  CHECK(stopped.iterations >= 2);  // 4 mm needs more than one step to fall below 50 um
+  CHECK(stopped.iterations < 10);
+  // Stopped where the next step moves no mesh point 50 um: it is within that of where all steps end.
+  const Vector6d rest = reference::twist_between(stopped.pose, all.pose, centre);
+  CHECK(reference::step_motion(rest, mesh.radius()) < 5e-5);
+  CHECK(translation_error(stopped.pose, truth) < 5e-5);
+}
+
 TEST_CASE("refinement parameters outside their range are named errors", "[refine]") {
   TrackerConfig config;
   config.refine.iterations = -1;
@@ -127,4 +153,7 @@ TEST_CASE("refinement parameters outside their range are named errors", "[refine
   config = TrackerConfig{};
   config.refine.min_incidence = 1.0;
   CHECK_THROWS_WITH(config.validate(), Catch::Contains("refine min incidence"));
+  config = TrackerConfig{};
+  config.refine.converged_motion = -1e-5;
+  CHECK_THROWS_WITH(config.validate(), Catch::Contains("refine converged motion"));
 }

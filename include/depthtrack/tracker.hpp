@@ -46,6 +46,7 @@ struct Estimate {
   // few pixels.
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Constant(std::nan(""));
   StepTimings timings;
+  int refine_iterations = 0;  // steps the refinement tried (each one rendering of the pose); 0 when off
   // Share of the estimate's rendered silhouette (pixels with valid depth) that the depth explains
   // as the object's visible surface, in [0, 1]: low when the object is hidden or the depth is seen
   // behind where the estimate puts it.

@@ -46,8 +46,11 @@ struct MotionModel {
 // cloud is shifted by the correction so the filter stays consistent with the reported pose.
 struct Refinement {
   bool enabled = true;
-  int iterations = 8;           // Gauss-Newton steps per frame (each renders the pose once more)
-  double damping = 1e-2;        // Levenberg-Marquardt lambda on diag(H); grown tenfold after a rejected step
+  int iterations = 8;     // at most this many Gauss-Newton steps per frame (each renders the pose once more)
+  double damping = 1e-2;  // Levenberg-Marquardt lambda on diag(H); after a rejected step tenfold, at least 1
+  // Converged: the next step would move no point of the mesh farther than this (metres; |dt| + radius |dw|),
+  // so it is not tried. 0 always takes every step.
+  double converged_motion = 5e-5;
   double min_incidence = 0.15;  // pixels whose |cos| between surface normal and ray is below this are dropped
 };
 

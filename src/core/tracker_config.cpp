@@ -65,6 +65,8 @@ void TrackerConfig::validate() const {
           "renderer '" + renderer + "' is not cpu, gl or kernel");
   require(refine.iterations >= 0 && refine.iterations <= 100, "refine iterations must be in [0, 100]");
   require(std::isfinite(refine.damping) && refine.damping >= 0, "refine damping must be >= 0");
+  require(std::isfinite(refine.converged_motion) && refine.converged_motion >= 0,
+          "refine converged motion must be >= 0 metres");
   require(probability(refine.min_incidence) && refine.min_incidence < 1, "refine min incidence must be in [0, 1)");
   require(positive(near_plane) && near_plane < observation.max_depth, "near plane must be in (0, max depth)");
   require(positive(max_time_step), "max time step must be positive");

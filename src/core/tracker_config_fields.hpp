@@ -59,6 +59,8 @@ inline auto fields_of(const Refinement*) {
       field("enabled", &S::enabled, "fit the heaviest particle to the likelihood's maximum and shift the cloud"),
       field("iterations", &S::iterations, "Gauss-Newton steps per frame, in [0, 100]"),
       field("damping", &S::damping, "Levenberg-Marquardt lambda on diag(H)"),
+      field("converged_motion", &S::converged_motion,
+            "stop when the next step moves no mesh point farther than this (m); 0 takes every step"),
       field("min_incidence", &S::min_incidence, "pixels whose |cos(normal, ray)| is below this are left out"),
   };
 }

@@ -9,6 +9,7 @@
 #include "core/stopwatch.hpp"
 #include "dt_state.h"
 #include "filter/device_pose_scorer.hpp"
+#include "filter/device_refiner.hpp"
 #include "model/kernel_params.hpp"
 #include "model/particle_packing.hpp"
 #include "philox.h"
@@ -19,11 +20,6 @@ namespace {
 constexpr size_t kGroupSize = 128;   // work-items per group in weigh, summarize and the gathers
 constexpr size_t kLinearGroup = 64;  // work-items per group in the per-particle kernels
 
-struct RefineArgs {  // cl/refine.cl's dt_refine_args
-  float damping, min_incidence, centre_x, centre_y, centre_z, now;
-  int iterations;
-};
-
 size_t round_up(size_t n, size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
 }
@@ -31,9 +27,9 @@ size_t round_up(size_t n, size_t multiple) {
 
 struct DeviceFilter::Kernels {
   std::unique_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
-      refine_program, initialize_program;
+      initialize_program;
   std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state, gather_pixels,
-      fill, fill_when_resampling, refine, shift_particles, initialize_particles, fill_per_particle;
+      fill, fill_when_resampling, initialize_particles, fill_per_particle;
 };
 
 DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
@@ -63,11 +59,6 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
   k.gather_pixels = k.resample_program->kernel("gather_pixels");
   k.fill = k.resample_program->kernel("fill");
   k.fill_when_resampling = k.resample_program->kernel("fill_when_resampling");
-  if (config.refine.enabled) {
-    k.refine_program = queue_->build("refine.cl", compute::kernel_source("refine.cl"), defines);
-    k.refine = k.refine_program->kernel("refine");
-    k.shift_particles = k.refine_program->kernel("shift_particles");
-  }
   k.initialize_program = queue_->build("initialize.cl", compute::kernel_source("initialize.cl"), defines);
   k.initialize_particles = k.initialize_program->kernel("initialize_particles");
   k.fill_per_particle = k.initialize_program->kernel("fill_per_particle");
@@ -90,13 +81,9 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
   scratch_occlusion_ = compute::Buffer<float>(q, occlusion ? count_ * pixels_ : 1);
   occlusion_time_ = compute::Buffer<float>(q, times ? count_ * pixels_ : 1);
   scratch_occlusion_time_ = compute::Buffer<float>(q, times ? count_ * pixels_ : 1);
-  if (config.refine.enabled) {
-    refine_mesh_ = std::make_unique<MeshBuffers>(q, mesh);
-    refine_pose_ = compute::Buffer<float>(q, DT_STATE_STRIDE);
-    correction_ = compute::Buffer<float>(q, 6);
-    refine_tile_ = compute::Buffer<unsigned>(q, pixels_);
-    refine_ids_ = compute::Buffer<unsigned>(q, pixels_);
-  }
+  if (config.refine.enabled)
+    refiner_ =
+        std::make_unique<DeviceRefiner>(q, mesh, camera, config, model::occlusion_definition(config.occlusion_storage));
 }
 
 DeviceFilter::~DeviceFilter() = default;
@@ -251,9 +238,13 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
       *k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize), state_, log_weight_, log_likelihood_, weights_,
       estimate_, count, static_cast<float>(centre_.x()), static_cast<float>(centre_.y()),
       static_cast<float>(centre_.z()), model::float_threshold(config_.resample_kl_threshold));
-  const compute::EventPtr refined = config_.refine.enabled ? refine() : nullptr;
+  // The occlusion priors weigh kept for the refinement are in the resampling's scratch.
+  const compute::EventPtr refined =
+      refiner_ ? refiner_->refine(estimate_, RefineInputs{state_, observed_, occlusion_, occlusion_time_,
+                                                          scratch_occlusion_, atlas_, atlas_source_->layout(), time_})
+               : nullptr;
   const std::vector<compute::EventPtr> resampling = resample();
-  const compute::EventPtr shifted = config_.refine.enabled ? shift_particles() : nullptr;
+  const compute::EventPtr shifted = refiner_ ? shift_particles() : nullptr;
 
   float est[DT_EST_SIZE];
   estimate_.download(std::span<float>(est, DT_EST_SIZE));  // the frame's one wait
@@ -265,9 +256,11 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   e.max_log_likelihood = est[DT_EST_MAX_LL];
   e.mean_log_likelihood = est[DT_EST_MEAN_LL];
   e.resampled = est[DT_EST_RESAMPLE] != 0.0f;
-  if (config_.refine.enabled)
+  if (refiner_) {
     for (int r = 0; r < 6; ++r)
       for (int c = 0; c < 6; ++c) e.covariance(r, c) = est[DT_EST_COV + 6 * r + c];
+    e.refine_iterations = static_cast<int>(est[DT_EST_REFINE_ITERATIONS]);
+  }
   // The per-pixel gathers ran only if the device resampled: only then is their target the state.
   if (e.resampled && config_.occlusion_storage != OcclusionStorage::Off) std::swap(occlusion_, scratch_occlusion_);
   if (e.resampled && config_.occlusion_storage == OcclusionStorage::PerPixelTime)
@@ -313,45 +306,10 @@ std::vector<compute::EventPtr> DeviceFilter::resample() {
   return events;
 }
 
-compute::EventPtr DeviceFilter::refine() {
-  Kernels& k = *kernels_;
-  const Refinement& r = config_.refine;
-  const RefineArgs args{static_cast<float>(r.damping),
-                        static_cast<float>(r.min_incidence),
-                        static_cast<float>(centre_.x()),
-                        static_cast<float>(centre_.y()),
-                        static_cast<float>(centre_.z()),
-                        static_cast<float>(time_),
-                        r.iterations};
-  compute::set_arg(*k.refine, 0, estimate_);
-  compute::set_arg(*k.refine, 1, state_);
-  compute::set_arg(*k.refine, 2, observed_);
-  compute::set_arg(*k.refine, 3, occlusion_);
-  compute::set_arg(*k.refine, 4, occlusion_time_);
-  compute::set_arg(*k.refine, 5, scratch_occlusion_);  // weigh's priors
-  compute::set_arg(*k.refine, 6, atlas_);
-  k.refine->set_arg(7, atlas_source_->layout().kernel_args());
-  compute::set_arg(*k.refine, 8, refine_mesh_->vertices);
-  compute::set_arg(*k.refine, 9, refine_mesh_->triangles);
-  compute::set_arg(*k.refine, 10, refine_mesh_->planes);
-  k.refine->set_arg(11, refine_mesh_->triangle_count());
-  k.refine->set_arg(12, model::camera_params(camera_, config_));
-  k.refine->set_arg(13, model::model_params(config_));
-  k.refine->set_arg(14, args);
-  compute::set_arg(*k.refine, 15, refine_pose_);
-  compute::set_arg(*k.refine, 16, refine_tile_);
-  compute::set_arg(*k.refine, 17, refine_ids_);
-  compute::set_arg(*k.refine, 18, correction_);
-  return queue_->launch(*k.refine, compute::NdRange::linear(kGroupSize, kGroupSize));
-}
-
 // resample() left the gathered (or copied) states in state_ and the weighed ones in scratch_state_:
 // the cloud is shifted in place.
 compute::EventPtr DeviceFilter::shift_particles() {
-  return queue_->launch(*kernels_->shift_particles,
-                        compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup), state_, state_,
-                        static_cast<unsigned>(count_), correction_, static_cast<float>(centre_.x()),
-                        static_cast<float>(centre_.y()), static_cast<float>(centre_.z()));
+  return refiner_->shift(state_, state_, count_);
 }
 
 std::vector<double> DeviceFilter::last_log_likelihoods() const {

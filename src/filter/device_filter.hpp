@@ -16,6 +16,7 @@
 namespace depthtrack {
 
 class DevicePoseScorer;
+class DeviceRefiner;
 
 class DeviceFilter final : public FilterBackend {
  public:
@@ -57,10 +58,8 @@ class DeviceFilter final : public FilterBackend {
   std::vector<model::ParticleState> unpack(const compute::Buffer<float>& state) const;
   // Enqueues the resampling kernels, which resample only if the device decided to; their events.
   std::vector<compute::EventPtr> resample();
-  // Enqueues the pose refinement (cl/refine.cl); its event.
-  compute::EventPtr refine();
-  // Enqueues the shift of the cloud by the refinement's correction (after resample(), which left
-  // the weighed states in scratch_state_); its event.
+  // Enqueues the shift of the cloud by the refinement's correction, leaving the weighed states in
+  // scratch_state_ (where resampling left them, or copied there); its event.
   compute::EventPtr shift_particles();
 
   std::unique_ptr<compute::Queue> queue_;
@@ -76,10 +75,7 @@ class DeviceFilter final : public FilterBackend {
   compute::Buffer<unsigned> parents_;
   compute::Buffer<float> atlas_, observed_;
   compute::Buffer<float> occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_;
-  // The refinement's mesh, one-pose scratch (state, depth bits, triangle ids) and correction twist.
-  std::unique_ptr<MeshBuffers> refine_mesh_;
-  compute::Buffer<float> refine_pose_, correction_;
-  compute::Buffer<unsigned> refine_tile_, refine_ids_;
+  std::unique_ptr<DeviceRefiner> refiner_;  // when config.refine.enabled
   bool last_resampled_ = false;
   bool weighed_in_scratch_ = false;  // the last update left the weighed states in scratch_state_
   unsigned frame_ = 0;

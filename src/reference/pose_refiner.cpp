@@ -48,10 +48,19 @@ Vector6d damped_step(const NormalEquations& e, double lambda) {
   return step.allFinite() ? step : Vector6d::Zero();
 }
 
+double step_motion(const Vector6d& step, double radius) {
+  return step.head<3>().norm() + radius * step.tail<3>().norm();
+}
+
+double damping_after_rejection(double lambda) {
+  return std::max(10.0 * lambda, 1.0);
+}
+
 PoseRefiner::PoseRefiner(const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
     : config_(config),
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
+      radius_(mesh.radius()),
       rasterizer_(mesh, camera, config.near_plane, config.observation.max_depth),
       planes_(render::triangle_planes(mesh)),
       rendered_(static_cast<size_t>(camera.pixel_count())),
@@ -98,7 +107,8 @@ RefinedPose PoseRefiner::refine(const Pose& start, const DepthImage& depth, std:
   double lambda = config_.refine.damping;
   for (int iteration = 0; iteration < config_.refine.iterations; ++iteration) {
     const Vector6d step = damped_step(at_best, lambda);
-    if (step.isZero()) break;
+    if (step.isZero() || step_motion(step, radius_) < config_.refine.converged_motion) break;
+    ++best.iterations;
     const Pose candidate = apply_twist(best.pose, centre_, step);
     const NormalEquations at_candidate = normal_equations(candidate, depth, occlusion);
     if (at_candidate.objective >= at_best.objective - kStepTolerance) {
@@ -107,7 +117,7 @@ RefinedPose PoseRefiner::refine(const Pose& start, const DepthImage& depth, std:
       lambda = config_.refine.damping;
       ++best.accepted_steps;
     } else {
-      lambda = std::max(10.0 * lambda, 1e-3);  // a rejected step: lean towards gradient descent
+      lambda = damping_after_rejection(lambda);  // lean towards gradient descent
     }
   }
   best.objective = at_best.objective;

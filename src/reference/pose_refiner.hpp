@@ -48,6 +48,7 @@ struct RefinedPose {
   double objective = 0;
   int pixels = 0;
   int accepted_steps = 0;
+  int iterations = 0;  // steps tried (accepted or not), each one rendering of a candidate pose
 };
 
 class PoseRefiner {
@@ -56,14 +57,16 @@ class PoseRefiner {
 
   // occlusion: each pixel's occlusion probability for this frame, or empty for none.
   NormalEquations normal_equations(const Pose& pose, const DepthImage& depth, std::span<const double> occlusion) const;
-  // config.refine.iterations damped steps from start, each kept unless it lowers the log-likelihood
-  // (more than rounding could); the result is the last pose kept.
+  // Up to config.refine.iterations damped steps from start, each kept unless it lowers the
+  // log-likelihood (more than rounding could); it stops early when the next step would move no mesh
+  // point more than config.refine.converged_motion. The result is the last pose kept.
   RefinedPose refine(const Pose& start, const DepthImage& depth, std::span<const double> occlusion) const;
 
  private:
   TrackerConfig config_;
   Camera camera_;
   Eigen::Vector3d centre_;
+  double radius_;  // largest vertex distance from centre_: how far a rotation moves the mesh
   Rasterizer rasterizer_;
   std::vector<float> planes_;            // per triangle: object-frame unit normal and offset
   mutable std::vector<float> rendered_;  // scratch
@@ -72,5 +75,13 @@ class PoseRefiner {
 
 // The step the damped system gives: (h + lambda diag(h)) step = g; zero when it is singular.
 Vector6d damped_step(const NormalEquations& e, double lambda);
+
+// How far the twist moves a point within radius of the centre, at most: |dt| + radius |dw|.
+double step_motion(const Vector6d& step, double radius);
+
+// Levenberg-Marquardt damping after a rejected step: tenfold, and at least 1 (which about halves the
+// step), since a silhouette pixel coming or going changes the objective by nats and a step only
+// slightly shorter than the rejected one is mostly rejected too. cl/refine.cl does the same.
+double damping_after_rejection(double lambda);
 
 }  // namespace depthtrack::reference

@@ -209,6 +209,7 @@ void ReferenceFilter::refine(Estimate& e, const DepthImage& depth, size_t heavie
   for (ParticleState& s : particles_) s.pose = apply_twist(s.pose, centre_, correction);
   e.pose = fit.pose;
   e.covariance = fit.covariance;
+  e.refine_iterations = fit.iterations;
 }
 
 size_t ReferenceFilter::weigh_all(const DepthImage& depth, double dt, Estimate& e) {
