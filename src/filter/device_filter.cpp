@@ -163,8 +163,13 @@ void DeviceFilter::initialize(const Pose& pose, const InitialSpread& spread) {
 
 std::vector<double> DeviceFilter::score_poses(std::span<const Pose> poses, const DepthImage& depth,
                                               const ObservationModel& model) {
-  if (!scorer_) scorer_ = std::make_unique<DevicePoseScorer>(*queue_, mesh_, camera_, config_);
+  if (!scorer_) scorer_ = make_pose_scorer(mesh_);
   return scorer_->score(poses, depth, model);
+}
+
+std::unique_ptr<PoseScorer> DeviceFilter::make_pose_scorer(const Mesh& mesh) {
+  if (!scoring_programs_) scoring_programs_ = std::make_shared<const DevicePoseScorerPrograms>(*queue_);
+  return std::make_unique<DevicePoseScorer>(*queue_, scoring_programs_, mesh, camera_, config_);
 }
 
 // Drawn on the device (cl/initialize.cl) with the reference's draws, particle i around mode
@@ -181,12 +186,9 @@ void DeviceFilter::initialize_modes(std::span<const Pose> modes, const InitialSp
   }
   compute::Buffer<float> mode_buffer(*queue_, mode_values.size());
   mode_buffer.upload(mode_values);
-  const InitialArgs args{static_cast<float>(spread.metres),
-                         static_cast<float>(spread.radians),
-                         static_cast<float>(centre_.x()),
-                         static_cast<float>(centre_.y()),
-                         static_cast<float>(centre_.z()),
-                         static_cast<unsigned>(modes.size())};
+  const InitialArgs args{static_cast<float>(spread.metres), static_cast<float>(spread.radians),
+                         static_cast<float>(centre_.x()),   static_cast<float>(centre_.y()),
+                         static_cast<float>(centre_.z()),   static_cast<unsigned>(modes.size())};
   const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
   compute::set_arg(*k.initialize_particles, 0, state_);
   k.initialize_particles->set_arg(1, static_cast<unsigned>(count_));

@@ -13,12 +13,6 @@ namespace {
 // scores at the true pose move by 4-15 %, the time per pose falls 3-5 fold (reference, 80x60).
 constexpr double kSimplifyCell = 0.1;
 
-// The coarse stages' backend: it only scores (one particle).
-TrackerConfig scoring_config(TrackerConfig config) {
-  config.particles = 1;
-  return config;
-}
-
 // The coarse stages' observation model, tempered: the tracker's own (sigma 3 mm at 0 m, tail
 // weight 0.01) is so peaked that a pose one coarse grid step (pixels, 15-20 degrees) from the
 // truth can score below a flat wall. Sigma grows to half the grid's translation step and the tail
@@ -42,21 +36,20 @@ search::SearchObject search_object(const Mesh& mesh) {
 }
 }  // namespace
 
-TrackSupervisor::TrackSupervisor(const Mesh& mesh, const Camera& sensor, const Camera& working, int decimation,
-                                 const TrackerConfig& config)
+TrackSupervisor::TrackSupervisor(FilterBackend& backend, const Mesh& mesh, const Camera& sensor, const Camera& working,
+                                 int decimation, const TrackerConfig& config)
     : config_(config),
       sensor_(sensor),
       working_(working),
       decimation_(decimation),
       object_(search_object(mesh)),
-      coarse_(make_filter_backend(search::simplify_mesh(mesh, kSimplifyCell * mesh.radius()), working,
-                                  scoring_config(config))),
+      coarse_(backend.make_pose_scorer(search::simplify_mesh(mesh, kSimplifyCell * mesh.radius()))),
+      full_(backend.make_pose_scorer(mesh)),
       rasterizer_(mesh, working, config.near_plane, config.observation.max_depth),
       scratch_(static_cast<size_t>(working.pixel_count())) {}
 
-search::SearchResult TrackSupervisor::search(FilterBackend& backend, const DepthImage& sensor_depth,
-                                             const DepthImage& working, const InitHint& hint, double budget_ms,
-                                             unsigned round) const {
+search::SearchResult TrackSupervisor::search(const DepthImage& sensor_depth, const DepthImage& working,
+                                             const InitHint& hint, double budget_ms, unsigned round) const {
   search::SearchSettings settings;
   settings.budget_ms = budget_ms;
   settings.seed = config_.seed;
@@ -72,9 +65,9 @@ search::SearchResult TrackSupervisor::search(FilterBackend& backend, const Depth
     surface = search::surface_points(sensor_depth, sensor_, hint, object_.radius, s);
   const ObservationModel soft =
       tempered(config_.observation, search::grid_resolution(object_, working_, surface, settings).translation_spacing);
-  const search::ScoreFunction coarse = [&](std::span<const Pose> p) { return coarse_->score_poses(p, working, soft); };
+  const search::ScoreFunction coarse = [&](std::span<const Pose> p) { return coarse_->score(p, working, soft); };
   const search::ScoreFunction full = [&](std::span<const Pose> p) {
-    return backend.score_poses(p, working, config_.observation);
+    return full_->score(p, working, config_.observation);
   };
   search::SearchResult result = search::global_search(object_, working_, surface, coarse, settings);
   if (result.candidates.empty()) return result;

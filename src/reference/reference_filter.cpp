@@ -3,8 +3,8 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <limits>
 #include <depthtrack/error.hpp>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -50,7 +50,8 @@ ReferenceFilter::ReferenceFilter(const Mesh& mesh, const Camera& camera, const T
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       rasterizer_(mesh, camera, config.near_plane, config.observation.max_depth),
-      refiner_(mesh, camera, config) {
+      refiner_(mesh, camera, config),
+      scorer_(mesh, camera, config) {
   check_host_memory(config, camera);
   const size_t n = static_cast<size_t>(config.particles), pixels = static_cast<size_t>(camera.pixel_count());
   particles_.resize(n);
@@ -79,16 +80,11 @@ void ReferenceFilter::initialize_modes(std::span<const Pose> modes, const Initia
 
 std::vector<double> ReferenceFilter::score_poses(std::span<const Pose> poses, const DepthImage& depth,
                                                  const ObservationModel& model) {
-  TrackerConfig config = config_;
-  config.observation = model;
-  std::vector<double> scores(poses.size());
-  last_score_magnitudes_.resize(poses.size());
-  for (size_t i = 0; i < poses.size(); ++i) {
-    const PoseScore s = score_pose(rasterizer_, config, poses[i], depth, rendered_);
-    scores[i] = s.log_likelihood;
-    last_score_magnitudes_[i] = s.magnitude;
-  }
-  return scores;
+  return scorer_.score(poses, depth, model);
+}
+
+std::unique_ptr<PoseScorer> ReferenceFilter::make_pose_scorer(const Mesh& mesh) {
+  return std::make_unique<ReferencePoseScorer>(mesh, camera_, config_);
 }
 
 void ReferenceFilter::propagate(double dt) {
