@@ -20,6 +20,9 @@ struct StepTimings {
   double refine_ms = 0;
   // Global search (initialize_global, or recovery while lost), wall-clock; included in total_ms.
   double search_ms = 0;
+  // The estimate's confidence and status: its silhouette drawn and compared on the host, wall-clock;
+  // included in total_ms.
+  double confidence_ms = 0;
 };
 
 // What a frame's estimate rests on. Tracking: the filter follows the object. Lost: the confidence
@@ -108,7 +111,7 @@ class Tracker {
   double previous_timestamp_ = 0;
   size_t frames_since_initialize_ = 0;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();  // the mesh's, where initialize() checks the start
-  unsigned search_round_ = 0;  // varies each recovery search's perturbations
+  unsigned search_round_ = 0;                         // varies each recovery search's perturbations
 };
 
 }  // namespace depthtrack

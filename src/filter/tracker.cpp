@@ -194,8 +194,11 @@ Estimate Tracker::run_frame(const DepthImage& working, double timestamp) {
     e.status = TrackStatus::NoData;
     return e;
   }
+  const Stopwatch clock;
   e.confidence = supervisor_->assess(e.pose, working).confidence();
   e.status = supervisor_->observe(e.confidence);
+  e.timings.confidence_ms = clock.elapsed_ms();
+  e.timings.total_ms += e.timings.confidence_ms;
   return e;
 }
 
