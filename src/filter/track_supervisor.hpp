@@ -9,6 +9,7 @@
 
 #include "filter/filter_backend.hpp"
 #include "filter/silhouette_shares.hpp"
+#include "reference/pose_refiner.hpp"
 #include "reference/rasterizer.hpp"
 #include "search/global_search.hpp"
 
@@ -39,12 +40,16 @@ class TrackSupervisor {
   TrackStatus status() const { return status_; }
 
  private:
+  // Fits the best candidates to their likelihood's optimum (reference::PoseRefiner), rescored.
+  void fit_best(search::SearchResult& result, const DepthImage& working) const;
+
   TrackerConfig config_;
   Camera sensor_, working_;
   int decimation_;
   search::SearchObject object_;
   std::unique_ptr<PoseScorer> coarse_;  // scores with the simplified mesh
   std::unique_ptr<PoseScorer> full_;    // with the tracker's mesh
+  reference::PoseRefiner refiner_;      // fits the best candidates without a hint (on the host)
   reference::Rasterizer rasterizer_;
   std::vector<float> scratch_;
   TrackStatus status_ = TrackStatus::Tracking;
