@@ -112,6 +112,17 @@ void TrackSupervisor::fit_best(search::SearchResult& result, const DepthImage& w
   result.poses_scored += fitted.size();
   for (size_t i = 0; i < fitted.size(); ++i)
     if (scores[i] > result.candidates[i].score) result.candidates[i] = {fitted[i], scores[i]};
+  // A pose fitted onto another object's surface can outscore the truth (ycbv-0000's gelatin box:
+  // 1538 against 1419), but less of its outline sees past its edge (0.34-0.45 against 0.55): when
+  // some fitted candidates pass found()'s outline test, only they go on to the polish.
+  std::vector<float> scratch(static_cast<size_t>(working_.pixel_count()));
+  std::vector<search::Candidate> outlined;
+  for (size_t i = 0; i < fitted.size(); ++i)
+    if (silhouette_shares(rasterizer_, config_.observation, config_.loss.pixel_sigmas, result.candidates[i].pose,
+                          working, scratch)
+            .separated >= config_.loss.found_outline)
+      outlined.push_back(result.candidates[i]);
+  if (!outlined.empty()) result.candidates = std::move(outlined);
 }
 
 std::vector<Pose> TrackSupervisor::seeds(const search::SearchResult& result) {

@@ -40,7 +40,8 @@ class TrackSupervisor {
   TrackStatus status() const { return status_; }
 
  private:
-  // Fits the best candidates to their likelihood's optimum (reference::PoseRefiner), rescored.
+  // Fits the best candidates to their likelihood's optimum (reference::PoseRefiner), rescored, and
+  // keeps only those whose outline stands out when any does.
   void fit_best(search::SearchResult& result, const DepthImage& working) const;
 
   TrackerConfig config_;
