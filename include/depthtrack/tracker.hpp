@@ -22,6 +22,9 @@ struct StepTimings {
   double refine_ms = 0;
   // Global search (initialize_global, or recovery while lost), wall-clock; included in total_ms.
   double search_ms = 0;
+  // The estimate's confidence and status: its silhouette drawn and compared on the host, wall-clock;
+  // included in total_ms.
+  double confidence_ms = 0;
 };
 
 // What a frame's estimate rests on. Tracking: the filter follows the object. Lost: the confidence

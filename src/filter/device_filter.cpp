@@ -129,8 +129,13 @@ void DeviceFilter::initialize(const Pose& pose, const InitialSpread& spread) {
 
 std::vector<double> DeviceFilter::score_poses(std::span<const Pose> poses, const DepthImage& depth,
                                               const ObservationModel& model) {
-  if (!scorer_) scorer_ = std::make_unique<DevicePoseScorer>(*queue_, mesh_, camera_, config_);
+  if (!scorer_) scorer_ = make_pose_scorer(mesh_);
   return scorer_->score(poses, depth, model);
+}
+
+std::unique_ptr<PoseScorer> DeviceFilter::make_pose_scorer(const Mesh& mesh) {
+  if (!scoring_programs_) scoring_programs_ = std::make_shared<const DevicePoseScorerPrograms>(*queue_);
+  return std::make_unique<DevicePoseScorer>(*queue_, scoring_programs_, mesh, camera_, config_);
 }
 
 // Drawn on the device (cl/initialize.cl) with the reference's draws, particle i around mode

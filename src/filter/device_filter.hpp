@@ -17,6 +17,7 @@ namespace depthtrack {
 
 class DevicePoseScorer;
 class DeviceRefiner;
+struct DevicePoseScorerPrograms;
 
 class DeviceFilter final : public FilterBackend {
  public:
@@ -29,6 +30,9 @@ class DeviceFilter final : public FilterBackend {
   // Through a DevicePoseScorer made on first use (its atlas is separate from the filter's).
   std::vector<double> score_poses(std::span<const Pose> poses, const DepthImage& depth,
                                   const ObservationModel& model) override;
+  // A DevicePoseScorer on this filter's queue; the scoring programs are built on the first call
+  // and shared by every scorer made after it.
+  std::unique_ptr<PoseScorer> make_pose_scorer(const Mesh& mesh) override;
   Estimate update(const DepthImage& depth, double dt) override;
   std::string description() const override;
 
@@ -69,8 +73,9 @@ class DeviceFilter final : public FilterBackend {
   size_t pixels_, count_;
   std::unique_ptr<AtlasSource> atlas_source_;
   std::unique_ptr<Kernels> kernels_;
-  std::unique_ptr<DevicePoseScorer> scorer_;
-  Mesh mesh_;  // kept for the scorer, made only when global search runs
+  std::unique_ptr<PoseScorer> scorer_;
+  std::shared_ptr<const DevicePoseScorerPrograms> scoring_programs_;
+  Mesh mesh_;  // kept for score_poses' scorer, made only when it is first called
   compute::Buffer<float> state_, scratch_state_, log_weight_, log_likelihood_, weights_, cumulative_, estimate_;
   compute::Buffer<unsigned> parents_;
   compute::Buffer<float> atlas_, observed_;

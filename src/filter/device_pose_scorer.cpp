@@ -12,9 +12,9 @@
 namespace depthtrack {
 
 namespace {
-constexpr size_t kGroupSize = 128;  // work-items per pose in cl/score.cl, as in weigh
-// Poses per launch: enough to fill a GPU at 80x60; on a CPU device a small batch wastes little
-// on the last, partly filled one (its empty slots are still scored).
+constexpr size_t kScoreGroup = 128;      // work-items per pose in cl/score.cl, as in weigh
+constexpr size_t kRasterizeGroup = 128;  // work-items per pose in cl/rasterize.cl, as the kernel atlas source
+// Poses per launch at most: enough to fill a GPU at 80x60; a CPU device gains nothing from more.
 constexpr size_t kGpuBatch = 4096, kCpuBatch = 256;
 
 // As many poses as a fifth of device memory holds (atlas tile and state each), at most the above.
@@ -25,34 +25,40 @@ size_t batch_for(const compute::Queue& queue, size_t pixels) {
   if (memory <= 0) return most;
   return std::clamp<size_t>(static_cast<size_t>(0.2 * memory / per_pose), 1, most);
 }
-
-TrackerConfig batch_config(const TrackerConfig& config, size_t batch) {
-  TrackerConfig c = config;
-  c.particles = static_cast<int>(batch);
-  c.renderer = "kernel";  // drawn where it is scored, whatever renderer the filter uses
-  return c;
-}
 }  // namespace
 
-DevicePoseScorer::DevicePoseScorer(compute::Queue& queue, const Mesh& mesh, const Camera& camera,
-                                   const TrackerConfig& config)
+DevicePoseScorerPrograms::DevicePoseScorerPrograms(compute::Queue& queue)
+    : rasterize(queue.build("rasterize.cl", compute::kernel_source("rasterize.cl"),
+                            {"DT_GROUP_SIZE=" + std::to_string(kRasterizeGroup)})),
+      score(queue.build("score.cl", compute::kernel_source("score.cl"),
+                        {"DT_GROUP_SIZE=" + std::to_string(kScoreGroup)})) {}
+
+DevicePoseScorer::DevicePoseScorer(compute::Queue& queue, std::shared_ptr<const DevicePoseScorerPrograms> programs,
+                                   const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
     : queue_(queue),
+      programs_(std::move(programs)),
       config_(config),
       pixels_(static_cast<size_t>(camera.pixel_count())),
       batch_(batch_for(queue, pixels_)),
-      atlas_source_(make_atlas_source(queue, mesh, camera, batch_config(config, batch_))),
-      program_(
-          queue.build("score.cl", compute::kernel_source("score.cl"), {"DT_GROUP_SIZE=" + std::to_string(kGroupSize)})),
-      kernel_(program_->kernel("score")),
-      states_(queue, batch_ * DT_STATE_STRIDE),
-      atlas_(queue, atlas_source_->layout().floats()),
-      observed_(queue, pixels_),
-      scores_(queue, batch_) {}
+      // Particle-major: tile i is the i-th block of pixels, whatever the batch's fill.
+      layout_(render::AtlasLayout::particle_major(static_cast<int>(batch_), camera.width, camera.height)),
+      camera_(model::camera_params(camera, config)),
+      mesh_(queue, mesh),
+      rasterize_(programs_->rasterize->kernel("rasterize")),
+      score_(programs_->score->kernel("score")) {}
 
 DevicePoseScorer::~DevicePoseScorer() = default;
 
 std::vector<double> DevicePoseScorer::score(std::span<const Pose> poses, const DepthImage& depth,
                                             const ObservationModel& observation) {
+  // The batch's buffers are allocated by the first search, not with the tracker: a tracker that
+  // never loses its object never needs them.
+  if (atlas_.size() == 0) {
+    states_ = compute::Buffer<float>(queue_, batch_ * DT_STATE_STRIDE);
+    atlas_ = compute::Buffer<float>(queue_, layout_.floats());
+    observed_ = compute::Buffer<float>(queue_, pixels_);
+    scores_ = compute::Buffer<float>(queue_, batch_);
+  }
   observed_.upload(depth.data());
   TrackerConfig config = config_;
   config.observation = observation;
@@ -60,26 +66,16 @@ std::vector<double> DevicePoseScorer::score(std::span<const Pose> poses, const D
   const float p = static_cast<float>(model::fresh_occlusion(config_));
   std::vector<double> out;
   out.reserve(poses.size());
-  std::vector<float> packed(batch_ * DT_STATE_STRIDE), scores(batch_);
-  StepTimings unused;
+  std::vector<float> packed(batch_ * DT_STATE_STRIDE, 0.0f), scores(batch_);
   for (size_t first = 0; first < poses.size(); first += batch_) {
     const size_t n = std::min(batch_, poses.size() - first);
-    // Unused slots of the last batch hold a pose behind the camera: clipped at once, nothing drawn.
-    std::fill(packed.begin(), packed.end(), 0.0f);
-    for (size_t i = 0; i < batch_; ++i) {
-      float* s = packed.data() + i * DT_STATE_STRIDE;
-      if (i < n) {
-        write_pose(poses[first + i], s);
-      } else {
-        s[DT_TX + 2] = -1.0f;
-        s[DT_QW] = 1.0f;
-      }
-    }
-    states_.upload(packed);
-    atlas_source_->draw(states_, atlas_, unused);
-    queue_.launch(*kernel_, compute::NdRange::linear(batch_ * kGroupSize, kGroupSize), atlas_, observed_, scores_,
-                  static_cast<unsigned>(pixels_), model, p, atlas_source_->layout().kernel_args());
-    scores_.download(std::span<float>(scores.data(), batch_));
+    for (size_t i = 0; i < n; ++i) write_pose(poses[first + i], packed.data() + i * DT_STATE_STRIDE);
+    states_.upload(std::span<const float>(packed.data(), n * DT_STATE_STRIDE));
+    queue_.launch(*rasterize_, compute::NdRange::linear(n * kRasterizeGroup, kRasterizeGroup), states_, mesh_.vertices,
+                  mesh_.triangles, mesh_.planes, mesh_.triangle_count(), camera_, layout_.kernel_args(), atlas_);
+    queue_.launch(*score_, compute::NdRange::linear(n * kScoreGroup, kScoreGroup), atlas_, observed_, scores_,
+                  static_cast<unsigned>(pixels_), model, p, layout_.kernel_args());
+    scores_.download(std::span<float>(scores.data(), n));
     out.insert(out.end(), scores.begin(), scores.begin() + static_cast<std::ptrdiff_t>(n));
   }
   return out;

@@ -1,40 +1,49 @@
 #pragma once
-// Scores batches of poses on the compute device for global search: the kernel rasterizer
-// (cl/rasterize.cl) draws a batch into an atlas, cl/score.cl sums each tile's likelihood terms
-// with a fresh occlusion prior, and one download per batch brings the scores back. No filter state
-// is read or written.
+// Scores batches of poses on the compute device for global search: cl/rasterize.cl draws a batch
+// into an atlas of its own, cl/score.cl sums each tile's likelihood terms with a fresh occlusion
+// prior, and one download per batch brings the scores back. No filter state is read or written.
+// Only as many poses as are asked for are drawn and scored (a last, partly filled batch launches
+// fewer work-groups).
 #include <depthtrack/camera.hpp>
-#include <depthtrack/depth_image.hpp>
 #include <depthtrack/mesh.hpp>
-#include <depthtrack/pose.hpp>
-#include <depthtrack/tracker_config.hpp>
 #include <memory>
-#include <span>
-#include <vector>
 
 #include "compute/buffer.hpp"
-#include "filter/atlas_source.hpp"
+#include "dt_params.h"
+#include "filter/raster_inputs.hpp"
+#include "model/pose_scorer.hpp"
+#include "render/atlas_layout.hpp"
 
 namespace depthtrack {
 
-class DevicePoseScorer {
- public:
-  DevicePoseScorer(compute::Queue& queue, const Mesh& mesh, const Camera& camera, const TrackerConfig& config);
-  ~DevicePoseScorer();
+// The two programs every scorer on one queue launches: built once (when the tracker builds its own
+// programs, not on the first search) and shared by the scorers made from them.
+struct DevicePoseScorerPrograms {
+  explicit DevicePoseScorerPrograms(compute::Queue& queue);
+  std::unique_ptr<compute::Program> rasterize, score;
+};
 
-  // One log-likelihood per pose, in order, under `model`.
-  std::vector<double> score(std::span<const Pose> poses, const DepthImage& depth, const ObservationModel& model);
-  // Poses drawn and scored per kernel launch (sized to fit device memory).
+class DevicePoseScorer final : public PoseScorer {
+ public:
+  DevicePoseScorer(compute::Queue& queue, std::shared_ptr<const DevicePoseScorerPrograms> programs, const Mesh& mesh,
+                   const Camera& camera, const TrackerConfig& config);
+  ~DevicePoseScorer() override;
+
+  std::vector<double> score(std::span<const Pose> poses, const DepthImage& depth,
+                            const ObservationModel& model) override;
+  // Poses drawn and scored per kernel launch at most (sized to fit device memory).
   size_t batch_size() const { return batch_; }
 
  private:
   compute::Queue& queue_;
+  std::shared_ptr<const DevicePoseScorerPrograms> programs_;
   TrackerConfig config_;
   size_t pixels_, batch_;
-  std::unique_ptr<AtlasSource> atlas_source_;
-  std::unique_ptr<compute::Program> program_;
-  std::unique_ptr<compute::Kernel> kernel_;
-  compute::Buffer<float> states_, atlas_, observed_, scores_;
+  render::AtlasLayout layout_;
+  dt_camera camera_;
+  MeshBuffers mesh_;
+  std::unique_ptr<compute::Kernel> rasterize_, score_;
+  compute::Buffer<float> states_, atlas_, observed_, scores_;  // allocated by the first score()
 };
 
 }  // namespace depthtrack

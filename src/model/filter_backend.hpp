@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "model/pose_scorer.hpp"
+
 namespace depthtrack {
 
 class FilterBackend {
@@ -26,6 +28,9 @@ class FilterBackend {
   // ranks hypotheses by.
   virtual std::vector<double> score_poses(std::span<const Pose> poses, const DepthImage& depth,
                                           const ObservationModel& model) = 0;
+  // A scorer of `mesh` (e.g. a simplified copy) on this backend's device, camera and
+  // configuration, its programs built now: global search scores through it.
+  virtual std::unique_ptr<PoseScorer> make_pose_scorer(const Mesh& mesh) = 0;
   // dt: seconds since the previous frame, 0 for the first frame after initialize().
   virtual Estimate update(const DepthImage& depth, double dt) = 0;
   virtual std::string description() const = 0;

@@ -26,4 +26,23 @@ PoseScore score_pose(const Rasterizer& rasterizer, const TrackerConfig& config, 
   return s;
 }
 
+ReferencePoseScorer::ReferencePoseScorer(const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
+    : config_(config),
+      rasterizer_(mesh, camera, config.near_plane, config.observation.max_depth),
+      rendered_(static_cast<size_t>(camera.pixel_count())) {}
+
+std::vector<double> ReferencePoseScorer::score(std::span<const Pose> poses, const DepthImage& depth,
+                                               const ObservationModel& model) {
+  TrackerConfig config = config_;
+  config.observation = model;
+  std::vector<double> scores(poses.size());
+  last_magnitudes_.resize(poses.size());
+  for (size_t i = 0; i < poses.size(); ++i) {
+    const PoseScore s = score_pose(rasterizer_, config, poses[i], depth, rendered_);
+    scores[i] = s.log_likelihood;
+    last_magnitudes_[i] = s.magnitude;
+  }
+  return scores;
+}
+
 }  // namespace depthtrack::reference

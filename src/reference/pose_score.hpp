@@ -5,6 +5,7 @@
 #include <depthtrack/tracker_config.hpp>
 #include <span>
 
+#include "model/pose_scorer.hpp"
 #include "reference/rasterizer.hpp"
 
 namespace depthtrack::reference {
@@ -17,5 +18,21 @@ struct PoseScore {
 // Renders pose into scratch (camera pixels) and sums its terms against depth.
 PoseScore score_pose(const Rasterizer& rasterizer, const TrackerConfig& config, const Pose& pose,
                      const DepthImage& depth, std::span<float> scratch);
+
+// score_pose for each pose, with its own rasterizer of the mesh it was made with.
+class ReferencePoseScorer final : public PoseScorer {
+ public:
+  ReferencePoseScorer(const Mesh& mesh, const Camera& camera, const TrackerConfig& config);
+  std::vector<double> score(std::span<const Pose> poses, const DepthImage& depth,
+                            const ObservationModel& model) override;
+  // Per pose of the last score(), the sum of the absolute per-pixel terms.
+  const std::vector<double>& last_magnitudes() const { return last_magnitudes_; }
+
+ private:
+  TrackerConfig config_;
+  Rasterizer rasterizer_;
+  std::vector<float> rendered_;
+  std::vector<double> last_magnitudes_;
+};
 
 }  // namespace depthtrack::reference

@@ -46,7 +46,11 @@ void check_host_memory(const TrackerConfig& config, const Camera& camera) {
 }  // namespace
 
 ReferenceFilter::ReferenceFilter(const Mesh& mesh, const Camera& camera, const TrackerConfig& config, int threads)
-    : config_(config), camera_(camera), centre_(mesh.centre().cast<double>()), refiner_(mesh, camera, config) {
+    : config_(config),
+      camera_(camera),
+      centre_(mesh.centre().cast<double>()),
+      refiner_(mesh, camera, config),
+      scorer_(mesh, camera, config) {
   check_host_memory(config, camera);
   const size_t n = static_cast<size_t>(config.particles), pixels = static_cast<size_t>(camera.pixel_count());
   pool_ = std::make_unique<ThreadPool>(threads);
@@ -97,18 +101,11 @@ void ReferenceFilter::initialize_modes(std::span<const Pose> modes, const Initia
 
 std::vector<double> ReferenceFilter::score_poses(std::span<const Pose> poses, const DepthImage& depth,
                                                  const ObservationModel& model) {
-  TrackerConfig config = config_;
-  config.observation = model;
-  std::vector<double> scores(poses.size());
-  last_score_magnitudes_.resize(poses.size());
-  for_chunks(poses.size(), [&](Lane& lane, size_t, size_t first, size_t last) {
-    for (size_t i = first; i < last; ++i) {
-      const PoseScore s = score_pose(lane.rasterizer, config, poses[i], depth, lane.rendered);
-      scores[i] = s.log_likelihood;
-      last_score_magnitudes_[i] = s.magnitude;
-    }
-  });
-  return scores;
+  return scorer_.score(poses, depth, model);
+}
+
+std::unique_ptr<PoseScorer> ReferenceFilter::make_pose_scorer(const Mesh& mesh) {
+  return std::make_unique<ReferencePoseScorer>(mesh, camera_, config_);
 }
 
 void ReferenceFilter::propagate(double dt) {

@@ -13,6 +13,7 @@
 #include "model/filter_backend.hpp"
 #include "model/particle.hpp"
 #include "reference/pose_refiner.hpp"
+#include "reference/pose_score.hpp"
 #include "reference/rasterizer.hpp"
 
 namespace depthtrack::reference {
@@ -27,6 +28,7 @@ class ReferenceFilter final : public FilterBackend {
   void initialize_modes(std::span<const Pose> modes, const InitialSpread& spread) override;
   std::vector<double> score_poses(std::span<const Pose> poses, const DepthImage& depth,
                                   const ObservationModel& model) override;
+  std::unique_ptr<PoseScorer> make_pose_scorer(const Mesh& mesh) override;
   Estimate update(const DepthImage& depth, double dt) override;
   std::string description() const override;
 
@@ -44,7 +46,7 @@ class ReferenceFilter final : public FilterBackend {
   const std::vector<float>& occlusion_times() const { return occlusion_time_; }
   const std::vector<double>& log_weights() const { return log_weights_; }
   // Per pose of the last score_poses, the sum of the absolute per-pixel terms.
-  const std::vector<double>& last_score_magnitudes() const { return last_score_magnitudes_; }
+  const std::vector<double>& last_score_magnitudes() const { return scorer_.last_magnitudes(); }
 
  private:
   // The occlusion priors of the pixels a particle's Bayes update changed, for the refinement's map.
@@ -96,6 +98,7 @@ class ReferenceFilter final : public FilterBackend {
   std::vector<Lane> lanes_;  // one per thread; lanes_[0] is the caller's
   std::unique_ptr<ThreadPool> pool_;
   PoseRefiner refiner_;
+  ReferencePoseScorer scorer_;
   std::vector<ParticleState> particles_, scratch_particles_;  // scratch: resampling's gather target
   std::vector<double> log_weights_;
   // Occlusion state per particle per pixel: probability, and (per-pixel-time mode) the time of its
@@ -109,7 +112,6 @@ class ReferenceFilter final : public FilterBackend {
   std::vector<double> last_log_likelihoods_, last_magnitudes_;
   std::vector<int> last_parents_;
   std::vector<double> last_normalized_;
-  std::vector<double> last_score_magnitudes_;
   unsigned frame_ = 0;
   double time_ = 0;  // seconds since the first frame
 };

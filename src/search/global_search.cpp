@@ -1,7 +1,9 @@
 #include "search/global_search.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <random>
 
@@ -45,6 +47,21 @@ std::vector<Candidate> best_distinct(std::vector<Candidate> all, size_t keep, co
     if (!near) kept.push_back(c);
   }
   return kept;
+}
+
+// Each surface point's region: the cube of edge `cell` (the object's radius) it falls in, numbered
+// densely in the order first met.
+std::vector<size_t> regions_of(std::span<const Eigen::Vector3d> surface, double cell, size_t& count) {
+  std::map<std::array<long, 3>, size_t> index;
+  std::vector<size_t> out(surface.size());
+  for (size_t i = 0; i < surface.size(); ++i) {
+    const std::array<long, 3> key{std::lround(std::floor(surface[i].x() / cell)),
+                                  std::lround(std::floor(surface[i].y() / cell)),
+                                  std::lround(std::floor(surface[i].z() / cell))};
+    out[i] = index.emplace(key, index.size()).first->second;
+  }
+  count = index.size();
+  return out;
 }
 
 std::vector<Candidate> scored(std::vector<Pose> poses, const ScoreFunction& score) {
@@ -116,33 +133,61 @@ SearchResult global_search(const SearchObject& object, const Camera& camera, std
     std::mt19937_64 rng(settings.seed * 1000003u + settings.round);
     std::shuffle(order.begin(), order.end(), rng);
   }
+  size_t region_count = 1;
+  const std::vector<size_t> region = settings.by_region
+                                         ? regions_of(surface, std::max(object.radius, 1e-3), region_count)
+                                         : std::vector<size_t>(surface.size(), 0);
   const size_t chunk = 2048;
-  std::vector<Candidate> coarse;
+  std::vector<std::vector<Candidate>> by_region(region_count);
   for (size_t first = 0; first < order.size(); first += chunk) {
     if (settings.budget_ms > 0 && first > 0 && clock.elapsed_ms() > 0.7 * settings.budget_ms) break;
+    const size_t last = std::min(order.size(), first + chunk);
     std::vector<Pose> poses;
-    for (size_t k = first; k < std::min(order.size(), first + chunk); ++k) {
+    for (size_t k = first; k < last; ++k) {
       const size_t i = order[k] / rotations.size(), j = order[k] % rotations.size();
       const Eigen::Vector3d ray = surface[i].normalized();
       poses.push_back(centred_pose(rotations[j], surface[i] + offsets[j] * ray, object));
     }
-    std::vector<Candidate> part = scored(std::move(poses), score);
-    coarse.insert(coarse.end(), part.begin(), part.end());
+    const std::vector<Candidate> part = scored(std::move(poses), score);
+    for (size_t k = first; k < last; ++k) by_region[region[order[k] / rotations.size()]].push_back(part[k - first]);
+    result.coarse_poses += part.size();
   }
-  result.coarse_poses = coarse.size();
-  result.poses_scored = coarse.size();
-  std::vector<Candidate> kept = best_distinct(std::move(coarse), static_cast<size_t>(std::max(settings.keep, 1)),
-                                              object, 1.5 * result.translation_spacing, 1.5 * result.rotation_radius);
+  result.poses_scored = result.coarse_poses;
 
-  // Halve the steps each stage down to finest_pixels; the candidates thin out towards the end.
+  // The best regions by their best coarse score; each keeps its best distinct candidates.
+  std::vector<size_t> ranked;
+  for (size_t r = 0; r < region_count; ++r)
+    if (!by_region[r].empty()) ranked.push_back(r);
+  const auto best_of = [&](size_t r) {
+    return std::max_element(by_region[r].begin(), by_region[r].end(),
+                            [](const Candidate& a, const Candidate& b) { return a.score < b.score; })
+        ->score;
+  };
+  std::vector<double> region_best(region_count, 0);
+  for (size_t r : ranked) region_best[r] = best_of(r);
+  std::sort(ranked.begin(), ranked.end(), [&](size_t a, size_t b) { return region_best[a] > region_best[b]; });
+  ranked.resize(std::min(ranked.size(), static_cast<size_t>(std::max(settings.regions, 1))));
+  if (ranked.empty()) return result;
+  const size_t keep = std::max(static_cast<size_t>(std::max(settings.per_region, 1)),
+                               (static_cast<size_t>(std::max(settings.keep, 1)) + ranked.size() - 1) / ranked.size());
+
+  // Halve the steps each stage down to finest_pixels; each region's candidates thin out towards the
+  // end, but no region's are compared with another's (the full model ranks them afterwards).
   std::vector<RefineStage> stages;
   double radians = 0.5 * result.rotation_radius, metres = 0.5 * result.translation_spacing;
   const double finest = settings.finest_pixels * metres_per_pixel;
-  for (size_t keep = kept.size(); metres > finest; metres *= 0.5, radians *= 0.5) {
-    stages.push_back({radians, metres, keep});
-    keep = std::max<size_t>(4, keep / 2);
+  for (size_t k = keep; metres > finest; metres *= 0.5, radians *= 0.5) {
+    stages.push_back({radians, metres, k});
+    k = std::max<size_t>(settings.by_region ? 2 : 4, k / 2);
   }
-  result.candidates = refine_candidates(std::move(kept), object, score, stages, settings, &result.poses_scored);
+  for (size_t r : ranked) {
+    std::vector<Candidate> kept = best_distinct(std::move(by_region[r]), keep, object, 1.5 * result.translation_spacing,
+                                                1.5 * result.rotation_radius);
+    kept = refine_candidates(std::move(kept), object, score, stages, settings, &result.poses_scored);
+    result.candidates.insert(result.candidates.end(), kept.begin(), kept.end());
+  }
+  std::sort(result.candidates.begin(), result.candidates.end(),
+            [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
   return result;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Global search: which poses to score, coarse to fine. A coarse grid (observed surface points x a
-// rotation set covering SO(3)) is scored, the best distinct candidates are kept and refined by
-// scoring ever finer perturbations around them. Scoring itself is the backend's (score_poses).
+// rotation set covering SO(3)) is scored, the best distinct candidates of each region of the scene
+// are kept and refined, region by region, by scoring ever finer perturbations around them. Scoring
+// itself is the backend's (FilterBackend::make_pose_scorer).
 #include <depthtrack/camera.hpp>
 #include <depthtrack/pose.hpp>
 #include <functional>
@@ -29,15 +30,22 @@ struct SearchSettings {
   // about this far, neighbouring translations lie this far apart.
   double coarse_pixels = 4.0;
   double finest_pixels = 0.25;  // refinement stops when its steps are this small
-  int keep = 12;                // distinct candidates carried from the coarse grid
-  int perturbations = 40;       // poses tried around each candidate per refinement stage
-  double budget_ms = 0;         // > 0: the coarse grid is cut short to leave time for refinement
+  int keep = 12;                // distinct candidates carried from the coarse grid, at least
+  // Regions (cubes of the object's radius holding surface points) whose best candidates are
+  // carried, the best-scoring first, and candidates carried per region at least: in a cluttered
+  // scene the coarse model can rank another object's surface above every pose near the right one,
+  // so each region keeps its own and is refined on its own.
+  // Off (a box or point hint: one object's neighbourhood), all candidates compete as one region.
+  bool by_region = false;
+  int regions = 16, per_region = 4;
+  int perturbations = 40;  // poses tried around each candidate per refinement stage
+  double budget_ms = 0;    // > 0: the coarse grid is cut short to leave time for refinement
   uint64_t seed = 1;
   unsigned round = 0;  // varies the perturbations (and the coarse order) between searches
 };
 
 struct SearchResult {
-  std::vector<Candidate> candidates;  // best first, distinct
+  std::vector<Candidate> candidates;  // best first, distinct (from every region carried)
   size_t coarse_poses = 0, poses_scored = 0;
   double rotation_radius = 0, translation_spacing = 0;  // of the coarse grid: radians, metres
 };

@@ -1,12 +1,14 @@
 #pragma once
 // The Tracker's backend-independent layer above the filter: global search for a frame (through
-// the backend's score_poses), each estimate's confidence from its rendered silhouette, and the
-// lost/tracking status with hysteresis over frames.
+// pose scorers the backend makes on its device), each estimate's confidence from its rendered
+// silhouette, and the lost/tracking status with hysteresis over frames.
 #include <depthtrack/camera.hpp>
 #include <depthtrack/init_hint.hpp>
 #include <depthtrack/tracker.hpp>
 #include <vector>
 
+#include "model/filter_backend.hpp"
+#include "reference/pose_refiner.hpp"
 #include "reference/rasterizer.hpp"
 #include "search/global_search.hpp"
 #include "tracker/make_filter_backend.hpp"
@@ -16,15 +18,16 @@ namespace depthtrack {
 
 class TrackSupervisor {
  public:
-  TrackSupervisor(const Mesh& mesh, const Camera& sensor, const Camera& working, int decimation,
+  // backend makes the search's scorers (their programs are built here, with the tracker's).
+  TrackSupervisor(FilterBackend& backend, const Mesh& mesh, const Camera& sensor, const Camera& working, int decimation,
                   const TrackerConfig& config);
 
   // Searches one frame: the coarse grid and its refinement scored with a simplified copy of the
-  // mesh (search::simplify_mesh), the last stage and the final ranking with the full mesh through
-  // `backend`. sensor_depth: as received (the hint's box is in its pixels); working: the frame
-  // scored. budget_ms 0: the whole coarse grid.
-  search::SearchResult search(FilterBackend& backend, const DepthImage& sensor_depth, const DepthImage& working,
-                              const InitHint& hint, double budget_ms, unsigned round) const;
+  // mesh (search::simplify_mesh), the last stage and the final ranking with the full mesh.
+  // sensor_depth: as received (the hint's box is in its pixels); working: the frame scored.
+  // budget_ms 0: the whole coarse grid.
+  search::SearchResult search(const DepthImage& sensor_depth, const DepthImage& working, const InitHint& hint,
+                              double budget_ms, unsigned round) const;
   // The candidates to seed the filter with: the best, and the runners-up nearly as likely.
   static std::vector<Pose> seeds(const search::SearchResult& result);
 
@@ -38,11 +41,17 @@ class TrackSupervisor {
   TrackStatus status() const { return status_; }
 
  private:
+  // Fits the best candidates to their likelihood's optimum (reference::PoseRefiner), rescored, and
+  // keeps only those whose outline stands out when any does.
+  void fit_best(search::SearchResult& result, const DepthImage& working) const;
+
   TrackerConfig config_;
   Camera sensor_, working_;
   int decimation_;
   search::SearchObject object_;
-  std::unique_ptr<FilterBackend> coarse_;  // scores with the simplified mesh
+  std::unique_ptr<PoseScorer> coarse_;  // scores with the simplified mesh
+  std::unique_ptr<PoseScorer> full_;    // with the tracker's mesh
+  reference::PoseRefiner refiner_;      // fits the best candidates without a hint (on the host)
   reference::Rasterizer rasterizer_;
   std::vector<float> scratch_;
   TrackStatus status_ = TrackStatus::Tracking;

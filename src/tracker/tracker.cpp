@@ -44,7 +44,7 @@ Tracker::Tracker(const Mesh& mesh, const Camera& sensor, const TrackerConfig& co
   config_ = config;
   centre_ = checked.centre().cast<double>();
   backend_ = make_filter_backend(checked, working_, config);
-  supervisor_ = std::make_unique<TrackSupervisor>(checked, sensor_, working_, decimation_, config);
+  supervisor_ = std::make_unique<TrackSupervisor>(*backend_, checked, sensor_, working_, decimation_, config);
 }
 
 Tracker::~Tracker() = default;
@@ -115,7 +115,7 @@ Estimate Tracker::initialize_global(const DepthImage& depth, double timestamp, c
   DepthImage storage;
   const DepthImage& working = working_frame(depth, storage);
   const Stopwatch clock;
-  const search::SearchResult found = supervisor_->search(*backend_, depth, working, hint, 0.0, 0u);
+  const search::SearchResult found = supervisor_->search(depth, working, hint, 0.0, 0u);
   if (found.candidates.empty())
     throw InputError(
         "global initialization: nothing in the frame stands out in front of its surroundings by half the "
@@ -158,8 +158,8 @@ Estimate Tracker::track_frame(const DepthImage& working, const std::function<con
   bool recovered = false;
   if (supervisor_->status() == TrackStatus::Lost && config_.recovery.enabled && working.valid_count() > 0) {
     const Stopwatch clock;
-    const search::SearchResult found = supervisor_->search(*backend_, sensor_frame(), working, InitHint::anywhere(),
-                                                           config_.recovery.budget_ms, ++search_round_);
+    const search::SearchResult found =
+        supervisor_->search(sensor_frame(), working, InitHint::anywhere(), config_.recovery.budget_ms, ++search_round_);
     if (!found.candidates.empty() && supervisor_->found(found.candidates.front().pose, working)) {
       backend_->initialize_modes(TrackSupervisor::seeds(found), kSearchSpread);
       supervisor_->reset();
@@ -200,8 +200,11 @@ Estimate Tracker::run_frame(const DepthImage& working, double timestamp) {
     e.status = TrackStatus::NoData;
     return e;
   }
+  const Stopwatch clock;
   e.confidence = supervisor_->assess(e.pose, working).confidence();
   e.status = supervisor_->observe(e.confidence);
+  e.timings.confidence_ms = clock.elapsed_ms();
+  e.timings.total_ms += e.timings.confidence_ms;
   return e;
 }
 
