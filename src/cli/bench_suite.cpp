@@ -14,7 +14,8 @@ BenchGrid quick_grid() {
 }
 
 BenchGrid full_grid() {
-  return {{1000, 10000, 100000, 300000, 1000000, 1500000},
+  // 200 and 2000 particles are where the reference also runs (the speedup); 1,500,000 is issue 12's aim.
+  return {{200, 2000, 10000, 100000, 300000, 1000000, 1500000},
           {{80, 60}, {160, 120}, {320, 240}, {640, 480}},
           10000,
           10000,
