@@ -8,16 +8,13 @@
 #include <map>
 #include <memory>
 
+#include "bench_commit.h"  // DEPTHTRACK_COMMIT, generated at build time
 #include "bench_rows.hpp"
 #include "cli/bench_figures.hpp"
 #include "cli/bench_results.hpp"
 #include "cli/bench_suite.hpp"
 #include "cli/commands.hpp"
 #include "compute/queue.hpp"
-
-#ifndef DEPTHTRACK_COMMIT
-#define DEPTHTRACK_COMMIT "unknown"
-#endif
 
 namespace depthtrack::cli {
 
