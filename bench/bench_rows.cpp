@@ -42,9 +42,13 @@ std::string cpu_name() {
   return "unknown CPU";
 }
 
-Mesh bench_mesh(std::string& name) {
+std::filesystem::path data_dir() {
   const char* env = std::getenv("DEPTHTRACK_DATA_DIR");
-  const auto handset = std::filesystem::path(env ? env : DEPTHTRACK_DATA_DIR) / "meshes/dbot/handset.obj";
+  return env ? env : DEPTHTRACK_DATA_DIR;
+}
+
+Mesh bench_mesh(std::string& name) {
+  const auto handset = data_dir() / "meshes/dbot/handset.obj";
   if (std::filesystem::exists(handset)) {
     name = "handset";
     return Mesh::load(handset);

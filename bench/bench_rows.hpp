@@ -2,6 +2,7 @@
 // Benchmark output in clpeak's shape: one CSV row per measurement, so runs on different machines
 // and backends can be concatenated and compared.
 #include <depthtrack/mesh.hpp>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,8 @@ void print_status(const std::string& backend, const std::string& test, const std
 double median(std::vector<double> samples);
 // The host CPU's model name, from /proc/cpuinfo.
 std::string cpu_name();
+// The third-party data folder: DEPTHTRACK_DATA_DIR from the environment, else the configured one.
+std::filesystem::path data_dir();
 // The thesis' handset from the data folder (DEPTHTRACK_DATA_DIR), else the built-in mesh; its name.
 Mesh bench_mesh(std::string& name);
 // "a,b,c" -> {"a", "b", "c"}.

@@ -10,5 +10,6 @@ void add_track_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 void add_plot_command(CLI::App& app);
 void add_config_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
 
 }  // namespace depthtrack::cli

@@ -1,0 +1,115 @@
+#include "cli/bench_suite.hpp"
+
+#include <cmath>
+#include <depthtrack/tracker.hpp>
+
+#include "bench_rows.hpp"
+#include "cli/step_bytes.hpp"
+#include "compute/queue.hpp"
+
+namespace depthtrack::cli {
+
+BenchGrid quick_grid() {
+  return {{50, 200, 800}, {{80, 60}, {160, 120}, {320, 240}, {640, 480}}, 20, 50, 200, 12, 1e7};
+}
+
+BenchGrid full_grid() {
+  // 200 and 2000 particles are where the reference also runs (the speedup); 1,500,000 is issue 12's aim.
+  return {{200, 2000, 10000, 100000, 300000, 1000000, 1500000},
+          {{80, 60}, {160, 120}, {320, 240}, {640, 480}},
+          10000,
+          10000,
+          100000,
+          20,
+          2e7};
+}
+
+BenchGrid test_grid() {
+  return {{10, 30}, {{80, 60}, {160, 120}}, 10, 10, 10, 3, 1e6};
+}
+
+BenchMesh make_bench_mesh(const std::string& name, Mesh mesh, int frames) {
+  SynthConfig synth;
+  synth.frames = frames;
+  synth.occluder_fraction = 0.3;
+  const Synthesizer scene(mesh, synth);
+  BenchMesh m{name, std::move(mesh), {}};
+  for (int i = 0; i < frames; ++i) m.frames.push_back(scene.frame(i));
+  return m;
+}
+
+BenchTarget describe_target(const std::string& backend) {
+  if (backend == "reference") return {backend, "cpu", bench::cpu_name(), "-", true};
+  const auto queue = compute::open_device(backend);
+  const compute::DeviceInfo& info = queue->info();
+  return {backend, info.platform, info.name, info.driver, !info.is_gpu};
+}
+
+std::string BenchCase::test() const {
+  return sweep + "_" + mesh->name + "_" + std::to_string(width) + "x" + std::to_string(height) + "_" +
+         std::to_string(particles) + "p_" + to_string(mode);
+}
+
+std::vector<BenchCase> grid_cases(const BenchGrid& grid, const std::vector<BenchMesh>& meshes) {
+  std::vector<BenchCase> cases;
+  const BenchMesh* first = &meshes.front();
+  for (const int p : grid.particle_counts) cases.push_back({"particles", first, 80, 60, p});
+  for (const auto& [w, h] : grid.resolutions)
+    cases.push_back({"resolution", first, w, h, grid.particles_at_resolution});
+  for (const BenchMesh& m : meshes) cases.push_back({"triangles", &m, 80, 60, grid.particles_at_triangles});
+  for (const auto mode : {OcclusionStorage::PerPixelTime, OcclusionStorage::GlobalTime, OcclusionStorage::Off})
+    cases.push_back({"occlusion", first, 80, 60, grid.particles_at_occlusion, mode});
+  return cases;
+}
+
+CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::string& renderer, int frames,
+                    const std::string& commit, double reference_ms, std::vector<BenchRow>& rows) {
+  TrackerConfig config;
+  config.backend = target.backend;
+  config.renderer = renderer;
+  config.width = c.width;
+  config.height = c.height;
+  config.particles = c.particles;
+  config.occlusion_storage = c.mode;
+  const auto& seq = c.mesh->frames;
+  Tracker tracker(c.mesh->mesh, Camera::make(640, 480, 525.0, 525.0, 319.5, 239.5), config);
+  tracker.initialize(seq.front().ground_truth);
+  std::vector<double> steps[6], total;
+  for (int i = 0; i < frames && i < static_cast<int>(seq.size()); ++i) {
+    const Estimate e = tracker.update(seq[static_cast<size_t>(i)].depth, seq[static_cast<size_t>(i)].timestamp);
+    if (i < 2) continue;  // warm-up: caches, and the first frame has no propagation
+    const StepTimings& t = e.timings;
+    const double ms[6] = {t.propagate_ms, t.render_ms, t.handoff_ms, t.weigh_ms, t.resample_ms, t.refine_ms};
+    for (int s = 0; s < 6; ++s) steps[s].push_back(ms[s]);
+    total.push_back(t.total_ms);
+  }
+  const std::string test = c.test();
+  auto row = [&](const std::string& metric, const std::string& unit, double median, double p95, size_t samples) {
+    rows.push_back({target.backend, target.platform, target.device, target.driver, commit, test, metric, unit, median,
+                    p95, static_cast<int>(samples)});
+  };
+  const size_t pixels = static_cast<size_t>(c.width) * static_cast<size_t>(c.height);
+  const StepBytes b =
+      step_bytes(static_cast<size_t>(c.particles), pixels, c.mode, target.backend != "reference" && renderer == "gl",
+                 config.refine.enabled ? config.refine.iterations : 0);
+  const char* names[6] = {"propagate", "render", "handoff", "weigh", "resample", "refine"};
+  const double bytes[6] = {b.propagate, b.render, b.handoff, b.weigh, b.resample, b.refine};
+  for (int s = 0; s < 6; ++s) {
+    const double ms = median_of(steps[s]);
+    row(std::string(names[s]) + "_ms", "ms", ms, p95_of(steps[s]), steps[s].size());
+    row(std::string(names[s]) + "_bytes", "MB", bytes[s] / 1e6, bytes[s] / 1e6, 1);
+    row(std::string(names[s]) + "_bandwidth", "GB/s", ms > 0 ? bytes[s] / (ms * 1e6) : NAN, NAN, steps[s].size());
+  }
+  const double frame_ms = median_of(total), frame_p95 = p95_of(total);
+  row("frame_ms", "ms", frame_ms, frame_p95, total.size());
+  row("frames_per_second", "Hz", 1000 / frame_ms, 1000 / frame_p95, total.size());
+  CaseResult result{c, target.backend, frame_ms, NAN};
+  if (target.backend != "reference") {
+    result.memory_mib = filter_memory_mib(static_cast<size_t>(c.particles), pixels, c.mode);
+    row("device_memory", "MiB", result.memory_mib, result.memory_mib, 1);
+    if (std::isfinite(reference_ms)) row("speedup_vs_reference", "x", reference_ms / frame_ms, NAN, total.size());
+  }
+  return result;
+}
+
+}  // namespace depthtrack::cli

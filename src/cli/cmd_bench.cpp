@@ -1,0 +1,160 @@
+// depthtrack bench: the thesis' evaluation on the devices present, as results.json and PNG figures;
+// depthtrack bench compare: the cross-vendor table of several results.json files.
+#include <chrono>
+#include <cstdio>
+#include <depthtrack/error.hpp>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+
+#include "bench_commit.h"  // DEPTHTRACK_COMMIT, generated at build time
+#include "bench_rows.hpp"
+#include "cli/bench_figures.hpp"
+#include "cli/bench_results.hpp"
+#include "cli/bench_suite.hpp"
+#include "cli/commands.hpp"
+#include "compute/queue.hpp"
+
+namespace depthtrack::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct BenchArgs {
+  std::vector<std::string> backends;
+  std::string renderer = "kernel", out;
+  bool quick = false, test_grid = false;
+  int frames = 0;
+  double max_seconds = 0;
+  std::vector<std::string> compare_files;
+};
+
+// Creates dir and checks a file can be written there before any case runs.
+void check_writable(const fs::path& dir) {
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error) throw InputError("cannot create the output folder '" + dir.string() + "': " + error.message());
+  const fs::path probe = dir / ".depthtrack-bench-probe";
+  if (!std::ofstream(probe)) throw InputError("cannot write into the output folder '" + dir.string() + "'");
+  fs::remove(probe, error);
+}
+
+// The handset (or the built-in mesh when the data is absent) first, then the YCB mug and the bunny.
+std::vector<BenchMesh> load_meshes(int frames, std::vector<std::string>& notes) {
+  const fs::path data = bench::data_dir();
+  std::vector<BenchMesh> meshes;
+  const std::pair<const char*, const char*> wanted[] = {{"handset", "meshes/dbot/handset.obj"},
+                                                        {"ycb-mug", "meshes/ycb/025_mug.obj"},
+                                                        {"bunny", "meshes/stanford/bunny-69451.obj"}};
+  for (const auto& [name, relative] : wanted) {
+    const fs::path path = data / relative;
+    if (fs::exists(path)) {
+      meshes.push_back(make_bench_mesh(name, Mesh::load(path), frames));
+      continue;
+    }
+    notes.push_back(path.string() + " is absent (third-party data, DEPTHTRACK_DATA_DIR): no " + name + " cases");
+    std::fprintf(stderr, "bench: note: %s\n", notes.back().c_str());
+    if (meshes.empty() && std::string(name) == "handset")
+      meshes.push_back(make_bench_mesh("builtin", builtin_demo_mesh(), frames));
+  }
+  return meshes;
+}
+
+void run_bench(const BenchArgs& a) {
+  if (a.out.empty()) throw InputError("bench needs --out DIR (where results.json and the figures go)");
+  if (a.renderer != "kernel" && a.renderer != "gl" && a.renderer != "cpu")
+    throw InputError("--renderer takes kernel, gl or cpu, not '" + a.renderer + "'");
+  BenchGrid grid = a.test_grid ? test_grid() : a.quick ? quick_grid() : full_grid();
+  if (a.frames != 0) {
+    if (a.frames < 3) throw InputError("--frames must be at least 3 (two warm-up frames are not timed)");
+    grid.frames = a.frames;
+  }
+  // Every backend is opened before any case runs, so a wrong name fails at once.
+  std::vector<std::string> backends = a.backends;
+  if (backends.empty()) {
+    backends.push_back("reference");
+    for (const auto& d : compute::list_devices()) backends.push_back(d.selector);
+  }
+  std::vector<BenchTarget> targets;
+  for (const std::string& b : backends) targets.push_back(describe_target(b));
+  std::stable_partition(targets.begin(), targets.end(), [](const BenchTarget& t) { return t.backend == "reference"; });
+  check_writable(a.out);
+
+  BenchResults results;
+  const std::vector<BenchMesh> meshes = load_meshes(grid.frames, results.notes);
+  const std::vector<BenchCase> cases = grid_cases(grid, meshes);
+  std::vector<CaseResult> outcomes;
+  std::map<std::string, double> reference_ms;
+  const auto start = std::chrono::steady_clock::now();
+  for (const BenchTarget& target : targets) {
+    for (const BenchCase& c : cases) {
+      const std::string what = target.backend + " " + c.test();
+      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::string skip;
+      if (a.max_seconds > 0 && elapsed > a.max_seconds)
+        skip = "skipped: --max-seconds " + std::to_string(a.max_seconds) + " passed";
+      else if (target.cpu && static_cast<double>(c.particles) * c.width * c.height > grid.cpu_max_work)
+        skip = "skipped on a CPU: particles x pixels beyond this grid's CPU limit";
+      if (!skip.empty()) {
+        results.notes.push_back(what + ": " + skip);
+        continue;
+      }
+      const auto ref = reference_ms.find(c.test());
+      try {
+        const CaseResult r = run_case(c, target, a.renderer, grid.frames, DEPTHTRACK_COMMIT,
+                                      ref == reference_ms.end() ? NAN : ref->second, results.rows);
+        if (target.backend == "reference") reference_ms[c.test()] = r.frame_ms;
+        outcomes.push_back(r);
+        std::fprintf(stderr, "bench: %s: %.3f ms per frame\n", what.c_str(), r.frame_ms);
+      } catch (const Error& e) {
+        const std::string reason = e.what();
+        results.notes.push_back(what + ": failed: " + reason.substr(0, reason.find('\n')));
+        std::fprintf(stderr, "bench: %s\n", results.notes.back().c_str());
+      }
+    }
+  }
+  if (results.rows.empty()) throw Error("no case ran (see the notes above); " + a.out + "/results.json not written");
+  const fs::path json = fs::path(a.out) / "results.json";
+  write_results(results, json);
+  const auto figures = write_bench_figures(outcomes, a.out);
+  std::printf("%s", compare_table({{json.string(), results}}).c_str());
+  std::printf("wrote %s (%zu rows, %zu notes)", json.c_str(), results.rows.size(), results.notes.size());
+  for (const auto& f : figures) std::printf(", %s", f.filename().c_str());
+  std::printf("\n");
+}
+
+void run_compare(const std::vector<std::string>& files) {
+  std::vector<std::pair<std::string, BenchResults>> loaded;
+  for (const std::string& f : files) loaded.emplace_back(f, read_results(f));
+  std::printf("%s", compare_table(loaded).c_str());
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app) {
+  auto args = std::make_shared<BenchArgs>();
+  CLI::App* c = app.add_subcommand(
+      "bench",
+      "Run the thesis' evaluation (frame time vs particles, resolution, triangles; occlusion modes' time and "
+      "memory; per-step split with bytes moved and GB/s; speedup over the reference) on the devices present; "
+      "write DIR/results.json and PNG figures");
+  c->add_option("--backend", args->backends,
+                "Backend to measure, repeatable (default: the reference and every device `depthtrack info` lists)");
+  c->add_option("--renderer", args->renderer, "Atlas renderer of device backends: kernel (default), gl, cpu");
+  c->add_option("--out", args->out, "Folder for results.json and the figures (created)");
+  c->add_flag("--quick", args->quick, "The small grid: a few minutes on a 2-core CPU (PoCL and the reference)");
+  c->add_flag("--test-grid", args->test_grid, "The tiniest grid, for the test suite (seconds)");
+  c->add_option("--frames", args->frames, "Frames per case, the first two not timed (default: the grid's)");
+  c->add_option("--max-seconds", args->max_seconds, "Skip the cases left once this many seconds have passed");
+  CLI::App* compare =
+      c->add_subcommand("compare", "Print the cross-vendor table of results.json files, ratios to the first");
+  compare->add_option("files", args->compare_files, "results.json files")->required()->check(CLI::ExistingFile);
+  compare->callback([args] { run_compare(args->compare_files); });
+  c->callback([args, compare] {
+    if (!compare->parsed()) run_bench(*args);
+  });
+}
+
+}  // namespace depthtrack::cli

@@ -1,0 +1,29 @@
+#include "cli/step_bytes.hpp"
+
+#include "dt_state.h"
+
+namespace depthtrack::cli {
+
+StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, bool gl_handoff, int refine_iterations) {
+  const double n = static_cast<double>(particles), px = static_cast<double>(pixels), f = sizeof(float);
+  const double state = DT_STATE_STRIDE * f;                                    // per particle
+  const double occlusion = mode == OcclusionStorage::Off ? 0 : px * f;         // p per pixel
+  const double times = mode == OcclusionStorage::PerPixelTime ? px * f : 0.0;  // t_last per pixel
+  StepBytes b;
+  b.propagate = n * 2 * state;                                       // read and write each state
+  b.render = n * px * f;                                             // write each tile's depths
+  b.handoff = gl_handoff ? n * px * f * 2 : 0;                       // GL's page read, atlas written
+  b.weigh = n * (px * f + 2 * occlusion + 2 * times + 2 * f);        // atlas read, state read+write
+  b.resample = n * (2 * state + 2 * occlusion + 2 * times + 3 * f);  // gather: read parent, write child
+  b.refine = refine_iterations * 3 * px * f;                         // one pose: its tile, depth, ids
+  return b;
+}
+
+double filter_memory_mib(size_t particles, size_t pixels, OcclusionStorage mode) {
+  const double px = static_cast<double>(pixels);
+  const bool occlusion = mode != OcclusionStorage::Off, times = mode == OcclusionStorage::PerPixelTime;
+  const double per_particle = 4.0 * (px * (1 + (occlusion ? 2 : 0) + (times ? 2 : 0)) + 2 * DT_STATE_STRIDE + 6);
+  return per_particle * static_cast<double>(particles) / (1 << 20);
+}
+
+}  // namespace depthtrack::cli

@@ -1,0 +1,162 @@
+// depthtrack bench: results.json's rows and figures from a tiny grid, the bytes formula, median and
+// p95, bench compare's ratios on hand-written files, and bad arguments.
+#include <catch2/catch.hpp>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli/bench_results.hpp"
+#include "cli/step_bytes.hpp"
+#include "cli_support.hpp"
+#include "device_support.hpp"
+
+using namespace depthtrack;
+
+namespace {
+
+std::string text_of(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+const nlohmann::json* find_row(const nlohmann::json& rows, const std::string& backend, const std::string& test,
+                               const std::string& metric) {
+  for (const auto& r : rows)
+    if (r["backend"] == backend && r["test"] == test && r["metric"] == metric) return &r;
+  return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("median, p95 and the bytes each step moves", "[bench]") {
+  CHECK(cli::median_of({3, 1, 2, 4}) == 2.5);
+  CHECK(cli::median_of({5, 1, 3}) == 3);
+  std::vector<double> twenty;
+  for (int i = 20; i >= 1; --i) twenty.push_back(i);
+  CHECK(cli::p95_of(twenty) == 19);  // nearest rank: ceil(0.95 * 20) = 19th of 1..20
+  CHECK(cli::p95_of({7}) == 7);
+  CHECK(std::isnan(cli::median_of({})));
+  // 10 particles at 80x60: state 16 floats, atlas, occlusion p and t one float per pixel each.
+  const auto b = cli::step_bytes(10, 4800, OcclusionStorage::PerPixelTime, false, 0);
+  CHECK(b.propagate == 10 * 2 * 64);
+  CHECK(b.render == 10 * 4800 * 4);
+  CHECK(b.handoff == 0);
+  CHECK(b.weigh == 10 * (4800 * 4 + 4 * 4800 * 4 + 8));
+  CHECK(b.resample == 10 * (2 * 64 + 4 * 4800 * 4 + 12));
+  CHECK(cli::step_bytes(10, 4800, OcclusionStorage::Off, true, 0).weigh == 10 * (4800 * 4 + 8));
+  CHECK(cli::step_bytes(10, 4800, OcclusionStorage::Off, true, 0).handoff == 10 * 4800 * 4 * 2);
+  // DeviceFilter's buffers: 4 bytes x (5 per pixel + 2 x 16 state + 6) per particle.
+  CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::PerPixelTime) == Approx(961520.0 / (1 << 20)));
+  CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::GlobalTime) == Approx(577520.0 / (1 << 20)));
+  CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::Off) == Approx(193520.0 / (1 << 20)));
+}
+
+TEST_CASE("bench writes results.json with every column and the four figures", "[bench][cli]") {
+  const auto dir = test::temp_dir("bench_cli");
+  std::string backends = "--backend reference";
+  const bool device = test::device_available();
+  if (device) backends += " --backend " + test::device_selector();
+  const auto [status, output] =
+      test::run_cli("bench --test-grid --frames 3 " + backends + " --out " + (dir / "out").string(), dir / "log.txt");
+  INFO(output);
+  REQUIRE(status == 0);
+  const auto root = nlohmann::json::parse(text_of(dir / "out/results.json"));
+  const auto& rows = root.at("rows");
+  REQUIRE(rows.size() > 20);
+  for (const auto& r : rows) {
+    for (const char* column : {"backend", "platform", "device", "driver", "commit", "test", "metric", "unit"})
+      REQUIRE(r.at(column).is_string());
+    REQUIRE((r.at("median").is_number() || r.at("median").is_null()));
+    REQUIRE((r.at("p95").is_number() || r.at("p95").is_null()));
+    REQUIRE(r.at("samples").is_number_integer());
+  }
+  const std::string mesh = test::shared_data("meshes/dbot/handset.obj") ? "handset" : "builtin";
+  const std::string test = "particles_" + mesh + "_80x60_10p_per-pixel-time";
+  const auto* frame = find_row(rows, "reference", test, "frame_ms");
+  REQUIRE(frame);
+  CHECK((*frame)["samples"] == 1);  // 3 frames, 2 of them warm-up
+  CHECK((*frame)["median"].get<double>() > 0);
+  CHECK((*frame)["median"] == (*frame)["p95"]);
+  const auto* render = find_row(rows, "reference", test, "render_bytes");
+  REQUIRE(render);
+  CHECK((*render)["median"].get<double>() == Approx(10 * 4800 * 4 / 1e6));
+  for (const char* sweep : {"resolution_", "triangles_", "occlusion_"}) {
+    bool found = false;
+    for (const auto& r : rows) found |= r["test"].get<std::string>().rfind(sweep, 0) == 0;
+    CHECK(found);
+  }
+  if (device) {
+    const auto* speedup = find_row(rows, test::device_selector(), test, "speedup_vs_reference");
+    const auto* device_frame = find_row(rows, test::device_selector(), test, "frame_ms");
+    const auto* memory = find_row(rows, test::device_selector(), test, "device_memory");
+    REQUIRE(speedup);
+    REQUIRE(device_frame);
+    REQUIRE(memory);
+    CHECK((*speedup)["median"].get<double>() ==
+          Approx(frame->at("median").get<double>() / device_frame->at("median").get<double>()));
+    CHECK(memory->at("median").get<double>() == Approx(961520.0 / (1 << 20)));
+  }
+  for (const char* figure : {"particles.png", "resolution.png", "triangles.png", "occlusion.png"})
+    CHECK(text_of(dir / "out" / figure).rfind("\x89PNG\r\n\x1a\n", 0) == 0);
+
+  // A failed run leaves the earlier results.json as it was.
+  const std::string before = text_of(dir / "out/results.json");
+  const auto [bad, message] =
+      test::run_cli("bench --test-grid --backend nosuch --out " + (dir / "out").string(), dir / "bad.txt");
+  CHECK(bad != 0);
+  CHECK_THAT(message, Catch::Contains("nosuch"));
+  CHECK(text_of(dir / "out/results.json") == before);
+}
+
+TEST_CASE("bench compare prints each file's column with its ratio to the first", "[bench][cli]") {
+  const auto dir = test::temp_dir("bench_compare");
+  auto write = [&](const std::string& name, const std::string& backend, double frame, double weigh) {
+    std::ofstream(dir / name) << R"({"rows": [)"
+                              << R"({"backend": ")" << backend << R"(", "platform": "p", "device": "d", "driver": "1",)"
+                              << R"( "commit": "c", "test": "t1", "metric": "frame_ms", "unit": "ms", "median": )"
+                              << frame << R"(, "p95": null, "samples": 5},)"
+                              << R"({"backend": ")" << backend << R"(", "platform": "p", "device": "d", "driver": "1",)"
+                              << R"( "commit": "c", "test": "t1", "metric": "weigh_ms", "unit": "ms", "median": )"
+                              << weigh << R"(, "p95": 1, "samples": 5}]})";
+  };
+  write("a.json", "cuda", 2.0, 1.0);
+  write("b.json", "opencl:nvidia", 3.0, 0.25);
+  const auto [status, output] =
+      test::run_cli("bench compare " + (dir / "a.json").string() + " " + (dir / "b.json").string(), dir / "log.txt");
+  INFO(output);
+  REQUIRE(status == 0);
+  CHECK_THAT(output, Catch::Contains("a.json:cuda") && Catch::Contains("b.json:opencl:nvidia"));
+  CHECK_THAT(output, Catch::Contains("(x1.50)"));  // 3.0 / 2.0
+  CHECK_THAT(output, Catch::Contains("(x0.25)"));  // 0.25 / 1.0
+  // The table itself, without the command: one line per test and metric.
+  const auto table = cli::compare_table(
+      {{"a.json", cli::read_results(dir / "a.json")}, {"b.json", cli::read_results(dir / "b.json")}});
+  CHECK_THAT(table, Catch::Contains("t1 frame_ms") && Catch::Contains("t1 weigh_ms"));
+}
+
+TEST_CASE("bench refuses bad arguments and corrupt results with a clear error", "[bench][cli]") {
+  const auto dir = test::temp_dir("bench_bad");
+  std::ofstream(dir / "file.txt") << "not a folder";
+  std::ofstream(dir / "corrupt.json") << "{\"rows\": [ {\"backend\": ";
+  std::ofstream(dir / "no_median.json")
+      << R"({"rows": [{"backend": "b", "platform": "p", "device": "d", "driver": "1", "commit": "c", "test": "t",)"
+      << R"( "metric": "m", "unit": "u", "p95": 1, "samples": 1}]})";
+  const std::pair<std::string, std::string> cases[] = {
+      {"bench --test-grid --backend nosuch --out " + (dir / "o").string(), "unknown backend 'nosuch'"},
+      {"bench --test-grid --backend reference", "bench needs --out DIR"},
+      {"bench --test-grid --backend reference --out " + (dir / "file.txt/sub").string(),
+       "cannot create the output folder"},
+      {"bench --test-grid --backend reference --frames 2 --out " + (dir / "o").string(), "--frames must be at least 3"},
+      {"bench --renderer vulkan --out " + (dir / "o").string(), "--renderer takes kernel, gl or cpu"},
+      {"bench compare " + (dir / "corrupt.json").string(), "is not valid JSON"},
+      {"bench compare " + (dir / "no_median.json").string(), "row 0 has no 'median'"},
+      {"bench compare " + (dir / "absent.json").string(), "absent.json"},
+  };
+  for (const auto& [arguments, expected] : cases) {
+    const auto [status, output] = test::run_cli(arguments, dir / "log.txt");
+    INFO(arguments);
+    CHECK(status != 0);
+    CHECK_THAT(output, Catch::Contains(expected));
+  }
+}
