@@ -38,7 +38,7 @@ void run(const Mesh& mesh, const std::string& mesh_name, const std::string& back
   const Synthesizer scene(mesh, synth);
   TrackerConfig config;
   config.backend = backend;
-  config.renderer = renderer;
+  config.renderer = renderer_from_string(renderer);
   config.width = c.width;
   config.height = c.height;
   config.particles = c.particles;

@@ -25,4 +25,14 @@ inline bool device_available() {
   }
 }
 
+// False, after printing a ctest skip, in a build without the GL atlas (DEPTHTRACK_WITH_GL=OFF).
+inline bool gl_built() {
+#ifdef DEPTHTRACK_WITH_GL
+  return true;
+#else
+  std::cout << "SKIPPED: the GL atlas is not built (DEPTHTRACK_WITH_GL=OFF)\n";
+  return false;
+#endif
+}
+
 }  // namespace depthtrack::test

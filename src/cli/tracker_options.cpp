@@ -13,7 +13,7 @@ void TrackerOptions::add_to(CLI::App& command) {
                      "opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n> (`depthtrack info` lists devices); "
                      "default: $DEPTHTRACK_DEVICE, else reference");
   renderer_option =
-      command.add_option("--renderer", config.renderer,
+      command.add_option("--renderer", renderer,
                          "Who draws the pose atlas for device backends: kernel (a compute kernel on the device itself, "
                          "the fastest), gl (headless OpenGL; DEPTHTRACK_GL=egl-device|egl-surfaceless|osmesa picks the "
                          "path) or cpu (the reference rasterizer on the host)");
@@ -43,6 +43,7 @@ TrackerConfig TrackerOptions::resolve() const {
   TrackerConfig c = config;
   std::tie(c.width, c.height) = parse_resolution(resolution);
   c.occlusion_storage = occlusion_storage_from_string(occlusion);
+  c.renderer = renderer_from_string(renderer);
   if (refine != "on" && refine != "off") throw InputError("--refine '" + refine + "' is not on or off");
   c.refine.enabled = refine == "on";
   c.validate();
@@ -51,7 +52,7 @@ TrackerConfig TrackerOptions::resolve() const {
     std::fprintf(stderr,
                  "depthtrack: warning: --renderer %s has no effect with the reference backend (it draws with its own "
                  "rasterizer); it applies to the opencl and cuda backends\n",
-                 c.renderer.c_str());
+                 renderer.c_str());
   return c;
 }
 

@@ -10,6 +10,7 @@ struct TrackerOptions {
   TrackerConfig config;
   std::string resolution = "80x60";
   std::string occlusion = "per-pixel-time";
+  std::string renderer = "kernel";         // parsed by resolve() (renderer_from_string)
   CLI::Option* renderer_option = nullptr;  // to tell an explicit --renderer from the default
   std::string refine = "on";
 

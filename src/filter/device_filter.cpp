@@ -128,7 +128,7 @@ size_t DeviceFilter::checked_particle_count() const {
   const bool times = config_.occlusion_storage == OcclusionStorage::PerPixelTime;
   // Atlas, occlusion probabilities and times, each with a resampling twin, plus per-particle state;
   // GL's colour and depth pages and its pose buffer sit on the same GPU.
-  const bool gl = config_.renderer == "gl" && queue_->info().is_gpu;
+  const bool gl = config_.renderer == Renderer::Gl && queue_->info().is_gpu;
   const double per_particle =
       4.0 * (static_cast<double>(pixels_) * (1 + (occlusion ? 2 : 0) + (times ? 2 : 0) + (gl ? 2 : 0)) +
              (2 + (gl ? 1 : 0)) * DT_STATE_STRIDE + 6);
@@ -181,12 +181,9 @@ void DeviceFilter::initialize_modes(std::span<const Pose> modes, const InitialSp
   }
   compute::Buffer<float> mode_buffer(*queue_, mode_values.size());
   mode_buffer.upload(mode_values);
-  const InitialArgs args{static_cast<float>(spread.metres),
-                         static_cast<float>(spread.radians),
-                         static_cast<float>(centre_.x()),
-                         static_cast<float>(centre_.y()),
-                         static_cast<float>(centre_.z()),
-                         static_cast<unsigned>(modes.size())};
+  const InitialArgs args{static_cast<float>(spread.metres), static_cast<float>(spread.radians),
+                         static_cast<float>(centre_.x()),   static_cast<float>(centre_.y()),
+                         static_cast<float>(centre_.z()),   static_cast<unsigned>(modes.size())};
   const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
   compute::set_arg(*k.initialize_particles, 0, state_);
   k.initialize_particles->set_arg(1, static_cast<unsigned>(count_));

@@ -7,10 +7,10 @@
 #include <memory>
 #include <vector>
 
+#include "atlas/atlas_source.hpp"
+#include "atlas/raster_inputs.hpp"
 #include "compute/buffer.hpp"
-#include "filter/atlas_source.hpp"
 #include "filter/filter_backend.hpp"
-#include "filter/raster_inputs.hpp"
 #include "reference/particle.hpp"
 
 namespace depthtrack {

@@ -29,7 +29,7 @@ size_t batch_for(const compute::Queue& queue, size_t pixels) {
 TrackerConfig batch_config(const TrackerConfig& config, size_t batch) {
   TrackerConfig c = config;
   c.particles = static_cast<int>(batch);
-  c.renderer = "kernel";  // drawn where it is scored, whatever renderer the filter uses
+  c.renderer = Renderer::Kernel;  // drawn where it is scored, whatever renderer the filter uses
   return c;
 }
 }  // namespace

@@ -12,8 +12,8 @@
 #include <span>
 #include <vector>
 
+#include "atlas/atlas_source.hpp"
 #include "compute/buffer.hpp"
-#include "filter/atlas_source.hpp"
 
 namespace depthtrack {
 
