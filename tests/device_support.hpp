@@ -25,14 +25,8 @@ inline bool device_available() {
   }
 }
 
-// False, after printing a ctest skip, in a build without the GL atlas (DEPTHTRACK_WITH_GL=OFF).
-inline bool gl_built() {
-#ifdef DEPTHTRACK_WITH_GL
-  return true;
-#else
-  std::cout << "SKIPPED: the GL atlas is not built (DEPTHTRACK_WITH_GL=OFF)\n";
-  return false;
-#endif
-}
+// False, after printing a ctest skip, in a build without the GL atlas (DEPTHTRACK_WITH_GL=OFF);
+// defined in build_options.cpp, the one test file that sees the build's options.
+bool gl_built();
 
 }  // namespace depthtrack::test

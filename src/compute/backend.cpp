@@ -12,6 +12,10 @@ std::vector<Backend>& registry() {
   static std::vector<Backend> list = built_in_backends();
   return list;
 }
+size_t built_in_count() {
+  static const size_t count = built_in_backends().size();
+  return count;
+}
 }  // namespace
 
 const std::vector<Backend>& backends() {
@@ -21,6 +25,15 @@ const std::vector<Backend>& backends() {
 void register_backend(Backend backend) {
   if (find_backend(backend.name)) throw InputError("a compute backend named '" + backend.name + "' exists already");
   registry().push_back(std::move(backend));
+}
+
+void unregister_backend(const std::string& name) {
+  auto& list = registry();
+  for (size_t i = built_in_count(); i < list.size(); ++i)
+    if (list[i].name == name) {
+      list.erase(list.begin() + static_cast<std::ptrdiff_t>(i));
+      return;
+    }
 }
 
 const Backend* find_backend(const std::string& name) {

@@ -36,15 +36,23 @@ struct Backend {
 
 // The built-in backends (in CMake's order), then those registered at run time.
 const std::vector<Backend>& backends();
-// Adds a backend; InputError when one of that name exists already.
+// Adds a backend; InputError when one of that name exists already. unregister_backend removes one
+// registered at run time (the built-in ones stay).
 void register_backend(Backend backend);
+void unregister_backend(const std::string& name);
 // The backend a selector's first word names, or nullptr.
 const Backend* find_backend(const std::string& name);
 
-// A static object that registers a backend when its program starts: how a backend outside the
-// library (a test's fake one) joins the list.
-struct BackendRegistration {
-  explicit BackendRegistration(Backend backend) { register_backend(std::move(backend)); }
+// A backend from outside the library (a test's fake one, a plug-in) listed for this object's lifetime.
+class BackendRegistration {
+ public:
+  explicit BackendRegistration(Backend backend) : name_(backend.name) { register_backend(std::move(backend)); }
+  ~BackendRegistration() { unregister_backend(name_); }
+  BackendRegistration(const BackendRegistration&) = delete;
+  BackendRegistration& operator=(const BackendRegistration&) = delete;
+
+ private:
+  std::string name_;
 };
 
 }  // namespace depthtrack::compute

@@ -61,7 +61,7 @@ std::vector<DeviceInfo> list_devices() {
 std::unique_ptr<Queue> open_device(const std::string& selector) {
   const std::string text = trim(selector);
   const auto colon = text.find(':');
-  const std::string name = lower(text.substr(0, colon));
+  const std::string name = lower(trim(text.substr(0, colon)));
   const std::string argument = colon == std::string::npos ? "" : trim(text.substr(colon + 1));
   if (colon != std::string::npos && argument.empty()) fail(selector, "nothing follows the ':'");
   const Backend* backend = find_backend(name);

@@ -1,6 +1,9 @@
 // A compute backend that lives outside the library: host memory, no kernels. It shows what adding a backend
-// takes (docs/design-notes.md, "Adding a backend"): this folder and one CMake line (tests/CMakeLists.txt),
-// nothing else; the registry then lists it, selection opens it, and its errors list its devices.
+// takes (docs/design-notes.md, "Layers, backends and the build"): this folder and one CMake line
+// (tests/CMakeLists.txt); registered (test_backend_registry.cpp), the registry lists it, selection opens it,
+// and its errors list its devices.
+#include "fake_backend.hpp"
+
 #include <cstring>
 #include <depthtrack/error.hpp>
 #include <vector>
@@ -33,7 +36,8 @@ compute::DeviceInfo fake_device() {
   info.vendor = "nobody";
   info.name = "fake host-memory device";
   info.version = "fake 1";
-  info.global_memory = info.max_allocation = size_t{1} << 20;
+  info.global_memory = size_t{1} << 30;
+  info.max_allocation = size_t{1} << 28;
   info.compute_units = 1;
   return info;
 }
@@ -42,7 +46,8 @@ class FakeQueue final : public compute::Queue {
  public:
   const compute::DeviceInfo& info() const override { return info_; }
   std::unique_ptr<compute::DeviceMemory> allocate(size_t bytes) override {
-    if (bytes > info_.max_allocation) throw BackendError("fake: " + std::to_string(bytes) + " bytes is over 1 MiB");
+    if (bytes > info_.max_allocation)
+      throw BackendError("fake: " + std::to_string(bytes) + " bytes is over the 256 MiB the fake device allocates");
     return std::make_unique<HostMemory>(bytes);
   }
   void write(compute::DeviceMemory& memory, size_t offset, const void* source, size_t bytes) override {
@@ -78,9 +83,15 @@ std::unique_ptr<compute::Queue> open(const std::string& argument) {
   return std::make_unique<FakeQueue>();
 }
 
-const compute::BackendRegistration registration(compute::Backend{
-    "fake", "Fake", "fake (= fake:0)", [] { return std::vector<compute::DeviceInfo>{fake_device()}; },
-    [] { return std::string("the fake backend always has its device"); }, open});
 }  // namespace
+
+compute::Backend backend() {
+  return compute::Backend{"fake",
+                          "Fake",
+                          "fake (= fake:0)",
+                          [] { return std::vector<compute::DeviceInfo>{fake_device()}; },
+                          [] { return std::string("the fake backend always has its device"); },
+                          open};
+}
 
 }  // namespace depthtrack::test::fake
