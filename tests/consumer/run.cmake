@@ -1,8 +1,8 @@
 # ctest driver: install the built project into a scratch prefix, run the installed command without
 # LD_LIBRARY_PATH (its RUNPATH finds the library), then configure, build and run the consumer against it.
 # Inputs: SOURCE_DIR, BUILD_DIR, WORK_DIR; STATIC=ON first builds the library and the command static in
-# WORK_DIR/static (GENERATOR, CXX_COMPILER, LAUNCHER as in the outer build), so the package's static branch
-# is what the consumer meets.
+# WORK_DIR/static (GENERATOR, CXX_COMPILER, LAUNCHER, WERROR, WITH_CUDA as in the outer build, so that a
+# compiler cache finds the outer build's objects), so the package's static branch is what the consumer meets.
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
   if(NOT rc EQUAL 0)
@@ -20,7 +20,7 @@ if(STATIC)
   # The tree is kept between runs, so a later run rebuilds only what changed.
   run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/static -G ${GENERATOR} -DCMAKE_CXX_COMPILER=${CXX_COMPILER}
       ${launcher} -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=OFF -DDEPTHTRACK_BUILD_TESTS=OFF
-      -DDEPTHTRACK_BUILD_BENCH=OFF)
+      -DDEPTHTRACK_BUILD_BENCH=OFF -DDEPTHTRACK_WERROR=${WERROR} -DDEPTHTRACK_WITH_CUDA=${WITH_CUDA})
   run(${CMAKE_COMMAND} --build ${WORK_DIR}/static -j2 --target depthtrack depthtrack_cli)
   set(BUILD_DIR ${WORK_DIR}/static)
 endif()
