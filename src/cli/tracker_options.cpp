@@ -5,13 +5,17 @@
 #include <depthtrack/error.hpp>
 #include <sstream>
 
+#include "compute/backend.hpp"
+
 namespace depthtrack::cli {
 
 void TrackerOptions::add_to(CLI::App& command) {
+  // The device selectors come from the backend registry, so a new backend appears here by itself.
+  std::string selectors;
+  for (const auto& backend : compute::backends()) selectors += ", " + backend.grammar;
   command.add_option("--backend", config.backend,
-                     "Filter implementation: reference (sequential CPU), opencl (best OpenCL device), opencl:pocl, "
-                     "opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n> (`depthtrack info` lists devices); "
-                     "default: $DEPTHTRACK_DEVICE, else reference");
+                     "Filter implementation: reference (sequential CPU)" + selectors +
+                         " (`depthtrack info` lists devices); default: $DEPTHTRACK_DEVICE, else reference");
   renderer_option =
       command.add_option("--renderer", renderer,
                          "Who draws the pose atlas for device backends: kernel (a compute kernel on the device itself, "
