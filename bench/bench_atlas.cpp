@@ -9,9 +9,9 @@
 #include <tuple>
 #include <vector>
 
+#include "atlas/gl/atlas_renderer.hpp"
 #include "bench_args.hpp"
 #include "bench_rows.hpp"
-#include "render/atlas_renderer.hpp"
 
 using namespace depthtrack;
 

@@ -48,7 +48,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
   const Synthesizer scene(mesh, synth);
   TrackerConfig config;
   config.backend = backend;
-  config.renderer = renderer;
+  config.renderer = renderer_from_string(renderer);
   config.width = c.width;
   config.height = c.height;
   config.particles = c.particles;
@@ -188,7 +188,7 @@ void run_offscreen(const Mesh& mesh, const std::string& mesh_name, const std::st
   const Synthesizer scene(mesh, synth);
   TrackerConfig config;
   config.backend = backend;
-  config.renderer = renderer;
+  config.renderer = renderer_from_string(renderer);
   config.particles = 1;
   config.recovery.enabled = false;
   std::vector<SynthFrame> input;  // drawn first: the synthesis is not the tracker's time

@@ -1,6 +1,9 @@
 # Installs the library, the command and a CMake package: find_package(depthtrack) then
 # target_link_libraries(app PRIVATE depthtrack::depthtrack).
 include(CMakePackageConfigHelpers)
+# The installed command finds the installed library beside it, without LD_LIBRARY_PATH.
+file(RELATIVE_PATH _depthtrack_bin_to_lib ${CMAKE_INSTALL_FULL_BINDIR} ${CMAKE_INSTALL_FULL_LIBDIR})
+set_target_properties(depthtrack_cli PROPERTIES INSTALL_RPATH "$ORIGIN/${_depthtrack_bin_to_lib}")
 install(TARGETS depthtrack depthtrack_cli EXPORT depthtrackTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -8,6 +11,12 @@ install(TARGETS depthtrack depthtrack_cli EXPORT depthtrackTargets
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY include/depthtrack DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(EXPORT depthtrackTargets NAMESPACE depthtrack:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/depthtrack)
+# The static branch of the package config finds OSMesa when the library links it.
+if(DEPTHTRACK_WITH_GL AND OSMESA_FOUND)
+  set(DEPTHTRACK_PACKAGE_OSMESA ON)
+else()
+  set(DEPTHTRACK_PACKAGE_OSMESA OFF)
+endif()
 configure_package_config_file(cmake/depthtrackConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/depthtrackConfig.cmake
                               INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/depthtrack)

@@ -25,4 +25,8 @@ inline bool device_available() {
   }
 }
 
+// False, after printing a ctest skip, in a build without the GL atlas (DEPTHTRACK_WITH_GL=OFF);
+// defined in build_options.cpp, the one test file that sees the build's options.
+bool gl_built();
+
 }  // namespace depthtrack::test

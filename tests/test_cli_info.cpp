@@ -35,7 +35,7 @@ TEST_CASE("info names the GL context and the atlas hand-off of every compute dev
 }
 
 TEST_CASE("with no OpenGL at all the GL renderer stops with the paths it tried", "[cli][render][errors]") {
-  if (!test::device_available()) return;
+  if (!test::device_available() || !test::gl_built()) return;
   const auto dir = test::temp_dir("cli_no_gl");
   // glvnd with no EGL vendor library: EGL offers nothing; DEPTHTRACK_GL keeps OSMesa out.
   for (const char* path : {"egl-device", "egl-surfaceless"}) {

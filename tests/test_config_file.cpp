@@ -32,6 +32,8 @@ void change_every_field(S& s, int& counter) {
       m = !m;
     else if constexpr (std::is_same_v<M, OcclusionStorage>)
       m = OcclusionStorage::GlobalTime;
+    else if constexpr (std::is_same_v<M, Renderer>)
+      m = Renderer::Gl;
     else if constexpr (std::is_same_v<M, std::string>)
       m = "value-" + std::to_string(counter);
     else if constexpr (std::is_same_v<M, double>)
@@ -90,7 +92,7 @@ TEST_CASE("Configuration JSON round-trips: the defaults and every field changed"
   changed.occlusion.p_visible_to_occluded = 0.2;
   changed.motion.damping = 0.7;
   changed.backend = "reference";
-  changed.renderer = "gl";
+  changed.renderer = Renderer::Gl;
   changed.width = 160;
   changed.loss.lost_below = 0.2;
   changed.loss.found_above = 0.9;

@@ -6,11 +6,11 @@
 #include <iostream>
 #include <random>
 
+#include "atlas/gl/atlas_renderer.hpp"
 #include "compute/buffer.hpp"
 #include "device_support.hpp"
 #include "interop/atlas_handoff.hpp"
 #include "model/particle_packing.hpp"
-#include "render/atlas_renderer.hpp"
 
 using namespace depthtrack;
 

@@ -10,10 +10,10 @@
 #include <random>
 #include <vector>
 
+#include "atlas/atlas_source.hpp"
 #include "atlas_agreement.hpp"
 #include "compute/buffer.hpp"
 #include "device_support.hpp"
-#include "filter/atlas_source.hpp"
 #include "model/particle_packing.hpp"
 #include "reference/rasterizer.hpp"
 #include "support.hpp"
@@ -47,7 +47,7 @@ std::vector<float> kernel_atlas(const Mesh& mesh, const Camera& camera, const st
                                 double far) {
   auto queue = compute::open_device(test::device_selector());
   TrackerConfig config;
-  config.renderer = "kernel";
+  config.renderer = Renderer::Kernel;
   config.particles = static_cast<int>(poses.size());
   config.near_plane = near;
   config.observation.max_depth = far;
@@ -108,13 +108,13 @@ TEST_CASE("kernel atlas clips at the near plane and discards beyond the far plan
 
 TEST_CASE("kernel renderer is a valid choice and says where it draws", "[device][kernel]") {
   TrackerConfig config;
-  config.renderer = "kernel";
+  config.renderer = renderer_from_string("kernel");
+  CHECK(config.renderer == Renderer::Kernel);
   CHECK_NOTHROW(config.validate());
-  config.renderer = "vulkan";
-  CHECK_THROWS_WITH(config.validate(), Catch::Contains("cpu, gl or kernel"));
+  CHECK_THROWS_WITH(renderer_from_string("vulkan"), Catch::Contains("cpu, gl or kernel"));
   if (!test::device_available()) return;
   auto queue = compute::open_device(test::device_selector());
-  config.renderer = "kernel";
+  config.renderer = Renderer::Kernel;
   config.particles = 4;
   const auto source = make_atlas_source(*queue, builtin_demo_mesh(), camera80, config);
   CHECK_THAT(source->description(), Catch::Contains("compute-kernel rasterizer on " + queue->info().name));

@@ -7,8 +7,8 @@
 #include <numbers>
 #include <vector>
 
+#include "atlas/triangle_planes.hpp"
 #include "reference/pose_refiner.hpp"
-#include "render/triangle_planes.hpp"
 #include "scene.hpp"
 
 using namespace depthtrack;

@@ -14,9 +14,9 @@
 #include <random>
 #include <vector>
 
+#include "atlas/gl/atlas_renderer.hpp"
 #include "atlas_agreement.hpp"
 #include "reference/rasterizer.hpp"
-#include "render/atlas_renderer.hpp"
 #include "support.hpp"
 
 using namespace depthtrack;

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "render/gl_context.hpp"
+#include "atlas/gl/gl_context.hpp"
 
 using namespace depthtrack;
 using render::GlContext;

@@ -30,6 +30,15 @@ enum class OcclusionStorage {
 const char* to_string(OcclusionStorage mode);
 OcclusionStorage occlusion_storage_from_string(const std::string& name);  // throws InputError
 
+// Who draws the device filters' pose atlas (TrackerConfig::renderer).
+enum class Renderer {
+  Kernel,  // a compute kernel on the filter's device (cl/rasterize.cl)
+  Gl,      // headless OpenGL, handed to the device (src/atlas/gl, src/interop)
+  Cpu,     // the reference rasterizer on the host
+};
+const char* to_string(Renderer renderer);                // "kernel", "gl", "cpu"
+Renderer renderer_from_string(const std::string& name);  // throws InputError naming the choices
+
 // Damped random walk on the velocity (Ornstein-Uhlenbeck, discretized exactly over the real dt).
 // At dt = 1/reference_rate it is dbot's v' = damping v + sigma w, in the object's local frame
 // about the mesh's centre.
@@ -88,11 +97,11 @@ struct TrackerConfig {
   // reference, opencl, opencl:pocl, opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n>;
   // empty: the environment's DEPTHTRACK_DEVICE if set, else reference (see resolved_backend()).
   std::string backend;
-  // Who draws the device filters' pose atlas: "kernel" (a compute kernel on the filter's device,
-  // the fastest everywhere measured: docs/design-notes.md), "gl" (OpenGL, headless: EGL device,
+  // Who draws the device filters' pose atlas: Kernel (a compute kernel on the filter's device,
+  // the fastest everywhere measured: docs/design-notes.md), Gl (OpenGL, headless: EGL device,
   // EGL surfaceless or OSMesa, DEPTHTRACK_GL picks one; the atlas reaches the kernels by CUDA-GL
-  // interop, a GL-OpenCL bridge or a staged copy) or "cpu" (the reference rasterizer on the host).
-  std::string renderer = "kernel";
+  // interop, a GL-OpenCL bridge or a staged copy) or Cpu (the reference rasterizer on the host).
+  Renderer renderer = Renderer::Kernel;
   LossModel loss;
   RecoveryModel recovery;
 

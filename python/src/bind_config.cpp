@@ -25,10 +25,10 @@ py::class_<S> bind_fields(py::module_& m, const char* name, const char* doc) {
   fields::for_each_field<S>([&](const auto& f) {
     using M = typename std::decay_t<decltype(f)>::member_type;
     const auto member = f.member;
-    if constexpr (std::is_same_v<M, OcclusionStorage>) {
+    if constexpr (fields::NamedEnum<M>) {
       c.def_property(
           f.name, [member](const S& s) { return std::string(to_string(s.*member)); },
-          [member](S& s, const std::string& value) { s.*member = occlusion_storage_from_string(value); }, f.help);
+          [member](S& s, const std::string& value) { fields::parse_named(value, s.*member); }, f.help);
     } else {
       c.def_readwrite(f.name, member, f.help);  // nested structs by reference: c.a.b = x changes c
     }

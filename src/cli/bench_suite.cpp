@@ -66,7 +66,7 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
                     const std::string& commit, double reference_ms, std::vector<BenchRow>& rows) {
   TrackerConfig config;
   config.backend = target.backend;
-  config.renderer = renderer;
+  config.renderer = renderer_from_string(renderer);
   config.width = c.width;
   config.height = c.height;
   config.particles = c.particles;

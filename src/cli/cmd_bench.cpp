@@ -64,8 +64,7 @@ std::vector<BenchMesh> load_meshes(int frames, std::vector<std::string>& notes) 
 
 void run_bench(const BenchArgs& a) {
   if (a.out.empty()) throw InputError("bench needs --out DIR (where results.json and the figures go)");
-  if (a.renderer != "kernel" && a.renderer != "gl" && a.renderer != "cpu")
-    throw InputError("--renderer takes kernel, gl or cpu, not '" + a.renderer + "'");
+  renderer_from_string(a.renderer);  // InputError naming the choices
   BenchGrid grid = a.test_grid ? test_grid() : a.quick ? quick_grid() : full_grid();
   if (a.frames != 0) {
     if (a.frames < 3) throw InputError("--frames must be at least 3 (two warm-up frames are not timed)");

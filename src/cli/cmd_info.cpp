@@ -9,12 +9,15 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "compute/backend.hpp"
 #include "compute/format_bytes.hpp"
 #include "compute/queue.hpp"
 #include "core/thread_pool.hpp"
+#ifdef DEPTHTRACK_WITH_GL
+#include "atlas/gl/atlas_renderer.hpp"
+#include "atlas/gl/gl_context.hpp"
 #include "interop/atlas_handoff.hpp"
-#include "render/atlas_renderer.hpp"
-#include "render/gl_context.hpp"
+#endif
 
 namespace depthtrack::cli {
 
@@ -46,7 +49,14 @@ struct AtlasPath {
   std::string context, handoff, unavailable;  // unavailable: why not (first line), else empty
 };
 
-AtlasPath find_atlas_path(const compute::DeviceInfo& d) {
+#ifndef DEPTHTRACK_WITH_GL
+const char* const kNoGl = "the GL atlas was not built (DEPTHTRACK_WITH_GL=OFF)";
+#endif
+
+AtlasPath find_atlas_path([[maybe_unused]] const compute::DeviceInfo& d) {
+#ifndef DEPTHTRACK_WITH_GL
+  return {"", "", kNoGl};
+#else
   try {
     auto queue = compute::open_device(d.selector);
     render::GlContextOptions options;
@@ -60,6 +70,7 @@ AtlasPath find_atlas_path(const compute::DeviceInfo& d) {
     const std::string message = e.what();
     return {"", "", message.substr(0, message.find('\n'))};
   }
+#endif
 }
 
 void print_atlas_path(const compute::DeviceInfo& d) {
@@ -92,19 +103,6 @@ void print_device(const compute::DeviceInfo& d, bool extensions) {
   if (extensions) print_extensions(d.extensions);
 }
 
-// Why a backend lists no device: opening it fails with the reason on the message's first line.
-std::string absence_reason(const std::string& backend) {
-  try {
-    compute::open_device(backend);
-  } catch (const Error& e) {
-    const std::string message = e.what();
-    const std::string first_line = message.substr(0, message.find('\n'));
-    const auto reason = first_line.find("': ");  // after "cannot open compute device '<backend>'"
-    return reason == std::string::npos ? first_line : first_line.substr(reason + 3);
-  }
-  return "it lists no device, yet one opened";
-}
-
 // A headless GL path: its context and atlas page size, or why it is unavailable.
 struct GlPathFacts {
   const char* name;
@@ -114,6 +112,9 @@ struct GlPathFacts {
 
 std::vector<GlPathFacts> gl_paths() {
   std::vector<GlPathFacts> facts;
+#ifndef DEPTHTRACK_WITH_GL
+  facts.push_back({"gl", "", kNoGl, 0});
+#else
   for (auto path : {render::GlPath::EglDevice, render::GlPath::EglSurfaceless, render::GlPath::OSMesa}) {
     GlPathFacts f{render::GlContext::path_name(path), "", "", 0};
     try {
@@ -128,6 +129,7 @@ std::vector<GlPathFacts> gl_paths() {
     }
     facts.push_back(f);
   }
+#endif
   return facts;
 }
 
@@ -146,18 +148,16 @@ void print_gl() {
   }
 }
 
-constexpr std::pair<const char*, const char*> kBackends[] = {{"opencl", "OpenCL"}, {"cuda", "CUDA"}};
-
 void print_info(bool extensions) {
   std::printf("CPU: --backend cpu runs the reference filter on %d threads (cpu:N for N; reference: one)\n",
               hardware_threads());
   const auto devices = compute::list_devices();
-  for (const auto& [backend, title] : kBackends) {
+  for (const compute::Backend& backend : compute::backends()) {
     std::vector<const compute::DeviceInfo*> mine;
     for (const auto& d : devices)
-      if (d.backend == backend) mine.push_back(&d);
-    std::printf("%s: %zu device%s\n", title, mine.size(), mine.size() == 1 ? "" : "s");
-    if (mine.empty()) std::printf("  %s\n", absence_reason(backend).c_str());
+      if (d.backend == backend.name) mine.push_back(&d);
+    std::printf("%s: %zu device%s\n", backend.title.c_str(), mine.size(), mine.size() == 1 ? "" : "s");
+    if (mine.empty()) std::printf("  %s\n", backend.unavailable_reason().c_str());
     for (const auto* d : mine) print_device(*d, extensions);
   }
   print_gl();
@@ -169,10 +169,10 @@ void print_info_json() {
   root["version"] = DEPTHTRACK_VERSION;
   root["cpu"] = {{"backend", "cpu"}, {"threads", hardware_threads()}};
   const auto devices = compute::list_devices();
-  for (const auto& [backend, title] : kBackends) {
+  for (const compute::Backend& backend : compute::backends()) {
     nlohmann::ordered_json list = nlohmann::json::array();
     for (const auto& d : devices) {
-      if (d.backend != backend) continue;
+      if (d.backend != backend.name) continue;
       const AtlasPath path = find_atlas_path(d);
       nlohmann::ordered_json j;
       j["selector"] = d.selector;
@@ -202,8 +202,8 @@ void print_info_json() {
     }
     nlohmann::ordered_json b;
     b["devices"] = list;
-    if (list.empty()) b["unavailable"] = absence_reason(backend);
-    root[backend] = b;
+    if (list.empty()) b["unavailable"] = backend.unavailable_reason();
+    root[backend.name] = b;
   }
   nlohmann::ordered_json gl = nlohmann::json::array();
   for (const GlPathFacts& f : gl_paths()) {

@@ -6,6 +6,8 @@
 #include <depthtrack/error.hpp>
 #include <sstream>
 
+#include "compute/backend.hpp"
+
 namespace depthtrack::cli {
 
 void TrackerOptions::add_to(CLI::App& command) {
@@ -14,14 +16,17 @@ void TrackerOptions::add_to(CLI::App& command) {
                   "JSON file of tracker parameters, any subset (`depthtrack config --dump` prints every one with "
                   "its default); the flags below override it")
       ->check(CLI::ExistingFile);
-  backend_option = command.add_option(
-      "--backend", flags.backend,
-      "Filter implementation: reference (sequential CPU), cpu (the reference on every core; cpu:N: N "
-      "threads; the same results), opencl (best OpenCL device), opencl:pocl, "
-      "opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n> (`depthtrack info` lists devices); "
-      "default: $DEPTHTRACK_DEVICE, else reference");
+  // The device selectors come from the backend registry, so a new backend appears here by itself.
+  std::string selectors;
+  for (const auto& backend : compute::backends()) selectors += ", " + backend.grammar;
+  backend_option = command.add_option("--backend", flags.backend,
+                                      "Filter implementation: reference (sequential CPU), cpu (the reference on "
+                                      "every core; cpu:N: N threads; the same results)" +
+                                          selectors +
+                                          " (`depthtrack info` lists devices); default: "
+                                          "$DEPTHTRACK_DEVICE, else reference");
   renderer_option =
-      command.add_option("--renderer", flags.renderer,
+      command.add_option("--renderer", renderer,
                          "Who draws the pose atlas for device backends: kernel (a compute kernel on the device itself, "
                          "the fastest), gl (headless OpenGL; DEPTHTRACK_GL=egl-device|egl-surfaceless|osmesa picks the "
                          "path) or cpu (the reference rasterizer on the host)");
@@ -56,7 +61,7 @@ TrackerConfig TrackerOptions::resolve() const {
   TrackerConfig c = config_file.empty() ? TrackerConfig{} : load_tracker_config(config_file);
   const auto given = [](const CLI::Option* option) { return option && option->count() > 0; };
   if (given(backend_option)) c.backend = flags.backend;
-  if (given(renderer_option)) c.renderer = flags.renderer;
+  if (given(renderer_option)) c.renderer = renderer_from_string(renderer);
   if (given(particles_option)) c.particles = flags.particles;
   if (given(resolution_option)) std::tie(c.width, c.height) = parse_resolution(resolution);
   if (given(occlusion_option)) c.occlusion_storage = occlusion_storage_from_string(occlusion);
@@ -73,7 +78,7 @@ TrackerConfig TrackerOptions::resolve() const {
     std::fprintf(stderr,
                  "depthtrack: warning: --renderer %s has no effect with the %s backend (it draws with its own "
                  "rasterizer); it applies to the opencl and cuda backends\n",
-                 c.renderer.c_str(), backend == "reference" ? "reference" : "cpu");
+                 renderer.c_str(), backend == "reference" ? "reference" : "cpu");
   return c;
 }
 

@@ -24,6 +24,24 @@ OcclusionStorage occlusion_storage_from_string(const std::string& name) {
   throw InputError("unknown occlusion mode '" + name + "' (choose per-pixel-time, global-time or off)");
 }
 
+const char* to_string(Renderer renderer) {
+  switch (renderer) {
+    case Renderer::Kernel:
+      return "kernel";
+    case Renderer::Gl:
+      return "gl";
+    case Renderer::Cpu:
+      return "cpu";
+  }
+  return "?";
+}
+
+Renderer renderer_from_string(const std::string& name) {
+  for (auto renderer : {Renderer::Kernel, Renderer::Gl, Renderer::Cpu})
+    if (name == to_string(renderer)) return renderer;
+  throw InputError("unknown renderer '" + name + "' (choose cpu, gl or kernel)");
+}
+
 namespace {
 void require(bool ok, const std::string& what) {
   if (!ok) throw InputError("invalid tracker configuration: " + what);
@@ -49,8 +67,7 @@ void TrackerConfig::validate() const {
               observation.sigma_quadratic >= 0,
           "depth noise sigma must be positive");
   require(probability(observation.tail_weight) && observation.tail_weight < 1, "tail weight must be in [0, 1)");
-  require(positive(observation.max_depth) && observation.max_depth <= 1000,
-          "max depth must be in (0, 1000] metres");
+  require(positive(observation.max_depth) && observation.max_depth <= 1000, "max depth must be in (0, 1000] metres");
   require(positive(observation.occluder_rate), "occluder rate must be positive");
   require(probability(occlusion.p_occluded_stays) && probability(occlusion.p_visible_to_occluded) &&
               occlusion.p_occluded_stays > occlusion.p_visible_to_occluded && occlusion.p_occluded_stays < 1,
@@ -61,8 +78,8 @@ void TrackerConfig::validate() const {
   require(std::isfinite(motion.sigma_angular) && motion.sigma_angular >= 0, "angular motion noise must be >= 0");
   require(positive(motion.reference_rate), "motion reference rate must be positive");
   require(std::isfinite(resample_kl_threshold) && resample_kl_threshold >= 0, "resampling threshold must be >= 0");
-  require(renderer == "cpu" || renderer == "gl" || renderer == "kernel",
-          "renderer '" + renderer + "' is not cpu, gl or kernel");
+  require(renderer == Renderer::Cpu || renderer == Renderer::Gl || renderer == Renderer::Kernel,
+          "renderer " + std::to_string(static_cast<int>(renderer)) + " is not cpu, gl or kernel");
   require(refine.iterations >= 0 && refine.iterations <= 100, "refine iterations must be in [0, 100]");
   require(std::isfinite(refine.damping) && refine.damping >= 0, "refine damping must be >= 0");
   require(std::isfinite(refine.converged_motion) && refine.converged_motion >= 0,

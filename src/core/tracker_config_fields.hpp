@@ -4,10 +4,28 @@
 // attributes (python/src/bind_config.cpp) are all generated from it; a field added to
 // tracker_config.hpp must be added here (tests/test_config_file.cpp checks none is missing).
 #include <depthtrack/tracker_config.hpp>
+#include <string>
 #include <tuple>
 #include <type_traits>
 
 namespace depthtrack::config_fields {
+
+// Enumerations the file and the bindings spell as strings: to_string() and this parse.
+template <typename T>
+concept NamedEnum = std::is_same_v<T, OcclusionStorage> || std::is_same_v<T, Renderer>;
+inline void parse_named(const std::string& text, OcclusionStorage& value) {
+  value = occlusion_storage_from_string(text);
+}
+inline void parse_named(const std::string& text, Renderer& value) {
+  value = renderer_from_string(text);
+}
+// The choices, for messages.
+inline const char* named_choices(const OcclusionStorage*) {
+  return "per-pixel-time, global-time or off";
+}
+inline const char* named_choices(const Renderer*) {
+  return "kernel, gl or cpu";
+}
 
 template <typename Struct, typename Member>
 struct Field {

@@ -94,7 +94,7 @@ size_t DeviceFilter::checked_particle_count() const {
   const bool times = config_.occlusion_storage == OcclusionStorage::PerPixelTime;
   // Atlas, occlusion probabilities and times, each with a resampling twin, plus per-particle state;
   // GL's colour and depth pages and its pose buffer sit on the same GPU.
-  const bool gl = config_.renderer == "gl" && queue_->info().is_gpu;
+  const bool gl = config_.renderer == Renderer::Gl && queue_->info().is_gpu;
   const double per_particle =
       4.0 * (static_cast<double>(pixels_) * (1 + (occlusion ? 2 : 0) + (times ? 2 : 0) + (gl ? 2 : 0)) +
              (2 + (gl ? 1 : 0)) * DT_STATE_STRIDE + 6);

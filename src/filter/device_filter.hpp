@@ -7,9 +7,9 @@
 #include <memory>
 #include <vector>
 
+#include "atlas/atlas_source.hpp"
+#include "atlas/raster_inputs.hpp"
 #include "compute/buffer.hpp"
-#include "filter/atlas_source.hpp"
-#include "filter/raster_inputs.hpp"
 #include "model/filter_backend.hpp"
 #include "model/particle.hpp"
 

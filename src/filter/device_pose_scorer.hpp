@@ -8,11 +8,12 @@
 #include <depthtrack/mesh.hpp>
 #include <memory>
 
+#include "atlas/atlas_source.hpp"
 #include "compute/buffer.hpp"
 #include "dt_params.h"
-#include "filter/raster_inputs.hpp"
+#include "atlas/raster_inputs.hpp"
 #include "model/pose_scorer.hpp"
-#include "render/atlas_layout.hpp"
+#include "atlas/atlas_layout.hpp"
 
 namespace depthtrack {
 

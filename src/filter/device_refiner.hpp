@@ -12,8 +12,8 @@
 #include <string>
 
 #include "compute/buffer.hpp"
-#include "filter/raster_inputs.hpp"
-#include "render/atlas_layout.hpp"
+#include "atlas/raster_inputs.hpp"
+#include "atlas/atlas_layout.hpp"
 
 namespace depthtrack {
 

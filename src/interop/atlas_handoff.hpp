@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "atlas/gl/atlas_renderer.hpp"
 #include "compute/buffer.hpp"
-#include "render/atlas_renderer.hpp"
 
 namespace depthtrack::interop {
 

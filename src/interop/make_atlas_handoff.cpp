@@ -3,14 +3,17 @@
 
 namespace depthtrack::interop {
 
+// The paths a build leaves out (src/CMakeLists.txt builds interop/cuda with CUDA, interop/opencl with both).
 #ifndef DEPTHTRACK_WITH_CUDA
 std::unique_ptr<AtlasHandoff> make_cuda_gl_handoff(compute::Queue&, render::AtlasRenderer&, std::string& why_not) {
   why_not = "built without the CUDA backend";
   return nullptr;
 }
+#endif
+#if !defined(DEPTHTRACK_WITH_CUDA) || !defined(DEPTHTRACK_WITH_OPENCL)
 std::unique_ptr<AtlasHandoff> make_opencl_gl_bridge_handoff(compute::Queue&, render::AtlasRenderer&,
                                                             std::string& why_not) {
-  why_not = "built without the CUDA backend, whose driver allocates the shared memory";
+  why_not = "the GL-OpenCL bridge needs both the OpenCL and the CUDA backend (its memory is allocated by CUDA)";
   return nullptr;
 }
 #endif

@@ -22,7 +22,7 @@ Json to_json_value(const T& value) {
     Json object = Json::object();
     fields::for_each_field<T>([&](const auto& f) { object[f.name] = to_json_value(value.*f.member); });
     return object;
-  } else if constexpr (std::is_same_v<T, OcclusionStorage>) {
+  } else if constexpr (fields::NamedEnum<T>) {
     return to_string(value);
   } else {
     return value;
@@ -75,10 +75,11 @@ void from_json_value(const Json& j, T& value, const std::string& path, const std
   } else if constexpr (std::is_same_v<T, std::string>) {
     if (!j.is_string()) wrong_type(source, path, "a string", j);
     value = j.get<std::string>();
-  } else if constexpr (std::is_same_v<T, OcclusionStorage>) {
-    if (!j.is_string()) wrong_type(source, path, "a string (per-pixel-time, global-time or off)", j);
+  } else if constexpr (fields::NamedEnum<T>) {
+    if (!j.is_string())
+      wrong_type(source, path, (std::string("a string (") + fields::named_choices(&value) + ")").c_str(), j);
     try {
-      value = occlusion_storage_from_string(j.get<std::string>());
+      fields::parse_named(j.get<std::string>(), value);
     } catch (const InputError& e) {
       throw InputError(source + ": '" + path + "': " + e.what());
     }

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "atlas/triangle_planes.hpp"
 #include "reference/observation_model.hpp"
-#include "render/triangle_planes.hpp"
 
 namespace depthtrack::reference {
 

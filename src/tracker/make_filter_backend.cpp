@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <depthtrack/error.hpp>
 
+#include "compute/backend.hpp"
 #include "compute/queue.hpp"
 #include "core/thread_pool.hpp"
 #include "filter/device_filter.hpp"
@@ -34,8 +35,8 @@ std::unique_ptr<FilterBackend> make_filter_backend(const Mesh& mesh, const Camer
   // The reference filter with its per-particle loops on a thread pool: the same results, bit for bit.
   if (backend == "cpu" || backend.rfind("cpu:", 0) == 0)
     return std::make_unique<reference::ReferenceFilter>(mesh, working_camera, config, cpu_backend_threads(backend));
-  // Every other name selects a compute device: opencl, opencl:pocl, opencl:<p>.<d>, cuda, cuda:<n>.
-  if (backend.rfind("opencl", 0) == 0 || backend.rfind("cuda", 0) == 0) {
+  // Every other name selects a compute device of a registered backend: opencl, opencl:pocl, cuda:<n>...
+  if (compute::find_backend(backend.substr(0, backend.find(':')))) {
     try {
       return std::make_unique<DeviceFilter>(compute::open_device(backend), mesh, working_camera, config);
     } catch (const InputError& e) {
@@ -43,10 +44,10 @@ std::unique_ptr<FilterBackend> make_filter_backend(const Mesh& mesh, const Camer
       throw InputError(e.what() + origin);
     }
   }
-  throw InputError("unknown backend '" + backend + "'" + origin +
-                   "; available: reference, cpu, cpu:<threads>, opencl, opencl:pocl, opencl:nvidia, "
-                   "opencl:<platform>.<device>, cuda, "
-                   "cuda:<n> (`depthtrack info` lists the devices)");
+  std::string available = "reference, cpu, cpu:<threads>";
+  for (const auto& device_backend : compute::backends()) available += ", " + device_backend.grammar;
+  throw InputError("unknown backend '" + backend + "'" + origin + "; available: " + available +
+                   " (`depthtrack info` lists the devices)");
 }
 
 }  // namespace depthtrack

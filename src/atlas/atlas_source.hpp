@@ -1,0 +1,39 @@
+#pragma once
+// Where the device filter's pose atlas comes from: every particle's rendered metric depth (0 = not
+// covered) in a device buffer, tile i = particle i, laid out as layout() says (cl/dt_atlas.h).
+// Each source also reports how the atlas reaches the kernels.
+#include <depthtrack/camera.hpp>
+#include <depthtrack/mesh.hpp>
+#include <depthtrack/tracker.hpp>
+#include <depthtrack/tracker_config.hpp>
+#include <memory>
+#include <string>
+
+#include "atlas/atlas_layout.hpp"
+#include "compute/buffer.hpp"
+
+namespace depthtrack {
+
+class AtlasSource {
+ public:
+  virtual ~AtlasSource() = default;
+  // Fixed for the source's life: config.particles tiles.
+  virtual const render::AtlasLayout& layout() const = 0;
+  // Draws particle i of `states` (DT_STATE_STRIDE floats each, cl/dt_state.h) into tile i of
+  // `atlas` (layout().floats() floats). Drawing on the compute queue enqueues and returns its event
+  // without waiting (the caller adds its device time to render_ms once the frame is done); drawing
+  // elsewhere adds its host time, and that of the hand-off up to the point where its work is
+  // enqueued, to `timings` and returns nullptr.
+  virtual compute::EventPtr draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas,
+                                 StepTimings& timings) = 0;
+  // e.g. "GL (EGL device 0: ...); hand-off: CUDA-GL interop (zero-copy)".
+  virtual std::string description() const = 0;
+};
+
+// The source TrackerConfig::renderer names: "kernel" (cl/rasterize.cl on the filter's device), "gl"
+// (the OpenGL atlas renderer; BackendError naming every GL path tried when none works) or "cpu"
+// (the reference rasterizer on the host).
+std::unique_ptr<AtlasSource> make_atlas_source(compute::Queue& queue, const Mesh& mesh, const Camera& camera,
+                                               const TrackerConfig& config);
+
+}  // namespace depthtrack

@@ -1,0 +1,60 @@
+#pragma once
+// A headless OpenGL core context (>= 3.3, 4.5 where offered), made current on the constructing
+// thread. Paths, in order: EGL device platform, EGL surfaceless (Mesa), OSMesa. DEPTHTRACK_GL=
+// egl-device|egl-surfaceless|osmesa restricts the search to one path. No window, no X server:
+// everything renders into framebuffer objects.
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "atlas/gl/gl_functions.hpp"
+
+namespace depthtrack::render {
+
+class GlPlatform;
+
+enum class GlPath { EglDevice, EglSurfaceless, OSMesa };
+
+struct GlContextOptions {
+  std::optional<GlPath> path;  // only this path; unset: DEPTHTRACK_GL, else all in order
+  std::optional<int> device;   // EGL device index; unset: the first that works
+  // Prefer the EGL device with this UUID (EGL_EXT_device_persistent_id): the compute device's GPU.
+  std::optional<std::array<unsigned char, 16>> device_uuid;
+  int major = 3, minor = 3;  // the least core version accepted
+};
+
+class GlContext {
+ public:
+  explicit GlContext(const GlContextOptions& options = {});
+  ~GlContext();
+  GlContext(const GlContext&) = delete;
+  GlContext& operator=(const GlContext&) = delete;
+
+  // Makes this context current on the calling thread (several contexts may live in one process).
+  void make_current();
+  const GlFunctions& gl() const { return gl_; }
+  GlPath path() const { return path_; }
+  // Path, GL_VENDOR, GL_RENDERER, GL_VERSION, GL_MAX_TEXTURE_SIZE, GL_MAX_VIEWPORTS on one line.
+  std::string describe() const { return description_; }
+  // The largest square render target: min(GL_MAX_TEXTURE_SIZE, GL_MAX_VIEWPORT_DIMS).
+  int max_render_size() const { return max_render_size_; }
+
+  // Whether GL_EXTENSIONS lists `name`; an entry point of an extension (null when unknown).
+  bool has_extension(const std::string& name) const;
+  GlProc proc_address(const char* name) const;
+
+  // "egl-device", "egl-surfaceless", "osmesa": the DEPTHTRACK_GL spellings.
+  static const char* path_name(GlPath path);
+  // DEPTHTRACK_GL parsed; InputError naming the valid choices for anything else.
+  static std::optional<GlPath> path_from_environment();
+
+ private:
+  std::unique_ptr<GlPlatform> platform_;
+  GlFunctions gl_;
+  GlPath path_ = GlPath::EglDevice;
+  std::string description_;
+  int max_render_size_ = 0;
+};
+
+}  // namespace depthtrack::render

@@ -1,0 +1,35 @@
+// The atlas source TrackerConfig::renderer names.
+#include <depthtrack/error.hpp>
+
+#include "atlas/atlas_source.hpp"
+
+namespace depthtrack {
+
+std::unique_ptr<AtlasSource> make_host_atlas_source(compute::Queue& queue, const Mesh& mesh, const Camera& camera,
+                                                    const TrackerConfig& config);
+#ifdef DEPTHTRACK_WITH_GL
+std::unique_ptr<AtlasSource> make_gl_atlas_source(compute::Queue& queue, const Mesh& mesh, const Camera& camera,
+                                                  const TrackerConfig& config);
+#else
+std::unique_ptr<AtlasSource> make_gl_atlas_source(compute::Queue&, const Mesh&, const Camera&, const TrackerConfig&) {
+  throw InputError("the gl renderer was not built (DEPTHTRACK_WITH_GL=OFF); choose cpu or kernel");
+}
+#endif
+std::unique_ptr<AtlasSource> make_kernel_atlas_source(compute::Queue& queue, const Mesh& mesh, const Camera& camera,
+                                                      const TrackerConfig& config);
+
+std::unique_ptr<AtlasSource> make_atlas_source(compute::Queue& queue, const Mesh& mesh, const Camera& camera,
+                                               const TrackerConfig& config) {
+  switch (config.renderer) {
+    case Renderer::Cpu:
+      return make_host_atlas_source(queue, mesh, camera, config);
+    case Renderer::Gl:
+      return make_gl_atlas_source(queue, mesh, camera, config);
+    case Renderer::Kernel:
+      return make_kernel_atlas_source(queue, mesh, camera, config);
+  }
+  throw InputError("unknown renderer " + std::to_string(static_cast<int>(config.renderer)) +
+                   " (choose cpu, gl or kernel)");
+}
+
+}  // namespace depthtrack

@@ -1,0 +1,18 @@
+#include "atlas/raster_inputs.hpp"
+
+#include "atlas/triangle_planes.hpp"
+
+namespace depthtrack {
+
+MeshBuffers::MeshBuffers(compute::Queue& queue, const Mesh& mesh)
+    : vertices(queue, mesh.vertices.size() * 3),
+      triangles(queue, mesh.triangles.size() * 3),
+      planes(queue, mesh.triangles.size() * 4) {
+  // Eigen's Vector3f and Vector3i are packed: the mesh uploads as it is.
+  vertices.upload(std::span<const float>(mesh.vertices.front().data(), vertices.size()));
+  triangles.upload(
+      std::span<const unsigned>(reinterpret_cast<const unsigned*>(mesh.triangles.front().data()), triangles.size()));
+  planes.upload(render::triangle_planes(mesh));
+}
+
+}  // namespace depthtrack
