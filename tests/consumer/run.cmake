@@ -20,7 +20,7 @@ if(STATIC)
   # The tree is kept between runs, so a later run rebuilds only what changed.
   run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/static -G ${GENERATOR} -DCMAKE_CXX_COMPILER=${CXX_COMPILER}
       ${launcher} -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=OFF -DDEPTHTRACK_BUILD_TESTS=OFF
-      -DDEPTHTRACK_BUILD_BENCH=OFF -DDEPTHTRACK_WERROR=${WERROR} -DDEPTHTRACK_WITH_CUDA=${WITH_CUDA})
+      -DDEPTHTRACK_BUILD_BENCH=OFF -DDEPTHTRACK_PYTHON=OFF -DDEPTHTRACK_WERROR=${WERROR} -DDEPTHTRACK_WITH_CUDA=${WITH_CUDA})
   run(${CMAKE_COMMAND} --build ${WORK_DIR}/static -j2 --target depthtrack depthtrack_cli)
   set(BUILD_DIR ${WORK_DIR}/static)
 endif()
