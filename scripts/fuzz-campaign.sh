@@ -9,6 +9,7 @@
 #
 # Usage: scripts/fuzz-campaign.sh [--runs N] [--formats "obj ply stl off"] [--out DIR]
 #                                 [--fuzz-build DIR] [--replay-build DIR] [--nice N] [--max-seconds S]
+#                                 [--jobs N] [--no-build]
 #   --runs N          executions per format (default 1000000)
 #   --max-seconds S   stop a format after S seconds even if N executions are not done (default: none)
 #   --formats LIST    formats with a fuzz_mesh_<format> target (default: obj ply stl off)
@@ -17,6 +18,8 @@
 #                     built here if absent, with -DDEPTHTRACK_FUZZ_ASAN=OFF: see cmake/Sanitizers.cmake)
 #   --replay-build DIR  an ordinary build with the replay_mesh_<format> programs (default build)
 #   --nice N          niceness of the fuzzer (default 19: a shared machine)
+#   --jobs N          fork-mode workers per format (default 1: one core)
+#   --no-build        use the fuzz targets already in --fuzz-build (e.g. copied to another machine)
 # Seeds: fuzz/corpus/mesh_<format>/ less the known crashers (crash_*, hang_*, oom_*), which the
 # regression tests replay; dictionary: fuzz/dict/<format>.dict. Exit status 1 if any input escaped
 # the guard (a signal or a hang reached Mesh::load's caller).
@@ -30,6 +33,8 @@ fuzz_build=$root/build-fuzz-mesh
 replay_build=$root/build
 niceness=19
 max_seconds=0
+jobs=1
+build=1
 while [[ $# -gt 0 ]]; do
   case $1 in
     --runs) runs=$2; shift 2 ;;
@@ -39,21 +44,24 @@ while [[ $# -gt 0 ]]; do
     --replay-build) replay_build=$2; shift 2 ;;
     --nice) niceness=$2; shift 2 ;;
     --max-seconds) max_seconds=$2; shift 2 ;;
-    -h|--help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --jobs) jobs=$2; shift 2 ;;
+    --no-build) build=0; shift ;;
+    -h|--help) sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "fuzz-campaign: unknown option '$1'" >&2; exit 2 ;;
   esac
 done
 [[ $runs =~ ^[1-9][0-9]*$ ]] || { echo "fuzz-campaign: --runs takes a positive integer, not '$runs'" >&2; exit 2; }
+[[ $jobs =~ ^[1-9][0-9]*$ ]] || { echo "fuzz-campaign: --jobs takes a positive integer, not '$jobs'" >&2; exit 2; }
 [[ $max_seconds =~ ^[0-9]+$ ]] || { echo "fuzz-campaign: --max-seconds takes an integer, not '$max_seconds'" >&2; exit 2; }
 
 targets=()
 for f in $formats; do targets+=("fuzz_mesh_$f"); done
-if [[ ! -f $fuzz_build/CMakeCache.txt ]]; then
+if [[ $build == 1 && ! -f $fuzz_build/CMakeCache.txt ]]; then
   cmake -S "$root" -B "$fuzz_build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DDEPTHTRACK_FUZZ=ON \
     -DDEPTHTRACK_FUZZ_ASAN=OFF -DDEPTHTRACK_BUILD_TESTS=OFF -DDEPTHTRACK_BUILD_BENCH=OFF \
     -DDEPTHTRACK_WITH_CUDA=OFF >/dev/null
 fi
-nice -n "$niceness" cmake --build "$fuzz_build" -j2 --target "${targets[@]}" >/dev/null
+[[ $build == 0 ]] || nice -n "$niceness" cmake --build "$fuzz_build" -j2 --target "${targets[@]}" >/dev/null
 for f in $formats; do
   [[ -x $replay_build/fuzz/replay_mesh_$f ]] ||
     { echo "fuzz-campaign: $replay_build/fuzz/replay_mesh_$f is missing: build the project first" >&2; exit 2; }
@@ -75,11 +83,13 @@ for f in $formats; do
   [[ -f $root/fuzz/dict/$f.dict ]] && dict=(-dict="$root/fuzz/dict/$f.dict")
   start=$(date +%s.%N)
   # Leaks are not findings: Mesh::load's import runs in a child process that exits.
-  /usr/bin/time -f '%U %S' -o "$work/cpu.txt" nice -n "$niceness" "$fuzz_build/fuzz/fuzz_mesh_$f" "$work/corpus" \
-    -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 -runs="$runs" -max_total_time="$max_seconds" -timeout=10 \
+  timer=()
+  [[ -x /usr/bin/time ]] && timer=(/usr/bin/time -f '%U %S' -o "$work/cpu.txt")
+  "${timer[@]}" nice -n "$niceness" "$fuzz_build/fuzz/fuzz_mesh_$f" "$work/corpus" \
+    -fork="$jobs" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 -runs="$runs" -max_total_time="$max_seconds" -timeout=10 \
     -rss_limit_mb=2048 -detect_leaks=0 "${dict[@]}" -artifact_prefix="$work/artifacts/" >"$work/log.txt" 2>&1 || true
-  seconds=$(echo "$(date +%s.%N) - $start" | bc)
-  cpu=$(tail -1 "$work/cpu.txt" | awk '{print $1 + $2}')
+  seconds=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { print b - a }')
+  cpu=$([[ -f $work/cpu.txt ]] && tail -1 "$work/cpu.txt" | awk '{print $1 + $2}' || echo 0)
   line=$(last_progress "$work/log.txt")
   executions=$(sed -E 's/^#([0-9]+):.*/\1/' <<<"$line")
   read -r ooms timeouts crashes < <(sed -E 's#.*oom/timeout/crash: ([0-9]+)/([0-9]+)/([0-9]+).*#\1 \2 \3#' <<<"$line")
