@@ -69,10 +69,9 @@ struct TrackedObject {
   Pose initial;
 };
 
-// Tracks several objects through one clip on one shared Device (opened from config.backend): each frame
-// is decoded once and every object updated in turn. With mutual_occlusion, the pixels the other objects'
-// latest estimates hide are missing for each object (src/eval/mutual_occlusion.hpp). Returns each object's
-// frames; on_frame(i, object, frame) after each object's update.
+// Tracks several objects through one clip with a MultiTracker on one Device (opened from config.backend):
+// each frame is decoded once and every object updated in turn; mutual_occlusion as MultiTracker's. Returns
+// each object's frames (latency_ms: the whole frame's, all objects); on_frame(i, object, frame) after each.
 std::vector<std::vector<TrackedFrame>> track_objects(
     const std::vector<TrackedObject>& objects, const TrackerConfig& config, const InitialSpread& spread,
     bool mutual_occlusion, const std::function<void(size_t, size_t, const TrackedFrame&)>& on_frame = {});

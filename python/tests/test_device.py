@@ -60,3 +60,29 @@ def test_device_open_names_a_bad_selector():
         depthtrack.Device.open("quantum")
     with pytest.raises(depthtrack.InputError, match="thread count"):
         depthtrack.Device.open("cpu:0")
+
+
+def test_multi_tracker_gives_each_object_its_own_run(scene):
+    """Two copies of the object at one pose, without mutual occlusion: each gets the CLI's poses."""
+    cam = scene["manifest"]["camera"]
+    camera = depthtrack.Camera(cam["width"], cam["height"], cam["fx"], cam["fy"], cam["cx"], cam["cy"])
+    config = depthtrack.TrackerConfig()
+    config.particles, config.width, config.height, config.seed = PARTICLES, 80, 60, SEED
+    mesh = depthtrack.Mesh.load(str(scene["mesh"]))
+    multi = depthtrack.MultiTracker([mesh, mesh], camera, config, device=depthtrack.Device.open("cpu:2"),
+                                    mutual_occlusion=False)
+    assert len(multi) == 2 and multi.device == "cpu:2"
+    for i in range(2):
+        multi.initialize(i, scene["first_pose"], spread_metres=SPREAD_METRES,
+                         spread_radians=math.radians(SPREAD_DEGREES))
+    scale = scene["manifest"]["metres_per_unit"]
+    per_object = [[], []]
+    for timestamp, units in scene["frames"]:
+        estimates = multi.update(units, timestamp, metres_per_unit=scale)
+        assert len(estimates) == 2
+        for i, e in enumerate(estimates):
+            per_object[i].append(e)
+    assert_same_as_cli(scene, per_object[0])
+    assert_same_as_cli(scene, per_object[1])
+    with pytest.raises(depthtrack.InputError, match="object 5 does not exist"):
+        multi.initialize(5, scene["first_pose"])

@@ -1,4 +1,4 @@
-#include "eval/mutual_occlusion.hpp"
+#include "tracker/mutual_occlusion.hpp"
 
 #include <cmath>
 #include <limits>
