@@ -51,7 +51,8 @@ std::vector<float> kernel_atlas(const Mesh& mesh, const Camera& camera, const st
   config.particles = static_cast<int>(poses.size());
   config.near_plane = near;
   config.observation.max_depth = far;
-  auto source = make_atlas_source(*queue, mesh, camera, config);
+  compute::ProgramCache programs(*queue);
+  auto source = make_atlas_source(programs, mesh, camera, config);
   std::vector<model::ParticleState> states(poses.size());
   for (size_t i = 0; i < poses.size(); ++i) states[i].pose = poses[i];
   compute::Buffer<float> state(*queue, states.size() * DT_STATE_STRIDE);
@@ -116,7 +117,8 @@ TEST_CASE("kernel renderer is a valid choice and says where it draws", "[device]
   auto queue = compute::open_device(test::device_selector());
   config.renderer = Renderer::Kernel;
   config.particles = 4;
-  const auto source = make_atlas_source(*queue, builtin_demo_mesh(), camera80, config);
+  compute::ProgramCache programs(*queue);
+  const auto source = make_atlas_source(programs, builtin_demo_mesh(), camera80, config);
   CHECK_THAT(source->description(), Catch::Contains("compute-kernel rasterizer on " + queue->info().name));
   CHECK(source->layout() == render::AtlasLayout::particle_major(4, 80, 60));
 }

@@ -60,6 +60,22 @@ class AddsMetric {
 // tf2, SciPy).
 enum class QuaternionOrder { Wxyz, Xyzw };
 
+// One object of a several-object run: its mesh, the sequence loaded with its ground truth (every
+// object's sequence is the same clip) and its start.
+struct TrackedObject {
+  std::string name;
+  Mesh mesh;
+  Sequence sequence;
+  Pose initial;
+};
+
+// Tracks several objects through one clip with a MultiTracker on one Device (opened from config.backend):
+// each frame is decoded once and every object updated in turn; mutual_occlusion as MultiTracker's. Returns
+// each object's frames (latency_ms: the whole frame's, all objects); on_frame(i, object, frame) after each.
+std::vector<std::vector<TrackedFrame>> track_objects(
+    const std::vector<TrackedObject>& objects, const TrackerConfig& config, const InitialSpread& spread,
+    bool mutual_occlusion, const std::function<void(size_t, size_t, const TrackedFrame&)>& on_frame = {});
+
 // CSV with a header and a row per frame: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess (qx,qy,qz,qw with
 // Xyzw) and, when every frame has ground truth, err_t_mm,err_r_deg,adds_mm; then latency_ms (depth in
 // to pose out), confidence and status (tracking, lost, no-data). Written through TrackingCsvWriter (below).
@@ -81,13 +97,14 @@ void write_bop_csv(const std::filesystem::path& path, const Sequence& sequence,
 // Every write and the final flush are checked: a failure is an Error naming the file.
 class TrackingCsvWriter {
  public:
+  // object_column: an `object` column first (several objects in one run), named by write's object.
   TrackingCsvWriter(const std::filesystem::path& path, bool with_ground_truth,
-                    QuaternionOrder order = QuaternionOrder::Wxyz);
+                    QuaternionOrder order = QuaternionOrder::Wxyz, bool object_column = false);
   ~TrackingCsvWriter();
   TrackingCsvWriter(const TrackingCsvWriter&) = delete;
   TrackingCsvWriter& operator=(const TrackingCsvWriter&) = delete;
 
-  void write(const TrackedFrame& frame);
+  void write(const TrackedFrame& frame, const std::string& object = "");
   void finish();
 
  private:
@@ -96,6 +113,7 @@ class TrackingCsvWriter {
   std::filesystem::path path_, partial_;
   bool with_ground_truth_;
   QuaternionOrder order_;
+  bool object_column_;
 };
 
 }  // namespace depthtrack

@@ -4,6 +4,7 @@
 #include <depthtrack/camera.hpp>
 #include <depthtrack/depth_image.hpp>
 #include <depthtrack/depth_view.hpp>
+#include <depthtrack/device.hpp>
 #include <depthtrack/init_hint.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/pose.hpp>
@@ -72,7 +73,11 @@ class Tracker {
  public:
   // sensor: the intrinsics of the images update() receives; they are decimated to the
   // configured working resolution, which must divide the sensor resolution.
+  // The device is opened from config.backend (a device of its own).
   Tracker(const Mesh& mesh, const Camera& sensor, const TrackerConfig& config);
+  // On a shared device: trackers on one Device share its compute queue and compiled programs.
+  // config.backend is replaced by the device's selector (config() reports it).
+  Tracker(std::shared_ptr<Device> device, const Mesh& mesh, const Camera& sensor, const TrackerConfig& config);
   ~Tracker();
   Tracker(Tracker&&) noexcept;
   Tracker& operator=(Tracker&&) noexcept;
@@ -114,6 +119,10 @@ class Tracker {
                        double timestamp);
   Estimate run_frame(const DepthImage& working, double timestamp);
 
+  // Both constructors: the checks, then the filter on device.
+  void construct(const Device& device, const Mesh& mesh, const TrackerConfig& config);
+
+  std::shared_ptr<Device> device_;
   std::unique_ptr<FilterBackend> backend_;
   std::unique_ptr<TrackSupervisor> supervisor_;
   Camera sensor_;

@@ -1,10 +1,13 @@
 // depthtrack.Tracker: one object's filter. update() reads the numpy depth in place and runs with the
-// GIL released; a per-tracker mutex keeps two Python threads from running one tracker at once.
+// GIL released; a per-tracker mutex keeps two Python threads from running one tracker at once, and trackers
+// on one shared Device take one mutex between them (they enqueue on its one compute queue).
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
 #include <depthtrack/error.hpp>
 #include <depthtrack/tracker.hpp>
+#include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 
@@ -15,20 +18,40 @@ namespace depthtrack::python {
 
 namespace {
 
+// The mutex of the trackers on one Device, made with the first of them and gone with the last.
+std::shared_ptr<std::mutex> device_mutex(const Device* device) {
+  static std::mutex registry_mutex;
+  static std::map<const Device*, std::weak_ptr<std::mutex>> registry;
+  const std::lock_guard lock(registry_mutex);
+  auto& slot = registry[device];
+  auto mutex = slot.lock();
+  if (!mutex) slot = mutex = std::make_shared<std::mutex>();
+  return mutex;
+}
+
+Tracker make_tracker(const Mesh& mesh, const Camera& camera, const TrackerConfig& config,
+                     const std::shared_ptr<Device>& device) {
+  if (device) return Tracker(device, mesh, camera, config);
+  return Tracker(mesh, camera, config);
+}
+
 class PyTracker {
  public:
-  PyTracker(const Mesh& mesh, const Camera& camera, const TrackerConfig& config) : tracker_(mesh, camera, config) {}
+  PyTracker(const Mesh& mesh, const Camera& camera, const TrackerConfig& config, std::shared_ptr<Device> device)
+      : tracker_(make_tracker(mesh, camera, config, device)),
+        mutex_(device ? device_mutex(device.get()) : std::make_shared<std::mutex>()),
+        device_(std::move(device)) {}
 
   void initialize(py::handle pose, double spread_metres, double spread_radians) {
     const Pose start = pose_from_matrix(pose);
-    const std::lock_guard lock(mutex_);
+    const std::lock_guard lock(*mutex_);
     tracker_.initialize(start, InitialSpread{spread_metres, spread_radians});
   }
 
   Estimate update(py::handle depth, double timestamp, std::optional<double> metres_per_unit) {
     const DepthInput in = depth_input(depth, metres_per_unit);  // holds the array while the GIL is released
     const py::gil_scoped_release release;
-    const std::lock_guard lock(mutex_);
+    const std::lock_guard lock(*mutex_);
     return tracker_.update(in.view, timestamp);
   }
 
@@ -40,7 +63,7 @@ class PyTracker {
                                   : InitHint::anywhere();
     const DepthInput in = depth_input(depth, metres_per_unit);
     const py::gil_scoped_release release;
-    const std::lock_guard lock(mutex_);
+    const std::lock_guard lock(*mutex_);
     return tracker_.initialize_global(in.view, timestamp, hint);
   }
 
@@ -50,7 +73,8 @@ class PyTracker {
 
  private:
   Tracker tracker_;
-  std::mutex mutex_;
+  std::shared_ptr<std::mutex> mutex_;
+  std::shared_ptr<Device> device_;  // keeps device_mutex's key alive
 };
 
 }  // namespace
@@ -59,8 +83,11 @@ void bind_tracker(py::module_& m) {
   py::class_<PyTracker>(m, "Tracker",
                         "The particle filter of one object. camera: the intrinsics of the images update() gets "
                         "(decimated to config.width x config.height, which must divide them)")
-      .def(py::init<const Mesh&, const Camera&, const TrackerConfig&>(), py::arg("mesh"), py::arg("camera"),
-           py::arg("config") = TrackerConfig{}, py::call_guard<py::gil_scoped_release>())
+      .def(py::init<const Mesh&, const Camera&, const TrackerConfig&, std::shared_ptr<Device>>(), py::arg("mesh"),
+           py::arg("camera"), py::arg("config") = TrackerConfig{}, py::arg("device") = nullptr,
+           py::call_guard<py::gil_scoped_release>(),
+           "device: a depthtrack.Device to share with other trackers (its queue, programs compiled once; "
+           "config.backend becomes its selector); None opens config.backend's device for this tracker alone")
       .def("initialize", &PyTracker::initialize, py::arg("pose"), py::arg("spread_metres") = InitialSpread{}.metres,
            py::arg("spread_radians") = InitialSpread{}.radians,
            "Particles drawn around pose (4x4 camera-from-object, metres) with these per-axis deviations")

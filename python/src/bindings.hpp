@@ -8,11 +8,12 @@ namespace depthtrack::python {
 
 namespace py = pybind11;
 
-void bind_errors(py::module_& m);    // depthtrack.Error, InputError (ValueError), BackendError (RuntimeError)
-void bind_geometry(py::module_& m);  // Camera, Mesh
-void bind_config(py::module_& m);    // TrackerConfig and its nested models, from the one field list
-void bind_estimate(py::module_& m);  // StepTimings, Estimate
-void bind_tracker(py::module_& m);   // Tracker
-void bind_devices(py::module_& m);   // devices()
+void bind_errors(py::module_& m);         // depthtrack.Error, InputError (ValueError), BackendError (RuntimeError)
+void bind_geometry(py::module_& m);       // Camera, Mesh
+void bind_config(py::module_& m);         // TrackerConfig and its nested models, from the one field list
+void bind_estimate(py::module_& m);       // StepTimings, Estimate
+void bind_tracker(py::module_& m);        // Tracker
+void bind_multi_tracker(py::module_& m);  // MultiTracker
+void bind_devices(py::module_& m);        // Device, devices()
 
 }  // namespace depthtrack::python

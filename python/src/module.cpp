@@ -9,6 +9,7 @@ PYBIND11_MODULE(_depthtrack, m) {
   bind_geometry(m);
   bind_config(m);
   bind_estimate(m);
+  bind_devices(m);  // before Tracker, whose constructor takes a Device
   bind_tracker(m);
-  bind_devices(m);
+  bind_multi_tracker(m);
 }

@@ -11,6 +11,7 @@
 
 #include "atlas/atlas_layout.hpp"
 #include "compute/buffer.hpp"
+#include "compute/program_cache.hpp"
 
 namespace depthtrack {
 
@@ -32,8 +33,9 @@ class AtlasSource {
 
 // The source TrackerConfig::renderer names: "kernel" (cl/rasterize.cl on the filter's device), "gl"
 // (the OpenGL atlas renderer; BackendError naming every GL path tried when none works) or "cpu"
-// (the reference rasterizer on the host).
-std::unique_ptr<AtlasSource> make_atlas_source(compute::Queue& queue, const Mesh& mesh, const Camera& camera,
+// (the reference rasterizer on the host). Every source works on programs.queue(); the kernel source takes
+// its program from the cache.
+std::unique_ptr<AtlasSource> make_atlas_source(compute::ProgramCache& programs, const Mesh& mesh, const Camera& camera,
                                                const TrackerConfig& config);
 
 }  // namespace depthtrack

@@ -6,7 +6,7 @@
 
 #include "atlas/atlas_source.hpp"
 #include "atlas/raster_inputs.hpp"
-#include "compute/kernel_sources.hpp"
+#include "compute/program_cache.hpp"
 #include "dt_state.h"
 #include "model/kernel_params.hpp"
 
@@ -19,15 +19,15 @@ constexpr size_t kGroupSize = 128;
 
 class KernelAtlasSource final : public AtlasSource {
  public:
-  KernelAtlasSource(compute::Queue& queue, const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
-      : queue_(queue),
+  KernelAtlasSource(compute::ProgramCache& programs, const Mesh& mesh, const Camera& camera,
+                    const TrackerConfig& config)
+      : queue_(programs.queue()),
         // Particle-major: cl/rasterize.cl writes each tile as one contiguous block.
         layout_(render::AtlasLayout::particle_major(config.particles, camera.width, camera.height)),
         camera_(model::camera_params(camera, config)),
-        program_(queue.build("rasterize.cl", compute::kernel_source("rasterize.cl"),
-                             {"DT_GROUP_SIZE=" + std::to_string(kGroupSize)})),
+        program_(programs.program("rasterize.cl", {"DT_GROUP_SIZE=" + std::to_string(kGroupSize)})),
         kernel_(program_->kernel("rasterize")),
-        mesh_(queue, mesh) {}
+        mesh_(queue_, mesh) {}
 
   const render::AtlasLayout& layout() const override { return layout_; }
 
@@ -50,17 +50,17 @@ class KernelAtlasSource final : public AtlasSource {
   compute::Queue& queue_;
   render::AtlasLayout layout_;
   dt_camera camera_;
-  std::unique_ptr<compute::Program> program_;
+  std::shared_ptr<compute::Program> program_;
   std::unique_ptr<compute::Kernel> kernel_;
   MeshBuffers mesh_;
 };
 }  // namespace
 
-std::unique_ptr<AtlasSource> make_kernel_atlas_source(compute::Queue& queue, const Mesh& mesh, const Camera& camera,
-                                                      const TrackerConfig& config) {
+std::unique_ptr<AtlasSource> make_kernel_atlas_source(compute::ProgramCache& programs, const Mesh& mesh,
+                                                      const Camera& camera, const TrackerConfig& config) {
   if (mesh.vertices.empty() || mesh.triangles.empty())
     throw InputError("the kernel rasterizer needs a mesh with triangles");
-  return std::make_unique<KernelAtlasSource>(queue, mesh, camera, config);
+  return std::make_unique<KernelAtlasSource>(programs, mesh, camera, config);
 }
 
 }  // namespace depthtrack

@@ -22,8 +22,10 @@ namespace depthtrack::cli {
 namespace {
 
 struct TrackArgs {
+  std::vector<std::string> meshes, objects;  // in pairs when there are several
+  std::string mutual_occlusion = "on";
   std::string mesh, sequence, out, object, init, init_perturb, init_spread = "0.01 5", init_box, summary, overlay,
-      bop_out;
+                                                               bop_out;
   std::string quaternion = "wxyz";
   double unit_scale = 1.0;
   bool init_from_gt = false, init_global = false, no_recover = false;
@@ -75,7 +77,80 @@ InitHint init_hint(const TrackArgs& a) {
   return InitHint::box(static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]), static_cast<int>(v[3]));
 }
 
-void run_track(const TrackArgs& a) {
+Mesh load_mesh(const std::string& path, double unit_scale) {
+  const Mesh mesh = Mesh::load(path, unit_scale);
+  warn_if_mesh_scale_unusual(mesh, path, unit_scale);
+  if (mesh.dropped_degenerate > 0)
+    std::fprintf(stderr, "depthtrack: note: dropped %zu degenerate triangles of '%s'\n", mesh.dropped_degenerate,
+                 path.c_str());
+  return mesh;
+}
+
+bool on_off(const std::string& value, const std::string& option) {
+  if (value == "on") return true;
+  if (value == "off") return false;
+  throw InputError(option + " takes on or off, not '" + value + "'");
+}
+
+// Several objects (--mesh/--object pairs): one Device, an `object` column first, a row per object per frame.
+void run_track_objects(const TrackArgs& a) {
+  if (a.objects.size() != a.meshes.size())
+    throw InputError("several objects need --mesh and --object in pairs: got " + std::to_string(a.meshes.size()) +
+                     " --mesh and " + std::to_string(a.objects.size()) + " --object");
+  if (!a.init_from_gt)
+    throw InputError("several objects start from their ground truth: give --init-from-gt (and --init-perturb)");
+  for (const auto& [set, name] : {std::pair{!a.init.empty(), "--init"},
+                                  {!a.init_box.empty(), "--init-box"},
+                                  {a.init_global, "--init-global"},
+                                  {!a.overlay.empty(), "--overlay"},
+                                  {!a.bop_out.empty(), "--bop-out"},
+                                  {!a.summary.empty(), "--summary"}})
+    if (set) throw InputError(std::string(name) + " is for one object; not with several --mesh/--object pairs");
+  const bool mutual = on_off(a.mutual_occlusion, "--mutual-occlusion");
+  TrackerConfig config = a.tracker.resolve();
+  if (a.no_recover) config.recovery.enabled = false;
+  std::vector<TrackedObject> objects;
+  for (size_t i = 0; i < a.meshes.size(); ++i) {
+    TrackArgs one = a;
+    one.object = a.objects[i];
+    TrackedObject o{a.objects[i], {}, load_sequence(a.sequence, a.objects[i]), {}};
+    const bool bop_units = o.sequence.format == "bop" && a.unit_scale_option->count() == 0;
+    o.mesh = load_mesh(a.meshes[i], bop_units ? 0.001 : a.unit_scale);
+    o.initial = initial_pose(one, o.sequence, o.mesh, config.seed);  // as the object's own run starts
+    objects.push_back(std::move(o));
+  }
+  const auto& frames0 = objects.front().sequence.frames;
+  const bool with_truth = std::all_of(objects.begin(), objects.end(), [](const TrackedObject& o) {
+    return std::all_of(o.sequence.frames.begin(), o.sequence.frames.end(),
+                       [](const auto& f) { return f.ground_truth.has_value(); });
+  });
+  TrackingCsvWriter csv(a.out, with_truth && !frames0.empty(), quaternion_order(a.quaternion), true);
+  const auto spread_values = parse_numbers(a.init_spread, 2, "--init-spread");
+  const InitialSpread spread{spread_values[0], spread_values[1] * std::numbers::pi / 180.0};
+  ProgressBar bar("tracking", static_cast<int>(frames0.size()));
+  const auto begin = std::chrono::steady_clock::now();
+  const auto results = track_objects(objects, config, spread, mutual, [&](size_t i, size_t j, const TrackedFrame& f) {
+    csv.write(f, objects[j].name);
+    if (j + 1 == objects.size()) bar.update(static_cast<int>(i + 1), "");
+  });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  bar.finish();
+  csv.finish();
+  std::printf("%zu objects, %zu frames in %.2f s: %.1f frames per second (mutual occlusion %s)\n", objects.size(),
+              frames0.size(), seconds, seconds > 0 ? static_cast<double>(frames0.size()) / seconds : 0.0,
+              mutual ? "on" : "off");
+  for (size_t j = 0; j < objects.size(); ++j)
+    if (!results[j].empty() && results[j].back().ground_truth)
+      std::printf("%s: last frame translation %.2f mm, rotation %.2f deg, ADD-S %.2f mm\n", objects[j].name.c_str(),
+                  1000 * results[j].back().translation_error,
+                  180.0 / std::numbers::pi * results[j].back().rotation_error, 1000 * results[j].back().adds);
+  std::printf("wrote %s\n", a.out.c_str());
+}
+
+void run_track(TrackArgs a) {
+  if (a.meshes.size() > 1 || a.objects.size() > 1) return run_track_objects(a);
+  a.mesh = a.meshes.empty() ? "" : a.meshes.front();
+  a.object = a.objects.empty() ? "" : a.objects.front();
   const int starts = !a.init.empty() + a.init_from_gt + !a.init_box.empty() + a.init_global;
   if (starts == 0) throw InputError("give --init POSE, --init-from-gt, --init-box \"u0 v0 u1 v1\" or --init-global");
   if (starts > 1) throw InputError("--init, --init-from-gt, --init-box and --init-global exclude each other");
@@ -94,11 +169,7 @@ void run_track(const TrackArgs& a) {
   const double unit_scale = bop_units ? 0.001 : a.unit_scale;
   if (bop_units)
     std::fprintf(stderr, "depthtrack: note: BOP scene: reading the mesh in millimetres (--unit-scale 0.001)\n");
-  const Mesh mesh = Mesh::load(a.mesh, unit_scale);
-  warn_if_mesh_scale_unusual(mesh, a.mesh, unit_scale);
-  if (mesh.dropped_degenerate > 0)
-    std::fprintf(stderr, "depthtrack: note: dropped %zu degenerate triangles of '%s'\n", mesh.dropped_degenerate,
-                 a.mesh.c_str());
+  const Mesh mesh = load_mesh(a.mesh, unit_scale);
   const bool global = !a.init_box.empty() || a.init_global;
   const InitHint hint = init_hint(a);
   const auto spread_values = parse_numbers(a.init_spread, 2, "--init-spread");
@@ -146,7 +217,13 @@ void run_track(const TrackArgs& a) {
 void add_track_command(CLI::App& app) {
   auto args = std::make_shared<TrackArgs>();
   CLI::App* c = app.add_subcommand("track", "Track an object through a depth sequence and write the poses as CSV");
-  c->add_option("--mesh", args->mesh, "Object mesh (OBJ, PLY, STL, glTF, ... through assimp)")->required();
+  c->add_option("--mesh", args->meshes,
+                "Object mesh (OBJ, PLY, STL, glTF, ... through assimp); repeat it with --object for several objects "
+                "in one run (--mesh A --object a --mesh B --object b: one device, an object column first in the "
+                "CSV, a row per object per frame)")
+      ->required()
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   args->unit_scale_option =
       c->add_option("--unit-scale", args->unit_scale,
                     "Multiply mesh coordinates by this to get metres (default 1; 0.001 for a BOP scene, whose "
@@ -171,9 +248,15 @@ void add_track_command(CLI::App& app) {
   c->add_option("--quaternion", args->quaternion,
                 "Quaternion component order of --init and the CSV: wxyz (depthtrack, Eigen) or xyzw (ROS, tf2)")
       ->capture_default_str();
-  c->add_option("--object", args->object,
+  c->add_option("--object", args->objects,
                 "Which object's ground truth to use in a multi-object clip: a YCB-Video name (e.g. 025_mug) or a "
-                "BOP obj_id");
+                "BOP obj_id; one per --mesh when there are several")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  c->add_option("--mutual-occlusion", args->mutual_occlusion,
+                "With several objects: the pixels the other objects' latest estimates hide are missing for each "
+                "object (on) or not (off)")
+      ->capture_default_str();
   c->add_option("--bop-out", args->bop_out,
                 "Also write the estimates as BOP results: scene_id,im_id,obj_id,score,R,t,time (R row-major, t in "
                 "mm; BOP scenes only)");

@@ -20,8 +20,8 @@ void write_bop_csv(const std::filesystem::path& path, const Sequence& sequence,
   for (const TrackedFrame& f : frames) {
     const Eigen::Matrix3d r = f.estimate.pose.rotation.toRotationMatrix();
     const Eigen::Vector3d t = 1000.0 * f.estimate.pose.translation;
-    out << sequence.scene_id << "," << std::stoi(f.name) << "," << sequence.object << ","
-        << f.estimate.confidence << ",";
+    out << sequence.scene_id << "," << std::stoi(f.name) << "," << sequence.object << "," << f.estimate.confidence
+        << ",";
     for (int i = 0; i < 9; ++i) out << (i ? " " : "") << r(i / 3, i % 3);
     out << "," << t.x() << " " << t.y() << " " << t.z() << "," << f.estimate.timings.total_ms / 1000.0 << "\n";
   }

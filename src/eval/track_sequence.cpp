@@ -4,6 +4,7 @@
 
 #include "core/stopwatch.hpp"
 #include "eval/frame_reader.hpp"
+#include "eval/score_frame.hpp"
 
 namespace depthtrack {
 
@@ -26,13 +27,7 @@ std::vector<TrackedFrame> track_frames(const Sequence& sequence, const Mesh& mes
     const Stopwatch latency;
     out.estimate = i == 0 ? first(tracker, depth, f.timestamp) : tracker.update(depth, f.timestamp);
     out.latency_ms = latency.elapsed_ms();
-    out.ground_truth = f.ground_truth;
-    if (f.ground_truth) {
-      out.translation_error = translation_error(out.estimate.pose, *f.ground_truth);
-      out.rotation_error = rotation_error(out.estimate.pose, *f.ground_truth);
-      if (!adds) adds.emplace(mesh);
-      out.adds = (*adds)(out.estimate.pose, *f.ground_truth);
-    }
+    score_frame(out, f.ground_truth, mesh, adds);
     frames.push_back(out);
     if (on_frame) on_frame(i, frames.back());
   }

@@ -34,17 +34,20 @@ fs::path checked_partial_path(const fs::path& path) {
 
 }  // namespace
 
-TrackingCsvWriter::TrackingCsvWriter(const fs::path& path, bool with_ground_truth, QuaternionOrder order)
+TrackingCsvWriter::TrackingCsvWriter(const fs::path& path, bool with_ground_truth, QuaternionOrder order,
+                                     bool object_column)
     : stream_(std::make_unique<Stream>()),
       path_(path),
       partial_(checked_partial_path(path)),
       with_ground_truth_(with_ground_truth),
-      order_(order) {
+      order_(order),
+      object_column_(object_column) {
   stream_->out.open(partial_, std::ios::out | std::ios::trunc);
   if (!stream_->out)
     throw InputError("cannot write " + quoted(partial_) + ": " + std::strerror(errno) + " (check the folder of --out)");
   const bool xyzw = order_ == QuaternionOrder::Xyzw;
-  stream_->out << "frame,timestamp,tx,ty,tz," << (xyzw ? "qx,qy,qz,qw" : "qw,qx,qy,qz") << ",ess"
+  stream_->out << (object_column_ ? "object," : "") << "frame,timestamp,tx,ty,tz,"
+               << (xyzw ? "qx,qy,qz,qw" : "qw,qx,qy,qz") << ",ess"
                << (with_ground_truth_ ? ",err_t_mm,err_r_deg,adds_mm" : "") << ",latency_ms,confidence,status\n";
   stream_->out.precision(9);
   if (!stream_->out) throw Error("failed writing " + quoted(partial_));
@@ -57,9 +60,10 @@ TrackingCsvWriter::~TrackingCsvWriter() {
   if (partial_ != path_) fs::remove(partial_, ignored);
 }
 
-void TrackingCsvWriter::write(const TrackedFrame& f) {
+void TrackingCsvWriter::write(const TrackedFrame& f, const std::string& object) {
   if (!stream_) throw Error("TrackingCsvWriter::write after finish()");
   std::ofstream& out = stream_->out;
+  if (object_column_) out << object << ",";
   const Pose& p = f.estimate.pose;
   out << f.name << "," << f.timestamp << "," << p.translation.x() << "," << p.translation.y() << ","
       << p.translation.z() << ",";

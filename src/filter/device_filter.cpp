@@ -5,7 +5,7 @@
 #include <numeric>
 #include <sstream>
 
-#include "compute/kernel_sources.hpp"
+#include "compute/program_cache.hpp"
 #include "core/stopwatch.hpp"
 #include "dt_state.h"
 #include "filter/device_pose_scorer.hpp"
@@ -26,7 +26,7 @@ size_t round_up(size_t n, size_t multiple) {
 }  // namespace
 
 struct DeviceFilter::Kernels {
-  std::unique_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
+  std::shared_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
       initialize_program;
   std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state, gather_pixels,
       fill, fill_when_resampling, initialize_particles, fill_per_particle;
@@ -34,22 +34,27 @@ struct DeviceFilter::Kernels {
 
 DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
                            const TrackerConfig& config)
-    : queue_(std::move(queue)),
+    : DeviceFilter(std::make_shared<compute::DeviceContext>(std::move(queue)), mesh, camera, config) {}
+
+DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const Mesh& mesh, const Camera& camera,
+                           const TrackerConfig& config)
+    : device_(std::move(device)),
+      queue_(device_->queue.get()),
       config_(config),
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       pixels_(static_cast<size_t>(camera.pixel_count())),
       count_(checked_particle_count()),
-      atlas_source_(make_atlas_source(*queue_, mesh, camera, config)),
+      atlas_source_(make_atlas_source(device_->programs, mesh, camera, config)),
       mesh_(mesh) {
   const std::vector<std::string> defines = {"DT_GROUP_SIZE=" + std::to_string(kGroupSize),
                                             model::occlusion_definition(config.occlusion_storage)};
   kernels_ = std::make_unique<Kernels>();
   Kernels& k = *kernels_;
-  k.propagate_program = queue_->build("propagate.cl", compute::kernel_source("propagate.cl"), defines);
-  k.weigh_program = queue_->build("weigh.cl", compute::kernel_source("weigh.cl"), defines);
-  k.summarize_program = queue_->build("summarize.cl", compute::kernel_source("summarize.cl"), defines);
-  k.resample_program = queue_->build("resample.cl", compute::kernel_source("resample.cl"), defines);
+  k.propagate_program = device_->programs.program("propagate.cl", defines);
+  k.weigh_program = device_->programs.program("weigh.cl", defines);
+  k.summarize_program = device_->programs.program("summarize.cl", defines);
+  k.resample_program = device_->programs.program("resample.cl", defines);
   k.propagate = k.propagate_program->kernel("propagate");
   k.weigh = k.weigh_program->kernel("weigh");
   k.summarize = k.summarize_program->kernel("summarize");
@@ -59,7 +64,7 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
   k.gather_pixels = k.resample_program->kernel("gather_pixels");
   k.fill = k.resample_program->kernel("fill");
   k.fill_when_resampling = k.resample_program->kernel("fill_when_resampling");
-  k.initialize_program = queue_->build("initialize.cl", compute::kernel_source("initialize.cl"), defines);
+  k.initialize_program = device_->programs.program("initialize.cl", defines);
   k.initialize_particles = k.initialize_program->kernel("initialize_particles");
   k.fill_per_particle = k.initialize_program->kernel("fill_per_particle");
 
@@ -82,8 +87,8 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
   occlusion_time_ = compute::Buffer<float>(q, times ? count_ * pixels_ : 1);
   scratch_occlusion_time_ = compute::Buffer<float>(q, times ? count_ * pixels_ : 1);
   if (config.refine.enabled)
-    refiner_ =
-        std::make_unique<DeviceRefiner>(q, mesh, camera, config, model::occlusion_definition(config.occlusion_storage));
+    refiner_ = std::make_unique<DeviceRefiner>(q, device_->programs, mesh, camera, config,
+                                               model::occlusion_definition(config.occlusion_storage));
 }
 
 DeviceFilter::~DeviceFilter() = default;
@@ -134,7 +139,7 @@ std::vector<double> DeviceFilter::score_poses(std::span<const Pose> poses, const
 }
 
 std::unique_ptr<PoseScorer> DeviceFilter::make_pose_scorer(const Mesh& mesh) {
-  if (!scoring_programs_) scoring_programs_ = std::make_shared<const DevicePoseScorerPrograms>(*queue_);
+  if (!scoring_programs_) scoring_programs_ = std::make_shared<const DevicePoseScorerPrograms>(device_->programs);
   return std::make_unique<DevicePoseScorer>(*queue_, scoring_programs_, mesh, camera_, config_);
 }
 

@@ -10,6 +10,7 @@
 #include "atlas/atlas_source.hpp"
 #include "atlas/raster_inputs.hpp"
 #include "compute/buffer.hpp"
+#include "compute/program_cache.hpp"
 #include "model/filter_backend.hpp"
 #include "model/particle.hpp"
 
@@ -21,7 +22,11 @@ struct DevicePoseScorerPrograms;
 
 class DeviceFilter final : public FilterBackend {
  public:
+  // On a device of its own.
   DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
+               const TrackerConfig& config);
+  // On a device other filters may share: its queue, and its programs (built once for them all).
+  DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const Mesh& mesh, const Camera& camera,
                const TrackerConfig& config);
   ~DeviceFilter() override;
 
@@ -66,7 +71,8 @@ class DeviceFilter final : public FilterBackend {
   // scratch_state_ (where resampling left them, or copied there); its event.
   compute::EventPtr shift_particles();
 
-  std::unique_ptr<compute::Queue> queue_;
+  std::shared_ptr<compute::DeviceContext> device_;
+  compute::Queue* queue_;  // device_'s
   TrackerConfig config_;
   Camera camera_;
   Eigen::Vector3d centre_;

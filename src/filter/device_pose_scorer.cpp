@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <string>
 
-#include "compute/kernel_sources.hpp"
+#include "compute/program_cache.hpp"
 #include "core/pose_state.hpp"
 #include "dt_state.h"
 #include "model/kernel_params.hpp"
@@ -27,11 +27,9 @@ size_t batch_for(const compute::Queue& queue, size_t pixels) {
 }
 }  // namespace
 
-DevicePoseScorerPrograms::DevicePoseScorerPrograms(compute::Queue& queue)
-    : rasterize(queue.build("rasterize.cl", compute::kernel_source("rasterize.cl"),
-                            {"DT_GROUP_SIZE=" + std::to_string(kRasterizeGroup)})),
-      score(queue.build("score.cl", compute::kernel_source("score.cl"),
-                        {"DT_GROUP_SIZE=" + std::to_string(kScoreGroup)})) {}
+DevicePoseScorerPrograms::DevicePoseScorerPrograms(compute::ProgramCache& programs)
+    : rasterize(programs.program("rasterize.cl", {"DT_GROUP_SIZE=" + std::to_string(kRasterizeGroup)})),
+      score(programs.program("score.cl", {"DT_GROUP_SIZE=" + std::to_string(kScoreGroup)})) {}
 
 DevicePoseScorer::DevicePoseScorer(compute::Queue& queue, std::shared_ptr<const DevicePoseScorerPrograms> programs,
                                    const Mesh& mesh, const Camera& camera, const TrackerConfig& config)

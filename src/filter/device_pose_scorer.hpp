@@ -8,20 +8,21 @@
 #include <depthtrack/mesh.hpp>
 #include <memory>
 
-#include "atlas/atlas_source.hpp"
-#include "compute/buffer.hpp"
-#include "dt_params.h"
-#include "atlas/raster_inputs.hpp"
-#include "model/pose_scorer.hpp"
 #include "atlas/atlas_layout.hpp"
+#include "atlas/atlas_source.hpp"
+#include "atlas/raster_inputs.hpp"
+#include "compute/buffer.hpp"
+#include "compute/program_cache.hpp"
+#include "dt_params.h"
+#include "model/pose_scorer.hpp"
 
 namespace depthtrack {
 
-// The two programs every scorer on one queue launches: built once (when the tracker builds its own
-// programs, not on the first search) and shared by the scorers made from them.
+// The two programs every scorer on one queue launches: taken from the device's program cache (when the
+// tracker builds its own programs, not on the first search) and shared by the scorers made from them.
 struct DevicePoseScorerPrograms {
-  explicit DevicePoseScorerPrograms(compute::Queue& queue);
-  std::unique_ptr<compute::Program> rasterize, score;
+  explicit DevicePoseScorerPrograms(compute::ProgramCache& programs);
+  std::shared_ptr<compute::Program> rasterize, score;
 };
 
 class DevicePoseScorer final : public PoseScorer {

@@ -1,6 +1,6 @@
 #include "filter/device_refiner.hpp"
 
-#include "compute/kernel_sources.hpp"
+#include "compute/program_cache.hpp"
 #include "dt_state.h"
 #include "model/kernel_params.hpp"
 
@@ -25,15 +25,14 @@ size_t round_up(size_t n, size_t multiple) {
 }
 }  // namespace
 
-DeviceRefiner::DeviceRefiner(compute::Queue& queue, const Mesh& mesh, const Camera& camera, const TrackerConfig& config,
-                             const std::string& occlusion_definition)
+DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh,
+                             const Camera& camera, const TrackerConfig& config, const std::string& occlusion_definition)
     : queue_(queue),
       config_(config),
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       radius_(mesh.radius()),
-      program_(queue.build("refine.cl", compute::kernel_source("refine.cl"),
-                           {"DT_GROUP_SIZE=" + std::to_string(kRefineGroup), occlusion_definition})),
+      program_(programs.program("refine.cl", {"DT_GROUP_SIZE=" + std::to_string(kRefineGroup), occlusion_definition})),
       refine_(program_->kernel("refine")),
       shift_(program_->kernel("shift_particles")),
       mesh_(queue, mesh),

@@ -11,9 +11,10 @@
 #include <memory>
 #include <string>
 
-#include "compute/buffer.hpp"
-#include "atlas/raster_inputs.hpp"
 #include "atlas/atlas_layout.hpp"
+#include "atlas/raster_inputs.hpp"
+#include "compute/buffer.hpp"
+#include "compute/program_cache.hpp"
 
 namespace depthtrack {
 
@@ -32,8 +33,9 @@ struct RefineInputs {
 class DeviceRefiner {
  public:
   // occlusion_definition: the filter kernels' DT_OCCLUSION definition (model::occlusion_definition).
-  DeviceRefiner(compute::Queue& queue, const Mesh& mesh, const Camera& camera, const TrackerConfig& config,
-                const std::string& occlusion_definition);
+  // refine.cl comes from programs, the cache of queue's device.
+  DeviceRefiner(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh, const Camera& camera,
+                const TrackerConfig& config, const std::string& occlusion_definition);
 
   // Enqueues the fit; estimate holds summarize's output and receives the refined pose.
   compute::EventPtr refine(compute::Buffer<float>& estimate, const RefineInputs& in);
@@ -47,7 +49,7 @@ class DeviceRefiner {
   Camera camera_;
   Eigen::Vector3d centre_;
   double radius_;
-  std::unique_ptr<compute::Program> program_;
+  std::shared_ptr<compute::Program> program_;
   std::unique_ptr<compute::Kernel> refine_, shift_;
   MeshBuffers mesh_;
   // One-pose scratch (state, depth bits, triangle ids) and the correction twist.

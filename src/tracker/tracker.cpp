@@ -37,13 +37,32 @@ const char* to_string(TrackStatus status) {
 Tracker::Tracker(const Mesh& mesh, const Camera& sensor, const TrackerConfig& config) : sensor_(sensor) {
   sensor.validate();
   config.validate();
+  // Checked before the device opens, so that a bad mesh or resolution is reported as such.
   Mesh checked = mesh;
   checked.validate_and_clean("tracker mesh");
-  decimation_ = sensor.decimation_factor_for(config.width, config.height);
-  working_ = sensor.decimated(decimation_);
+  sensor.decimation_factor_for(config.width, config.height);
+  device_ = open_config_device(config);
+  construct(*device_, checked, config);
+}
+
+Tracker::Tracker(std::shared_ptr<Device> device, const Mesh& mesh, const Camera& sensor, const TrackerConfig& config)
+    : device_(std::move(device)), sensor_(sensor) {
+  if (!device_) throw InputError("tracker device is null: open one with Device::open");
+  sensor.validate();
+  TrackerConfig on_device = config;
+  on_device.backend = device_->selector();
+  on_device.validate();
+  Mesh checked = mesh;
+  checked.validate_and_clean("tracker mesh");
+  construct(*device_, checked, on_device);
+}
+
+void Tracker::construct(const Device& device, const Mesh& checked, const TrackerConfig& config) {
+  decimation_ = sensor_.decimation_factor_for(config.width, config.height);
+  working_ = sensor_.decimated(decimation_);
   config_ = config;
   centre_ = checked.centre().cast<double>();
-  backend_ = make_filter_backend(checked, working_, config);
+  backend_ = make_filter_backend(device, checked, working_, config);
   supervisor_ = std::make_unique<TrackSupervisor>(*backend_, checked, sensor_, working_, decimation_, config);
 }
 

@@ -1,0 +1,44 @@
+#pragma once
+// Several objects in one depth stream: a Tracker per object, all on one Device (one compute queue, each
+// program compiled once), updated in turn on each frame. With mutual occlusion, the pixels the other
+// objects' latest estimates hide are missing for each object, so one object's surface neither rewards nor
+// punishes another's likelihood.
+#include <depthtrack/device.hpp>
+#include <depthtrack/tracker.hpp>
+#include <memory>
+#include <vector>
+
+namespace depthtrack {
+
+class MutualOcclusion;
+
+class MultiTracker {
+ public:
+  // InputError for no mesh or a null device; each tracker as Tracker(device, mesh, sensor, config).
+  MultiTracker(std::shared_ptr<Device> device, const std::vector<Mesh>& meshes, const Camera& sensor,
+               const TrackerConfig& config, bool mutual_occlusion = true);
+  ~MultiTracker();
+  MultiTracker(MultiTracker&&) noexcept;
+  MultiTracker& operator=(MultiTracker&&) noexcept;
+
+  size_t size() const { return trackers_.size(); }
+  // Object `object`'s start (Tracker::initialize); InputError for an index out of range.
+  void initialize(size_t object, const Pose& pose, const InitialSpread& spread = {});
+  // One frame for every object, in the order the meshes were given; every object must be initialized.
+  std::vector<Estimate> update(const DepthImage& depth, double timestamp);
+  std::vector<Estimate> update(const DepthView& depth, double timestamp);
+
+  const Tracker& tracker(size_t object) const;
+  const Device& device() const { return *device_; }
+
+ private:
+  void check_initialized() const;  // InputError naming the first object without a start
+
+  std::shared_ptr<Device> device_;
+  std::vector<Tracker> trackers_;
+  std::unique_ptr<MutualOcclusion> occlusion_;  // null when off or with one object
+  std::vector<Pose> poses_;                     // each object's latest estimate (or start)
+  std::vector<bool> initialized_;
+};
+
+}  // namespace depthtrack

@@ -1,0 +1,44 @@
+#pragma once
+// Programs built once per device: every tracker on one queue asks the cache for the cl/ file and
+// definitions it needs, and the first ask compiles it. Kernels are made per user from the shared
+// program (each kernel object keeps its own arguments), so sharing a program shares no state.
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "compute/queue.hpp"
+
+namespace depthtrack::compute {
+
+class ProgramCache {
+ public:
+  explicit ProgramCache(Queue& queue) : queue_(queue) {}
+  ProgramCache(const ProgramCache&) = delete;
+  ProgramCache& operator=(const ProgramCache&) = delete;
+
+  // cl/<file> (compute::kernel_source) built with these definitions, compiled on the first call only.
+  std::shared_ptr<Program> program(const std::string& file, const std::vector<std::string>& definitions);
+  // How many programs this cache has compiled (not how many were asked for).
+  size_t builds() const;
+  Queue& queue() const { return queue_; }
+
+ private:
+  Queue& queue_;
+  mutable std::mutex mutex_;
+  std::map<std::pair<std::string, std::vector<std::string>>, std::shared_ptr<Program>> programs_;
+  size_t builds_ = 0;
+};
+
+// One open device: its queue and the programs built on it, shared by every filter on it. The cache
+// is declared after the queue, so the programs go before the queue that built them.
+struct DeviceContext {
+  explicit DeviceContext(std::unique_ptr<Queue> opened) : queue(std::move(opened)), programs(*queue) {}
+  std::unique_ptr<Queue> queue;
+  ProgramCache programs;
+};
+
+}  // namespace depthtrack::compute

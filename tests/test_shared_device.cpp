@@ -1,0 +1,110 @@
+// depthtrack::Device: opening by selector, and several trackers sharing one compute device (one queue,
+// each program compiled once) with the estimates they would give on devices of their own.
+#include <catch2/catch.hpp>
+#include <depthtrack/device.hpp>
+#include <depthtrack/error.hpp>
+#include <depthtrack/synth.hpp>
+#include <depthtrack/tracker.hpp>
+#include <vector>
+
+#include "compute/queue.hpp"
+#include "device_support.hpp"
+#include "synth_frames.hpp"
+
+using namespace depthtrack;
+using Catch::Matchers::Contains;
+
+namespace {
+
+SynthConfig small_scene(int frames) {
+  SynthConfig synth;
+  synth.camera = synth.camera.decimated(8);  // 80x60, the working resolution
+  synth.frames = frames;
+  synth.occluder_fraction = 0.3;
+  return synth;
+}
+
+void require_same_estimate(const Estimate& a, const Estimate& b) {
+  REQUIRE(a.pose.translation == b.pose.translation);
+  REQUIRE(a.pose.rotation.coeffs() == b.pose.rotation.coeffs());
+  REQUIRE(a.effective_sample_size == b.effective_sample_size);
+  REQUIRE(a.confidence == b.confidence);
+}
+
+}  // namespace
+
+TEST_CASE("Device opens host and compute selectors and names a bad one", "[device]") {
+  const auto reference = Device::open("reference");
+  CHECK(reference->is_host());
+  CHECK(reference->name() == "host");
+  CHECK(reference->program_builds() == 0);
+  CHECK(Device::open("cpu:2")->is_host());
+  CHECK_THROWS_WITH(Device::open("cpu:0"), Contains("cpu:0") && Contains("thread count"));
+  CHECK_THROWS_WITH(Device::open("quantum"), Contains("unknown backend 'quantum'") && Contains("reference, cpu"));
+  CHECK_THROWS_AS(Device::open("opencl:no-such-platform"), InputError);
+  // list() is what `depthtrack info` lists.
+  const auto listed = Device::list();
+  const auto devices = compute::list_devices();
+  REQUIRE(listed.size() == devices.size());
+  for (size_t i = 0; i < listed.size(); ++i) {
+    CHECK(listed[i].selector == devices[i].selector);
+    CHECK(listed[i].name == devices[i].name);
+    CHECK(listed[i].backend == devices[i].backend);
+  }
+  CHECK_THROWS_WITH(Tracker(nullptr, builtin_demo_mesh(), small_scene(1).camera, TrackerConfig{}),
+                    Contains("device is null"));
+}
+
+TEST_CASE("A tracker on a host Device equals one that opens its backend itself", "[device]") {
+  const Mesh mesh = builtin_demo_mesh();
+  const SynthConfig synth = small_scene(3);
+  const auto frames = test::synthesize(mesh, synth);
+  TrackerConfig config;
+  config.particles = 40;
+  config.backend = "cpu:2";
+  Tracker own(mesh, synth.camera, config);
+  config.backend = "";  // the Device decides
+  Tracker shared(Device::open("cpu:2"), mesh, synth.camera, config);
+  CHECK(shared.config().backend == "cpu:2");
+  CHECK(shared.backend_description() == own.backend_description());
+  own.initialize(frames[0].ground_truth);
+  shared.initialize(frames[0].ground_truth);
+  for (const auto& f : frames)
+    require_same_estimate(shared.update(f.depth, f.timestamp), own.update(f.depth, f.timestamp));
+}
+
+TEST_CASE("Two trackers on one Device build each program once and track as on their own devices",
+          "[device][device_filter]") {
+  if (!test::device_available()) return;
+  const Mesh mesh = builtin_demo_mesh();
+  const SynthConfig synth = small_scene(4);
+  const auto frames = test::synthesize(mesh, synth);
+  TrackerConfig first, second;
+  first.particles = second.particles = 64;
+  first.backend = second.backend = test::device_selector();
+  second.seed = 7;
+
+  const auto device = Device::open(test::device_selector());
+  REQUIRE_FALSE(device->is_host());
+  Tracker a(device, mesh, synth.camera, first);
+  // propagate, weigh, summarize, resample, initialize, rasterize (the atlas's and the search's: one key),
+  // refine, score: eight programs.
+  const size_t builds = device->program_builds();
+  CHECK(builds == 8);
+  Tracker b(device, mesh, synth.camera, second);
+  CHECK(device->program_builds() == builds);  // nothing compiled again
+  // Another occlusion mode changes the filter's five programs' definitions and refine's: six more.
+  TrackerConfig third = first;
+  third.occlusion_storage =
+      first.occlusion_storage == OcclusionStorage::Off ? OcclusionStorage::PerPixelTime : OcclusionStorage::Off;
+  Tracker c(device, mesh, synth.camera, third);
+  CHECK(device->program_builds() == builds + 6);
+
+  Tracker own_a(mesh, synth.camera, first), own_b(mesh, synth.camera, second);
+  for (Tracker* t : {&a, &b, &own_a, &own_b}) t->initialize(frames[0].ground_truth);
+  for (const auto& f : frames) {
+    const Estimate ea = a.update(f.depth, f.timestamp), eb = b.update(f.depth, f.timestamp);
+    require_same_estimate(ea, own_a.update(f.depth, f.timestamp));
+    require_same_estimate(eb, own_b.update(f.depth, f.timestamp));
+  }
+}
