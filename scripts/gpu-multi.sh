@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# On the lent GPU machine: ycbv-0000's three objects in one `track` run against one object alone, 2,000
+# particles at 80x60, per backend; prints the mean per-frame latency (start-up excluded) of each and
+# their ratio (issue 10: three objects <= 1.5x one). Carry .devdeps, .device and .devdata.
+set -uo pipefail
+source .device/enter .devdeps
+export DEPTHTRACK_DATA_DIR=$PWD/.devdata
+build=${BUILD_DIR:-build-gpu}
+if [[ ! -x $build/depthtrack ]]; then
+  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DDEPTHTRACK_BUILD_TESTS=OFF -DDEPTHTRACK_BUILD_BENCH=OFF \
+    -DDEPTHTRACK_PYTHON=OFF >/tmp/multi-configure.log 2>&1 && cmake --build "$build" -j"$(nproc)" --target depthtrack_cli \
+    >/tmp/multi-build.log 2>&1 || { tail -20 /tmp/multi-build.log; exit 1; }
+fi
+m=.devdata/meshes/ycb
+q=.devdata/sequences/ycbv-0000
+common=(--particles "${PARTICLES:-2000}" --init-from-gt --init-perturb "0.01 5" --sequence "$q")
+# Mean latency_ms over the frames after the first (its row carries the start-up); with several objects
+# there is a row per object, each carrying the whole frame's latency.
+mean_frame() { awk -F, -v objects="$2" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "latency_ms") c = i; next }
+  { f = (objects > 1) ? $2 : $1; if (f != first && first != "") { s += $c; n++ } if (first == "") first = f }
+  END { printf "%.3f", (n ? s / n : 0) }' "$1"; }
+for b in ${BACKENDS:-cuda opencl:nvidia}; do
+  "$build/depthtrack" track --backend "$b" "${common[@]}" --mesh $m/025_mug.obj --object 025_mug --out /tmp/one.csv >/dev/null
+  one=$(mean_frame /tmp/one.csv 1)
+  for mo in off on; do
+    "$build/depthtrack" track --backend "$b" "${common[@]}" --mesh $m/009_gelatin_box.obj --object 009_gelatin_box \
+      --mesh $m/025_mug.obj --object 025_mug --mesh $m/061_foam_brick.obj --object 061_foam_brick \
+      --mutual-occlusion "$mo" --out /tmp/three.csv >/dev/null
+    three=$(mean_frame /tmp/three.csv 3)
+    echo "$b one object ${one} ms/frame, three objects (mutual occlusion $mo) ${three} ms/frame, ratio" \
+      "$(awk -v a="$three" -v b="$one" 'BEGIN { printf "%.2f", a / b }')"
+  done
+done
