@@ -5,6 +5,7 @@
 
 #include "model/occlusion_chain.hpp"
 #include "reference/pose_score.hpp"
+#include "search/box_centre_points.hpp"
 #include "search/simplify_mesh.hpp"
 #include "search/surface_points.hpp"
 
@@ -74,8 +75,11 @@ search::SearchResult TrackSupervisor::search(const DepthImage& sensor_depth, con
   const size_t enough = hint.kind == InitHint::Kind::Box ? kFewPointsInBox : kFewPoints;
   for (int s = stride / 2; surface.size() < enough && s >= decimation_; s /= 2)
     surface = search::surface_points(sensor_depth, sensor_, hint, object_.radius, s);
-  const ObservationModel soft =
-      tempered(config_.observation, search::grid_resolution(object_, working_, surface, settings).translation_spacing);
+  const double spacing = search::grid_resolution(object_, working_, surface, settings).translation_spacing;
+  // A box's middle at the depths seen in it: centres an occluder across the object leaves out.
+  const std::vector<Eigen::Vector3d> centres = search::box_centre_points(hint, sensor_, surface, spacing);
+  surface.insert(surface.end(), centres.begin(), centres.end());
+  const ObservationModel soft = tempered(config_.observation, spacing);
   const search::ScoreFunction coarse = [&](std::span<const Pose> p) { return coarse_->score(p, working, soft); };
   const search::ScoreFunction full = [&](std::span<const Pose> p) {
     return full_->score(p, working, config_.observation);
