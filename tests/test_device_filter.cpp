@@ -176,6 +176,12 @@ void compare_with_reference(const std::string& renderer) {
       // covers), so a flipped silhouette pixel changes a pixel's weight in H: measured up to 3 %
       // on llvmpipe once the refinement stops at convergence (0.1 % for the host and kernel atlases).
       const double sd_tolerance = renderer == "gl" ? 5e-2 : 1e-3;
+      // The built-in box (the scene without ../shared/data) is seen nearly face-on: its faces' depth
+      // leaves sliding along them undetermined, the normal equations are singular to rounding, and
+      // double (reference) and float (device) then disagree on which axes blow up or turn NaN
+      // (measured: NaN vs 3 m, 5e4 vs 7.7, 0.014 vs NaN). Its covariances are not comparable; the
+      // handset's (every axis determined) are compared below.
+      if (scene.name == "builtin") continue;
       for (int axis = 0; axis < 6; ++axis) {
         const double sd_ref = std::sqrt(a.covariance(axis, axis)), sd_dev = std::sqrt(b.covariance(axis, axis));
         REQUIRE(std::isfinite(sd_ref));
