@@ -125,21 +125,6 @@ const char* const kUsage =
     "  --no-global            leave out the global initialization rows (box hint and no hint, 80x60)\n"
     "Without --particles and --resolution: the reference at 80x60 (200 particles) and 640x480 (50).\n";
 
-// The sensor-pixel box around the object's projected vertices: what a detector would give.
-InitHint object_box(const Mesh& mesh, const Camera& camera, const Pose& pose) {
-  double u0 = camera.width, v0 = camera.height, u1 = 0, v1 = 0;
-  for (const auto& v : mesh.vertices) {
-    const Eigen::Vector2d p = camera.project(pose.apply(v.cast<double>()));
-    u0 = std::min(u0, p.x());
-    v0 = std::min(v0, p.y());
-    u1 = std::max(u1, p.x());
-    v1 = std::max(v1, p.y());
-  }
-  auto clamp = [](double x, int size) { return std::clamp(static_cast<int>(std::lround(x)), 0, size - 1); };
-  return InitHint::box(clamp(u0, camera.width), clamp(v0, camera.height), clamp(u1, camera.width),
-                       clamp(v1, camera.height));
-}
-
 // Global initialization (Tracker::initialize_global) at 80x60 on the first synthetic frame, from
 // the object's box and from no hint: search time, poses scored, and the error it starts from.
 void run_global(const Mesh& mesh, const std::string& mesh_name, const std::string& backend, int particles) {
@@ -151,7 +136,7 @@ void run_global(const Mesh& mesh, const std::string& mesh_name, const std::strin
   config.backend = backend;
   config.particles = particles;
   for (const auto& [start, hint] :
-       {std::pair{"box", object_box(mesh, synth.camera, f.ground_truth)}, std::pair{"none", InitHint::anywhere()}}) {
+       {std::pair{"box", projected_box(mesh, synth.camera, f.ground_truth)}, std::pair{"none", InitHint::anywhere()}}) {
     // Construction builds every program, the search's scoring kernels among them (CUDA compiles
     // them with NVRTC, OpenCL reads the driver's cache): printed apart from the search itself.
     const Stopwatch construct;

@@ -119,23 +119,6 @@ TEST_CASE("YCB-Video clip 0000: each object found from its 2D box in the first f
   }
 }
 
-namespace {
-// The sensor-pixel box around the mesh's projected vertices at `pose`: what a detector would give.
-InitHint projected_box(const Mesh& mesh, const Camera& camera, const Pose& pose) {
-  double u0 = camera.width, v0 = camera.height, u1 = 0, v1 = 0;
-  for (const auto& v : mesh.vertices) {
-    const Eigen::Vector2d p = camera.project(pose.apply(v.cast<double>()));
-    u0 = std::min(u0, p.x());
-    v0 = std::min(v0, p.y());
-    u1 = std::max(u1, p.x());
-    v1 = std::max(v1, p.y());
-  }
-  auto pixel = [](double x, int size) { return std::clamp(static_cast<int>(std::lround(x)), 0, size - 1); };
-  return InitHint::box(pixel(u0, camera.width), pixel(v0, camera.height), pixel(u1, camera.width),
-                       pixel(v1, camera.height));
-}
-}  // namespace
-
 // Issue 9: the grid's centres lie behind measured points along their rays; with the bar across the
 // handset's middle (frame 0) or the handset tilted in depth (frame 30) none came near its centre and
 // the box search landed 163 and 108 mm off (search::box_centre_points).

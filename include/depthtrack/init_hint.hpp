@@ -2,6 +2,9 @@
 // Where global initialization looks for the object: anywhere, inside a 2D box of the sensor image
 // (what a detector gives), or near a 3D point.
 #include <Eigen/Core>
+#include <depthtrack/camera.hpp>
+#include <depthtrack/mesh.hpp>
+#include <depthtrack/pose.hpp>
 
 namespace depthtrack {
 
@@ -28,5 +31,9 @@ struct InitHint {
     return h;
   }
 };
+
+// The box of sensor pixels around the mesh's vertices projected at `pose`, clamped to the image: what a
+// detector would give for an object seen there (tests and benchmarks start global search from it).
+InitHint projected_box(const Mesh& mesh, const Camera& camera, const Pose& pose);
 
 }  // namespace depthtrack

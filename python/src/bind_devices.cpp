@@ -6,6 +6,7 @@
 
 #include "bindings.hpp"
 #include "compute/queue.hpp"
+#include "io/device_info_json.hpp"
 
 namespace depthtrack::python {
 
@@ -42,29 +43,12 @@ void bind_devices(py::module_& m) {
       "devices",
       [] {
         py::list out;
+        const py::object loads = py::module_::import("json").attr("loads");
         for (const compute::DeviceInfo& d : compute::list_devices()) {
-          py::dict j;
+          nlohmann::ordered_json j = io::device_facts_json(d);
           j["backend"] = d.backend;
-          j["selector"] = d.selector;
-          j["name"] = d.name;
-          j["platform"] = d.platform;
-          j["vendor"] = d.vendor;
-          j["driver"] = d.driver;
-          j["version"] = d.version;
-          j["gpu"] = d.is_gpu;
-          j["global_memory_bytes"] = d.global_memory;
-          j["max_allocation_bytes"] = d.max_allocation;
-          j["local_memory_bytes"] = d.local_memory;
-          j["max_work_group_size"] = d.max_work_group_size;
-          j["compute_units"] = d.compute_units;
-          j["gl_sharing"] = d.gl_sharing;
-          j["external_memory"] = d.external_memory;
-          j["fp64"] = d.fp64;
-          j["subgroups"] = d.subgroups;
-          py::list extensions;
-          for (const auto& e : d.extensions) extensions.append(e);
-          j["extensions"] = extensions;
-          out.append(j);
+          j["extensions"] = d.extensions;
+          out.append(loads(j.dump()));
         }
         return out;
       },

@@ -13,6 +13,7 @@
 #include "compute/format_bytes.hpp"
 #include "compute/queue.hpp"
 #include "core/thread_pool.hpp"
+#include "io/device_info_json.hpp"
 #ifdef DEPTHTRACK_WITH_GL
 #include "atlas/gl/atlas_renderer.hpp"
 #include "atlas/gl/gl_context.hpp"
@@ -174,23 +175,7 @@ void print_info_json() {
     for (const auto& d : devices) {
       if (d.backend != backend.name) continue;
       const AtlasPath path = find_atlas_path(d);
-      nlohmann::ordered_json j;
-      j["selector"] = d.selector;
-      j["name"] = d.name;
-      j["platform"] = d.platform;
-      j["vendor"] = d.vendor;
-      j["driver"] = d.driver;
-      j["version"] = d.version;
-      j["gpu"] = d.is_gpu;
-      j["global_memory_bytes"] = d.global_memory;
-      j["max_allocation_bytes"] = d.max_allocation;
-      j["local_memory_bytes"] = d.local_memory;
-      j["max_work_group_size"] = d.max_work_group_size;
-      j["compute_units"] = d.compute_units;
-      j["gl_sharing"] = d.gl_sharing;
-      j["external_memory"] = d.external_memory;
-      j["fp64"] = d.fp64;
-      j["subgroups"] = d.subgroups;
+      nlohmann::ordered_json j = io::device_facts_json(d);
       if (path.unavailable.empty()) {
         j["atlas_gl"] = path.context;
         j["atlas_handoff"] = path.handoff;
