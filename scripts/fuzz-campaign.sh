@@ -94,18 +94,23 @@ for f in $formats; do
   executions=$(sed -E 's/^#([0-9]+):.*/\1/' <<<"$line")
   read -r ooms timeouts crashes < <(sed -E 's#.*oom/timeout/crash: ([0-9]+)/([0-9]+)/([0-9]+).*#\1 \2 \3#' <<<"$line")
   # Each kept input through the guard: replay must exit 0 (an InputError inside) well within its limits.
+  # The replays run --jobs at a time (a campaign keeps hundreds: one at a time they outlast the fuzzing).
   found=0
   guarded=0
-  for artifact in "$work"/artifacts/*; do
-    [[ -f $artifact ]] || continue
-    found=$((found + 1))
-    if timeout 60 "$replay_build/fuzz/replay_mesh_$f" "$artifact" >/dev/null 2>&1; then
-      guarded=$((guarded + 1))
-    else
-      echo "fuzz-campaign: $artifact escaped Mesh::load's guard" >&2
+  shopt -s nullglob
+  artifacts=("$work"/artifacts/*)
+  shopt -u nullglob
+  found=${#artifacts[@]}
+  if ((found > 0)); then
+    printf '%s\0' "${artifacts[@]}" | xargs -0 -P "$jobs" -I{} sh -c \
+      'if timeout 60 "$1" "$2" >/dev/null 2>&1; then echo ok; else echo "$2" >&2; fi' _ \
+      "$replay_build/fuzz/replay_mesh_$f" {} >"$work/replayed.txt" 2>"$work/escaped.txt" || true
+    guarded=$(grep -c '^ok$' "$work/replayed.txt" || true)
+    while read -r escaped; do
+      echo "fuzz-campaign: $escaped escaped Mesh::load's guard" >&2
       status=1
-    fi
-  done
+    done <"$work/escaped.txt"
+  fi
   printf '%-6s %12s %9.0f %11.0f %8s %9s %5s %9s\n' "$f" "${executions:-0}" "$seconds" "$cpu" "${crashes:-?}" \
     "${timeouts:-?}" "${ooms:-?}" "$guarded/$found"
 done
