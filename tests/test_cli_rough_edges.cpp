@@ -119,7 +119,8 @@ TEST_CASE("the benchmarks answer --help and refuse malformed numbers", "[cli][be
 #endif
     return !program.empty();
   };
-  for (const char* program : {"depthtrack_bench", "depthtrack_bench_atlas", "depthtrack_bench_soak"}) {
+  for (const char* program :
+       {"depthtrack_bench", "depthtrack_bench_atlas", "depthtrack_bench_soak", "depthtrack_bench_startup"}) {
     if (!built(program)) continue;
     const auto [status, help] = run(program, "--help");
     INFO(program << "\n" << help);
@@ -142,6 +143,7 @@ TEST_CASE("the benchmarks answer --help and refuse malformed numbers", "[cli][be
       {"depthtrack_bench_atlas", "--particles 1e3", "--particles: '1e3' is not a positive integer"},
       {"depthtrack_bench_soak", "--frames 0", "--frames: '0' is not a positive integer"},
       {"depthtrack_bench_soak", "--every", "--every needs a value"},
+      {"depthtrack_bench_startup", "--frames 0", "--frames: '0' is not a positive integer"},
   };
   for (const Case& c : cases) {
     if (!built(c.program)) continue;

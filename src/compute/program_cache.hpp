@@ -16,6 +16,14 @@ namespace depthtrack::compute {
 
 class ProgramCache {
  public:
+  // One program made by this cache: how long the build (or the load of its binary) took.
+  struct BuildRecord {
+    std::string file;
+    std::vector<std::string> definitions;
+    double ms = 0;
+    bool loaded_from_disk = false;
+  };
+
   explicit ProgramCache(Queue& queue) : queue_(queue) {}
   ProgramCache(const ProgramCache&) = delete;
   ProgramCache& operator=(const ProgramCache&) = delete;
@@ -24,13 +32,17 @@ class ProgramCache {
   std::shared_ptr<Program> program(const std::string& file, const std::vector<std::string>& definitions);
   // How many programs this cache has compiled (not how many were asked for).
   size_t builds() const;
+  // How many of those came from the on-disk binary cache instead of a compile.
+  size_t loaded_from_disk() const;
+  // Every program made, in order (the start-up benchmark's breakdown).
+  std::vector<BuildRecord> records() const;
   Queue& queue() const { return queue_; }
 
  private:
   Queue& queue_;
   mutable std::mutex mutex_;
   std::map<std::pair<std::string, std::vector<std::string>>, std::shared_ptr<Program>> programs_;
-  size_t builds_ = 0;
+  std::vector<BuildRecord> records_;
 };
 
 // One open device: its queue and the programs built on it, shared by every filter on it. The cache

@@ -51,6 +51,8 @@ class Program {
   virtual ~Program() = default;
   // Throws BackendError listing the kernel names if name is not in the program.
   virtual std::unique_ptr<Kernel> kernel(const std::string& name) = 0;
+  // True when it came from the on-disk binary cache (compute/program_binary_cache.hpp), not a compile.
+  virtual bool loaded_from_disk() const { return false; }
 };
 
 // What a launch's arguments may be: device memory, something that holds it (a Buffer<T>: memory()),

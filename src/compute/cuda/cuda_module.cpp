@@ -28,10 +28,11 @@ Module::~Module() {
 }
 
 CudaProgram::CudaProgram(std::shared_ptr<const Context> context, const std::string& name, const std::string& source,
-                         const CompiledImage& image)
+                         const CompiledImage& image, bool from_disk)
     : module_(std::make_shared<const Module>(std::move(context), image, name)),
       name_(name),
-      kernel_names_(kernel_names(source)) {}
+      kernel_names_(kernel_names(source)),
+      from_disk_(from_disk) {}
 
 std::unique_ptr<Kernel> CudaProgram::kernel(const std::string& name) {
   const Context& ctx = *module_->context();

@@ -28,15 +28,18 @@ class Module {
 
 class CudaProgram final : public Program {
  public:
+  // Throws BackendError when the driver refuses the image. from_disk: it came from the binary cache.
   CudaProgram(std::shared_ptr<const Context> context, const std::string& name, const std::string& source,
-              const CompiledImage& image);
+              const CompiledImage& image, bool from_disk = false);
   // BackendError listing the program's __kernel names when `name` is not one of them.
   std::unique_ptr<Kernel> kernel(const std::string& name) override;
+  bool loaded_from_disk() const override { return from_disk_; }
 
  private:
   std::shared_ptr<const Module> module_;
   std::string name_;
   std::vector<std::string> kernel_names_;
+  bool from_disk_;
 };
 
 }  // namespace depthtrack::compute::cuda

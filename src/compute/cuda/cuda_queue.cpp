@@ -2,6 +2,7 @@
 
 #include <depthtrack/error.hpp>
 
+#include "compute/cuda/cuda_cached_build.hpp"
 #include "compute/cuda/cuda_event.hpp"
 #include "compute/cuda/cuda_kernel.hpp"
 #include "compute/cuda/cuda_memory.hpp"
@@ -92,9 +93,8 @@ void CudaQueue::copy(const DeviceMemory& source, size_t source_offset, DeviceMem
 
 std::unique_ptr<Program> CudaQueue::build(const std::string& name, const std::string& source,
                                           const std::vector<std::string>& definitions) {
-  const CompiledImage image =
-      compile_for_device(name, source, definitions, context_->compute_capability(), context_->where());
-  return std::make_unique<CudaProgram>(context_, name, source, image);
+  // The environment is read per build, so a test (or a program) can point it elsewhere or turn it off.
+  return build_cached(ProgramBinaryCache::from_environment(), context_, name, source, definitions);
 }
 
 EventPtr CudaQueue::launch(Kernel& kernel, const NdRange& range) {

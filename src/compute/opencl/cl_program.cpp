@@ -13,8 +13,6 @@
 
 namespace depthtrack::compute::opencl {
 
-namespace {
-
 std::string build_options(const std::vector<std::string>& definitions) {
   std::string options = "-cl-std=CL1.2";
   for (const auto& definition : definitions) {
@@ -27,6 +25,8 @@ std::string build_options(const std::vector<std::string>& definitions) {
   }
   return options;
 }
+
+namespace {
 
 std::string build_log(cl_program program, cl_device_id device) {
   size_t size = 0;
@@ -74,9 +74,9 @@ std::unique_ptr<Kernel> ClProgram::kernel(const std::string& name) {
   return std::make_unique<ClKernel>(std::move(kernel), name, device_);
 }
 
-std::unique_ptr<Program> build_program(cl_context context, cl_device_id device, const std::string& device_name,
-                                       const std::string& name, const std::string& source,
-                                       const std::vector<std::string>& definitions) {
+std::unique_ptr<ClProgram> build_program(cl_context context, cl_device_id device, const std::string& device_name,
+                                         const std::string& name, const std::string& source,
+                                         const std::vector<std::string>& definitions) {
   const std::string options = build_options(definitions);
   const char* text = source.c_str();
   const size_t length = source.size();

@@ -4,6 +4,7 @@
 #include <depthtrack/error.hpp>
 
 #include "compute/format_bytes.hpp"
+#include "compute/opencl/cl_cached_build.hpp"
 #include "compute/opencl/cl_errors.hpp"
 #include "compute/opencl/cl_event.hpp"
 #include "compute/opencl/cl_kernel.hpp"
@@ -112,7 +113,9 @@ void ClQueue::copy(const DeviceMemory& source, size_t source_offset, DeviceMemor
 
 std::unique_ptr<Program> ClQueue::build(const std::string& name, const std::string& source,
                                         const std::vector<std::string>& definitions) {
-  return build_program(context_.get(), device_, info_.name, name, source, definitions);
+  // The environment is read per build, so a test (or a program) can point it elsewhere or turn it off.
+  return build_cached(ProgramBinaryCache::from_environment(), context_.get(), device_, info_, name, source,
+                      definitions);
 }
 
 EventPtr ClQueue::launch(Kernel& kernel, const NdRange& range) {

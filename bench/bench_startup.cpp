@@ -1,0 +1,136 @@
+// Where a short run's start-up goes (issue 13's off-screen start: `track --init "1e7 0 0.06 1 0 0 0"
+// --particles 1`): opening the device, each kernel program's build or binary load, the rest of the
+// Tracker's construction (buffers, mesh upload), the start and each frame; wall and process CPU
+// milliseconds (the CPU of every thread: PoCL's workers too). Run it twice, and once with
+// DEPTHTRACK_PROGRAM_CACHE=off, to see the cold, the cached and the uncached start.
+// Usage: depthtrack_bench_startup [--backend NAME] [--frames N] [--particles N]
+#include <time.h>
+
+#include <Eigen/Geometry>
+#include <cstdio>
+#include <depthtrack/device.hpp>
+#include <depthtrack/error.hpp>
+#include <depthtrack/synth.hpp>
+#include <depthtrack/tracker.hpp>
+#include <string>
+
+#include "bench_args.hpp"
+#include "bench_rows.hpp"
+#include "compute/program_cache.hpp"
+#include "core/stopwatch.hpp"
+
+using namespace depthtrack;
+
+namespace {
+const char* const kUsage =
+    "usage: depthtrack_bench_startup [--backend NAME] [--frames N] [--particles N]\n"
+    "Times the start-up of the off-screen start (a pose 10,000 km to the side): device open, each program's\n"
+    "build or load from the binary cache, the rest of the construction, the start and each frame, wall and CPU\n"
+    "on the default 640x480 sensor (defaults opencl:pocl, 3 frames, 1 particle; DEPTHTRACK_PROGRAM_CACHE=off\n"
+    "for no binary cache).\n";
+
+double cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
+// Wall and CPU time of one phase.
+class Phase {
+ public:
+  void print(const bench::Row& identity, const std::string& phase) const {
+    bench::Row row = identity;
+    row.test += "_" + phase;
+    row.metric = "wall_ms";
+    row.unit = "ms";
+    row.value = wall_.elapsed_ms();
+    bench::print_row(row);
+    row.metric = "cpu_ms";
+    row.value = cpu_ms() - cpu_start_;
+    bench::print_row(row);
+  }
+
+ private:
+  Stopwatch wall_;
+  double cpu_start_ = cpu_ms();
+};
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string backend = "opencl:pocl";
+  int frames = 3, particles = 1;
+  try {
+    bench::ArgReader args(argc, argv);
+    for (std::string arg = args.next(); !arg.empty(); arg = args.next()) {
+      if (arg == "--help" || arg == "-h") {
+        std::printf("%s", kUsage);
+        return 0;
+      }
+      if (arg == "--backend")
+        backend = args.value();
+      else if (arg == "--frames")
+        frames = bench::parse_positive(args.value(), arg);
+      else if (arg == "--particles")
+        particles = bench::parse_positive(args.value(), arg);
+      else
+        throw bench::UsageError{"unknown option '" + arg + "'"};
+    }
+  } catch (const bench::UsageError& e) {
+    std::fprintf(stderr, "depthtrack_bench_startup: %s\n%s", e.message.c_str(), kUsage);
+    return 2;
+  }
+  try {
+    std::string mesh_name;
+    const Mesh mesh = bench::bench_mesh(mesh_name);
+    SynthConfig synth;
+    synth.frames = frames;
+    const Synthesizer scene(mesh, synth);
+    std::vector<SynthFrame> input;  // drawn first: the synthesis is not the tracker's time
+    for (int i = 0; i < frames; ++i) input.push_back(scene.frame(i));
+    TrackerConfig config;
+    config.backend = backend;
+    config.particles = particles;
+
+    bench::print_header();
+    const Phase whole;
+    bench::Row row{backend, backend, "", "-", mesh_name + "_offscreen_startup_" + std::to_string(particles) + "p",
+                   "",      "",      0};
+    const Phase open;
+    const auto device = Device::open(backend);
+    row.device = device->name();
+    open.print(row, "device_open");
+    const Phase construct;
+    Tracker tracker(device, mesh, synth.camera, config);
+    construct.print(row, "construct");
+    double programs_ms = 0;
+    if (device->context())
+      for (const auto& r : device->context()->programs.records()) {
+        programs_ms += r.ms;
+        bench::Row program = row;
+        program.test += "_program_" + r.file + (r.loaded_from_disk ? "_loaded" : "_built");
+        program.metric = "wall_ms";
+        program.unit = "ms";
+        program.value = r.ms;
+        bench::print_row(program);
+      }
+    bench::Row programs = row;
+    programs.test += "_programs_total";
+    programs.metric = "wall_ms";
+    programs.unit = "ms";
+    programs.value = programs_ms;
+    bench::print_row(programs);
+    const Phase start;
+    tracker.initialize(Pose(Eigen::Vector3d(1e7, 0, 0.06), Eigen::Quaterniond::Identity()));
+    start.print(row, "initialize");
+    for (int i = 0; i < frames; ++i) {
+      const Phase frame;
+      (void)tracker.update(input[size_t(i)].depth, input[size_t(i)].timestamp);
+      frame.print(row, "frame" + std::to_string(i));
+    }
+    whole.print(row, "total");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "depthtrack_bench_startup: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
