@@ -6,10 +6,14 @@
 //   depthtrack_bench_error_axes --object 025_mug [--resolution 160x120] [--refine off] [--seed 1]
 //                               [--particles 200] [--clip DIR] [--mesh FILE] [--sigma-angular RAD] ...
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <depthtrack/error.hpp>
 #include <depthtrack/evaluation.hpp>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "bench_args.hpp"
 #include "reference/observation_model.hpp"
@@ -29,8 +33,9 @@ struct Options {
   bool refine = true;
   int seed = 1;
   int particles = 200;
-  bool scan = false;     // at the last frame: the likelihood along the rotation error's axis
-  TrackerConfig config;  // the model's parameters, defaults unless an option below sets one
+  std::pair<int, int> fine = {0, 0};  // refit each frame's estimate at this resolution afterwards (0: not)
+  bool scan = false;                  // at the last frame: the likelihood along the rotation error's axis
+  TrackerConfig config;               // the model's parameters, defaults unless an option below sets one
 };
 
 void usage() {
@@ -38,7 +43,8 @@ void usage() {
       "usage: depthtrack_bench_error_axes [--object NAME] [--clip DIR] [--mesh FILE] [--resolution WxH]\n"
       "                                   [--refine on|off] [--seed N] [--particles N] [--sigma-angular RAD]\n"
       "                                   [--sigma-linear M] [--tail-weight W] [--min-incidence COS]\n"
-      "                                   [--refine-iterations N] [--scan]   (model parameters per TrackerConfig)");
+      "                                   [--refine-iterations N] [--scan] [--fine-refit WxH]   (model parameters per "
+      "TrackerConfig)");
 }
 
 Options parse(int argc, char** argv) {
@@ -64,6 +70,8 @@ Options parse(int argc, char** argv) {
       o.seed = bench::parse_positive(args.value(), option);
     } else if (option == "--particles") {
       o.particles = bench::parse_positive(args.value(), option);
+    } else if (option == "--fine-refit") {
+      o.fine = bench::parse_size(args.value(), option);
     } else if (option == "--scan") {
       o.scan = true;
     } else if (option == "--sigma-angular") {
@@ -94,7 +102,8 @@ double weakest_axis(const Eigen::Matrix3d& c, Eigen::Vector3d& axis) {
 // Per frame, the log-likelihood (uniform occlusion prior) of the estimate turned by theta about the
 // rotation error's axis through its centre, for theta from -0.5x to 1.5x the error (1: the truth's
 // rotation at the estimate's centre), and of the truth itself; with the pixels seen far behind
-// (background where the pose puts the object, the silhouette's evidence) at the estimate and at 1x.
+// (background where the pose puts the object, the silhouette's evidence) at the estimate and at 1x, and
+// the median signed depth residual near the surface at the estimate and at the truth (a depth bias).
 void print_scan(const Mesh& mesh, const Sequence& sequence, const TrackerConfig& config,
                 const std::vector<TrackedFrame>& frames) {
   const int factor = sequence.camera.decimation_factor_for(config.width, config.height);
@@ -107,25 +116,33 @@ void print_scan(const Mesh& mesh, const Sequence& sequence, const TrackerConfig&
   std::printf(
       "\nscan about the rotation error's axis (share of the error; 1 = the truth's rotation at the estimate's "
       "centre)\nframe  error deg  log L at share -0.5 -0.25 0 0.25 0.5 0.75 1 1.25 1.5   best share  log L of "
-      "truth  far behind at 0 / 1\n");
+      "truth  far behind at 0 / 1   median y - y_hat mm, estimate / truth\n");
   for (size_t i = 0; i < frames.size(); ++i) {
     const DepthImage depth = sequence.load_depth(i).decimated(factor);
     const Pose& est = frames[i].estimate.pose;
     const Pose& truth = *frames[i].ground_truth;
     const Eigen::Vector3d error_rotation = rotation_log(est.rotation.conjugate() * truth.rotation);
-    auto far_behind = [&](const Pose& pose) {
+    // Pixels seen far behind the pose's surface, and the median signed residual y - y_hat of those
+    // seen near it (> 0: the measured surface lies behind the rendered one).
+    auto silhouette_and_bias = [&](const Pose& pose, double& median_residual) {
       rasterizer.render(pose, rendered);
       int behind = 0;
+      std::vector<double> near;
       for (size_t k = 0; k < rendered.size(); ++k) {
         const double y = depth.data()[k], y_hat = rendered[k];
-        if (y_hat > 0 && DepthImage::is_valid(static_cast<float>(y)))
-          behind += y > y_hat + 3 * reference::depth_sigma(config.observation, y);
+        if (y_hat <= 0 || !DepthImage::is_valid(static_cast<float>(y))) continue;
+        const double band = 3 * reference::depth_sigma(config.observation, y);
+        behind += y > y_hat + band;
+        if (std::abs(y - y_hat) <= band) near.push_back(y - y_hat);
       }
+      std::nth_element(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(near.size() / 2), near.end());
+      median_residual = near.empty() ? NAN : near[near.size() / 2];
       return behind;
     };
     std::printf("%5zu  %8.2f  ", i, kDegrees * error_rotation.norm());
     double best = -INFINITY, best_share = 0;
     int behind_0 = 0, behind_1 = 0;
+    double bias_estimate = NAN, bias_rotated = NAN, bias_truth = NAN;
     for (int step = -2; step <= 6; ++step) {
       const double share = step / 4.0;
       const Eigen::Quaterniond rotation = est.rotation * rotation_exp(share * error_rotation);
@@ -133,17 +150,50 @@ void print_scan(const Mesh& mesh, const Sequence& sequence, const TrackerConfig&
       const double objective = refiner.normal_equations(pose, depth, occlusion).objective;
       std::printf(" %7.1f", objective);
       if (objective > best) best = objective, best_share = share;
-      if (step == 0) behind_0 = far_behind(pose);
-      if (step == 4) behind_1 = far_behind(pose);
+      if (step == 0) behind_0 = silhouette_and_bias(pose, bias_estimate);
+      if (step == 4) behind_1 = silhouette_and_bias(pose, bias_rotated);
     }
-    std::printf("   %5.2f  %9.1f  %4d / %d\n", best_share, refiner.normal_equations(truth, depth, occlusion).objective,
-                behind_0, behind_1);
+    silhouette_and_bias(truth, bias_truth);
+    std::printf("   %5.2f  %9.1f  %4d / %d   %+5.2f %+5.2f\n", best_share,
+                refiner.normal_equations(truth, depth, occlusion).objective, behind_0, behind_1, 1000 * bias_estimate,
+                1000 * bias_truth);
   }
+}
+
+// Each frame's estimate refitted afterwards by the reference fit at a finer resolution (uniform
+// occlusion prior; the filter itself is not changed): does the fit's pixel count alone hold the
+// weakly observed axes? Prints the same error columns as print_frames, without the covariance.
+void print_fine_refit(const Mesh& mesh, const Sequence& sequence, const TrackerConfig& config,
+                      const std::vector<TrackedFrame>& frames, std::pair<int, int> size) {
+  const int factor = sequence.camera.decimation_factor_for(size.first, size.second);
+  const Camera camera = sequence.camera.decimated(factor);
+  const reference::PoseRefiner refiner(mesh, camera, config);
+  const std::vector<double> occlusion(static_cast<size_t>(camera.pixel_count()), config.occlusion.initial);
+  const Eigen::Vector3d centre = mesh.centre().cast<double>();
+  const AddsMetric adds(mesh);
+  std::printf("\nrefitted at %dx%d: frame  r deg  t mm  along-ray  ADD-S\n", size.first, size.second);
+  double sum_t = 0, sum_r = 0;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const DepthImage depth = sequence.load_depth(i).decimated(factor);
+    const Pose pose = refiner.refine(frames[i].estimate.pose, depth, occlusion).pose;
+    const Pose& truth = *frames[i].ground_truth;
+    const Eigen::Vector3d dt = pose.apply(centre) - truth.apply(centre);
+    const double r = rotation_error(pose, truth);
+    sum_t += dt.norm();
+    sum_r += r;
+    std::printf("%5zu %6.2f  %5.2f  %+6.2f  %6.2f\n", i, kDegrees * r, 1000 * dt.norm(),
+                1000 * dt.dot(truth.apply(centre).normalized()), 1000 * adds(pose, truth));
+  }
+  const double n = static_cast<double>(frames.size());
+  std::printf("refitted mean  %6.2f deg, %.2f mm\n", kDegrees * sum_r / n, 1000 * sum_t / n);
 }
 
 void print_frames(const Options& o) {
   const Mesh mesh = Mesh::load(o.mesh);
   const Sequence sequence = load_sequence(o.clip, o.object);
+  for (const SequenceFrame& frame : sequence.frames)
+    if (!frame.ground_truth) throw InputError("frame " + frame.name + " of " + o.clip + " has no ground truth");
+  if (sequence.frames.empty()) throw InputError(o.clip + " has no frames");
   TrackerConfig config = o.config;
   config.width = o.size.first;
   config.height = o.size.second;
@@ -195,6 +245,7 @@ void print_frames(const Options& o) {
   std::printf("mean  %6.2f deg, %.2f mm (along ray %+.2f, across %.2f), last ADD-S %.2f mm\n", kDegrees * sum_r / n,
               1000 * sum_t / n, 1000 * sum_along / n, 1000 * sum_across / n, 1000 * frames.back().adds);
   if (o.scan) print_scan(mesh, sequence, config, frames);
+  if (o.fine.first > 0) print_fine_refit(mesh, sequence, config, frames, o.fine);
 }
 }  // namespace
 
