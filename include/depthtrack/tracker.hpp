@@ -124,8 +124,7 @@ class Tracker {
   // finish_frame collects its estimate, checks it and assesses its confidence on `working`, the frame
   // start_frame was given (which must live until then).
   friend class MultiTracker;
-  void start_frame(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame,
-                   double timestamp);
+  void start_frame(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame, double timestamp);
   void enqueue_frame(const DepthImage& working, double timestamp);  // start_frame after the search
   Estimate finish_frame(const DepthImage& working);
   struct PendingFrame {

@@ -5,10 +5,10 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <algorithm>
 #include <depthtrack/error.hpp>
 #include <depthtrack/evaluation.hpp>
 #include <depthtrack/sequence.hpp>
-#include <algorithm>
 #include <optional>
 
 #include "bindings.hpp"
@@ -56,8 +56,9 @@ void bind_evaluation(py::module_& m) {
       py::arg("pose"), py::arg("centre"), py::arg("metres"), py::arg("degrees"), py::arg("seed"),
       "pose moved by exactly `metres` and turned by exactly `degrees` about centre (object frame), drawn from "
       "seed: the start `track --init-perturb \"metres degrees\" --seed seed` takes");
-  py::class_<AddsMetric>(m, "AddsMetric", "ADD-S of a mesh: mean distance from each vertex placed by the "
-                                          "estimate to the nearest vertex placed by the truth")
+  py::class_<AddsMetric>(m, "AddsMetric",
+                         "ADD-S of a mesh: mean distance from each vertex placed by the "
+                         "estimate to the nearest vertex placed by the truth")
       .def(py::init<const Mesh&>(), py::arg("mesh"))
       .def(
           "__call__",

@@ -252,15 +252,15 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   p->rendered = render_atlas(p->timings);
 
   // The occlusion priors for the refinement go to the resampling's scratch, free until it gathers.
-  p->weighed = queue_->launch(
-      *k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize), atlas_, observed_, occlusion_,
-      occlusion_time_, log_likelihood_, log_weight_, static_cast<unsigned>(pixels_), model::model_params(config_),
-      static_cast<float>(time_), static_cast<float>(dt), atlas_source_->layout().kernel_args(), scratch_occlusion_,
-      static_cast<unsigned>(config_.refine.enabled));
-  p->summarized = queue_->launch(
-      *k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize), state_, log_weight_, log_likelihood_, weights_,
-      estimate_, count, static_cast<float>(centre_.x()), static_cast<float>(centre_.y()),
-      static_cast<float>(centre_.z()), model::float_threshold(config_.resample_kl_threshold));
+  p->weighed = queue_->launch(*k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize), atlas_, observed_,
+                              occlusion_, occlusion_time_, log_likelihood_, log_weight_, static_cast<unsigned>(pixels_),
+                              model::model_params(config_), static_cast<float>(time_), static_cast<float>(dt),
+                              atlas_source_->layout().kernel_args(), scratch_occlusion_,
+                              static_cast<unsigned>(config_.refine.enabled));
+  p->summarized = queue_->launch(*k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize), state_, log_weight_,
+                                 log_likelihood_, weights_, estimate_, count, static_cast<float>(centre_.x()),
+                                 static_cast<float>(centre_.y()), static_cast<float>(centre_.z()),
+                                 model::float_threshold(config_.resample_kl_threshold));
   // The occlusion priors weigh kept for the refinement are in the resampling's scratch.
   if (refiner_)
     p->refined = refiner_->refine(estimate_, RefineInputs{state_, observed_, occlusion_, occlusion_time_,

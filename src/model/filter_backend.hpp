@@ -5,9 +5,9 @@
 // working resolution.
 #include <depthtrack/camera.hpp>
 #include <depthtrack/depth_image.hpp>
+#include <depthtrack/error.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/tracker.hpp>
-#include <depthtrack/error.hpp>
 #include <memory>
 #include <optional>
 #include <span>

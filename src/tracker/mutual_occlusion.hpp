@@ -1,8 +1,8 @@
 #pragma once
 // Objects tracked together hide each other: before a frame, the others' previous estimates are drawn
 // (reference rasterizer, working camera: 80x60 costs little on the host) and the pixels where another
-// object's surface is nearer than this object can be are made missing in its working frame, so its likelihood neither rewards nor
-// punishes them. "Can be": its own estimate's depth there, less a margin, where that covers the pixel;
+// object's surface is nearer than this object can be are made missing in its working frame, so its likelihood neither
+// rewards nor punishes them. "Can be": its own estimate's depth there, less a margin, where that covers the pixel;
 // elsewhere the nearest its mesh can come (its centre's depth less its radius).
 #include <depthtrack/camera.hpp>
 #include <depthtrack/depth_image.hpp>
