@@ -7,6 +7,7 @@
 // Usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] [--resolution WxH[,...]]
 //                         [--frames N] [--refine on|off] [--refine-iterations N] [--refine-converged M]
 //   default: the reference at 80x60 (200 particles) and 640x480 (50 particles).
+// With --multi-objects: only one object against three in one process (bench/multi_object_ratio.hpp).
 // Then the off-screen start (one particle 10,000 km to the side, 5 frames) and global initialization at
 // 80x60 (from the object's box, and from no hint), unless --no-global: the tracker's construction (every
 // program built, the search's among them), the first search and the same search again.
@@ -25,6 +26,7 @@
 #include "bench_rows.hpp"
 #include "core/stopwatch.hpp"
 #include "host_memory.hpp"
+#include "multi_object_ratio.hpp"
 
 using namespace depthtrack;
 
@@ -107,7 +109,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
 const char* const kUsage =
     "usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] "
     "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N] [--refine-converged M]\n"
-    "       [--no-global]\n"
+    "       [--no-global] [--multi-objects]\n"
     "Times tracker frames on a synthetic occluded handset sequence, split into propagate / render / hand-off /\n"
     "weigh / resample, start-up (construction + initialize) with its peak host memory, and the off-screen start\n"
     "(one particle 10,000 km to the side, 5 frames); prints CSV rows\n"
@@ -123,6 +125,9 @@ const char* const kUsage =
     "  --refine-converged M   the refinement stops when a step would move the mesh less than M metres\n"
     "                         (default: TrackerConfig's; 0 takes every step)\n"
     "  --no-global            leave out the global initialization rows (box hint and no hint, 80x60)\n"
+    "  --multi-objects        instead: one object against three in one process at 80x60 (ycbv-0000's, else\n"
+    "                         the handset thrice), mutual occlusion off and on: multi_object_ratio rows;\n"
+    "                         --particles N each (default 2000)\n"
     "Without --particles and --resolution: the reference at 80x60 (200 particles) and 640x480 (50).\n";
 
 // Global initialization (Tracker::initialize_global) at 80x60 on the first synthetic frame, from
@@ -204,7 +209,7 @@ int main(int argc, char** argv) {
   std::vector<std::pair<int, int>> sizes;
   int frames = 20;
   Refinement refine;
-  bool global = true;
+  bool global = true, multi_objects = false;
   try {
     bench::ArgReader args(argc, argv);
     for (std::string arg = args.next(); !arg.empty(); arg = args.next()) {
@@ -232,12 +237,25 @@ int main(int argc, char** argv) {
         refine.converged_motion = bench::parse_nonnegative_double(args.value(), arg);
       else if (arg == "--no-global")
         global = false;
+      else if (arg == "--multi-objects")
+        multi_objects = true;
       else
         throw bench::UsageError{"unknown option '" + arg + "'"};
     }
   } catch (const bench::UsageError& e) {
     std::fprintf(stderr, "depthtrack_bench: %s\n%s", e.message.c_str(), kUsage);
     return 2;
+  }
+  if (multi_objects) {
+    try {
+      bench::print_header();
+      for (const int p : particle_counts.empty() ? std::vector<int>{2000} : particle_counts)
+        bench::run_multi_object_ratio(backend, renderer, p, std::max(frames, 4));
+      return 0;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "depthtrack_bench: %s\n", e.what());
+      return 1;
+    }
   }
   std::vector<Case> cases;
   if (particle_counts.empty() && sizes.empty()) {

@@ -18,8 +18,8 @@ TEST_CASE("Mutual occlusion hides the nearer box's pixels from the farther one, 
   // Box 0 at 0.5 m in front, box 1 at 0.8 m behind it and 5 cm to the right: they overlap in the image.
   const std::vector<Pose> poses = {Pose({0, 0, 0.5}, Eigen::Quaterniond::Identity()),
                                    Pose({0.05, 0, 0.8}, Eigen::Quaterniond::Identity())};
-  const DepthImage depth = DepthImage::from_metres(160, 120, std::vector<float>(160 * 120, 1.0f));
-  const MutualOcclusion occlusion(boxes, working, 2, 0.05, 3.0);
+  const DepthImage depth = DepthImage::from_metres(80, 60, std::vector<float>(80 * 60, 1.0f));  // working frame
+  const MutualOcclusion occlusion(boxes, working, 0.05, 3.0);
   // Box 0's surface (0.45 m) is nearer than box 1 can be anywhere (0.75 m where drawn, its centre 0.8 m less
   // its radius 0.087 m elsewhere): every pixel of box 0's silhouette is hidden from box 1.
   std::vector<float> front(static_cast<size_t>(working.pixel_count()), 0.0f);
@@ -33,12 +33,15 @@ TEST_CASE("Mutual occlusion hides the nearer box's pixels from the farther one, 
   for (int v = 0; v < working.height; ++v)
     for (int u = 0; u < working.width; ++u) {
       const bool hidden = front[static_cast<size_t>(v) * working.width + u] > 0;
-      CHECK(std::isnan(for_back.at(2 * u, 2 * v)) == hidden);  // the sampled sensor pixel
-      CHECK(for_back.at(2 * u + 1, 2 * v) == 1.0f);            // the others are left alone
+      CHECK(std::isnan(for_back.at(u, v)) == hidden);
+      if (!hidden) CHECK(for_back.at(u, v) == 1.0f);  // the others are left alone
     }
   // Box 1 is behind box 0 everywhere: nothing is hidden from box 0.
   occlusion.frame_for(0, depth, poses, &masked);
   CHECK(masked == 0);
+  // The masks are drawn at the working camera: a frame of another size is refused, naming both.
+  const DepthImage sensor_sized = DepthImage::from_metres(160, 120, std::vector<float>(160 * 120, 1.0f));
+  CHECK_THROWS_WITH(occlusion.frame_for(0, sensor_sized, poses), Contains("160x120, not the working camera's 80x60"));
 }
 
 TEST_CASE("MultiTracker refuses no mesh, a null device, a bad index and an object without a start", "[multi][errors]") {

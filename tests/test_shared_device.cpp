@@ -3,10 +3,12 @@
 #include <catch2/catch.hpp>
 #include <depthtrack/device.hpp>
 #include <depthtrack/error.hpp>
+#include <depthtrack/multi_tracker.hpp>
 #include <depthtrack/synth.hpp>
 #include <depthtrack/tracker.hpp>
 #include <vector>
 
+#include "compute/program_cache.hpp"
 #include "compute/queue.hpp"
 #include "device_support.hpp"
 #include "synth_frames.hpp"
@@ -106,5 +108,48 @@ TEST_CASE("Two trackers on one Device build each program once and track as on th
     const Estimate ea = a.update(f.depth, f.timestamp), eb = b.update(f.depth, f.timestamp);
     require_same_estimate(ea, own_a.update(f.depth, f.timestamp));
     require_same_estimate(eb, own_b.update(f.depth, f.timestamp));
+  }
+}
+
+TEST_CASE("A Device's queues share memory and programs: what one writes another reads", "[device]") {
+  if (!test::device_available()) return;
+  const auto device = Device::open(test::device_selector());
+  compute::Queue& first = *device->context()->queue;
+  const std::unique_ptr<compute::Queue> second = device->context()->make_queue();
+  REQUIRE(second);  // OpenCL (PoCL) and CUDA both offer queues of their own
+  CHECK(second->info().name == first.info().name);
+  const std::vector<float> values = {1.5f, -2.0f, 3.25f};
+  const auto memory = first.allocate(values.size() * sizeof(float));
+  first.write(*memory, 0, values.data(), values.size() * sizeof(float));
+  std::vector<float> back(values.size());
+  second->read(*memory, 0, back.data(), back.size() * sizeof(float));
+  CHECK(back == values);
+}
+
+TEST_CASE("A MultiTracker's objects, enqueued together on one Device, equal single trackers run one by one",
+          "[device][device_filter][multi]") {
+  if (!test::device_available()) return;
+  const Mesh mesh = builtin_demo_mesh();
+  const SynthConfig synth = small_scene(4);
+  const auto frames = test::synthesize(mesh, synth);
+  TrackerConfig config;
+  config.particles = 64;
+  config.backend = test::device_selector();
+  // Three objects: the synthetic object's own pose and 4 cm to either side (those two track clutter).
+  std::vector<Pose> starts(3, frames[0].ground_truth);
+  starts[1].translation.x() -= 0.04;
+  starts[2].translation.x() += 0.04;
+  MultiTracker together(Device::open(test::device_selector()), {mesh, mesh, mesh}, synth.camera, config,
+                        /*mutual_occlusion=*/false);
+  std::vector<Tracker> alone;
+  for (size_t j = 0; j < 3; ++j) {
+    together.initialize(j, starts[j]);
+    alone.emplace_back(mesh, synth.camera, config);
+    alone.back().initialize(starts[j]);
+  }
+  for (const auto& f : frames) {
+    const std::vector<Estimate> estimates = together.update(f.depth, f.timestamp);
+    REQUIRE(estimates.size() == 3);
+    for (size_t j = 0; j < 3; ++j) require_same_estimate(estimates[j], alone[j].update(f.depth, f.timestamp));
   }
 }

@@ -7,6 +7,7 @@
 #include <depthtrack/evaluation.hpp>
 #include <depthtrack/sequence.hpp>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
 
@@ -104,5 +105,33 @@ TEST_CASE("ycbv-0000: three objects in one run, with and without mutual occlusio
     CHECK(off == alone);                    // the same trackers, only sharing a device and a frame
     CHECK(std::abs(on - alone) <= 0.0005);  // the issue's bar: within 0.5 mm of the object's own run
     CHECK(on <= 0.010);
+  }
+}
+
+TEST_CASE("depthtrack_bench --multi-objects prints one and three objects' median frames and their ratio",
+          "[multi][bench]") {
+  const std::string bench_dir = DEPTHTRACK_BENCH_DIR;
+  if (bench_dir.empty()) return;  // DEPTHTRACK_BUILD_BENCH=OFF
+  const auto out = test::temp_dir("bench_multi_objects") / "rows.csv";
+  const std::string command =
+      bench_dir + "/depthtrack_bench --multi-objects --particles 10 --frames 4 > " + out.string() + " 2>&1";
+  REQUIRE(std::system(command.c_str()) == 0);
+  const auto lines = test::lines_of(out);
+  std::map<std::string, std::map<std::string, double>> rows;  // test -> metric -> value
+  for (size_t i = 1; i < lines.size(); ++i) {
+    const auto cells = test::cells_of(lines[i]);
+    REQUIRE(cells.size() >= 8);  // the device cell may hold commas: test, metric, unit, value are the last four
+    const size_t n = cells.size();
+    rows[cells[n - 4]][cells[n - 3]] = std::stod(cells[n - 1]);
+  }
+  REQUIRE(rows.size() == 2);
+  for (const auto& [test, metrics] : rows) {
+    INFO(test);
+    CHECK(test.find("multi_object_") == 0);
+    CHECK(test.find("_80x60_10p_occlusion_") != std::string::npos);
+    const double one = metrics.at("one_object_ms"), three = metrics.at("three_objects_ms");
+    CHECK(one > 0);
+    CHECK(three > 0);
+    CHECK(metrics.at("multi_object_ratio") == Approx(three / one).epsilon(1e-4));  // six significant digits printed
   }
 }

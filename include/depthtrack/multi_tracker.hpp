@@ -1,10 +1,12 @@
 #pragma once
-// Several objects in one depth stream: a Tracker per object, all on one Device (one compute queue, each
-// program compiled once), updated in turn on each frame. With mutual occlusion, the pixels the other
-// objects' latest estimates hide are missing for each object, so one object's surface neither rewards nor
-// punishes another's likelihood.
+// Several objects in one depth stream: a Tracker per object, all on one Device (each program compiled
+// once, each tracker on a compute queue of its own). A frame is checked and decimated once, every object's
+// update is enqueued, then every estimate collected, so the device runs the objects side by side. With
+// mutual occlusion, the working-resolution pixels the other objects' previous estimates hide are missing
+// for each object, so one object's surface neither rewards nor punishes another's likelihood.
 #include <depthtrack/device.hpp>
 #include <depthtrack/tracker.hpp>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -33,11 +35,14 @@ class MultiTracker {
 
  private:
   void check_initialized() const;  // InputError naming the first object without a start
+  // One frame, already at the working resolution, for every object; sensor_frame() as Tracker's.
+  std::vector<Estimate> run(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame,
+                            double timestamp);
 
   std::shared_ptr<Device> device_;
   std::vector<Tracker> trackers_;
   std::unique_ptr<MutualOcclusion> occlusion_;  // null when off or with one object
-  std::vector<Pose> poses_;                     // each object's latest estimate (or start)
+  std::vector<Pose> poses_;                     // each object's previous estimate (or start)
   std::vector<bool> initialized_;
 };
 

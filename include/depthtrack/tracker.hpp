@@ -119,6 +119,21 @@ class Tracker {
                        double timestamp);
   Estimate run_frame(const DepthImage& working, double timestamp);
 
+  // track_frame in two halves, so that a MultiTracker enqueues every object's frame before it waits for
+  // any: start_frame checks the timestamp, runs a lost track's search and enqueues the filter's update;
+  // finish_frame collects its estimate, checks it and assesses its confidence on `working`, the frame
+  // start_frame was given (which must live until then).
+  friend class MultiTracker;
+  void start_frame(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame, double timestamp);
+  void enqueue_frame(const DepthImage& working, double timestamp);  // start_frame after the search
+  Estimate finish_frame(const DepthImage& working);
+  struct PendingFrame {
+    double timestamp = 0;
+    bool recovered = false;
+    double search_ms = 0;
+    size_t search_poses = 0;
+  };
+
   // Both constructors: the checks, then the filter on device.
   void construct(const Device& device, const Mesh& mesh, const TrackerConfig& config);
 
@@ -135,6 +150,8 @@ class Tracker {
   size_t frames_since_initialize_ = 0;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();  // the mesh's, where initialize() checks the start
   unsigned search_round_ = 0;                         // varies each recovery search's perturbations
+  PendingFrame pending_;                              // between start_frame and finish_frame
+  bool frame_pending_ = false;
 };
 
 }  // namespace depthtrack

@@ -15,5 +15,6 @@ void bind_estimate(py::module_& m);       // StepTimings, Estimate
 void bind_tracker(py::module_& m);        // Tracker
 void bind_multi_tracker(py::module_& m);  // MultiTracker
 void bind_devices(py::module_& m);        // Device, devices()
+void bind_evaluation(py::module_& m);     // Sequence, perturb_pose, AddsMetric
 
 }  // namespace depthtrack::python

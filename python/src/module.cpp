@@ -12,4 +12,5 @@ PYBIND11_MODULE(_depthtrack, m) {
   bind_devices(m);  // before Tracker, whose constructor takes a Device
   bind_tracker(m);
   bind_multi_tracker(m);
+  bind_evaluation(m);
 }

@@ -33,8 +33,11 @@ class AtlasSource {
 
 // The source TrackerConfig::renderer names: "kernel" (cl/rasterize.cl on the filter's device), "gl"
 // (the OpenGL atlas renderer; BackendError naming every GL path tried when none works) or "cpu"
-// (the reference rasterizer on the host). Every source works on programs.queue(); the kernel source takes
-// its program from the cache.
+// (the reference rasterizer on the host). Every source works on `queue`, a queue of the device the cache
+// builds for (a filter's own, DeviceContext::make_queue); the kernel source takes its program from the cache.
+std::unique_ptr<AtlasSource> make_atlas_source(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh,
+                                               const Camera& camera, const TrackerConfig& config);
+// The same on the cache's own queue.
 std::unique_ptr<AtlasSource> make_atlas_source(compute::ProgramCache& programs, const Mesh& mesh, const Camera& camera,
                                                const TrackerConfig& config);
 

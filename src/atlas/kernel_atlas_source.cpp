@@ -19,9 +19,9 @@ constexpr size_t kGroupSize = 128;
 
 class KernelAtlasSource final : public AtlasSource {
  public:
-  KernelAtlasSource(compute::ProgramCache& programs, const Mesh& mesh, const Camera& camera,
+  KernelAtlasSource(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh, const Camera& camera,
                     const TrackerConfig& config)
-      : queue_(programs.queue()),
+      : queue_(queue),
         // Particle-major: cl/rasterize.cl writes each tile as one contiguous block.
         layout_(render::AtlasLayout::particle_major(config.particles, camera.width, camera.height)),
         camera_(model::camera_params(camera, config)),
@@ -56,11 +56,12 @@ class KernelAtlasSource final : public AtlasSource {
 };
 }  // namespace
 
-std::unique_ptr<AtlasSource> make_kernel_atlas_source(compute::ProgramCache& programs, const Mesh& mesh,
-                                                      const Camera& camera, const TrackerConfig& config) {
+std::unique_ptr<AtlasSource> make_kernel_atlas_source(compute::Queue& queue, compute::ProgramCache& programs,
+                                                      const Mesh& mesh, const Camera& camera,
+                                                      const TrackerConfig& config) {
   if (mesh.vertices.empty() || mesh.triangles.empty())
     throw InputError("the kernel rasterizer needs a mesh with triangles");
-  return std::make_unique<KernelAtlasSource>(programs, mesh, camera, config);
+  return std::make_unique<KernelAtlasSource>(queue, programs, mesh, camera, config);
 }
 
 }  // namespace depthtrack

@@ -15,19 +15,24 @@ std::unique_ptr<AtlasSource> make_gl_atlas_source(compute::Queue&, const Mesh&, 
   throw InputError("the gl renderer was not built (DEPTHTRACK_WITH_GL=OFF); choose cpu or kernel");
 }
 #endif
-std::unique_ptr<AtlasSource> make_kernel_atlas_source(compute::ProgramCache& programs, const Mesh& mesh,
-                                                      const Camera& camera, const TrackerConfig& config);
+std::unique_ptr<AtlasSource> make_kernel_atlas_source(compute::Queue& queue, compute::ProgramCache& programs,
+                                                      const Mesh& mesh, const Camera& camera,
+                                                      const TrackerConfig& config);
 
 std::unique_ptr<AtlasSource> make_atlas_source(compute::ProgramCache& programs, const Mesh& mesh, const Camera& camera,
                                                const TrackerConfig& config) {
-  compute::Queue& queue = programs.queue();
+  return make_atlas_source(programs.queue(), programs, mesh, camera, config);
+}
+
+std::unique_ptr<AtlasSource> make_atlas_source(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh,
+                                               const Camera& camera, const TrackerConfig& config) {
   switch (config.renderer) {
     case Renderer::Cpu:
       return make_host_atlas_source(queue, mesh, camera, config);
     case Renderer::Gl:
       return make_gl_atlas_source(queue, mesh, camera, config);
     case Renderer::Kernel:
-      return make_kernel_atlas_source(programs, mesh, camera, config);
+      return make_kernel_atlas_source(queue, programs, mesh, camera, config);
   }
   throw InputError("unknown renderer " + std::to_string(static_cast<int>(config.renderer)) +
                    " (choose cpu, gl or kernel)");

@@ -49,6 +49,9 @@ class ProgramCache {
 // is declared after the queue, so the programs go before the queue that built them.
 struct DeviceContext {
   explicit DeviceContext(std::unique_ptr<Queue> opened) : queue(std::move(opened)), programs(*queue) {}
+  // A queue of a filter's own on this device (Queue::another_queue), or nullptr where the backend has one
+  // queue only. The programs built here run on it.
+  std::unique_ptr<Queue> make_queue() const { return queue->another_queue(); }
   std::unique_ptr<Queue> queue;
   ProgramCache programs;
 };

@@ -123,6 +123,12 @@ class Queue {
   }
   // Waits for everything enqueued.
   virtual void finish() = 0;
+
+  // Another in-order queue on the same device and context: memory allocated and programs built through
+  // either serve both, and work enqueued on the two may run at the same time (each tracker of several
+  // gets one, so the objects' small kernels overlap). nullptr where a backend offers only one queue:
+  // the caller then shares this one.
+  virtual std::unique_ptr<Queue> another_queue() { return nullptr; }
 };
 
 // Devices of every backend compiled in (a backend whose runtime is absent lists none).

@@ -39,13 +39,14 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
 DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const Mesh& mesh, const Camera& camera,
                            const TrackerConfig& config)
     : device_(std::move(device)),
-      queue_(device_->queue.get()),
+      own_queue_(device_->make_queue()),
+      queue_(own_queue_ ? own_queue_.get() : device_->queue.get()),
       config_(config),
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       pixels_(static_cast<size_t>(camera.pixel_count())),
       count_(checked_particle_count()),
-      atlas_source_(make_atlas_source(device_->programs, mesh, camera, config)),
+      atlas_source_(make_atlas_source(*queue_, device_->programs, mesh, camera, config)),
       mesh_(mesh) {
   const std::vector<std::string> defines = {"DT_GROUP_SIZE=" + std::to_string(kGroupSize),
                                             model::occlusion_definition(config.occlusion_storage)};
@@ -90,6 +91,13 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
     refiner_ = std::make_unique<DeviceRefiner>(q, device_->programs, mesh, camera, config,
                                                model::occlusion_definition(config.occlusion_storage));
 }
+
+struct DeviceFilter::Pending {
+  Stopwatch clock;
+  StepTimings timings;  // the atlas source's host part
+  compute::EventPtr propagated, rendered, weighed, summarized, refined, shifted;
+  std::vector<compute::EventPtr> resampling;
+};
 
 DeviceFilter::~DeviceFilter() = default;
 
@@ -218,44 +226,55 @@ std::vector<float> DeviceFilter::last_atlas() const {
   return atlas_source_->layout().tiles_in_order(atlas_.download(), count_);
 }
 
-// One enqueue sequence per frame and one wait, the estimate's read at its end: the depth goes up
-// first (a blocking write waits for the work enqueued before it), the resampling decision is made
-// on the device (summarize.cl's flag, read by the resampling kernels), and the device times are
+// One enqueue sequence per frame and one wait, the estimate's read in collect(): the depth goes up
+// first (a blocking write waits for the work enqueued before it on this queue), the resampling decision
+// is made on the device (summarize.cl's flag, read by the resampling kernels), and the device times are
 // read from the events once the frame is done.
 Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
-  const Stopwatch frame_clock;
+  enqueue_update(depth, dt);
+  return collect();
+}
+
+void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
+  if (pending_) throw InputError("device filter: enqueue_update() while the previous frame is not collected");
+  auto p = std::make_unique<Pending>();
   Kernels& k = *kernels_;
-  Estimate e;
   time_ += dt;
   observed_.upload(depth.data());
   const unsigned count = static_cast<unsigned>(count_);
   const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
-  compute::EventPtr propagated;
   if (dt > 0)
-    propagated = queue_->launch(*k.propagate, linear, state_, count, static_cast<unsigned>(config_.seed & 0xffffffffu),
-                                static_cast<unsigned>(config_.seed >> 32), frame_,
-                                model::motion_params(model::motion_step(config_.motion, dt), centre_));
+    p->propagated =
+        queue_->launch(*k.propagate, linear, state_, count, static_cast<unsigned>(config_.seed & 0xffffffffu),
+                       static_cast<unsigned>(config_.seed >> 32), frame_,
+                       model::motion_params(model::motion_step(config_.motion, dt), centre_));
 
-  const compute::EventPtr rendered = render_atlas(e.timings);
+  p->rendered = render_atlas(p->timings);
 
   // The occlusion priors for the refinement go to the resampling's scratch, free until it gathers.
-  const compute::EventPtr weighed = queue_->launch(
-      *k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize), atlas_, observed_, occlusion_,
-      occlusion_time_, log_likelihood_, log_weight_, static_cast<unsigned>(pixels_), model::model_params(config_),
-      static_cast<float>(time_), static_cast<float>(dt), atlas_source_->layout().kernel_args(), scratch_occlusion_,
-      static_cast<unsigned>(config_.refine.enabled));
-  const compute::EventPtr summarized = queue_->launch(
-      *k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize), state_, log_weight_, log_likelihood_, weights_,
-      estimate_, count, static_cast<float>(centre_.x()), static_cast<float>(centre_.y()),
-      static_cast<float>(centre_.z()), model::float_threshold(config_.resample_kl_threshold));
+  p->weighed = queue_->launch(*k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize), atlas_, observed_,
+                              occlusion_, occlusion_time_, log_likelihood_, log_weight_, static_cast<unsigned>(pixels_),
+                              model::model_params(config_), static_cast<float>(time_), static_cast<float>(dt),
+                              atlas_source_->layout().kernel_args(), scratch_occlusion_,
+                              static_cast<unsigned>(config_.refine.enabled));
+  p->summarized = queue_->launch(*k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize), state_, log_weight_,
+                                 log_likelihood_, weights_, estimate_, count, static_cast<float>(centre_.x()),
+                                 static_cast<float>(centre_.y()), static_cast<float>(centre_.z()),
+                                 model::float_threshold(config_.resample_kl_threshold));
   // The occlusion priors weigh kept for the refinement are in the resampling's scratch.
-  const compute::EventPtr refined =
-      refiner_ ? refiner_->refine(estimate_, RefineInputs{state_, observed_, occlusion_, occlusion_time_,
-                                                          scratch_occlusion_, atlas_, atlas_source_->layout(), time_})
-               : nullptr;
-  const std::vector<compute::EventPtr> resampling = resample();
-  const compute::EventPtr shifted = refiner_ ? shift_particles() : nullptr;
+  if (refiner_)
+    p->refined = refiner_->refine(estimate_, RefineInputs{state_, observed_, occlusion_, occlusion_time_,
+                                                          scratch_occlusion_, atlas_, atlas_source_->layout(), time_});
+  p->resampling = resample();
+  if (refiner_) p->shifted = shift_particles();
+  pending_ = std::move(p);
+}
 
+Estimate DeviceFilter::collect() {
+  if (!pending_) throw InputError("device filter: collect() without an enqueued update");
+  const std::unique_ptr<Pending> p = std::move(pending_);
+  Estimate e;
+  e.timings = p->timings;
   float est[DT_EST_SIZE];
   estimate_.download(std::span<float>(est, DT_EST_SIZE));  // the frame's one wait
   e.pose = Pose({est[DT_EST_TX], est[DT_EST_TX + 1], est[DT_EST_TX + 2]},
@@ -278,13 +297,13 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   last_resampled_ = e.resampled;
   weighed_in_scratch_ = true;
 
-  if (propagated) e.timings.propagate_ms = propagated->elapsed_ms();
-  if (rendered) e.timings.render_ms += rendered->elapsed_ms();
-  e.timings.weigh_ms = weighed->elapsed_ms();
-  e.timings.resample_ms = summarized->elapsed_ms();
-  for (const auto& event : resampling) e.timings.resample_ms += event->elapsed_ms();
-  if (refined) e.timings.refine_ms = refined->elapsed_ms() + shifted->elapsed_ms();
-  e.timings.total_ms = frame_clock.elapsed_ms();
+  if (p->propagated) e.timings.propagate_ms = p->propagated->elapsed_ms();
+  if (p->rendered) e.timings.render_ms += p->rendered->elapsed_ms();
+  e.timings.weigh_ms = p->weighed->elapsed_ms();
+  e.timings.resample_ms = p->summarized->elapsed_ms();
+  for (const auto& event : p->resampling) e.timings.resample_ms += event->elapsed_ms();
+  if (p->refined) e.timings.refine_ms = p->refined->elapsed_ms() + p->shifted->elapsed_ms();
+  e.timings.total_ms = p->clock.elapsed_ms();
   ++frame_;
   return e;
 }

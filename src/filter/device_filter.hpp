@@ -39,6 +39,10 @@ class DeviceFilter final : public FilterBackend {
   // and shared by every scorer made after it.
   std::unique_ptr<PoseScorer> make_pose_scorer(const Mesh& mesh) override;
   Estimate update(const DepthImage& depth, double dt) override;
+  // Enqueues the whole frame on this filter's queue (the depth's upload blocks on it alone);
+  // collect() reads the estimate back, the frame's one wait.
+  void enqueue_update(const DepthImage& depth, double dt) override;
+  Estimate collect() override;
   std::string description() const override;
 
   // What the last update computed, downloaded for comparison with the reference filter.
@@ -71,8 +75,13 @@ class DeviceFilter final : public FilterBackend {
   // scratch_state_ (where resampling left them, or copied there); its event.
   compute::EventPtr shift_particles();
 
+  struct Pending;  // a frame between enqueue_update and collect: its clock and events
+
   std::shared_ptr<compute::DeviceContext> device_;
-  compute::Queue* queue_;  // device_'s
+  // A queue of this filter's own on device_ (so several filters' work overlaps), where the backend
+  // offers one; queue_ is it, or else device_'s.
+  std::unique_ptr<compute::Queue> own_queue_;
+  compute::Queue* queue_;
   TrackerConfig config_;
   Camera camera_;
   Eigen::Vector3d centre_;
@@ -87,6 +96,7 @@ class DeviceFilter final : public FilterBackend {
   compute::Buffer<float> atlas_, observed_;
   compute::Buffer<float> occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_;
   std::unique_ptr<DeviceRefiner> refiner_;  // when config.refine.enabled
+  std::unique_ptr<Pending> pending_;
   bool last_resampled_ = false;
   bool weighed_in_scratch_ = false;  // the last update left the weighed states in scratch_state_
   unsigned frame_ = 0;

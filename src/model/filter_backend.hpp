@@ -5,9 +5,11 @@
 // working resolution.
 #include <depthtrack/camera.hpp>
 #include <depthtrack/depth_image.hpp>
+#include <depthtrack/error.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/tracker.hpp>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -33,7 +35,21 @@ class FilterBackend {
   virtual std::unique_ptr<PoseScorer> make_pose_scorer(const Mesh& mesh) = 0;
   // dt: seconds since the previous frame, 0 for the first frame after initialize().
   virtual Estimate update(const DepthImage& depth, double dt) = 0;
+  // update() in two halves, so that several filters' device work overlaps: enqueue_update starts the
+  // frame (a device filter enqueues all of it and waits for nothing; `depth` need not outlive the call)
+  // and collect() waits for it and returns its estimate, once per enqueue_update. A host filter runs the
+  // whole update in the first half.
+  virtual void enqueue_update(const DepthImage& depth, double dt) { pending_ = update(depth, dt); }
+  virtual Estimate collect() {
+    if (!pending_) throw InputError("filter: collect() without an enqueued update");
+    Estimate e = std::move(*pending_);
+    pending_.reset();
+    return e;
+  }
   virtual std::string description() const = 0;
+
+ private:
+  std::optional<Estimate> pending_;  // the host filters' estimate between the halves
 };
 
 }  // namespace depthtrack

@@ -1,5 +1,7 @@
 #include <depthtrack/error.hpp>
 #include <depthtrack/multi_tracker.hpp>
+#include <exception>
+#include <optional>
 
 #include "tracker/mutual_occlusion.hpp"
 
@@ -15,8 +17,7 @@ MultiTracker::MultiTracker(std::shared_ptr<Device> device, const std::vector<Mes
   initialized_.assign(meshes.size(), false);
   const Camera& working = trackers_.front().working_camera();
   if (mutual_occlusion && meshes.size() > 1)
-    occlusion_ = std::make_unique<MutualOcclusion>(meshes, working, sensor.width / working.width, config.near_plane,
-                                                   config.observation.max_depth);
+    occlusion_ = std::make_unique<MutualOcclusion>(meshes, working, config.near_plane, config.observation.max_depth);
 }
 
 MultiTracker::~MultiTracker() = default;
@@ -44,24 +45,55 @@ void MultiTracker::check_initialized() const {
 
 std::vector<Estimate> MultiTracker::update(const DepthImage& depth, double timestamp) {
   check_initialized();
-  std::vector<Estimate> estimates;
-  for (size_t j = 0; j < trackers_.size(); ++j) {
-    // Objects before j hide pixels with this frame's estimates, those after with the last frame's.
-    estimates.push_back(occlusion_ ? trackers_[j].update(occlusion_->frame_for(j, depth, poses_), timestamp)
-                                   : trackers_[j].update(depth, timestamp));
-    poses_[j] = estimates.back().pose;
-  }
-  return estimates;
+  DepthImage storage;
+  // Every tracker has the sensor's camera and the working one: the frame is checked and decimated once.
+  const DepthImage& working = trackers_.front().working_frame(depth, storage);
+  return run(
+      working, [&depth]() -> const DepthImage& { return depth; }, timestamp);
 }
 
 std::vector<Estimate> MultiTracker::update(const DepthView& depth, double timestamp) {
-  if (occlusion_) return update(depth.to_image(), timestamp);  // the masks are written into a copy
   check_initialized();
-  std::vector<Estimate> estimates;
-  for (size_t j = 0; j < trackers_.size(); ++j) {
-    estimates.push_back(trackers_[j].update(depth, timestamp));
-    poses_[j] = estimates.back().pose;
+  const DepthImage working = trackers_.front().working_frame(depth);
+  std::optional<DepthImage> sensor;  // converted whole only if a lost object's search needs it
+  return run(
+      working,
+      [&]() -> const DepthImage& {
+        if (!sensor) sensor = depth.to_image();
+        return *sensor;
+      },
+      timestamp);
+}
+
+// Every object's frame is enqueued (each tracker has a compute queue of its own), then every estimate
+// is collected: the device runs the objects' work side by side. With mutual occlusion each object's
+// working frame hides what the others' previous estimates cover, so none waits for another's estimate.
+std::vector<Estimate> MultiTracker::run(const DepthImage& working,
+                                        const std::function<const DepthImage&()>& sensor_frame, double timestamp) {
+  const size_t n = trackers_.size();
+  std::vector<DepthImage> masked(occlusion_ ? n : 0);
+  const auto frame_of = [&](size_t j) -> const DepthImage& { return occlusion_ ? masked[j] : working; };
+  size_t started = 0;
+  std::exception_ptr failure;
+  try {
+    for (; started < n; ++started) {
+      if (occlusion_) masked[started] = occlusion_->frame_for(started, working, poses_);
+      trackers_[started].start_frame(frame_of(started), sensor_frame, timestamp);
+    }
+  } catch (...) {
+    failure = std::current_exception();
   }
+  // Every started frame is collected, even after a failure, so that no tracker is left mid-frame.
+  std::vector<Estimate> estimates;
+  for (size_t j = 0; j < started; ++j) {
+    try {
+      estimates.push_back(trackers_[j].finish_frame(frame_of(j)));
+    } catch (...) {
+      if (!failure) failure = std::current_exception();
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
+  for (size_t j = 0; j < n; ++j) poses_[j] = estimates[j].pose;
   return estimates;
 }
 

@@ -1,13 +1,13 @@
 #include "tracker/mutual_occlusion.hpp"
 
 #include <cmath>
+#include <depthtrack/error.hpp>
 #include <limits>
 
 namespace depthtrack {
 
-MutualOcclusion::MutualOcclusion(const std::vector<Mesh>& meshes, const Camera& working, int decimation, double near,
-                                 double far)
-    : working_(working), decimation_(decimation) {
+MutualOcclusion::MutualOcclusion(const std::vector<Mesh>& meshes, const Camera& working, double near, double far)
+    : working_(working) {
   for (const Mesh& mesh : meshes) {
     rasterizers_.emplace_back(mesh, working, near, far);
     centres_.push_back(mesh.centre().cast<double>());
@@ -15,8 +15,12 @@ MutualOcclusion::MutualOcclusion(const std::vector<Mesh>& meshes, const Camera& 
   }
 }
 
-DepthImage MutualOcclusion::frame_for(size_t object, const DepthImage& sensor_depth, const std::vector<Pose>& poses,
+DepthImage MutualOcclusion::frame_for(size_t object, const DepthImage& working_depth, const std::vector<Pose>& poses,
                                       size_t* masked) const {
+  if (working_depth.width() != working_.width || working_depth.height() != working_.height)
+    throw InputError("mutual occlusion: the frame is " + std::to_string(working_depth.width()) + "x" +
+                     std::to_string(working_depth.height()) + ", not the working camera's " +
+                     std::to_string(working_.width) + "x" + std::to_string(working_.height));
   const size_t pixels = static_cast<size_t>(working_.pixel_count());
   own_.assign(pixels, 0.0f);
   other_.assign(pixels, 0.0f);
@@ -31,7 +35,7 @@ DepthImage MutualOcclusion::frame_for(size_t object, const DepthImage& sensor_de
       if (layer[i] > 0 && (other_[i] == 0 || layer[i] < other_[i])) other_[i] = layer[i];
   }
   const double nearest = (poses[object].rotation * centres_[object] + poses[object].translation).z() - radii_[object];
-  DepthImage out = sensor_depth;
+  DepthImage out = working_depth;
   size_t count = 0;
   for (int v = 0; v < working_.height; ++v)
     for (int u = 0; u < working_.width; ++u) {
@@ -39,7 +43,7 @@ DepthImage MutualOcclusion::frame_for(size_t object, const DepthImage& sensor_de
       if (other_[i] == 0) continue;
       const double bound = own_[i] > 0 ? own_[i] - kMargin : nearest;
       if (other_[i] >= bound) continue;
-      out.at(decimation_ * u, decimation_ * v) = std::numeric_limits<float>::quiet_NaN();
+      out.at(u, v) = std::numeric_limits<float>::quiet_NaN();
       ++count;
     }
   if (masked) *masked = count;

@@ -163,6 +163,12 @@ Estimate Tracker::update(const DepthImage& depth, double timestamp) {
 
 Estimate Tracker::track_frame(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame,
                               double timestamp) {
+  start_frame(working, sensor_frame, timestamp);
+  return finish_frame(working);
+}
+
+void Tracker::start_frame(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame,
+                          double timestamp) {
   if (!std::isfinite(timestamp)) throw InputError("timestamp is not finite");
   if (has_previous_ && timestamp <= previous_timestamp_) {
     std::ostringstream m;
@@ -172,9 +178,7 @@ Estimate Tracker::track_frame(const DepthImage& working, const std::function<con
   }
   // While lost, search this frame; a candidate the depth explains well enough re-seeds the filter.
   // A dropout frame has nothing to search.
-  double search_ms = 0;
-  size_t search_poses = 0;
-  bool recovered = false;
+  PendingFrame search;
   if (supervisor_->status() == TrackStatus::Lost && config_.recovery.enabled && working.valid_count() > 0) {
     const Stopwatch clock;
     const search::SearchResult found =
@@ -183,26 +187,41 @@ Estimate Tracker::track_frame(const DepthImage& working, const std::function<con
       backend_->initialize_modes(TrackSupervisor::seeds(found), kSearchSpread);
       supervisor_->reset();
       has_previous_ = false;
-      recovered = true;
+      search.recovered = true;
     }
-    search_ms = clock.elapsed_ms();
-    search_poses = found.poses_scored;
+    search.search_ms = clock.elapsed_ms();
+    search.search_poses = found.poses_scored;
   }
-  Estimate e = run_frame(working, timestamp);
-  e.recovered = recovered;
-  e.search_poses = search_poses;
-  e.timings.search_ms += search_ms;
-  e.timings.total_ms += search_ms;
-  return e;
+  enqueue_frame(working, timestamp);
+  pending_.recovered = search.recovered;
+  pending_.search_ms = search.search_ms;
+  pending_.search_poses = search.search_poses;
 }
 
 Estimate Tracker::run_frame(const DepthImage& working, double timestamp) {
+  enqueue_frame(working, timestamp);
+  return finish_frame(working);
+}
+
+void Tracker::enqueue_frame(const DepthImage& working, double timestamp) {
+  if (frame_pending_) throw InputError("tracker: a frame was started while the previous one is not finished");
   // A gap longer than max_time_step is propagated as that long (TrackerConfig says why).
   const double dt = has_previous_ ? std::min(timestamp - previous_timestamp_, config_.max_time_step) : 0.0;
-  // A dropout: every pixel adds 0 to every particle's log-likelihood, so the weights stay as they
-  // are and resampling, decided on them, cannot trigger: the filter propagates only.
-  const bool dropout = working.valid_count() == 0;
-  Estimate e = backend_->update(working, dt);
+  backend_->enqueue_update(working, dt);
+  pending_ = PendingFrame{};
+  pending_.timestamp = timestamp;
+  frame_pending_ = true;
+}
+
+Estimate Tracker::finish_frame(const DepthImage& working) {
+  if (!frame_pending_) throw InputError("tracker: finish_frame() without a started frame");
+  frame_pending_ = false;
+  const double timestamp = pending_.timestamp;
+  Estimate e = backend_->collect();
+  e.recovered = pending_.recovered;
+  e.search_poses = pending_.search_poses;
+  e.timings.search_ms += pending_.search_ms;
+  e.timings.total_ms += pending_.search_ms;
   if (!is_finite(e)) {
     std::ostringstream m;
     m.precision(17);
@@ -213,7 +232,9 @@ Estimate Tracker::run_frame(const DepthImage& working, double timestamp) {
   previous_timestamp_ = timestamp;
   has_previous_ = true;
   ++frames_since_initialize_;
-  if (dropout) {
+  // A dropout: every pixel adds 0 to every particle's log-likelihood, so the weights stay as they
+  // are and resampling, decided on them, cannot trigger: the filter propagates only.
+  if (working.valid_count() == 0) {
     // Nothing was seen: no evidence for or against the track, so the loss hysteresis is left alone.
     e.confidence = 0;
     e.status = TrackStatus::NoData;

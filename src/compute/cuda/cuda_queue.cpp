@@ -11,7 +11,9 @@
 
 namespace depthtrack::compute::cuda {
 
-CudaQueue::CudaQueue(int ordinal) : context_(std::make_shared<const Context>(ordinal)) {
+CudaQueue::CudaQueue(int ordinal) : CudaQueue(std::make_shared<const Context>(ordinal)) {}
+
+CudaQueue::CudaQueue(std::shared_ptr<const Context> context) : context_(std::move(context)) {
   context_->make_current();
   // A blocking stream (not CU_STREAM_NON_BLOCKING) also orders against work that other code, such
   // as GL interop, puts on the legacy default stream.
@@ -123,6 +125,10 @@ EventPtr CudaQueue::launch(Kernel& kernel, const NdRange& range) {
   }
   event->record_end(stream_);
   return event;
+}
+
+std::unique_ptr<Queue> CudaQueue::another_queue() {
+  return std::unique_ptr<Queue>(new CudaQueue(context_));
 }
 
 void CudaQueue::finish() {

@@ -30,12 +30,17 @@ class CudaQueue final : public Queue {
                                  const std::vector<std::string>& definitions) override;
   EventPtr launch(Kernel& kernel, const NdRange& range) override;
   void finish() override;
+  // A stream of its own in this queue's context.
+  std::unique_ptr<Queue> another_queue() override;
 
   // For interop code that enqueues its own work in order with the queue's.
   const Context& context() const { return *context_; }
   CUstream stream() const { return stream_; }
 
  private:
+  // A new stream in `context`.
+  explicit CudaQueue(std::shared_ptr<const Context> context);
+
   // `memory` as this device's memory, with [offset, offset + bytes) inside it (else InputError).
   const CudaMemory& checked(const DeviceMemory& memory, size_t offset, size_t bytes, const char* what) const;
 

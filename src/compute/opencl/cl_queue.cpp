@@ -38,8 +38,23 @@ ClQueue::ClQueue(cl_platform_id platform, cl_device_id device, DeviceInfo info)
   // No notification callback: every error it would print also comes back from the failing call.
   context_ = ContextHandle(clCreateContext(properties, 1, &device_, nullptr, nullptr, &status));
   check(status, "clCreateContext", info_.name);
+  create_queue();
+}
+
+ClQueue::ClQueue(cl_context context, cl_device_id device, DeviceInfo info) : device_(device), info_(std::move(info)) {
+  check(clRetainContext(context), "clRetainContext", info_.name);
+  context_ = ContextHandle(context);
+  create_queue();
+}
+
+void ClQueue::create_queue() {
+  cl_int status = CL_SUCCESS;
   queue_ = QueueHandle(clCreateCommandQueue(context_.get(), device_, CL_QUEUE_PROFILING_ENABLE, &status));
   check(status, "clCreateCommandQueue", info_.name);
+}
+
+std::unique_ptr<Queue> ClQueue::another_queue() {
+  return std::unique_ptr<Queue>(new ClQueue(context_.get(), device_, info_));
 }
 
 std::unique_ptr<DeviceMemory> ClQueue::allocate(size_t bytes) {

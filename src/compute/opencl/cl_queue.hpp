@@ -23,6 +23,8 @@ class ClQueue final : public Queue {
                                  const std::vector<std::string>& definitions) override;
   EventPtr launch(Kernel& kernel, const NdRange& range) override;
   void finish() override;
+  // A command queue of its own on this queue's context.
+  std::unique_ptr<Queue> another_queue() override;
 
   // For interop code that enqueues its own work in order with the queue's.
   cl_context context() const { return context_.get(); }
@@ -30,6 +32,10 @@ class ClQueue final : public Queue {
   cl_device_id device() const { return device_; }
 
  private:
+  // A new command queue on `context` (retained here).
+  ClQueue(cl_context context, cl_device_id device, DeviceInfo info);
+  void create_queue();
+
   cl_device_id device_;
   DeviceInfo info_;
   ContextHandle context_;

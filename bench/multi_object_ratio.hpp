@@ -1,0 +1,15 @@
+#pragma once
+// Several objects against one (issue 10: three objects x 2,000 particles at 80x60 in one process within
+// 1.5x one object's time): rows multi_object_ratio and the two medians it divides.
+#include <string>
+
+namespace depthtrack::bench {
+
+// One object, then three on one Device (MultiTracker, mutual occlusion off and on), `particles` each at
+// 80x60 with the renderer named: the median frame (MultiTracker::update, every object's estimate out) of
+// each after two warm-up frames, and three / one. ycbv-0000's three objects and frames (started 1 cm /
+// 5 deg off, as the CLI's --init-perturb "0.01 5") where the data folder has them, else the handset (or
+// the built-in mesh) three times at three poses on the synthetic sequence, `frames` long. Prints CSV rows.
+void run_multi_object_ratio(const std::string& backend, const std::string& renderer, int particles, int frames);
+
+}  // namespace depthtrack::bench
