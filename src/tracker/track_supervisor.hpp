@@ -47,8 +47,6 @@ class TrackSupervisor {
 
  private:
   search::SearchSettings settings(const InitHint& hint, double budget_ms, unsigned round) const;
-  // found()'s test on a pose's shares.
-  bool stands_out(const SilhouetteShares& s) const;
   // Fits the best candidates to their likelihood's optimum (reference::PoseRefiner), rescored, and
   // keeps only those whose outline stands out when any does.
   void fit_best(search::SearchResult& result, const DepthImage& working) const;
