@@ -1,8 +1,8 @@
-// Analysis, not a test (hidden: run with "[.analysis]", G3_OBJECT=<name> for one object): the no-hint
+// Analysis, not a test (hidden: run with "[.analysis]", RANKING_OBJECT=<name> for one object): the no-hint
 // search's candidates on ycbv-0000's first frame (reference, 80x60), each unfitted and fitted, with
 // its per-pixel classes (visible, occluded = seen in front, contradicted = seen behind, missing) and
-// its outline's (past the edge, missing, nearer surface, flush), against the truth. G3_WHERE=1 lists
-// the outline pixels, G3_MAP=",truth,c2 fit," draws the named poses' maps. The candidates (minutes of
+// its outline's (past the edge, missing, nearer surface, flush), against the truth. RANKING_WHERE=1 lists
+// the outline pixels, RANKING_MAP=",truth,c2 fit," draws the named poses' maps. The candidates (minutes of
 // search per object) are cached in the build's test tmp folder; delete the file to search again.
 #include <catch2/catch.hpp>
 #include <cstdio>
@@ -86,9 +86,9 @@ void classes(const reference::Rasterizer& r, const TrackerConfig& c, const Pose&
       "none %3d nearer %3d flush %3d | sep %.2f sep_not_nearer %.2f\n",
       label, 1000 * adds, score, vis + occ + con + mis, vis, occ, con, mis, ll_mid, out, past, none, nearer, flush,
       out ? double(past + none) / out : 0, (out - nearer) ? double(past + none) / (out - nearer) : 0);
-  if (std::getenv("G3_WHERE")) std::printf("   outline:%s\n", where.c_str());
-  if (std::getenv("G3_MAP") &&
-      std::string(std::getenv("G3_MAP")).find(std::string(",") + label + ",") != std::string::npos) {
+  if (std::getenv("RANKING_WHERE")) std::printf("   outline:%s\n", where.c_str());
+  if (std::getenv("RANKING_MAP") &&
+      std::string(std::getenv("RANKING_MAP")).find(std::string(",") + label + ",") != std::string::npos) {
     // Silhouette: V visible, O occluded (seen in front), C contradicted (seen behind), M missing;
     // outline: p past the edge, m missing, n nearer surface, f flush; elsewhere the depth in dm.
     std::vector<char> map(static_cast<size_t>(w * h), 0);
@@ -122,7 +122,7 @@ void classes(const reference::Rasterizer& r, const TrackerConfig& c, const Pose&
 TEST_CASE("no-hint candidates on ycbv-0000, analysed", "[.analysis]") {
   const auto clip = test::shared_data("sequences/ycbv-0000/gt.json");
   if (!clip) return;
-  const char* only = std::getenv("G3_OBJECT");
+  const char* only = std::getenv("RANKING_OBJECT");
   for (const std::string name : {"009_gelatin_box", "025_mug", "061_foam_brick"}) {
     if (only && name != only) continue;
     const auto mesh_path = test::shared_data("meshes/ycb/" + name + ".obj");

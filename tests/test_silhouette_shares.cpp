@@ -35,7 +35,7 @@ struct Scene {
 };
 }  // namespace
 
-TEST_CASE("silhouette shares: an object before a wall stands out; an occluder's edge says nothing", "[confidence]") {
+TEST_CASE("silhouette shares: an object before a wall stands out and an occluder's edge says nothing", "[confidence]") {
   Scene scene;
   REQUIRE(scene.box.u1 - scene.box.u0 >= 6);
   // In front of a wall 0.8 m behind it: all seen, every outline pixel sees past the edge.
