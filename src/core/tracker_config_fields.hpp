@@ -90,7 +90,8 @@ inline auto fields_of(const LossModel*) {
       field("lost_below", &S::lost_below, "a frame below this confidence is a bad frame"),
       field("lost_after", &S::lost_after, "this many bad frames in a row raise lost"),
       field("found_above", &S::found_above, "a search candidate this confident ends lost"),
-      field("found_outline", &S::found_outline, "and this share of its outline sees past its edge"),
+      field("found_outline", &S::found_outline,
+            "and this share of its outline (where not against a nearer surface) sees past its edge"),
   };
 }
 

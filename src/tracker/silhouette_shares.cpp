@@ -30,7 +30,7 @@ SilhouetteShares silhouette_shares(const reference::Rasterizer& rasterizer, cons
     }
   // The outline: each uncovered 4-neighbour of a covered pixel, once per covered neighbour.
   const int height = rasterizer.camera().height;
-  int outline = 0, past_edge = 0;
+  int outline = 0, past_edge = 0, nearer = 0;
   for (int v = box.v0; v < box.v1; ++v)
     for (int u = box.u0; u < box.u1; ++u) {
       const double y_hat = scratch[static_cast<size_t>(v) * static_cast<size_t>(width) + static_cast<size_t>(u)];
@@ -43,11 +43,18 @@ SilhouetteShares silhouette_shares(const reference::Rasterizer& rasterizer, cons
         if (scratch[k] > 0) continue;
         ++outline;
         const float y = depth.data()[k];
-        past_edge += !DepthImage::is_valid(y) || y > y_hat + pixel_sigmas * reference::depth_sigma(model, y);
+        if (!DepthImage::is_valid(y)) {
+          ++past_edge;
+          continue;
+        }
+        const double band = pixel_sigmas * reference::depth_sigma(model, y);
+        past_edge += y > y_hat + band;
+        nearer += y < y_hat - band;
       }
     }
   SilhouetteShares s;
-  if (outline > 0) s.separated = static_cast<double>(past_edge) / outline;
+  if (outline > nearer) s.separated = static_cast<double>(past_edge) / (outline - nearer);
+  if (outline > 0) s.outline_nearer = static_cast<double>(nearer) / outline;
   s.pixels = visible + occluded + contradicted + missing;
   const int measured = visible + occluded + contradicted;
   if (s.pixels > 0) s.missing = static_cast<double>(missing) / s.pixels;

@@ -15,11 +15,13 @@ struct SilhouetteShares {
   double occluded = 0;      // y in front of the surface: something hides it
   double contradicted = 0;  // y behind the surface: the camera sees through where the object would be
   double missing = 0;       // of all silhouette pixels: no valid depth
-  // Of the outline's outer neighbours (uncovered pixels next to a covered one): the share where
-  // the camera sees past the object's edge (depth behind it, or none: sensors drop pixels at
-  // depth edges). An object stands out from what is behind it; a pose pressed flat into a wall
-  // has a surface that fits but no outline.
+  // Of the outline's outer neighbours (uncovered pixels next to a covered one) not against a
+  // nearer surface: the share where the camera sees past the object's edge (depth behind it, or
+  // none: sensors drop pixels at depth edges). An object stands out from what is behind it; a pose
+  // pressed flat into a wall has a surface that fits but no outline. An edge against something
+  // nearer (an occluder, or the object itself when the pose is a pixel off) says neither.
   double separated = 0;
+  double outline_nearer = 0;  // of all the outline's outer neighbours: seen in front of the edge
   // visible share of the pixels with valid depth; 0 for an empty or unmeasured silhouette.
   double confidence() const { return visible; }
 };

@@ -28,6 +28,11 @@ class TrackSupervisor {
   // budget_ms 0: the whole coarse grid.
   search::SearchResult search(const DepthImage& sensor_depth, const DepthImage& working, const InitHint& hint,
                               double budget_ms, unsigned round) const;
+  // search() in two steps: the candidates of the coarse grid and its refinement, scored by the full
+  // model; then their ranking (without a hint: fitted, see fit_best) and polish.
+  search::SearchResult candidates(const DepthImage& sensor_depth, const DepthImage& working, const InitHint& hint,
+                                  double budget_ms, unsigned round) const;
+  void finish(search::SearchResult& result, const DepthImage& working, const InitHint& hint, unsigned round) const;
   // The candidates to seed the filter with: the best, and the runners-up nearly as likely.
   static std::vector<Pose> seeds(const search::SearchResult& result);
 
@@ -41,6 +46,7 @@ class TrackSupervisor {
   TrackStatus status() const { return status_; }
 
  private:
+  search::SearchSettings settings(const InitHint& hint, double budget_ms, unsigned round) const;
   // Fits the best candidates to their likelihood's optimum (reference::PoseRefiner), rescored, and
   // keeps only those whose outline stands out when any does.
   void fit_best(search::SearchResult& result, const DepthImage& working) const;

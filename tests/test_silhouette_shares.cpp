@@ -1,0 +1,78 @@
+// The shares confidence and the search's outline test are built from, on depth images made by
+// hand around the built-in object's rendered silhouette.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <depthtrack/mesh.hpp>
+
+#include "tracker/silhouette_shares.hpp"
+
+using namespace depthtrack;
+
+namespace {
+struct Scene {
+  Mesh mesh = builtin_demo_mesh();
+  Camera camera = Camera::make(80, 60, 66.0, 66.0, 39.5, 29.5);
+  TrackerConfig config;
+  reference::Rasterizer rasterizer{mesh, camera, config.near_plane, config.observation.max_depth};
+  Pose pose{Eigen::Vector3d(0, 0, 0.8), Eigen::Quaterniond::Identity()};
+  std::vector<float> rendered = std::vector<float>(static_cast<size_t>(camera.pixel_count()));
+  reference::PixelBox box;
+  Scene() { box = rasterizer.render(pose, rendered); }
+
+  // The object where it is drawn, `behind` elsewhere.
+  std::vector<float> object_on(float behind) const {
+    std::vector<float> metres(rendered.size(), behind);
+    for (size_t k = 0; k < rendered.size(); ++k)
+      if (rendered[k] > 0) metres[k] = rendered[k];
+    return metres;
+  }
+  SilhouetteShares shares(const std::vector<float>& metres) {
+    std::vector<float> scratch(rendered.size());
+    return silhouette_shares(rasterizer, config.observation, config.loss.pixel_sigmas, pose,
+                             DepthImage::from_metres(camera.width, camera.height, metres), scratch);
+  }
+};
+}  // namespace
+
+TEST_CASE("silhouette shares: an object before a wall stands out and an occluder's edge says nothing", "[confidence]") {
+  Scene scene;
+  REQUIRE(scene.box.u1 - scene.box.u0 >= 6);
+  // In front of a wall 0.8 m behind it: all seen, every outline pixel sees past the edge.
+  const SilhouetteShares free = scene.shares(scene.object_on(1.6f));
+  CHECK(free.pixels > 20);
+  CHECK(free.visible == 1.0);
+  CHECK(free.separated == 1.0);
+  CHECK(free.outline_nearer == 0.0);
+
+  // A bar at 0.3 m over the right half of the box and beyond: the occluded pixels and the outline
+  // pixels on the bar say nothing about the edge; the rest still sees past it.
+  std::vector<float> barred = scene.object_on(1.6f);
+  const int middle = (scene.box.u0 + scene.box.u1) / 2;
+  for (int v = 0; v < scene.camera.height; ++v)
+    for (int u = middle; u < scene.camera.width; ++u) barred[static_cast<size_t>(v * scene.camera.width + u)] = 0.3f;
+  const SilhouetteShares occluded = scene.shares(barred);
+  CHECK(occluded.occluded > 0.3);
+  CHECK(occluded.occluded < 0.7);
+  CHECK(occluded.outline_nearer > 0.2);
+  CHECK(occluded.outline_nearer < 0.8);
+  CHECK(occluded.separated == 1.0);
+
+  // Pressed into a wall at its front face's depth (the surface continues past the drawn edge): no
+  // outline sees past it, though the surface fits.
+  float front = 10;
+  for (float z : scene.rendered)
+    if (z > 0) front = std::min(front, z);
+  const SilhouetteShares pressed = scene.shares(scene.object_on(front));
+  CHECK(pressed.visible == 1.0);
+  CHECK(pressed.separated == 0.0);
+  CHECK(pressed.outline_nearer == 0.0);
+
+  // Missing depth beyond the edge (sensors drop pixels there) counts as seeing past it; a
+  // silhouette with no depth measured is not confident.
+  const SilhouetteShares dropped = scene.shares(scene.object_on(NAN));
+  CHECK(dropped.separated == 1.0);
+  const SilhouetteShares blind = scene.shares(std::vector<float>(scene.rendered.size(), NAN));
+  CHECK(blind.missing == 1.0);
+  CHECK(blind.confidence() == 0.0);
+}
