@@ -105,7 +105,8 @@ class Queue {
   virtual void copy(const DeviceMemory& source, size_t source_offset, DeviceMemory& destination,
                     size_t destination_offset, size_t bytes) = 0;
 
-  // Builds a program from OpenCL C source (see cl/dt_prelude.h for what both backends accept), with
+  // Builds a program from OpenCL C source (cl/dt_prelude.h's words; each backend puts its own prelude,
+  // src/compute/<name>/dt_prelude_<name>.h, before the source), with
   // -D definitions given as "NAME=VALUE" or "NAME". A failed build throws BackendError whose
   // message holds the device, the options and the compiler's log.
   virtual std::unique_ptr<Program> build(const std::string& name, const std::string& source,

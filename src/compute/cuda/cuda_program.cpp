@@ -6,8 +6,12 @@
 #include "compute/cuda/cuda_errors.hpp"
 #include "compute/cuda/cuda_nvrtc_api.hpp"
 #include "compute/cuda/cuda_source_text.hpp"
+#include "compute/kernel_sources.hpp"
 
 namespace depthtrack::compute::cuda {
+
+const std::map<std::string, std::string>& prelude_files();  // dt_prelude_cuda.h, embedded by CMake
+
 namespace {
 
 // Owns an nvrtcProgram so that every exit path destroys it.
@@ -81,7 +85,9 @@ CompiledImage compile(const std::string& name, const std::string& source, const 
   }
   for (const std::string& option : options) result.options += (result.options.empty() ? "" : " ") + option;
 
-  NvrtcProgram program(api, source, name + ".cu");
+  // OpenCL C's words in CUDA's terms first (dt_prelude_cuda.h); the log's line numbers are still the source's.
+  static const std::string prelude = program_prelude(prelude_files(), "dt_prelude_cuda.h");
+  NvrtcProgram program(api, prelude + source, name + ".cu");
   std::vector<const char*> argv;
   for (const std::string& option : options) argv.push_back(option.c_str());
   const nvrtcResult status = api.nvrtcCompileProgram(program.get(), static_cast<int>(argv.size()), argv.data());

@@ -1,7 +1,7 @@
 #pragma once
 // Compiling cl/ kernel text as CUDA C++ with NVRTC. Needs no GPU and no driver, only NVRTC, so
 // these functions are usable (and tested) on machines without an NVIDIA GPU. The text is compiled
-// as it is: dt_prelude.h sees __CUDACC_RTC__ and maps the OpenCL C words; __OPENCL_VERSION__ stays
+// after dt_prelude_cuda.h (this folder), which maps the OpenCL C words; __OPENCL_VERSION__ stays
 // undefined.
 #include <string>
 #include <vector>
