@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "compute/device_info.hpp"
+#include "compute/native_handles.hpp"
 
 namespace depthtrack::compute {
 
@@ -89,6 +90,8 @@ class Queue {
  public:
   virtual ~Queue() = default;
   virtual const DeviceInfo& info() const = 0;
+  // The backend API's objects behind this queue (compute/native_handles.hpp); none by default.
+  virtual NativeHandles native_handles() const { return {}; }
 
   // Throws BackendError (naming the request and the device's limit) when the device cannot hold it.
   virtual std::unique_ptr<DeviceMemory> allocate(size_t bytes) = 0;

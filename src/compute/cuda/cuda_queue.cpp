@@ -90,6 +90,14 @@ void CudaQueue::copy(const DeviceMemory& source, size_t source_offset, DeviceMem
                   "cuMemcpyDtoDAsync");
 }
 
+NativeHandles CudaQueue::native_handles() const {
+  NativeHandles handles;
+  handles.cu_context = context_->get();
+  handles.cu_stream = stream_;
+  handles.cu_device = context_->device();
+  return handles;
+}
+
 std::unique_ptr<Program> CudaQueue::build(const std::string& name, const std::string& source,
                                           const std::vector<std::string>& definitions) {
   const CompiledImage image =
