@@ -10,8 +10,7 @@ namespace depthtrack::interop {
 namespace {
 class StagedHandoff final : public AtlasHandoff {
  public:
-  StagedHandoff(render::AtlasRenderer& renderer, std::string reason)
-      : renderer_(renderer), reason_(std::move(reason)) {}
+  StagedHandoff(render::AtlasRenderer& renderer, std::string reason) : renderer_(renderer), reason_(std::move(reason)) {}
 
   void send_poses(const compute::Buffer<float>& states) override {
     send_poses_through_host(states, renderer_, host_states_);
