@@ -17,6 +17,7 @@ if(DEPTHTRACK_WITH_GL AND OSMESA_FOUND)
 else()
   set(DEPTHTRACK_PACKAGE_OSMESA OFF)
 endif()
+get_property(DEPTHTRACK_BACKEND_PACKAGES GLOBAL PROPERTY DEPTHTRACK_BACKEND_PACKAGES)
 configure_package_config_file(cmake/depthtrackConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/depthtrackConfig.cmake
                               INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/depthtrack)

@@ -10,6 +10,7 @@
 #include "compute/buffer.hpp"
 #include "compute/queue.hpp"
 #include "fake_backend/fake_backend.hpp"
+#include "sketch_backend/sketch_backend.hpp"
 
 using namespace depthtrack;
 
@@ -76,4 +77,29 @@ TEST_CASE("the tracker reaches a registered backend through TrackerConfig::backe
   config.particles = 10;
   CHECK_THROWS_WITH(Tracker(builtin_demo_mesh(), Camera::make(80, 60, 66, 66, 39.5, 29.5), config),
                     Catch::Contains("fake: cannot build program"));
+}
+
+TEST_CASE("the sketch backend, one folder and one CMake line, is listed, opened and rejected like the others",
+          "[compute][registry]") {
+  // tests/sketch_backend/ is built by depthtrack_add_backend, as src/compute/opencl/ is; registered here.
+  const compute::BackendRegistration registration(compute::sketch::backend());
+  CHECK(backend_names() == std::vector<std::string>{"opencl", "cuda", "sketch"});
+  const auto devices = compute::list_devices();
+  CHECK(std::count_if(devices.begin(), devices.end(), [](const auto& d) { return d.selector == "sketch:0"; }) == 1);
+  const auto queue = compute::open_device("sketch:0");
+  CHECK(queue->info().backend == "sketch");
+  // Its program text begins with its own prelude (dt_prelude_sketch.h, embedded from its folder), then the source.
+  CHECK_THROWS_WITH(
+      queue->build("p", "__kernel void k() {}\n", {}),
+      Catch::StartsWith("sketch: cannot build program 'p'") && Catch::Contains("beginning \"/* dt_prelude_sketch.h:"));
+  CHECK_THROWS_AS(compute::Buffer<int>(*queue, 3), BackendError);
+  CHECK_THROWS_WITH(compute::open_device("sketch:2"),
+                    Catch::StartsWith("cannot open compute device 'sketch:2': there is no sketch device 2") &&
+                        Catch::Contains("sketch (= sketch:0)"));
+  // The tracker reaches it through the filter factory and stops where it builds kernels, saying so.
+  TrackerConfig config;
+  config.backend = "sketch";
+  config.particles = 10;
+  CHECK_THROWS_WITH(Tracker(builtin_demo_mesh(), Camera::make(80, 60, 66, 66, 39.5, 29.5), config),
+                    Catch::Contains("sketch: cannot"));
 }

@@ -93,6 +93,7 @@ TEST_CASE("Configuration JSON round-trips: the defaults and every field changed"
   changed.motion.damping = 0.7;
   changed.backend = "reference";
   changed.renderer = Renderer::Gl;
+  changed.gl_path = "osmesa";
   changed.width = 160;
   changed.loss.lost_below = 0.2;
   changed.loss.found_above = 0.9;

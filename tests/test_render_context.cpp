@@ -1,5 +1,5 @@
-// Headless GL contexts: every path that exists here comes up and says what it is; a bad
-// DEPTHTRACK_GL and a context no path can give fail with messages that say why.
+// Headless GL contexts: every path that exists here comes up and says what it is; a bad GL path
+// name and a context no path can give fail with messages that say why.
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <depthtrack/error.hpp>
@@ -56,23 +56,25 @@ TEST_CASE("each headless GL path gives a core context and describes itself", "[r
   if (paths_run == 0) std::cout << "SKIPPED: no headless GL path could be opened\n";
 }
 
-TEST_CASE("DEPTHTRACK_GL restricts the path and rejects nonsense naming the choices", "[render]") {
-  {
-    ScopedEnv env("DEPTHTRACK_GL", "nonsense");
-    try {
-      GlContext context;
-      FAIL("DEPTHTRACK_GL=nonsense was accepted");
-    } catch (const InputError& e) {
-      const std::string message = e.what();
-      INFO(message);
-      CHECK(message.find("nonsense") != std::string::npos);
-      for (const char* choice : {"egl-device", "egl-surfaceless", "osmesa"})
-        CHECK(message.find(choice) != std::string::npos);
-    }
-  }
-  ScopedEnv env("DEPTHTRACK_GL", "egl-surfaceless");
+TEST_CASE("a named GL path restricts the search and nonsense is refused naming the choices", "[render]") {
+  // TrackerConfig::gl_path's spellings (the command fills it from --gl or DEPTHTRACK_GL).
+  CHECK(!GlContext::path_from_name("auto"));
+  for (GlPath path : {GlPath::EglDevice, GlPath::EglSurfaceless, GlPath::OSMesa})
+    CHECK(GlContext::path_from_name(GlContext::path_name(path)) == path);
   try {
-    GlContext context;
+    GlContext::path_from_name("nonsense");
+    FAIL("the GL path 'nonsense' was accepted");
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    INFO(message);
+    CHECK(message.find("nonsense") != std::string::npos);
+    for (const char* choice : {"egl-device", "egl-surfaceless", "osmesa"})
+      CHECK(message.find(choice) != std::string::npos);
+  }
+  // The library ignores DEPTHTRACK_GL: only the options choose.
+  ScopedEnv env("DEPTHTRACK_GL", "nonsense");
+  try {
+    GlContext context(options(GlContext::path_from_name("egl-surfaceless")));
     CHECK(context.path() == GlPath::EglSurfaceless);
   } catch (const BackendError& e) {
     std::cout << "SKIPPED: egl-surfaceless: " << e.what() << "\n";

@@ -49,16 +49,3 @@ TEST_CASE("update checks order, image size and timestamps", "[errors]") {
   // A refused frame leaves the tracker usable.
   CHECK_NOTHROW(tracker.update(good, 1.0 + 1.0 / 30));
 }
-
-TEST_CASE("DEPTHTRACK_DEVICE picks the backend when the configuration names none", "[errors]") {
-  struct EnvGuard {
-    EnvGuard() { setenv("DEPTHTRACK_DEVICE", "quantum", 1); }
-    ~EnvGuard() { unsetenv("DEPTHTRACK_DEVICE"); }
-  } guard;
-  CHECK(TrackerConfig{}.resolved_backend() == "quantum");
-  CHECK_THROWS_WITH(Tracker(builtin_demo_mesh(), sensor, TrackerConfig{}),
-                    Catch::Contains("'quantum'") && Catch::Contains("DEPTHTRACK_DEVICE"));
-  TrackerConfig named;
-  named.backend = "reference";  // an explicit choice wins over the environment
-  CHECK_NOTHROW(Tracker(builtin_demo_mesh(), sensor, named));
-}

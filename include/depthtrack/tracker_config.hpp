@@ -95,19 +95,23 @@ struct TrackerConfig {
   double max_time_step = 1.0;
   uint64_t seed = 1;
   // reference, opencl, opencl:pocl, opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n>;
-  // empty: the environment's DEPTHTRACK_DEVICE if set, else reference (see resolved_backend()).
+  // empty: reference (see resolved_backend()). The library reads no environment; the depthtrack
+  // command fills this from $DEPTHTRACK_DEVICE when --backend is not given.
   std::string backend;
   // Who draws the device filters' pose atlas: Kernel (a compute kernel on the filter's device,
   // the fastest everywhere measured: docs/design-notes.md), Gl (OpenGL, headless: EGL device,
-  // EGL surfaceless or OSMesa, DEPTHTRACK_GL picks one; the atlas reaches the kernels by CUDA-GL
+  // EGL surfaceless or OSMesa, gl_path picks one; the atlas reaches the kernels by CUDA-GL
   // interop, a GL-OpenCL bridge or a staged copy) or Cpu (the reference rasterizer on the host).
   Renderer renderer = Renderer::Kernel;
+  // The headless GL path of the Gl renderer: auto (each in turn: EGL device, EGL surfaceless, OSMesa) or
+  // only egl-device, egl-surfaceless or osmesa. The depthtrack command fills it from --gl or $DEPTHTRACK_GL.
+  std::string gl_path = "auto";
   LossModel loss;
   RecoveryModel recovery;
 
   // Throws InputError naming the first impossible value.
   void validate() const;
-  // The backend this configuration selects, after the DEPTHTRACK_DEVICE default.
+  // The backend this configuration selects: `backend`, or reference when it is empty.
   std::string resolved_backend() const;
 };
 

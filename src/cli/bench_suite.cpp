@@ -4,6 +4,7 @@
 #include <depthtrack/tracker.hpp>
 
 #include "bench_rows.hpp"
+#include "cli/environment_defaults.hpp"
 #include "cli/step_bytes.hpp"
 #include "compute/queue.hpp"
 
@@ -67,6 +68,7 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
   TrackerConfig config;
   config.backend = target.backend;
   config.renderer = renderer_from_string(renderer);
+  config.gl_path = gl_path_from_environment();  // as demo and track take it (the library reads no environment)
   config.width = c.width;
   config.height = c.height;
   config.particles = c.particles;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/environment_defaults.hpp"
 #include "compute/backend.hpp"
 #include "compute/format_bytes.hpp"
 #include "compute/queue.hpp"
@@ -62,6 +63,7 @@ AtlasPath find_atlas_path([[maybe_unused]] const compute::DeviceInfo& d) {
     auto queue = compute::open_device(d.selector);
     render::GlContextOptions options;
     options.device_uuid = d.uuid;
+    options.path = render::GlContext::path_from_name(gl_path_from_environment());  // as demo and track would
     render::GlContext context(options);
     render::AtlasRenderer renderer(context, builtin_demo_mesh(), Camera::make(80, 60, 66, 66, 39.5, 29.5), 0.05, 6);
     renderer.reserve(1);

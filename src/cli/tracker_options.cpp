@@ -6,6 +6,7 @@
 #include <depthtrack/error.hpp>
 #include <sstream>
 
+#include "cli/environment_defaults.hpp"
 #include "compute/backend.hpp"
 
 namespace depthtrack::cli {
@@ -28,9 +29,12 @@ void TrackerOptions::add_to(CLI::App& command) {
   renderer_option =
       command.add_option("--renderer", renderer,
                          "Who draws the pose atlas for device backends: kernel (a compute kernel on the device itself, "
-                         "the fastest), gl (headless OpenGL; DEPTHTRACK_GL=egl-device|egl-surfaceless|osmesa picks the "
-                         "path) or cpu (the reference rasterizer on the host)");
+                         "the fastest), gl (headless OpenGL, the path --gl picks) or cpu (the reference rasterizer on "
+                         "the host)");
   renderer_option->capture_default_str();
+  gl_option = command.add_option("--gl", flags.gl_path,
+                                 "The gl renderer's headless OpenGL: auto (EGL device, EGL surfaceless, then OSMesa), "
+                                 "egl-device, egl-surfaceless or osmesa; default: $DEPTHTRACK_GL, else auto");
   particles_option = command.add_option("--particles", flags.particles, "Number of particles")->capture_default_str();
   resolution_option =
       command
@@ -61,6 +65,9 @@ TrackerConfig TrackerOptions::resolve() const {
   TrackerConfig c = config_file.empty() ? TrackerConfig{} : load_tracker_config(config_file);
   const auto given = [](const CLI::Option* option) { return option && option->count() > 0; };
   if (given(backend_option)) c.backend = flags.backend;
+  if (!given(backend_option) && c.backend.empty()) c.backend = device_from_environment();
+  if (given(gl_option)) c.gl_path = flags.gl_path;
+  if (!given(gl_option) && c.gl_path == "auto") c.gl_path = gl_path_from_environment();
   if (given(renderer_option)) c.renderer = renderer_from_string(renderer);
   if (given(particles_option)) c.particles = flags.particles;
   if (given(resolution_option)) std::tie(c.width, c.height) = parse_resolution(resolution);

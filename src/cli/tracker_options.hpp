@@ -14,13 +14,14 @@ struct TrackerOptions {
   std::string occlusion = "per-pixel-time";
   std::string renderer = "kernel";  // parsed by resolve() (renderer_from_string)
   std::string refine = "on";
-  CLI::Option *backend_option = nullptr, *renderer_option = nullptr, *particles_option = nullptr,
+  CLI::Option *backend_option = nullptr, *renderer_option = nullptr, *gl_option = nullptr, *particles_option = nullptr,
               *resolution_option = nullptr, *occlusion_option = nullptr, *refine_option = nullptr,
               *refine_iterations_option = nullptr, *seed_option = nullptr;
 
   void add_to(CLI::App& command);
   // The --config file's configuration (the defaults without one) with the flags given on the command
-  // line over it, validated; throws InputError for malformed values.
+  // line over it, validated; throws InputError for malformed values. Where neither names the backend or the
+  // GL path, $DEPTHTRACK_DEVICE and $DEPTHTRACK_GL do (cli/environment_defaults.hpp).
   TrackerConfig resolve() const;
 };
 

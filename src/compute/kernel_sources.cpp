@@ -34,4 +34,10 @@ std::string kernel_source(const std::string& file) {
   return out.str();
 }
 
+std::string program_prelude(const std::map<std::string, std::string>& embedded, const std::string& file) {
+  const auto it = embedded.find(file);
+  if (it == embedded.end()) throw BackendError("backend prelude '" + file + "' is not embedded");
+  return it->second + (it->second.empty() || it->second.back() == '\n' ? "" : "\n") + "#line 1\n";
+}
+
 }  // namespace depthtrack::compute

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "compute/device_info.hpp"
+#include "compute/native_handles.hpp"
 
 namespace depthtrack::compute {
 
@@ -91,6 +92,8 @@ class Queue {
  public:
   virtual ~Queue() = default;
   virtual const DeviceInfo& info() const = 0;
+  // The backend API's objects behind this queue (compute/native_handles.hpp); none by default.
+  virtual NativeHandles native_handles() const { return {}; }
 
   // Throws BackendError (naming the request and the device's limit) when the device cannot hold it.
   virtual std::unique_ptr<DeviceMemory> allocate(size_t bytes) = 0;
@@ -107,7 +110,8 @@ class Queue {
   virtual void copy(const DeviceMemory& source, size_t source_offset, DeviceMemory& destination,
                     size_t destination_offset, size_t bytes) = 0;
 
-  // Builds a program from OpenCL C source (see cl/dt_prelude.h for what both backends accept), with
+  // Builds a program from OpenCL C source (cl/dt_prelude.h's words; each backend puts its own prelude,
+  // src/compute/<name>/dt_prelude_<name>.h, before the source), with
   // -D definitions given as "NAME=VALUE" or "NAME". A failed build throws BackendError whose
   // message holds the device, the options and the compiler's log.
   virtual std::unique_ptr<Program> build(const std::string& name, const std::string& source,

@@ -55,9 +55,7 @@ bool probability(double v) {
 }  // namespace
 
 std::string TrackerConfig::resolved_backend() const {
-  if (!backend.empty()) return backend;
-  const char* env = std::getenv("DEPTHTRACK_DEVICE");
-  return env && *env ? env : "reference";
+  return backend.empty() ? "reference" : backend;
 }
 
 void TrackerConfig::validate() const {
@@ -73,6 +71,8 @@ void TrackerConfig::validate() const {
               occlusion.p_occluded_stays > occlusion.p_visible_to_occluded && occlusion.p_occluded_stays < 1,
           "occlusion transition probabilities need 0 <= b < a < 1");
   require(probability(occlusion.initial), "initial occlusion probability must be in [0, 1]");
+  require(gl_path == "auto" || gl_path == "egl-device" || gl_path == "egl-surfaceless" || gl_path == "osmesa",
+          "GL path '" + gl_path + "' is not auto, egl-device, egl-surfaceless or osmesa");
   require(std::isfinite(motion.damping) && motion.damping > 0 && motion.damping < 1, "damping must be in (0, 1)");
   require(std::isfinite(motion.sigma_linear) && motion.sigma_linear >= 0, "linear motion noise must be >= 0");
   require(std::isfinite(motion.sigma_angular) && motion.sigma_angular >= 0, "angular motion noise must be >= 0");

@@ -119,9 +119,9 @@ inline auto fields_of(const TrackerConfig*) {
       field("max_time_step", &S::max_time_step, "a longer gap between frames is propagated as this long (s)"),
       field("seed", &S::seed, "random seed: the same seed gives the same particles on every backend"),
       field("backend", &S::backend,
-            "reference, opencl, opencl:pocl, opencl:nvidia, opencl:<p>.<d>, cuda, cuda:<n>; empty: "
-            "$DEPTHTRACK_DEVICE, else reference"),
+            "reference, opencl, opencl:pocl, opencl:nvidia, opencl:<p>.<d>, cuda, cuda:<n>; empty: reference"),
       field("renderer", &S::renderer, "who draws the device filters' pose atlas: kernel, gl or cpu"),
+      field("gl_path", &S::gl_path, "the gl renderer's headless GL: auto, egl-device, egl-surfaceless or osmesa"),
       field("loss", &S::loss, "when an estimate counts as lost"),
       field("recovery", &S::recovery, "global search while lost"),
   };

@@ -1,4 +1,6 @@
-// Picks the hand-off per platform, best first, and keeps the reason each better one was passed over.
+// Picks the hand-off per platform, best first, and keeps the reason each better one was passed over. The
+// choice is by capability: which API's objects the queue's native handles hold, and what the device and GL
+// context offer; no backend is named.
 #include "interop/atlas_handoff.hpp"
 
 namespace depthtrack::interop {
@@ -20,10 +22,13 @@ std::unique_ptr<AtlasHandoff> make_opencl_gl_bridge_handoff(compute::Queue&, ren
 
 std::unique_ptr<AtlasHandoff> make_atlas_handoff(compute::Queue& queue, render::AtlasRenderer& renderer) {
   const compute::DeviceInfo& device = queue.info();
+  const compute::NativeHandles native = queue.native_handles();
   std::string reason;
-  if (device.backend == "cuda") {
+  if (native.cu_context) {
     if (auto cuda = make_cuda_gl_handoff(queue, renderer, reason)) return cuda;
     reason = "no CUDA-GL interop: " + reason;
+  } else if (!native.cl_context) {
+    reason = "the " + device.backend + " device offers no CUDA or OpenCL objects to share with GL";
   } else if (!device.gl_sharing) {
     std::string bridge;
     if (device.external_memory) {

@@ -20,12 +20,7 @@ int cpu_backend_threads(const std::string& backend) {
 }
 
 std::shared_ptr<Device> open_config_device(const TrackerConfig& config) {
-  try {
-    return Device::open(config.resolved_backend());
-  } catch (const InputError& e) {
-    if (!config.backend.empty()) throw;
-    throw InputError(e.what() + std::string(" (from DEPTHTRACK_DEVICE)"));
-  }
+  return Device::open(config.resolved_backend());
 }
 
 std::unique_ptr<FilterBackend> make_filter_backend(const Device& device, const Mesh& mesh, const Camera& working_camera,

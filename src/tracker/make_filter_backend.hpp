@@ -11,7 +11,7 @@
 
 namespace depthtrack {
 
-// The device a TrackerConfig::backend string names (after the DEPTHTRACK_DEVICE default); InputError
+// The device a TrackerConfig::backend string names (empty: reference); InputError
 // listing the names otherwise, saying when the name came from the environment.
 std::shared_ptr<Device> open_config_device(const TrackerConfig& config);
 // The filter on `device`: the reference (on a thread pool for cpu) or the device filter on its queue.

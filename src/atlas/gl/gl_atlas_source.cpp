@@ -9,17 +9,19 @@
 namespace depthtrack {
 
 namespace {
-// The GL context for a compute device: on the EGL device that is the same GPU where EGL can tell.
-render::GlContextOptions context_options(const compute::DeviceInfo& device) {
+// The GL context for a compute device: on the EGL device that is the same GPU where EGL can tell; only the
+// configuration's GL path, if it names one.
+render::GlContextOptions context_options(const compute::DeviceInfo& device, const TrackerConfig& config) {
   render::GlContextOptions options;
   options.device_uuid = device.uuid;
+  options.path = render::GlContext::path_from_name(config.gl_path);
   return options;
 }
 
 class GlAtlasSource final : public AtlasSource {
  public:
   GlAtlasSource(compute::Queue& queue, const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
-      : context_(context_options(queue.info())),
+      : context_(context_options(queue.info(), config)),
         renderer_(context_, mesh, camera, config.near_plane, config.observation.max_depth) {
     renderer_.reserve(config.particles);
     handoff_ = interop::make_atlas_handoff(queue, renderer_);

@@ -45,18 +45,17 @@ const char* GlContext::path_name(GlPath path) {
   return "?";
 }
 
-std::optional<GlPath> GlContext::path_from_environment() {
-  const char* value = std::getenv("DEPTHTRACK_GL");
-  if (!value || !*value) return std::nullopt;
+std::optional<GlPath> GlContext::path_from_name(const std::string& name) {
+  if (name == "auto") return std::nullopt;
   for (GlPath p : all_paths)
-    if (std::string(value) == path_name(p)) return p;
-  throw InputError(std::string("DEPTHTRACK_GL=") + value +
-                   " is not a GL path; valid choices: egl-device, egl-surfaceless, osmesa (or unset for all in turn)");
+    if (name == path_name(p)) return p;
+  throw InputError("'" + name +
+                   "' is not a GL path; valid choices: egl-device, egl-surfaceless, osmesa (or auto for all in turn)");
 }
 
 GlContext::GlContext(const GlContextOptions& options) {
   std::vector<GlPath> paths(std::begin(all_paths), std::end(all_paths));
-  if (const auto only = options.path ? options.path : path_from_environment()) paths = {*only};
+  if (options.path) paths = {*options.path};
   std::string reasons;
   for (GlPath p : paths) {
     try {

@@ -1,7 +1,7 @@
 #pragma once
 // A headless OpenGL core context (>= 3.3, 4.5 where offered), made current on the constructing
-// thread. Paths, in order: EGL device platform, EGL surfaceless (Mesa), OSMesa. DEPTHTRACK_GL=
-// egl-device|egl-surfaceless|osmesa restricts the search to one path. No window, no X server:
+// thread. Paths, in order: EGL device platform, EGL surfaceless (Mesa), OSMesa; GlContextOptions::path
+// (TrackerConfig::gl_path) restricts the search to one. No window, no X server:
 // everything renders into framebuffer objects.
 #include <array>
 #include <memory>
@@ -17,7 +17,7 @@ class GlPlatform;
 enum class GlPath { EglDevice, EglSurfaceless, OSMesa };
 
 struct GlContextOptions {
-  std::optional<GlPath> path;  // only this path; unset: DEPTHTRACK_GL, else all in order
+  std::optional<GlPath> path;  // only this path; unset: all in order
   std::optional<int> device;   // EGL device index; unset: the first that works
   // Prefer the EGL device with this UUID (EGL_EXT_device_persistent_id): the compute device's GPU.
   std::optional<std::array<unsigned char, 16>> device_uuid;
@@ -44,10 +44,10 @@ class GlContext {
   bool has_extension(const std::string& name) const;
   GlProc proc_address(const char* name) const;
 
-  // "egl-device", "egl-surfaceless", "osmesa": the DEPTHTRACK_GL spellings.
+  // "egl-device", "egl-surfaceless", "osmesa": the TrackerConfig::gl_path spellings.
   static const char* path_name(GlPath path);
-  // DEPTHTRACK_GL parsed; InputError naming the valid choices for anything else.
-  static std::optional<GlPath> path_from_environment();
+  // A gl_path parsed ("auto": unset); InputError naming the valid choices for anything else.
+  static std::optional<GlPath> path_from_name(const std::string& name);
 
  private:
   std::unique_ptr<GlPlatform> platform_;

@@ -56,7 +56,7 @@ std::string binary_cache_key(const DeviceInfo& device, const std::vector<std::st
       "\nnvrtc: " + (nvrtc ? std::to_string(nvrtc->major) + "." + std::to_string(nvrtc->minor) : "absent") +
       "\ndefinitions:\n";
   for (const std::string& definition : definitions) key += std::to_string(definition.size()) + ":" + definition + "\n";
-  return key + "source:\n" + source;
+  return key + compile_signature() + "\nsource:\n" + source;
 }
 
 std::unique_ptr<CudaProgram> build_cached(const std::optional<ProgramBinaryCache>& cache,

@@ -22,6 +22,7 @@ class Context {
   const DriverApi& api() const { return api_; }
   const DeviceInfo& info() const { return info_; }
   CUdevice device() const { return device_; }
+  CUcontext get() const { return context_; }
   int compute_capability() const { return compute_capability_; }
   const LaunchLimits& limits() const { return limits_; }
   // "NVIDIA H100 80GB HBM3 (cuda:0)", for messages.

@@ -33,11 +33,16 @@ CudaMemory::~CudaMemory() {
 }
 
 const CudaMemory& cuda_memory(const DeviceMemory& memory, const Context& context, const std::string& use) {
+  return cuda_memory(memory, context.device(), context.where(), use);
+}
+
+const CudaMemory& cuda_memory(const DeviceMemory& memory, CUdevice device, const std::string& where,
+                              const std::string& use) {
   const auto* cuda = dynamic_cast<const CudaMemory*>(&memory);
-  if (!cuda) throw InputError(use + " on " + context.where() + ": the memory is not CUDA memory");
+  if (!cuda) throw InputError(use + " on " + where + ": the memory is not CUDA memory");
   // Queues of one device share its primary context, so their memory is interchangeable.
-  if (cuda->context().device() != context.device())
-    throw InputError(use + " on " + context.where() + ": the memory belongs to " + cuda->context().where());
+  if (cuda->context().device() != device)
+    throw InputError(use + " on " + where + ": the memory belongs to " + cuda->context().where());
   return *cuda;
 }
 

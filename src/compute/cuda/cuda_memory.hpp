@@ -26,5 +26,8 @@ class CudaMemory final : public DeviceMemory {
 
 // `memory` as CUDA memory of `context`; InputError when it belongs to another backend or device.
 const CudaMemory& cuda_memory(const DeviceMemory& memory, const Context& context, const std::string& use);
+// The same for the device a queue's native handles name (NativeHandles::cu_device); `where` names it.
+const CudaMemory& cuda_memory(const DeviceMemory& memory, CUdevice device, const std::string& where,
+                              const std::string& use);
 
 }  // namespace depthtrack::compute::cuda

@@ -6,8 +6,12 @@
 #include "compute/cuda/cuda_errors.hpp"
 #include "compute/cuda/cuda_nvrtc_api.hpp"
 #include "compute/cuda/cuda_source_text.hpp"
+#include "compute/kernel_sources.hpp"
 
 namespace depthtrack::compute::cuda {
+
+const std::map<std::string, std::string>& prelude_files();  // dt_prelude_cuda.h, embedded by CMake
+
 namespace {
 
 // Owns an nvrtcProgram so that every exit path destroys it.
@@ -61,6 +65,18 @@ std::string program_output(const NvrtcApi& api, nvrtcProgram program, bool cubin
   return out;
 }
 
+// OpenCL C's precision, which the kernels are written for and the equivalence tests hold OpenCL to:
+// division and square root to a few ulp. NVRTC's default rounds both correctly, in a multi-instruction
+// sequence per `/` that the refinement's one work-group and the likelihood pay for on every pixel.
+std::vector<std::string> fixed_options() {
+  return {"--std=c++17", "--prec-div=false", "--prec-sqrt=false"};
+}
+
+const std::string& cuda_prelude() {
+  static const std::string prelude = program_prelude(prelude_files(), "dt_prelude_cuda.h");
+  return prelude;
+}
+
 CompiledImage compile(const std::string& name, const std::string& source, const std::vector<std::string>& definitions,
                       int compute_capability, bool want_cubin, const std::string& where) {
   const NvrtcApi& api = require_nvrtc();
@@ -73,11 +89,8 @@ CompiledImage compile(const std::string& name, const std::string& source, const 
   CompiledImage result;
   result.is_cubin = want_cubin && arch == compute_capability && api.nvrtcGetCUBIN && api.nvrtcGetCUBINSize;
   result.target = (result.is_cubin ? "sm_" : "compute_") + std::to_string(arch);
-  // OpenCL C's precision, which the kernels are written for and the equivalence tests hold OpenCL to:
-  // division and square root to a few ulp. NVRTC's default rounds both correctly, in a multi-instruction
-  // sequence per `/` that the refinement's one work-group and the likelihood pay for on every pixel.
-  std::vector<std::string> options = {"--std=c++17", "--gpu-architecture=" + result.target, "--prec-div=false",
-                                      "--prec-sqrt=false"};
+  std::vector<std::string> options = fixed_options();
+  options.push_back("--gpu-architecture=" + result.target);
   for (const std::string& definition : definitions) {
     if (definition.empty() || definition.front() == '=')
       throw InputError("program '" + name + "': definition '" + definition + "' is not NAME or NAME=VALUE");
@@ -85,7 +98,8 @@ CompiledImage compile(const std::string& name, const std::string& source, const 
   }
   for (const std::string& option : options) result.options += (result.options.empty() ? "" : " ") + option;
 
-  NvrtcProgram program(api, source, name + ".cu");
+  // OpenCL C's words in CUDA's terms first (dt_prelude_cuda.h); the log's line numbers are still the source's.
+  NvrtcProgram program(api, cuda_prelude() + source, name + ".cu");
   std::vector<const char*> argv;
   for (const std::string& option : options) argv.push_back(option.c_str());
   const nvrtcResult status = api.nvrtcCompileProgram(program.get(), static_cast<int>(argv.size()), argv.data());
@@ -107,6 +121,12 @@ int choose_arch(int compute_capability, const std::vector<int>& supported) {
   for (const int arch : supported)
     if (arch <= compute_capability) best = std::max(best, arch);
   return best;
+}
+
+std::string compile_signature() {
+  std::string signature = "options:";
+  for (const std::string& option : fixed_options()) signature += " " + option;
+  return signature + "\nprelude:\n" + cuda_prelude();
 }
 
 CompiledImage compile_for_device(const std::string& program, const std::string& source,

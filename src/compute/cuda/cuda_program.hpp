@@ -1,7 +1,7 @@
 #pragma once
 // Compiling cl/ kernel text as CUDA C++ with NVRTC. Needs no GPU and no driver, only NVRTC, so
 // these functions are usable (and tested) on machines without an NVIDIA GPU. The text is compiled
-// as it is: dt_prelude.h sees __CUDACC_RTC__ and maps the OpenCL C words; __OPENCL_VERSION__ stays
+// after dt_prelude_cuda.h (this folder), which maps the OpenCL C words; __OPENCL_VERSION__ stays
 // undefined.
 #include <string>
 #include <vector>
@@ -15,6 +15,10 @@ struct CompiledImage {
   std::string target;   // "sm_90" (cubin) or "compute_90" (PTX the driver compiles)
   std::string options;  // the NVRTC options, for messages
 };
+
+// What a compiled image depends on besides the source, the definitions, the device and NVRTC's
+// version: the fixed options and the CUDA prelude (the program binary cache keys on it).
+std::string compile_signature();
 
 // Compiles for a device of compute capability `compute_capability` (major * 10 + minor, e.g. 90):
 // a cubin for exactly that architecture when NVRTC knows it, else PTX for the newest architecture

@@ -93,6 +93,14 @@ void CudaQueue::copy(const DeviceMemory& source, size_t source_offset, DeviceMem
                   "cuMemcpyDtoDAsync");
 }
 
+NativeHandles CudaQueue::native_handles() const {
+  NativeHandles handles;
+  handles.cu_context = context_->get();
+  handles.cu_stream = stream_;
+  handles.cu_device = context_->device();
+  return handles;
+}
+
 std::unique_ptr<Program> CudaQueue::build(const std::string& name, const std::string& source,
                                           const std::vector<std::string>& definitions) {
   // The environment is read per build, so a test (or a program) can point it elsewhere or turn it off.

@@ -31,8 +31,8 @@ std::unique_ptr<ClProgram> from_binary(cl_context context, cl_device_id device, 
 
 std::string binary_cache_key(const DeviceInfo& device, const std::string& options, const std::string& source) {
   return "platform: " + device.platform + "\nvendor: " + device.vendor + "\ndevice: " + device.name +
-         "\ndriver: " + device.driver + "\nversion: " + device.version + "\noptions: " + options + "\nsource:\n" +
-         source;
+         "\ndriver: " + device.driver + "\nversion: " + device.version + "\noptions: " + options + "\nprelude:\n" +
+         opencl_prelude() + "\nsource:\n" + source;
 }
 
 std::unique_ptr<ClProgram> build_cached(const std::optional<ProgramBinaryCache>& cache, cl_context context,

@@ -7,11 +7,19 @@
 #include <regex>
 #include <sstream>
 
+#include "compute/kernel_sources.hpp"
 #include "compute/opencl/cl_errors.hpp"
 #include "compute/opencl/cl_kernel.hpp"
 #include "compute/source_excerpt.hpp"
 
 namespace depthtrack::compute::opencl {
+
+const std::map<std::string, std::string>& prelude_files();  // dt_prelude_opencl.h, embedded by CMake
+
+const std::string& opencl_prelude() {
+  static const std::string prelude = program_prelude(prelude_files(), "dt_prelude_opencl.h");
+  return prelude;
+}
 
 std::string build_options(const std::vector<std::string>& definitions) {
   std::string options = "-cl-std=CL1.2";
@@ -78,10 +86,12 @@ std::unique_ptr<ClProgram> build_program(cl_context context, cl_device_id device
                                          const std::string& name, const std::string& source,
                                          const std::vector<std::string>& definitions) {
   const std::string options = build_options(definitions);
-  const char* text = source.c_str();
-  const size_t length = source.size();
+  // OpenCL C's words first (dt_prelude_opencl.h); the build log's line numbers are still the source's.
+  const std::string& prelude = opencl_prelude();
+  const char* texts[] = {prelude.c_str(), source.c_str()};
+  const size_t lengths[] = {prelude.size(), source.size()};
   cl_int status = CL_SUCCESS;
-  ProgramHandle program(clCreateProgramWithSource(context, 1, &text, &length, &status));
+  ProgramHandle program(clCreateProgramWithSource(context, 2, texts, lengths, &status));
   check(status, "clCreateProgramWithSource", device_name, "program '" + name + "'");
   status = clBuildProgram(program.get(), 1, &device, options.c_str(), nullptr, nullptr);
   if (status != CL_SUCCESS) {

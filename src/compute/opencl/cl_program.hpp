@@ -24,6 +24,9 @@ class ClProgram final : public Program {
   bool from_binary_;
 };
 
+// OpenCL C's words (dt_prelude_opencl.h), put before every program's source; the binary cache keys on it.
+const std::string& opencl_prelude();
+
 // "-cl-std=CL1.2 -D <definition>..."; InputError for a definition with a blank or quote in it.
 std::string build_options(const std::vector<std::string>& definitions);
 

@@ -126,6 +126,14 @@ void ClQueue::copy(const DeviceMemory& source, size_t source_offset, DeviceMemor
         "clEnqueueCopyBuffer", info_.name);
 }
 
+NativeHandles ClQueue::native_handles() const {
+  NativeHandles handles;
+  handles.cl_context = context_.get();
+  handles.cl_device = device_;
+  handles.cl_queue = queue_.get();
+  return handles;
+}
+
 std::unique_ptr<Program> ClQueue::build(const std::string& name, const std::string& source,
                                         const std::vector<std::string>& definitions) {
   // The environment is read per build, so a test (or a program) can point it elsewhere or turn it off.

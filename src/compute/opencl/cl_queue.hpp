@@ -12,6 +12,7 @@ class ClQueue final : public Queue {
   ClQueue(cl_platform_id platform, cl_device_id device, DeviceInfo info);
 
   const DeviceInfo& info() const override { return info_; }
+  NativeHandles native_handles() const override;
   std::unique_ptr<DeviceMemory> allocate(size_t bytes) override;
   void write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) override;
   void read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) override;

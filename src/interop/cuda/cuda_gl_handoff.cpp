@@ -4,17 +4,32 @@
 // stream. Mapping orders the CUDA work after the GL commands issued before it, and unmapping
 // orders later GL commands after the CUDA work, so no host wait is needed anywhere.
 #include <depthtrack/error.hpp>
+#include <string>
+#include <utility>
 
+#include "compute/cuda/cuda_driver_api.hpp"
 #include "compute/cuda/cuda_errors.hpp"
 #include "compute/cuda/cuda_memory.hpp"
-#include "compute/cuda/cuda_queue.hpp"
 #include "interop/atlas_handoff.hpp"
 
 namespace depthtrack::interop {
 
 namespace {
-using compute::cuda::CudaQueue;
 using compute::cuda::DriverApi;
+
+// The queue's CUDA objects, from its native handles (compute/native_handles.hpp), with the calls the
+// hand-off makes on them.
+struct CudaSide {
+  const DriverApi& api;
+  CUcontext context;
+  CUstream stream;
+  CUdevice device;
+  std::string where;  // "NVIDIA H100 80GB HBM3 (cuda:0)", for messages
+
+  void make_current() const { check(api.cuCtxSetCurrent(context), "cuCtxSetCurrent"); }
+  bool try_make_current() const noexcept { return api.cuCtxSetCurrent(context) == CUDA_SUCCESS; }
+  void check(CUresult status, const char* call) const { compute::cuda::check(status, call, where); }
+};
 
 // cudaGL.h's entry points, declared here with GL's types from our own GL header (see
 // compute::cuda::driver_symbol); the names are those cudaGL.h maps to.
@@ -35,8 +50,8 @@ bool load_gl_interop(const DriverApi& api, GlInteropApi& gl, std::string& why_no
   gl.register_image = reinterpret_cast<RegisterImage>(compute::cuda::driver_symbol("cuGraphicsGLRegisterImage"));
   gl.gl_devices = reinterpret_cast<GetGlDevices>(compute::cuda::driver_symbol("cuGLGetDevices_v2"));
   if (!gl.register_buffer || !gl.register_image || !gl.gl_devices || !api.cuGraphicsMapResources ||
-      !api.cuGraphicsUnmapResources || !api.cuGraphicsUnregisterResource ||
-      !api.cuGraphicsSubResourceGetMappedArray || !api.cuGraphicsResourceGetMappedPointer || !api.cuMemcpy2DAsync) {
+      !api.cuGraphicsUnmapResources || !api.cuGraphicsUnregisterResource || !api.cuGraphicsSubResourceGetMappedArray ||
+      !api.cuGraphicsResourceGetMappedPointer || !api.cuMemcpy2DAsync) {
     why_not = "the CUDA driver lacks the GL interop entry points";
     return false;
   }
@@ -45,9 +60,9 @@ bool load_gl_interop(const DriverApi& api, GlInteropApi& gl, std::string& why_no
 
 class CudaGlHandoff final : public AtlasHandoff {
  public:
-  CudaGlHandoff(CudaQueue& queue, render::AtlasRenderer& renderer, const GlInteropApi& gl)
-      : queue_(queue), renderer_(renderer), api_(queue.context().api()) {
-    const auto& context = queue_.context();
+  CudaGlHandoff(CudaSide cuda, render::AtlasRenderer& renderer, const GlInteropApi& gl)
+      : cuda_(std::move(cuda)), renderer_(renderer), api_(cuda_.api) {
+    const CudaSide& context = cuda_;
     context.make_current();
     renderer_.context().make_current();
     try {
@@ -68,11 +83,12 @@ class CudaGlHandoff final : public AtlasHandoff {
   ~CudaGlHandoff() override { release(); }
 
   void send_poses(const compute::Buffer<float>& states) override {
-    const auto& context = queue_.context();
-    const auto& source = compute::cuda::cuda_memory(states.memory(), context, "CUDA-GL pose hand-off");
+    const CudaSide& context = cuda_;
+    const auto& source =
+        compute::cuda::cuda_memory(states.memory(), context.device, context.where, "CUDA-GL pose hand-off");
     context.make_current();
     renderer_.context().make_current();
-    CUstream stream = queue_.stream();
+    CUstream stream = context.stream;
     context.check(api_.cuGraphicsMapResources(1, &poses_, stream), "cuGraphicsMapResources (pose buffer)");
     CUdeviceptr target = 0;
     size_t bytes = 0;
@@ -89,15 +105,16 @@ class CudaGlHandoff final : public AtlasHandoff {
   }
 
   void receive_atlas(compute::Buffer<float>& atlas) override {
-    const auto& context = queue_.context();
-    const auto& target = compute::cuda::cuda_memory(atlas.memory(), context, "CUDA-GL atlas hand-off");
+    const CudaSide& context = cuda_;
+    const auto& target =
+        compute::cuda::cuda_memory(atlas.memory(), context.device, context.where, "CUDA-GL atlas hand-off");
     const render::AtlasLayout& layout = renderer_.layout();
     if (atlas.size() < layout.floats())
       throw InputError("CUDA-GL atlas hand-off: the atlas buffer holds " + std::to_string(atlas.size()) +
                        " floats, the pages " + std::to_string(layout.floats()));
     context.make_current();
     renderer_.context().make_current();
-    CUstream stream = queue_.stream();
+    CUstream stream = context.stream;
     const unsigned count = static_cast<unsigned>(pages_.size());
     context.check(api_.cuGraphicsMapResources(count, pages_.data(), stream), "cuGraphicsMapResources (atlas pages)");
     CUresult status = CUDA_SUCCESS;
@@ -128,14 +145,14 @@ class CudaGlHandoff final : public AtlasHandoff {
 
  private:
   void release() noexcept {
-    if (!queue_.context().try_make_current()) return;
+    if (!cuda_.try_make_current()) return;
     for (CUgraphicsResource r : pages_) api_.cuGraphicsUnregisterResource(r);
     if (poses_) api_.cuGraphicsUnregisterResource(poses_);
     pages_.clear();
     poses_ = nullptr;
   }
 
-  CudaQueue& queue_;
+  CudaSide cuda_;
   render::AtlasRenderer& renderer_;
   const DriverApi& api_;
   CUgraphicsResource poses_ = nullptr;
@@ -145,31 +162,34 @@ class CudaGlHandoff final : public AtlasHandoff {
 
 std::unique_ptr<AtlasHandoff> make_cuda_gl_handoff(compute::Queue& queue, render::AtlasRenderer& renderer,
                                                    std::string& why_not) {
-  auto* cuda = dynamic_cast<CudaQueue*>(&queue);
-  if (!cuda) {
+  const compute::NativeHandles native = queue.native_handles();
+  if (!native.cu_context) {
     why_not = "not a CUDA device";
     return nullptr;
   }
+  const DriverApi& api = compute::cuda::require_driver();  // loaded: the queue runs on it
+  CudaSide cuda{api, static_cast<CUcontext>(native.cu_context), static_cast<CUstream>(native.cu_stream),
+                static_cast<CUdevice>(native.cu_device), queue.info().name + " (" + queue.info().selector + ")"};
   GlInteropApi gl;
-  if (!load_gl_interop(cuda->context().api(), gl, why_not)) return nullptr;
-  cuda->context().make_current();
+  if (!load_gl_interop(api, gl, why_not)) return nullptr;
+  cuda.make_current();
   renderer.context().make_current();
   // The GL context must run on the queue's GPU (llvmpipe, or another GPU's EGL device, does not).
   unsigned int count = 0;
   CUdevice devices[16] = {};
   const CUresult status = gl.gl_devices(&count, devices, 16, kAllGlDevices);
   if (status != CUDA_SUCCESS) {
-    why_not = "cuGLGetDevices: the GL context is not on an NVIDIA GPU (" +
-              compute::cuda::cuda_error_text(cuda->context().api(), status) + ")";
+    why_not =
+        "cuGLGetDevices: the GL context is not on an NVIDIA GPU (" + compute::cuda::cuda_error_text(api, status) + ")";
     return nullptr;
   }
   bool same = false;
-  for (unsigned i = 0; i < count && i < 16; ++i) same = same || devices[i] == cuda->context().device();
+  for (unsigned i = 0; i < count && i < 16; ++i) same = same || devices[i] == cuda.device;
   if (!same) {
-    why_not = "the GL context runs on another GPU than " + cuda->context().where();
+    why_not = "the GL context runs on another GPU than " + cuda.where;
     return nullptr;
   }
-  return std::make_unique<CudaGlHandoff>(*cuda, renderer, gl);
+  return std::make_unique<CudaGlHandoff>(std::move(cuda), renderer, gl);
 }
 
 }  // namespace depthtrack::interop

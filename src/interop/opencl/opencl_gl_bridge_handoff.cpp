@@ -14,7 +14,6 @@
 namespace depthtrack::interop {
 
 namespace {
-using compute::opencl::ClQueue;
 
 // GL_EXT_memory_object(_fd), declared here: glcorearb.h does not carry them.
 constexpr GLenum kOpaqueFd = 0x9586;  // GL_HANDLE_TYPE_OPAQUE_FD_EXT
@@ -27,8 +26,8 @@ struct GlMemoryApi {
 
 class OpenclGlBridgeHandoff final : public AtlasHandoff {
  public:
-  OpenclGlBridgeHandoff(ClQueue& queue, render::AtlasRenderer& renderer, std::unique_ptr<ExportableMemory> memory,
-                        const GlMemoryApi& api)
+  OpenclGlBridgeHandoff(compute::Queue& queue, render::AtlasRenderer& renderer,
+                        std::unique_ptr<ExportableMemory> memory, const GlMemoryApi& api)
       : queue_(queue), renderer_(renderer), memory_(std::move(memory)), api_(api) {
     render::GlContext& context = renderer_.context();
     context.make_current();
@@ -91,7 +90,7 @@ class OpenclGlBridgeHandoff final : public AtlasHandoff {
     pack_buffer_ = gl_memory_ = 0;
   }
 
-  ClQueue& queue_;
+  compute::Queue& queue_;
   render::AtlasRenderer& renderer_;
   std::unique_ptr<ExportableMemory> memory_;
   GlMemoryApi api_;
@@ -108,9 +107,9 @@ F gl_entry(render::GlContext& context, const char* name) {
 
 std::unique_ptr<AtlasHandoff> make_opencl_gl_bridge_handoff(compute::Queue& queue, render::AtlasRenderer& renderer,
                                                             std::string& why_not) {
-  auto* cl = dynamic_cast<ClQueue*>(&queue);
   const auto& extensions = queue.info().extensions;
-  if (!cl || std::find(extensions.begin(), extensions.end(), "cl_khr_external_memory_opaque_fd") == extensions.end()) {
+  if (!queue.native_handles().cl_context ||
+      std::find(extensions.begin(), extensions.end(), "cl_khr_external_memory_opaque_fd") == extensions.end()) {
     why_not = "the OpenCL device lacks cl_khr_external_memory_opaque_fd";
     return nullptr;
   }
@@ -132,7 +131,7 @@ std::unique_ptr<AtlasHandoff> make_opencl_gl_bridge_handoff(compute::Queue& queu
   auto memory = ExportableMemory::make(queue.info().uuid, renderer.layout().floats() * sizeof(float), why_not);
   if (!memory) return nullptr;
   try {
-    return std::make_unique<OpenclGlBridgeHandoff>(*cl, renderer, std::move(memory), api);
+    return std::make_unique<OpenclGlBridgeHandoff>(queue, renderer, std::move(memory), api);
   } catch (const BackendError& e) {
     why_not = e.what();
     return nullptr;

@@ -1,0 +1,39 @@
+/* OpenCL C's words in CUDA's terms, for the kernels under cl/ (cl/dt_prelude.h holds host C++'s and the
+ * shared ones). The CUDA backend puts this text before every program NVRTC compiles (cuda_program.cpp), so
+ * cl/ names no backend; DT_DEVICE_PRELUDE tells cl/dt_prelude.h that a device's words are here. */
+#define DT_DEVICE_PRELUDE 1
+typedef unsigned int uint;
+typedef unsigned long long ulong;
+typedef unsigned int dt_u32;
+typedef unsigned long long dt_u64;
+#define DT_FN __device__ __host__ inline
+#define DT_DEVICE_FN __device__ inline
+#define DT_LOCAL_PTR /* CUDA pointers into shared memory are generic */
+#define __kernel extern "C" __global__
+#define __global
+#define __local __shared__
+#define restrict __restrict__
+#define CLK_LOCAL_MEM_FENCE 1
+#define CLK_GLOBAL_MEM_FENCE 2
+#define barrier(flags) __syncthreads()
+__device__ inline uint dt_dim3(uint3 v, uint d) {
+  return d == 0 ? v.x : (d == 1 ? v.y : v.z);
+}
+__device__ inline uint dt_dim3(dim3 v, uint d) {
+  return d == 0 ? v.x : (d == 1 ? v.y : v.z);
+}
+#define get_local_id(d) dt_dim3(threadIdx, (d))
+#define get_group_id(d) dt_dim3(blockIdx, (d))
+#define get_local_size(d) dt_dim3(blockDim, (d))
+#define get_num_groups(d) dt_dim3(gridDim, (d))
+#define get_global_id(d) (get_group_id(d) * get_local_size(d) + get_local_id(d))
+#define get_global_size(d) (get_num_groups(d) * get_local_size(d))
+#define dt_mulhi(a, b) __umulhi(DT_CAST(dt_u32, a), DT_CAST(dt_u32, b))
+#define dt_logf logf
+#define dt_sqrtf sqrtf
+#define dt_cospif cospif
+#define dt_sinpif sinpif
+#define dt_divide(a, b) __fdividef((a), (b)) /* 2 ulp; CUDA's `/` rounds correctly, and slowly */
+#define dt_as_uint __float_as_uint
+#define dt_as_float __uint_as_float
+#define dt_atomic_min_u32(p, v) atomicMin((p), (v))

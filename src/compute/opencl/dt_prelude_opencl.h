@@ -1,0 +1,18 @@
+/* OpenCL C's words for the kernels under cl/ (cl/dt_prelude.h holds host C++'s and the shared ones). The
+ * OpenCL backend puts this text before every program it builds (opencl_prelude.cpp), so cl/ names no
+ * backend; DT_DEVICE_PRELUDE tells cl/dt_prelude.h that a device's words are here. */
+#define DT_DEVICE_PRELUDE 1
+typedef uint dt_u32;
+typedef ulong dt_u64;
+#define DT_FN inline
+#define DT_DEVICE_FN inline
+#define DT_LOCAL_PTR __local /* a pointer parameter into work-group memory */
+#define dt_mulhi(a, b) mul_hi(DT_CAST(dt_u32, a), DT_CAST(dt_u32, b))
+#define dt_logf log
+#define dt_sqrtf sqrt
+#define dt_cospif cospi
+#define dt_sinpif sinpi
+#define dt_divide(a, b) ((a) / (b))                  /* float division to OpenCL's default 2.5 ulp */
+#define dt_as_uint as_uint                           /* a float's bits */
+#define dt_as_float as_float                         /* the float of some bits */
+#define dt_atomic_min_u32(p, v) atomic_min((p), (v)) /* 32-bit uint, global or local memory */
