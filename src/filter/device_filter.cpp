@@ -279,7 +279,10 @@ Estimate DeviceFilter::update(const DepthImage& depth, double dt) {
   weighed_in_scratch_ = true;
 
   if (propagated) e.timings.propagate_ms = propagated->elapsed_ms();
-  if (rendered) e.timings.render_ms += rendered->elapsed_ms();
+  if (rendered) {
+    e.timings.render_ms += rendered->elapsed_ms();
+    e.timings.render_on_device = true;
+  }
   e.timings.weigh_ms = weighed->elapsed_ms();
   e.timings.resample_ms = summarized->elapsed_ms();
   for (const auto& event : resampling) e.timings.resample_ms += event->elapsed_ms();
