@@ -4,15 +4,16 @@
 #include <depthtrack/error.hpp>
 #include <depthtrack/mesh.hpp>
 #include <iostream>
-#include <random>
 
 #include "atlas/gl/atlas_renderer.hpp"
 #include "compute/buffer.hpp"
 #include "device_support.hpp"
 #include "interop/atlas_handoff.hpp"
-#include "model/particle_packing.hpp"
+#include "interop_support.hpp"
 
 using namespace depthtrack;
+using test::random_particles;
+using test::through;
 
 namespace {
 
@@ -25,31 +26,6 @@ std::unique_ptr<render::GlContext> context_or_skip() {
     std::cout << "SKIPPED: no OpenGL context: " << e.what() << "\n";
     return nullptr;
   }
-}
-
-std::vector<model::ParticleState> random_particles(int count, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> gauss;
-  std::vector<model::ParticleState> particles(static_cast<size_t>(count));
-  for (auto& p : particles) {
-    p.pose = Pose(Eigen::Vector3d(0.05 * gauss(rng), 0.05 * gauss(rng), 0.7 + 0.05 * gauss(rng)),
-                  Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng)));
-    p.linear_velocity = Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));  // must not disturb the pose
-  }
-  return particles;
-}
-
-// Renders `particles` through `handoff` (poses from device memory) and returns the atlas buffer.
-std::vector<float> through(interop::AtlasHandoff& handoff, compute::Queue& queue, render::AtlasRenderer& renderer,
-                           const std::vector<model::ParticleState>& particles) {
-  compute::Buffer<float> states(queue, particles.size() * DT_STATE_STRIDE);
-  states.upload(pack_particles(particles));
-  compute::Buffer<float> atlas(queue, renderer.layout().floats());
-  atlas.upload(std::vector<float>(atlas.size(), -1.0f));
-  handoff.send_poses(states);
-  renderer.draw();
-  handoff.receive_atlas(atlas);
-  return atlas.download();
 }
 
 }  // namespace

@@ -16,10 +16,14 @@ namespace depthtrack {
 
 // Each step's time in the last update, ms. Reference: host clock. Compute backends enqueue the frame without waiting
 // and read device times from its events after it: propagate, weigh, resample (summarize and the resampling kernels,
-// run every frame), refine (refinement + cloud shift), render with renderer kernel. Host wall time: render with gl or
-// cpu, handoff (as far as the host waits for it; 0 with kernel and on the reference), total_ms and search_ms.
+// run every frame), refine (refinement + cloud shift), render with renderer kernel, and with gl where GL has timer
+// queries (GL_TIME_ELAPSED; render_on_device says which). Host wall time: render with cpu, or gl without timer
+// queries (around a glFinish), handoff (as far as the host waits for it; with gl and timer queries it includes the
+// wait for GL to finish the draw; 0 with kernel and on the reference), total_ms and search_ms.
 struct StepTimings {
   double propagate_ms = 0, render_ms = 0, handoff_ms = 0, weigh_ms = 0, resample_ms = 0, total_ms = 0;
+  // render_ms is the device's (compute event or GL timer query) rather than the host clock's.
+  bool render_on_device = false;
   double refine_ms = 0;
   // Global search (initialize_global, or recovery while lost), wall-clock; included in total_ms.
   double search_ms = 0;

@@ -12,6 +12,8 @@ void bind_estimate(py::module_& m) {
   py::class_<StepTimings>(m, "StepTimings", "Milliseconds each step of the frame took")
       .def_readonly("propagate_ms", &StepTimings::propagate_ms)
       .def_readonly("render_ms", &StepTimings::render_ms)
+      .def_readonly("render_on_device", &StepTimings::render_on_device,
+                    "render_ms from a device event or GL timer query (True) or the host clock (False)")
       .def_readonly("handoff_ms", &StepTimings::handoff_ms)
       .def_readonly("weigh_ms", &StepTimings::weigh_ms)
       .def_readonly("resample_ms", &StepTimings::resample_ms)

@@ -298,7 +298,10 @@ Estimate DeviceFilter::collect() {
   weighed_in_scratch_ = true;
 
   if (p->propagated) e.timings.propagate_ms = p->propagated->elapsed_ms();
-  if (p->rendered) e.timings.render_ms += p->rendered->elapsed_ms();
+  if (p->rendered) {
+    e.timings.render_ms += p->rendered->elapsed_ms();
+    e.timings.render_on_device = true;
+  }
   e.timings.weigh_ms = p->weighed->elapsed_ms();
   e.timings.resample_ms = p->summarized->elapsed_ms();
   for (const auto& event : p->resampling) e.timings.resample_ms += event->elapsed_ms();

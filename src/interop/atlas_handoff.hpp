@@ -3,6 +3,7 @@
 // per platform (make_atlas_handoff) and reported by name():
 //   CUDA-GL interop     the pages and the pose buffer are mapped into CUDA: device-to-device copies only;
 //   GL-OpenCL bridge    OpenCL without gl_sharing (NVIDIA): GL and OpenCL import memory CUDA exports;
+//   cl_khr_gl_sharing   OpenCL on a context created against the GL context: GL objects used in place;
 //   staged copy         poses via the host, each page read once straight into the mapped atlas buffer.
 #include <memory>
 #include <string>
@@ -38,6 +39,10 @@ std::unique_ptr<AtlasHandoff> make_cuda_gl_handoff(compute::Queue& queue, render
 // OpenCL without cl_khr_gl_sharing, through memory CUDA exports (needs the NVIDIA driver's CUDA).
 std::unique_ptr<AtlasHandoff> make_opencl_gl_bridge_handoff(compute::Queue& queue, render::AtlasRenderer& renderer,
                                                             std::string& why_not);
+// OpenCL with cl_khr_gl_sharing, on a queue whose context was created against the renderer's GL
+// context (interop/gl_sharing/gl_shared_queue.hpp); null, saying why, otherwise.
+std::unique_ptr<AtlasHandoff> make_cl_gl_sharing_handoff(compute::Queue& queue, render::AtlasRenderer& renderer,
+                                                         std::string& why_not);
 // Poses for paths that move them through the host: download the states, upload them to GL.
 void send_poses_through_host(const compute::Buffer<float>& states, render::AtlasRenderer& renderer,
                              std::vector<float>& host);

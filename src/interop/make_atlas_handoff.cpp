@@ -19,6 +19,13 @@ std::unique_ptr<AtlasHandoff> make_opencl_gl_bridge_handoff(compute::Queue&, ren
   return nullptr;
 }
 #endif
+#ifndef DEPTHTRACK_WITH_OPENCL
+std::unique_ptr<AtlasHandoff> make_cl_gl_sharing_handoff(compute::Queue&, render::AtlasRenderer&,
+                                                         std::string& why_not) {
+  why_not = "built without the OpenCL backend";
+  return nullptr;
+}
+#endif
 
 std::unique_ptr<AtlasHandoff> make_atlas_handoff(compute::Queue& queue, render::AtlasRenderer& renderer) {
   const compute::DeviceInfo& device = queue.info();
@@ -37,8 +44,8 @@ std::unique_ptr<AtlasHandoff> make_atlas_handoff(compute::Queue& queue, render::
     }
     reason = "the OpenCL platform lacks cl_khr_gl_sharing" + bridge;
   } else {
-    // Sharing needs the OpenCL context created against the GL context; ours is made before GL.
-    reason = "cl_khr_gl_sharing is listed but not used yet";
+    // Sharing needs the OpenCL context created against the GL context (gl_sharing/gl_shared_queue.hpp).
+    if (auto shared = make_cl_gl_sharing_handoff(queue, renderer, reason)) return shared;
   }
   return make_staged_handoff(queue, renderer, reason);
 }

@@ -104,6 +104,7 @@ class EglPlatform final : public GlPlatform {
   }
   GlProcLoader loader() const override { return &egl_loader; }
   std::string name() const override { return name_; }
+  GlNativeContext native() const override { return {GlNativeContext::Api::Egl, display_, context_}; }
 
  private:
   EGLDisplay display_;

@@ -103,6 +103,10 @@ GlProc GlContext::proc_address(const char* name) const {
   return platform_->loader()(name);
 }
 
+GlNativeContext GlContext::native() const {
+  return platform_->native();
+}
+
 void GlContext::make_current() {
   platform_->make_current();
 }

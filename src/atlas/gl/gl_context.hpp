@@ -9,6 +9,7 @@
 #include <string>
 
 #include "atlas/gl/gl_functions.hpp"
+#include "atlas/gl/gl_native.hpp"
 
 namespace depthtrack::render {
 
@@ -43,6 +44,8 @@ class GlContext {
   // Whether GL_EXTENSIONS lists `name`; an entry point of an extension (null when unknown).
   bool has_extension(const std::string& name) const;
   GlProc proc_address(const char* name) const;
+  // The EGL display and context (for cl_khr_gl_sharing); Api::None for OSMesa.
+  GlNativeContext native() const;
 
   // "egl-device", "egl-surfaceless", "osmesa": the TrackerConfig::gl_path spellings.
   static const char* path_name(GlPath path);

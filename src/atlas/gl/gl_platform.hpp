@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "atlas/gl/gl_native.hpp"
 #include "atlas/gl/gl_proc.hpp"
 
 namespace depthtrack::render {
@@ -21,6 +22,8 @@ class GlPlatform {
   virtual GlProcLoader loader() const = 0;
   // "EGL device 0", "EGL surfaceless", "OSMesa".
   virtual std::string name() const = 0;
+  // The handles another API shares the context by; Api::None where it cannot (OSMesa).
+  virtual GlNativeContext native() const { return {}; }
 };
 
 // Tries the devices from `device` on (default: all, first that works; the one whose UUID is

@@ -30,13 +30,16 @@ std::string sizes(const size_t* values, unsigned dimensions) {
 }
 }  // namespace
 
-ClQueue::ClQueue(cl_platform_id platform, cl_device_id device, DeviceInfo info)
+ClQueue::ClQueue(cl_platform_id platform, cl_device_id device, DeviceInfo info,
+                 const std::vector<cl_context_properties>& extra_properties)
     : device_(device), info_(std::move(info)) {
-  const cl_context_properties properties[] = {CL_CONTEXT_PLATFORM, reinterpret_cast<cl_context_properties>(platform),
-                                              0};
+  std::vector<cl_context_properties> properties = {CL_CONTEXT_PLATFORM,
+                                                   reinterpret_cast<cl_context_properties>(platform)};
+  properties.insert(properties.end(), extra_properties.begin(), extra_properties.end());
+  properties.push_back(0);
   cl_int status = CL_SUCCESS;
   // No notification callback: every error it would print also comes back from the failing call.
-  context_ = ContextHandle(clCreateContext(properties, 1, &device_, nullptr, nullptr, &status));
+  context_ = ContextHandle(clCreateContext(properties.data(), 1, &device_, nullptr, nullptr, &status));
   check(status, "clCreateContext", info_.name);
   create_queue();
 }

@@ -2,6 +2,8 @@
 // One OpenCL device as Queue: its own context and an in-order, profiled command queue.
 #include <CL/cl.h>
 
+#include <vector>
+
 #include "compute/opencl/cl_handle.hpp"
 #include "compute/queue.hpp"
 
@@ -9,7 +11,10 @@ namespace depthtrack::compute::opencl {
 
 class ClQueue final : public Queue {
  public:
-  ClQueue(cl_platform_id platform, cl_device_id device, DeviceInfo info);
+  // extra_properties: (name, value) pairs clCreateContext gets after the platform's, e.g. the GL
+  // context and display of cl_khr_gl_sharing.
+  ClQueue(cl_platform_id platform, cl_device_id device, DeviceInfo info,
+          const std::vector<cl_context_properties>& extra_properties = {});
 
   const DeviceInfo& info() const override { return info_; }
   NativeHandles native_handles() const override;

@@ -1,0 +1,139 @@
+// The cl_khr_gl_sharing hand-off (src/interop/gl_sharing): chosen only when the device lists the
+// extension, GL is EGL/GLX and the queue's context was made against it (tested with fake facts),
+// and, where a platform offers it, delivering exactly what the staged copy delivers.
+#include <CL/cl_gl.h>
+
+#include <catch2/catch.hpp>
+#include <depthtrack/error.hpp>
+#include <iostream>
+#include <sstream>
+
+#include "compute/opencl/opencl_backend.hpp"
+#include "interop/gl_sharing/gl_shared_queue.hpp"
+#include "interop/gl_sharing/gl_sharing_choice.hpp"
+#include "interop_support.hpp"
+
+using namespace depthtrack;
+using interop::choose_gl_sharing;
+using render::GlNativeContext;
+
+namespace {
+
+// A CL_DEVICE_EXTENSIONS string as the device query splits it.
+std::vector<std::string> words(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::string> out;
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+int fake_display = 0, fake_context = 0;
+const GlNativeContext egl{GlNativeContext::Api::Egl, &fake_display, &fake_context};
+const GlNativeContext glx{GlNativeContext::Api::Glx, &fake_display, &fake_context};
+const GlNativeContext osmesa{};
+const auto platform = static_cast<cl_context_properties>(0x1234);
+
+// A context's CL_CONTEXT_PROPERTIES: the platform, then `extra`, 0-terminated.
+std::vector<cl_context_properties> made_with(std::vector<cl_context_properties> extra) {
+  std::vector<cl_context_properties> p = {CL_CONTEXT_PLATFORM, platform};
+  p.insert(p.end(), extra.begin(), extra.end());
+  p.push_back(0);
+  return p;
+}
+
+const std::string intel_like = "cl_khr_byte_addressable_store cl_khr_fp64 cl_khr_gl_sharing cl_khr_icd";
+const std::string pocl_like = "cl_khr_byte_addressable_store cl_khr_fp64 cl_khr_icd cl_khr_gl_event";
+
+}  // namespace
+
+TEST_CASE("cl_khr_gl_sharing is chosen only when listed, with an EGL or GLX context the queue was made against",
+          "[interop][gl_sharing]") {
+  const auto shared_egl = made_with(interop::gl_sharing_properties(egl));
+  SECTION("not listed (PoCL-like, or a look-alike name) gives the staged copy and says so") {
+    for (const std::string& list : {pocl_like, std::string("cl_khr_gl_sharing_ext cl_khr_fp64"), std::string()}) {
+      INFO(list);
+      const auto choice = choose_gl_sharing(words(list), egl, shared_egl);
+      CHECK_FALSE(choice.share);
+      CHECK(choice.reason == "the OpenCL platform lacks cl_khr_gl_sharing");
+    }
+  }
+  SECTION("listed, with the queue made against this EGL or GLX context, gives sharing") {
+    const auto choice = choose_gl_sharing(words(intel_like), egl, shared_egl);
+    CHECK(choice.share);
+    CHECK(choice.reason.empty());
+    CHECK(choose_gl_sharing(words(intel_like), glx, made_with(interop::gl_sharing_properties(glx))).share);
+  }
+  SECTION("listed, but the queue made before GL (the tracker's own queue) is told why not") {
+    const auto choice = choose_gl_sharing(words(intel_like), egl, made_with({}));
+    CHECK_FALSE(choice.share);
+    CHECK(choice.reason.find("created before the GL context") != std::string::npos);
+    int other = 0;
+    const GlNativeContext another{GlNativeContext::Api::Egl, &fake_display, &other};
+    CHECK_FALSE(choose_gl_sharing(words(intel_like), another, shared_egl).share);
+    // The display must be the one of the context's own window system.
+    CHECK_FALSE(choose_gl_sharing(words(intel_like), glx, shared_egl).share);
+  }
+  SECTION("listed, but an OSMesa context is told why not") {
+    const auto choice = choose_gl_sharing(words(intel_like), osmesa, made_with({}));
+    CHECK_FALSE(choice.share);
+    CHECK(choice.reason.find("OSMesa") != std::string::npos);
+  }
+}
+
+TEST_CASE("the OpenCL context properties that share a GL context name it and its display", "[interop][gl_sharing]") {
+  const auto egl_properties = interop::gl_sharing_properties(egl);
+  const std::vector<cl_context_properties> expected_egl = {
+      CL_GL_CONTEXT_KHR, reinterpret_cast<cl_context_properties>(&fake_context), CL_EGL_DISPLAY_KHR,
+      reinterpret_cast<cl_context_properties>(&fake_display)};
+  CHECK(egl_properties == expected_egl);
+  CHECK(interop::gl_sharing_properties(glx)[2] == CL_GLX_DISPLAY_KHR);
+  CHECK_THROWS_AS(interop::gl_sharing_properties(osmesa), InputError);
+}
+
+// Runs where an OpenCL device lists cl_khr_gl_sharing and an EGL context can be made on its GPU
+// (AMD, Intel, Mesa GPU drivers); nowhere on the project's machines (PoCL, NVIDIA's OpenCL).
+TEST_CASE("where a platform lists cl_khr_gl_sharing, its hand-off is chosen and equals the staged copy",
+          "[device][render][interop][gl_sharing]") {
+  const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.9375, 29.9375);
+  std::string checked, failures;
+  int tested = 0;
+  for (const compute::DeviceInfo& device : compute::opencl::devices()) {
+    checked += (checked.empty() ? "" : ", ") + device.platform + " (" + device.name + ")";
+    if (!device.gl_sharing) continue;
+    INFO(device.selector << " " << device.name);
+    render::GlContextOptions options;
+    options.device_uuid = device.uuid;
+    std::unique_ptr<render::GlContext> context;
+    std::unique_ptr<compute::Queue> shared;
+    try {
+      context = std::make_unique<render::GlContext>(options);
+      shared = interop::open_gl_shared_queue(device, *context);
+    } catch (const Error& e) {
+      failures += "\n  " + device.selector + ": " + e.what();
+      continue;
+    }
+    render::AtlasRenderer renderer(*context, builtin_demo_mesh(), camera, 0.05, 6.0, render::AtlasOptions{200});
+    renderer.reserve(14);
+    const auto best = interop::make_atlas_handoff(*shared, renderer);
+    std::cout << device.selector << " hand-off: " << best->name() << "\n";
+    REQUIRE(best->name().rfind("cl_khr_gl_sharing", 0) == 0);
+    const auto particles = test::random_particles(14, 6);
+    const std::vector<float> in_place = test::through(*best, *shared, renderer, particles);
+    const std::vector<float> again = test::through(*best, *shared, renderer, particles);  // a second frame
+    auto staged = interop::make_staged_handoff(*shared, renderer, "test");
+    const std::vector<float> copied = test::through(*staged, *shared, renderer, particles);
+    REQUIRE(in_place == copied);
+    REQUIRE(again == copied);
+    size_t covered = 0;
+    for (float d : in_place) covered += d > 0;
+    CHECK(covered > 14 * 100);
+    // The tracker's own queue, opened before GL, is told why it gets the staged copy.
+    const auto fallback = interop::make_atlas_handoff(*compute::open_device(device.selector), renderer);
+    CHECK(fallback->name().find("created before the GL context") != std::string::npos);
+    ++tested;
+  }
+  if (tested == 0)
+    std::cout << "SKIPPED: no OpenCL platform here lists cl_khr_gl_sharing (checked: "
+              << (checked.empty() ? "no OpenCL platform" : checked) << ")"
+              << (failures.empty() ? "" : "; listed but unusable:" + failures) << "\n";
+}
