@@ -38,6 +38,11 @@ TEST_CASE("synthetic handset vanishes for 1 s and returns 22 cm over: lost, then
   REQUIRE(moved >= 0.15);
 
   TrackerConfig config;  // reference, 200 particles, 80x60
+  // The search while lost stops at a wall-clock budget (500 ms by default), so on a loaded machine it
+  // saw less of its grid and the track after the return ended 10.0-10.4 mm off at frames 113-115
+  // (measured 1 December 2026 under ctest -j2 at load 10-14; 3 mm alone). A budget the whole grid fits
+  // in makes the test the same everywhere: it checks what the search finds, not the machine's load.
+  config.recovery.budget_ms = 60000;
   Tracker tracker(mesh, synth.camera, config);
   tracker.initialize(frames.front().ground_truth);
   std::printf("\nhandset hidden at frame %d, back at %d, %.0f mm from where it vanished\n", vanish, back, 1000 * moved);
