@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 
 #include "bench_rows.hpp"
 
@@ -47,6 +48,24 @@ std::string ArgReader::next() {
 std::string ArgReader::value() {
   if (index_ + 1 >= argc_) throw UsageError{option_ + " needs a value"};
   return argv_[++index_];
+}
+
+int parse_command_line(int argc, char** argv, const char* program, const char* usage,
+                       const std::function<void(const std::string& name, ArgReader& args)>& option) {
+  try {
+    ArgReader args(argc, argv);
+    for (std::string arg = args.next(); !arg.empty(); arg = args.next()) {
+      if (arg == "--help" || arg == "-h") {
+        std::printf("%s", usage);
+        return 0;
+      }
+      option(arg, args);
+    }
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "%s: %s\n%s", program, e.message.c_str(), usage);
+    return 2;
+  }
+  return -1;
 }
 
 }  // namespace depthtrack::bench

@@ -1,6 +1,7 @@
 #pragma once
 // Command-line parsing shared by the benchmarks: numbers are read strictly (the whole text must be a
 // positive integer), --help prints the usage and exits 0, anything else wrong exits 2 with a reason.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -34,5 +35,12 @@ class ArgReader {
   char** argv_;
   std::string option_;
 };
+
+class ArgReader;
+// A benchmark's command line: `option(name, args)` takes each option but --help/-h (which prints
+// `usage`) and throws UsageError for one it does not know; a UsageError is printed as
+// "program: reason" and the usage. Returns -1 when main should go on, else its exit status (0, 2).
+int parse_command_line(int argc, char** argv, const char* program, const char* usage,
+                       const std::function<void(const std::string& name, ArgReader& args)>& option);
 
 }  // namespace depthtrack::bench

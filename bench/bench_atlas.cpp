@@ -30,26 +30,18 @@ const char* const kUsage =
 int main(int argc, char** argv) {
   std::vector<int> particle_counts = {2000, 10000, 100000};
   int width = 80, height = 60, repeats = 5;
-  try {
-    bench::ArgReader args(argc, argv);
-    for (std::string arg = args.next(); !arg.empty(); arg = args.next()) {
-      if (arg == "--help" || arg == "-h") {
-        std::printf("%s", kUsage);
-        return 0;
-      }
-      if (arg == "--particles")
-        particle_counts = bench::parse_positive_list(args.value(), arg);
-      else if (arg == "--resolution")
-        std::tie(width, height) = bench::parse_size(args.value(), arg);
-      else if (arg == "--repeats")
-        repeats = bench::parse_positive(args.value(), arg);
-      else
-        throw bench::UsageError{"unknown option '" + arg + "'"};
-    }
-  } catch (const bench::UsageError& e) {
-    std::fprintf(stderr, "depthtrack_bench_atlas: %s\n%s", e.message.c_str(), kUsage);
-    return 2;
-  }
+  const auto option = [&](const std::string& arg, bench::ArgReader& args) {
+    if (arg == "--particles")
+      particle_counts = bench::parse_positive_list(args.value(), arg);
+    else if (arg == "--resolution")
+      std::tie(width, height) = bench::parse_size(args.value(), arg);
+    else if (arg == "--repeats")
+      repeats = bench::parse_positive(args.value(), arg);
+    else
+      throw bench::UsageError{"unknown option '" + arg + "'"};
+  };
+  if (const int status = bench::parse_command_line(argc, argv, "depthtrack_bench_atlas", kUsage, option); status >= 0)
+    return status;
   try {
     std::string mesh_name;
     const Mesh mesh = bench::bench_mesh(mesh_name);

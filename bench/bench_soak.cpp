@@ -27,28 +27,20 @@ const char* const kUsage =
 int main(int argc, char** argv) {
   std::string backend = "reference";
   int frames = 3000, every = 500, particles = 200;
-  try {
-    bench::ArgReader args(argc, argv);
-    for (std::string arg = args.next(); !arg.empty(); arg = args.next()) {
-      if (arg == "--help" || arg == "-h") {
-        std::printf("%s", kUsage);
-        return 0;
-      }
-      if (arg == "--backend")
-        backend = args.value();
-      else if (arg == "--frames")
-        frames = bench::parse_positive(args.value(), arg);
-      else if (arg == "--every")
-        every = bench::parse_positive(args.value(), arg);
-      else if (arg == "--particles")
-        particles = bench::parse_positive(args.value(), arg);
-      else
-        throw bench::UsageError{"unknown option '" + arg + "'"};
-    }
-  } catch (const bench::UsageError& e) {
-    std::fprintf(stderr, "depthtrack_bench_soak: %s\n%s", e.message.c_str(), kUsage);
-    return 2;
-  }
+  const auto option = [&](const std::string& arg, bench::ArgReader& args) {
+    if (arg == "--backend")
+      backend = args.value();
+    else if (arg == "--frames")
+      frames = bench::parse_positive(args.value(), arg);
+    else if (arg == "--every")
+      every = bench::parse_positive(args.value(), arg);
+    else if (arg == "--particles")
+      particles = bench::parse_positive(args.value(), arg);
+    else
+      throw bench::UsageError{"unknown option '" + arg + "'"};
+  };
+  if (const int status = bench::parse_command_line(argc, argv, "depthtrack_bench_soak", kUsage, option); status >= 0)
+    return status;
   try {
     std::string mesh_name;
     const Mesh mesh = bench::bench_mesh(mesh_name);

@@ -210,42 +210,34 @@ int main(int argc, char** argv) {
   int frames = 20;
   Refinement refine;
   bool global = true, multi_objects = false;
-  try {
-    bench::ArgReader args(argc, argv);
-    for (std::string arg = args.next(); !arg.empty(); arg = args.next()) {
-      if (arg == "--help" || arg == "-h") {
-        std::printf("%s", kUsage);
-        return 0;
-      }
-      if (arg == "--backend")
-        backend = args.value();
-      else if (arg == "--renderer")
-        renderer = args.value();
-      else if (arg == "--particles")
-        particle_counts = bench::parse_positive_list(args.value(), arg);
-      else if (arg == "--resolution")
-        for (const std::string& r : bench::split(args.value())) sizes.push_back(bench::parse_size(r, arg));
-      else if (arg == "--frames")
-        frames = bench::parse_positive(args.value(), arg);
-      else if (arg == "--refine") {
-        const std::string value = args.value();
-        if (value != "on" && value != "off") throw bench::UsageError{"--refine takes on or off, not '" + value + "'"};
-        refine.enabled = value == "on";
-      } else if (arg == "--refine-iterations")
-        refine.iterations = bench::parse_positive(args.value(), arg);
-      else if (arg == "--refine-converged")
-        refine.converged_motion = bench::parse_nonnegative_double(args.value(), arg);
-      else if (arg == "--no-global")
-        global = false;
-      else if (arg == "--multi-objects")
-        multi_objects = true;
-      else
-        throw bench::UsageError{"unknown option '" + arg + "'"};
-    }
-  } catch (const bench::UsageError& e) {
-    std::fprintf(stderr, "depthtrack_bench: %s\n%s", e.message.c_str(), kUsage);
-    return 2;
-  }
+  const auto option = [&](const std::string& arg, bench::ArgReader& args) {
+    if (arg == "--backend")
+      backend = args.value();
+    else if (arg == "--renderer")
+      renderer = args.value();
+    else if (arg == "--particles")
+      particle_counts = bench::parse_positive_list(args.value(), arg);
+    else if (arg == "--resolution")
+      for (const std::string& r : bench::split(args.value())) sizes.push_back(bench::parse_size(r, arg));
+    else if (arg == "--frames")
+      frames = bench::parse_positive(args.value(), arg);
+    else if (arg == "--refine") {
+      const std::string value = args.value();
+      if (value != "on" && value != "off") throw bench::UsageError{"--refine takes on or off, not '" + value + "'"};
+      refine.enabled = value == "on";
+    } else if (arg == "--refine-iterations")
+      refine.iterations = bench::parse_positive(args.value(), arg);
+    else if (arg == "--refine-converged")
+      refine.converged_motion = bench::parse_nonnegative_double(args.value(), arg);
+    else if (arg == "--no-global")
+      global = false;
+    else if (arg == "--multi-objects")
+      multi_objects = true;
+    else
+      throw bench::UsageError{"unknown option '" + arg + "'"};
+  };
+  if (const int status = bench::parse_command_line(argc, argv, "depthtrack_bench", kUsage, option); status >= 0)
+    return status;
   if (multi_objects) {
     try {
       bench::print_header();

@@ -8,6 +8,7 @@
 #include "atlas/gl/atlas_renderer.hpp"
 #include "compute/buffer.hpp"
 #include "device_support.hpp"
+#include "gl_support.hpp"
 #include "interop/atlas_handoff.hpp"
 #include "interop_support.hpp"
 
@@ -19,21 +20,12 @@ namespace {
 
 const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.9375, 29.9375);
 
-std::unique_ptr<render::GlContext> context_or_skip() {
-  try {
-    return std::make_unique<render::GlContext>();
-  } catch (const BackendError& e) {
-    std::cout << "SKIPPED: no OpenGL context: " << e.what() << "\n";
-    return nullptr;
-  }
-}
-
 }  // namespace
 
 TEST_CASE("the staged hand-off delivers every page as GL rendered it, poses taken from device memory",
           "[device][render][interop]") {
   if (!test::device_available()) return;
-  auto context = context_or_skip();
+  auto context = test::gl_context_or_skip();
   if (!context) return;
   auto queue = compute::open_device(test::device_selector());
   // 200 px pages: 2 tiles per row, 6 per page, so 14 poses fill two pages and part of a third.

@@ -10,6 +10,7 @@
 #include "atlas/gl/gl_draw_timer.hpp"
 #include "core/stopwatch.hpp"
 #include "device_support.hpp"
+#include "gl_support.hpp"
 #include "filter/device_filter.hpp"
 
 using namespace depthtrack;
@@ -17,15 +18,6 @@ using namespace depthtrack;
 namespace {
 
 const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.9375, 29.9375);
-
-std::unique_ptr<render::GlContext> context_or_skip() {
-  try {
-    return std::make_unique<render::GlContext>();
-  } catch (const BackendError& e) {
-    std::cout << "SKIPPED: no OpenGL context: " << e.what() << "\n";
-    return nullptr;
-  }
-}
 
 std::vector<Pose> random_poses(int count) {
   std::mt19937 rng(5);
@@ -41,7 +33,7 @@ std::vector<Pose> random_poses(int count) {
 
 TEST_CASE("a GL timer query times the atlas draw, positive and no longer than the host's wall time around it",
           "[render][timer]") {
-  auto context = context_or_skip();
+  auto context = test::gl_context_or_skip();
   if (!context) return;
   render::AtlasRenderer renderer(*context, builtin_demo_mesh(), camera, 0.05, 6.0);
   renderer.render(random_poses(500));  // allocation and shader compilation, untimed
@@ -66,7 +58,7 @@ TEST_CASE("a GL timer query times the atlas draw, positive and no longer than th
 }
 
 TEST_CASE("a GL draw time is refused once the next timed draw began or its timer is gone", "[render][timer]") {
-  auto context = context_or_skip();
+  auto context = test::gl_context_or_skip();
   if (!context) return;
   render::AtlasRenderer renderer(*context, builtin_demo_mesh(), camera, 0.05, 6.0);
   renderer.reserve(4);
@@ -90,7 +82,7 @@ TEST_CASE("a GL draw time is refused once the next timed draw began or its timer
 TEST_CASE("with the GL atlas the device filter reports GL's draw time, device-timed where GL has timer queries",
           "[device][render][timer]") {
   if (!test::device_available()) return;
-  if (!context_or_skip()) return;
+  if (!test::gl_context_or_skip()) return;
   SynthConfig synth;
   synth.frames = 4;
   const Synthesizer synthesizer(builtin_demo_mesh(), synth);
