@@ -39,6 +39,17 @@ TEST_CASE("Mutual occlusion hides the nearer box's pixels from the farther one, 
   // Box 1 is behind box 0 everywhere: nothing is hidden from box 0.
   occlusion.frame_for(0, depth, poses, &masked);
   CHECK(masked == 0);
+  // draw() gives each object's own depth, drawn once (here box 0's equals the rasterizer's above), and the
+  // frames made from those layers are the ones drawn per object.
+  const std::vector<std::vector<float>> layers = occlusion.draw(poses);
+  REQUIRE(layers.size() == 2);
+  CHECK(layers[0] == front);
+  size_t from_layers = 0;
+  const DepthImage same = occlusion.frame_for(1, depth, poses, layers, &from_layers);
+  CHECK(from_layers == silhouette);
+  for (int v = 0; v < working.height; ++v)
+    for (int u = 0; u < working.width; ++u) CHECK(std::isnan(same.at(u, v)) == std::isnan(for_back.at(u, v)));
+  CHECK_THROWS_WITH(occlusion.draw({poses[0]}), Contains("1 poses for 2 objects"));
   // The masks are drawn at the working camera: a frame of another size is refused, naming both.
   const DepthImage sensor_sized = DepthImage::from_metres(160, 120, std::vector<float>(160 * 120, 1.0f));
   CHECK_THROWS_WITH(occlusion.frame_for(0, sensor_sized, poses), Contains("160x120, not the working camera's 80x60"));

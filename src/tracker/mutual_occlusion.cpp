@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <depthtrack/error.hpp>
+#include <future>
 #include <limits>
 
 namespace depthtrack {
@@ -15,24 +16,41 @@ MutualOcclusion::MutualOcclusion(const std::vector<Mesh>& meshes, const Camera& 
   }
 }
 
+std::vector<std::vector<float>> MutualOcclusion::draw(const std::vector<Pose>& poses) const {
+  if (poses.size() != rasterizers_.size())
+    throw InputError("mutual occlusion: " + std::to_string(poses.size()) + " poses for " +
+                     std::to_string(rasterizers_.size()) + " objects");
+  const size_t pixels = static_cast<size_t>(working_.pixel_count());
+  std::vector<std::vector<float>> layers(rasterizers_.size(), std::vector<float>(pixels, 0.0f));
+  // One rasterizer per thread: each has its own scratch, and the meshes of YCB objects are large
+  // enough (tens of thousands of triangles) that drawing them one after another shows in the frame.
+  std::vector<std::future<void>> drawn;
+  for (size_t k = 1; k < rasterizers_.size(); ++k)
+    drawn.push_back(std::async(std::launch::async, [&, k] { rasterizers_[k].render(poses[k], layers[k]); }));
+  rasterizers_[0].render(poses[0], layers[0]);
+  for (auto& d : drawn) d.get();  // rethrows a thread's exception
+  return layers;
+}
+
 DepthImage MutualOcclusion::frame_for(size_t object, const DepthImage& working_depth, const std::vector<Pose>& poses,
                                       size_t* masked) const {
+  return frame_for(object, working_depth, poses, draw(poses), masked);
+}
+
+DepthImage MutualOcclusion::frame_for(size_t object, const DepthImage& working_depth, const std::vector<Pose>& poses,
+                                      const std::vector<std::vector<float>>& layers, size_t* masked) const {
   if (working_depth.width() != working_.width || working_depth.height() != working_.height)
     throw InputError("mutual occlusion: the frame is " + std::to_string(working_depth.width()) + "x" +
                      std::to_string(working_depth.height()) + ", not the working camera's " +
                      std::to_string(working_.width) + "x" + std::to_string(working_.height));
   const size_t pixels = static_cast<size_t>(working_.pixel_count());
-  own_.assign(pixels, 0.0f);
-  other_.assign(pixels, 0.0f);
-  rasterizers_[object].render(poses[object], own_);
+  const std::vector<float>& own = layers[object];
   // The nearest of the other objects' surfaces per pixel (0: none).
-  std::vector<float> layer(pixels);
-  for (size_t k = 0; k < rasterizers_.size(); ++k) {
+  std::vector<float> other(pixels, 0.0f);
+  for (size_t k = 0; k < layers.size(); ++k) {
     if (k == object) continue;
-    std::fill(layer.begin(), layer.end(), 0.0f);
-    rasterizers_[k].render(poses[k], layer);
     for (size_t i = 0; i < pixels; ++i)
-      if (layer[i] > 0 && (other_[i] == 0 || layer[i] < other_[i])) other_[i] = layer[i];
+      if (layers[k][i] > 0 && (other[i] == 0 || layers[k][i] < other[i])) other[i] = layers[k][i];
   }
   const double nearest = (poses[object].rotation * centres_[object] + poses[object].translation).z() - radii_[object];
   DepthImage out = working_depth;
@@ -40,9 +58,9 @@ DepthImage MutualOcclusion::frame_for(size_t object, const DepthImage& working_d
   for (int v = 0; v < working_.height; ++v)
     for (int u = 0; u < working_.width; ++u) {
       const size_t i = static_cast<size_t>(v) * working_.width + u;
-      if (other_[i] == 0) continue;
-      const double bound = own_[i] > 0 ? own_[i] - kMargin : nearest;
-      if (other_[i] >= bound) continue;
+      if (other[i] == 0) continue;
+      const double bound = own[i] > 0 ? own[i] - kMargin : nearest;
+      if (other[i] >= bound) continue;
       out.at(u, v) = std::numeric_limits<float>::quiet_NaN();
       ++count;
     }

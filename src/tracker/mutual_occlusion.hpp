@@ -19,8 +19,15 @@ class MutualOcclusion {
   // working: the trackers' working camera.
   MutualOcclusion(const std::vector<Mesh>& meshes, const Camera& working, double near, double far);
 
-  // The working frame for object `object`, with the pixels the other objects hide (at poses) missing;
-  // masked (if not null) receives how many were.
+  // Every object's depth at its pose (0 where it covers nothing), each drawn once, on a thread per
+  // object: what the objects' working frames are masked from.
+  std::vector<std::vector<float>> draw(const std::vector<Pose>& poses) const;
+
+  // The working frame for object `object`, with the pixels the other objects hide (at poses, drawn as
+  // `layers` by draw()) missing; masked (if not null) receives how many were.
+  DepthImage frame_for(size_t object, const DepthImage& working_depth, const std::vector<Pose>& poses,
+                       const std::vector<std::vector<float>>& layers, size_t* masked = nullptr) const;
+  // The same, drawing the layers itself.
   DepthImage frame_for(size_t object, const DepthImage& working_depth, const std::vector<Pose>& poses,
                        size_t* masked = nullptr) const;
 
@@ -32,7 +39,6 @@ class MutualOcclusion {
   std::vector<Eigen::Vector3d> centres_;
   std::vector<double> radii_;
   Camera working_;
-  mutable std::vector<float> own_, other_;  // scratch renderings
 };
 
 }  // namespace depthtrack
