@@ -112,9 +112,11 @@ TEST_CASE("depthtrack_bench --multi-objects prints one and three objects' median
           "[multi][bench]") {
   const std::string bench_dir = DEPTHTRACK_BENCH_DIR;
   if (bench_dir.empty()) return;  // DEPTHTRACK_BUILD_BENCH=OFF
-  const auto out = test::temp_dir("bench_multi_objects") / "rows.csv";
-  const std::string command =
-      bench_dir + "/depthtrack_bench --multi-objects --particles 10 --frames 4 > " + out.string() + " 2>&1";
+  const auto dir = test::temp_dir("bench_multi_objects");
+  const auto out = dir / "rows.csv";
+  // The rows alone: without ../shared/data the bench says on stderr that it uses the built-in mesh.
+  const std::string command = bench_dir + "/depthtrack_bench --multi-objects --particles 10 --frames 4 > " +
+                              out.string() + " 2> " + (dir / "notes.txt").string();
   REQUIRE(std::system(command.c_str()) == 0);
   const auto lines = test::lines_of(out);
   std::map<std::string, std::map<std::string, double>> rows;  // test -> metric -> value
