@@ -77,7 +77,8 @@ std::vector<Estimate> MultiTracker::run(const DepthImage& working,
   std::exception_ptr failure;
   try {
     // Each object drawn once (the previous estimates), each object's mask made from those layers.
-    const std::vector<std::vector<float>> layers = occlusion_ ? occlusion_->draw(poses_) : decltype(layers){};
+    std::vector<std::vector<float>> layers;
+    if (occlusion_) layers = occlusion_->draw(poses_);
     for (; started < n; ++started) {
       if (occlusion_) masked[started] = occlusion_->frame_for(started, working, poses_, layers);
       trackers_[started].start_frame(frame_of(started), sensor_frame, timestamp);
