@@ -68,8 +68,19 @@ std::string program_output(const NvrtcApi& api, nvrtcProgram program, bool cubin
 // OpenCL C's precision, which the kernels are written for and the equivalence tests hold OpenCL to:
 // division and square root to a few ulp. NVRTC's default rounds both correctly, in a multi-instruction
 // sequence per `/` that the refinement's one work-group and the likelihood pay for on every pixel.
+// DEPTHTRACK_CUDA_EXTRA_OPTIONS (CMake, space-separated, empty by default) appends options for experiments
+// such as measuring --use_fast_math or --ftz=true against this default on a GPU.
 std::vector<std::string> fixed_options() {
-  return {"--std=c++17", "--prec-div=false", "--prec-sqrt=false"};
+  std::vector<std::string> options = {"--std=c++17", "--prec-div=false", "--prec-sqrt=false"};
+#ifdef DEPTHTRACK_CUDA_EXTRA_OPTIONS
+  std::string extra = DEPTHTRACK_CUDA_EXTRA_OPTIONS;
+  for (size_t start = 0; start < extra.size();) {
+    const size_t end = std::min(extra.find(' ', start), extra.size());
+    if (end > start) options.push_back(extra.substr(start, end - start));
+    start = end + 1;
+  }
+#endif
+  return options;
 }
 
 const std::string& cuda_prelude() {
