@@ -9,7 +9,7 @@
 #
 # Usage: scripts/fuzz-campaign.sh [--runs N] [--formats "obj ply stl off"] [--out DIR]
 #                                 [--fuzz-build DIR] [--replay-build DIR] [--nice N] [--max-seconds S]
-#                                 [--jobs N] [--no-build]
+#                                 [--jobs N] [--timeout S] [--no-build]
 #   --runs N          executions per format (default 1000000)
 #   --max-seconds S   stop a format after S seconds even if N executions are not done (default: none)
 #   --formats LIST    formats with a fuzz_mesh_<format> target (default: obj ply stl off)
@@ -19,6 +19,8 @@
 #   --replay-build DIR  an ordinary build with the replay_mesh_<format> programs (default build)
 #   --nice N          niceness of the fuzzer (default 19: a shared machine)
 #   --jobs N          fork-mode workers per format (default 1: one core)
+#   --timeout S       an input running longer than S seconds counts as a hang (default 10; PLY's
+#                     looping reader makes each hang cost S seconds of a worker)
 #   --no-build        use the fuzz targets already in --fuzz-build (e.g. copied to another machine)
 # Seeds: fuzz/corpus/mesh_<format>/ less the known crashers (crash_*, hang_*, oom_*), which the
 # regression tests replay; dictionary: fuzz/dict/<format>.dict. Exit status 1 if any input escaped
@@ -34,6 +36,7 @@ replay_build=$root/build
 niceness=19
 max_seconds=0
 jobs=1
+timeout=10
 build=1
 while [[ $# -gt 0 ]]; do
   case $1 in
@@ -45,13 +48,15 @@ while [[ $# -gt 0 ]]; do
     --nice) niceness=$2; shift 2 ;;
     --max-seconds) max_seconds=$2; shift 2 ;;
     --jobs) jobs=$2; shift 2 ;;
+    --timeout) timeout=$2; shift 2 ;;
     --no-build) build=0; shift ;;
-    -h|--help) sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "fuzz-campaign: unknown option '$1'" >&2; exit 2 ;;
   esac
 done
 [[ $runs =~ ^[1-9][0-9]*$ ]] || { echo "fuzz-campaign: --runs takes a positive integer, not '$runs'" >&2; exit 2; }
 [[ $jobs =~ ^[1-9][0-9]*$ ]] || { echo "fuzz-campaign: --jobs takes a positive integer, not '$jobs'" >&2; exit 2; }
+[[ $timeout =~ ^[1-9][0-9]*$ ]] || { echo "fuzz-campaign: --timeout takes a positive integer, not '$timeout'" >&2; exit 2; }
 [[ $max_seconds =~ ^[0-9]+$ ]] || { echo "fuzz-campaign: --max-seconds takes an integer, not '$max_seconds'" >&2; exit 2; }
 
 targets=()
@@ -86,7 +91,7 @@ for f in $formats; do
   timer=()
   [[ -x /usr/bin/time ]] && timer=(/usr/bin/time -f '%U %S' -o "$work/cpu.txt")
   "${timer[@]}" nice -n "$niceness" "$fuzz_build/fuzz/fuzz_mesh_$f" "$work/corpus" \
-    -fork="$jobs" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 -runs="$runs" -max_total_time="$max_seconds" -timeout=10 \
+    -fork="$jobs" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 -runs="$runs" -max_total_time="$max_seconds" -timeout="$timeout" \
     -rss_limit_mb=2048 -detect_leaks=0 "${dict[@]}" -artifact_prefix="$work/artifacts/" >"$work/log.txt" 2>&1 || true
   seconds=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { print b - a }')
   cpu=$([[ -f $work/cpu.txt ]] && tail -1 "$work/cpu.txt" | awk '{print $1 + $2}' || echo 0)
