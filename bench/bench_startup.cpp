@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "atlas/gl_atlas_device.hpp"
 #include "bench_args.hpp"
 #include "bench_rows.hpp"
 #include "compute/program_cache.hpp"
@@ -121,8 +122,11 @@ int main(int argc, char** argv) {
       another.print(row, "construct_tracker" + std::to_string(t));
     }
     double programs_ms = 0;
-    if (device->context())
-      for (const auto& r : device->context()->programs.records()) {
+    // A GL tracker's programs are in the context its Device opened against GL, where it shares GL.
+    const auto built_on =
+        renderer == Renderer::Gl && device->context() ? device->gl_atlas(config.gl_path).compute : device->context();
+    if (built_on)
+      for (const auto& r : built_on->programs.records()) {
         programs_ms += r.ms;
         bench::Row program = row;
         program.test += "_program_" + r.file + (r.loaded_from_disk ? "_loaded" : "_built");
