@@ -1,14 +1,24 @@
 // The cl_khr_gl_sharing hand-off (src/interop/gl_sharing): chosen only when the device lists the
 // extension, GL is EGL/GLX and the queue's context was made against it (tested with fake facts),
-// and, where a platform offers it, delivering exactly what the staged copy delivers.
+// and, where a platform offers it, delivering exactly what the staged copy delivers. A Device opens its
+// GL trackers' context against its GL context on the same facts, and falls back, saying why, when the
+// platform refuses.
 #include <CL/cl_gl.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cstdio>
 #include <depthtrack/error.hpp>
 #include <iostream>
 #include <sstream>
 
+#include "atlas/gl_atlas_device.hpp"
+#include "compute/opencl/cl_device_query.hpp"
+#include "compute/opencl/cl_queue.hpp"
 #include "compute/opencl/opencl_backend.hpp"
+#include "compute/program_cache.hpp"
+#include "device_support.hpp"
+#include "interop/gl_shared_context_choice.hpp"
 #include "interop/gl_sharing/gl_shared_queue.hpp"
 #include "interop/gl_sharing/gl_sharing_choice.hpp"
 #include "interop_support.hpp"
@@ -78,6 +88,90 @@ TEST_CASE("cl_khr_gl_sharing is chosen only when listed, with an EGL or GLX cont
     CHECK_FALSE(choice.share);
     CHECK(choice.reason.find("OSMesa") != std::string::npos);
   }
+}
+
+TEST_CASE("a Device opens its GL trackers' context against GL only for OpenCL listing cl_khr_gl_sharing, with EGL/GLX",
+          "[interop][gl_sharing]") {
+  using interop::choose_gl_shared_context;
+  SECTION("OpenCL listing it, with an EGL or a GLX context: the context is opened against GL") {
+    for (const GlNativeContext& gl : {egl, glx}) {
+      const auto choice = choose_gl_shared_context(true, words(intel_like), gl);
+      CHECK(choice.open_shared);
+      CHECK(choice.reason.empty());
+    }
+    // ... and a queue on it then takes the sharing hand-off: the two choices agree on the same facts.
+    CHECK(choose_gl_sharing(words(intel_like), egl, made_with(interop::gl_sharing_properties(egl))).share);
+  }
+  SECTION("PoCL-like (not listed) or a look-alike name: the Device's own context, and why") {
+    for (const std::string& list : {pocl_like, std::string("cl_khr_gl_sharing_ext"), std::string()}) {
+      INFO(list);
+      const auto choice = choose_gl_shared_context(true, words(list), egl);
+      CHECK_FALSE(choice.open_shared);
+      CHECK(choice.reason == "the OpenCL platform lacks cl_khr_gl_sharing");
+    }
+  }
+  SECTION("OSMesa: nothing to share, said so") {
+    const auto choice = choose_gl_shared_context(true, words(intel_like), osmesa);
+    CHECK_FALSE(choice.open_shared);
+    CHECK(choice.reason.find("OSMesa") != std::string::npos);
+  }
+  SECTION("not OpenCL (CUDA, whose interop needs no shared context), even with the word listed") {
+    const auto choice = choose_gl_shared_context(false, words(intel_like), egl);
+    CHECK_FALSE(choice.open_shared);
+    CHECK(choice.reason.find("not OpenCL") != std::string::npos);
+  }
+}
+
+// PoCL's device with facts made to list cl_khr_gl_sharing: the Device tries a context against its GL
+// context, PoCL refuses (its clGetGLContextInfoKHR names no device), and the GL trackers fall back to the
+// Device's own context with the refusal in the hand-off's name. PoCL only: other platforms that do not list
+// the extension are not known to survive the call (rusticl's crashed).
+TEST_CASE("where the platform refuses a context against GL, the Device keeps its own and the hand-off says why",
+          "[device][render][interop][gl_sharing]") {
+  if (!test::gl_built()) return;
+  const auto platforms = compute::opencl::platform_ids();
+  const auto listed = compute::opencl::devices();
+  const auto pocl = std::find_if(listed.begin(), listed.end(), [](const compute::DeviceInfo& d) {
+    return d.platform == "Portable Computing Language";
+  });
+  if (pocl == listed.end()) {
+    std::cout << "SKIPPED: no PoCL device to make list cl_khr_gl_sharing\n";
+    return;
+  }
+  compute::DeviceInfo info = *pocl;
+  if (info.gl_sharing) {
+    std::cout << "SKIPPED: " << info.selector << " really lists cl_khr_gl_sharing (the case above tests it)\n";
+    return;
+  }
+  unsigned p = 0, d = 0;
+  REQUIRE(std::sscanf(info.selector.c_str(), "opencl:%u.%u", &p, &d) == 2);
+  info.extensions.push_back("cl_khr_gl_sharing");
+  info.gl_sharing = true;
+  auto device = std::make_shared<compute::DeviceContext>(
+      std::make_unique<compute::opencl::ClQueue>(platforms[p], compute::opencl::device_ids(platforms[p])[d], info));
+  GlAtlasDevice gl;
+  try {
+    gl = open_gl_atlas_device(device, "auto");
+  } catch (const BackendError& e) {
+    std::cout << "SKIPPED: no GL context: " << e.what() << "\n";
+    return;
+  }
+  INFO(info.selector << " " << info.name << ", GL " << gl.gl->describe());
+  if (gl.gl->native().api == GlNativeContext::Api::None) {
+    // OSMesa: not tried at all, so nothing was refused.
+    CHECK(gl.compute == device);
+    CHECK(gl.shared_context_refused.empty());
+    return;
+  }
+  CHECK_FALSE(gl.shares_gl());
+  CHECK(gl.compute == device);
+  CHECK(gl.shared_context_refused.find("refused an OpenCL context against the GL context") != std::string::npos);
+  render::AtlasRenderer renderer(*gl.gl, builtin_demo_mesh(), Camera::make(80, 60, 66, 66, 39.5, 29.5), 0.05, 6.0);
+  renderer.reserve(1);
+  const auto handoff = interop::make_atlas_handoff(*gl.compute->queue, renderer, gl.shared_context_refused);
+  std::cout << info.selector << " told: " << handoff->name() << "\n";
+  CHECK(handoff->name().rfind("staged copy", 0) == 0);
+  CHECK(handoff->name().find(gl.shared_context_refused) != std::string::npos);
 }
 
 TEST_CASE("the OpenCL context properties that share a GL context name it and its display", "[interop][gl_sharing]") {

@@ -31,12 +31,17 @@ class AtlasSource {
   virtual std::string description() const = 0;
 };
 
+struct GlAtlasDevice;  // atlas/gl_atlas_device.hpp
+
 // The source TrackerConfig::renderer names: "kernel" (cl/rasterize.cl on the filter's device), "gl"
 // (the OpenGL atlas renderer; BackendError naming every GL path tried when none works) or "cpu"
 // (the reference rasterizer on the host). Every source works on `queue`, a queue of the device the cache
 // builds for (a filter's own, DeviceContext::make_queue); the kernel source takes its program from the cache.
+// The GL source draws in `gl`'s context (the Device's, shared; `queue` then belongs to gl->compute), or,
+// without one, in a GL context of its own.
 std::unique_ptr<AtlasSource> make_atlas_source(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh,
-                                               const Camera& camera, const TrackerConfig& config);
+                                               const Camera& camera, const TrackerConfig& config,
+                                               const GlAtlasDevice* gl = nullptr);
 // The same on the cache's own queue.
 std::unique_ptr<AtlasSource> make_atlas_source(compute::ProgramCache& programs, const Mesh& mesh, const Camera& camera,
                                                const TrackerConfig& config);

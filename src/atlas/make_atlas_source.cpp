@@ -2,6 +2,7 @@
 #include <depthtrack/error.hpp>
 
 #include "atlas/atlas_source.hpp"
+#include "atlas/gl_atlas_device.hpp"
 
 namespace depthtrack {
 
@@ -9,10 +10,15 @@ std::unique_ptr<AtlasSource> make_host_atlas_source(compute::Queue& queue, const
                                                     const TrackerConfig& config);
 #ifdef DEPTHTRACK_WITH_GL
 std::unique_ptr<AtlasSource> make_gl_atlas_source(compute::Queue& queue, const Mesh& mesh, const Camera& camera,
-                                                  const TrackerConfig& config);
+                                                  const TrackerConfig& config, const GlAtlasDevice* gl);
 #else
-std::unique_ptr<AtlasSource> make_gl_atlas_source(compute::Queue&, const Mesh&, const Camera&, const TrackerConfig&) {
-  throw InputError("the gl renderer was not built (DEPTHTRACK_WITH_GL=OFF); choose cpu or kernel");
+const char* const kGlNotBuilt = "the gl renderer was not built (DEPTHTRACK_WITH_GL=OFF); choose cpu or kernel";
+std::unique_ptr<AtlasSource> make_gl_atlas_source(compute::Queue&, const Mesh&, const Camera&, const TrackerConfig&,
+                                                  const GlAtlasDevice*) {
+  throw InputError(kGlNotBuilt);
+}
+GlAtlasDevice open_gl_atlas_device(const std::shared_ptr<compute::DeviceContext>&, const std::string&) {
+  throw InputError(kGlNotBuilt);
 }
 #endif
 std::unique_ptr<AtlasSource> make_kernel_atlas_source(compute::Queue& queue, compute::ProgramCache& programs,
@@ -25,12 +31,13 @@ std::unique_ptr<AtlasSource> make_atlas_source(compute::ProgramCache& programs, 
 }
 
 std::unique_ptr<AtlasSource> make_atlas_source(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh,
-                                               const Camera& camera, const TrackerConfig& config) {
+                                               const Camera& camera, const TrackerConfig& config,
+                                               const GlAtlasDevice* gl) {
   switch (config.renderer) {
     case Renderer::Cpu:
       return make_host_atlas_source(queue, mesh, camera, config);
     case Renderer::Gl:
-      return make_gl_atlas_source(queue, mesh, camera, config);
+      return make_gl_atlas_source(queue, mesh, camera, config, gl);
     case Renderer::Kernel:
       return make_kernel_atlas_source(queue, programs, mesh, camera, config);
   }

@@ -18,6 +18,8 @@
 #ifdef DEPTHTRACK_WITH_GL
 #include "atlas/gl/atlas_renderer.hpp"
 #include "atlas/gl/gl_context.hpp"
+#include "atlas/gl_atlas_device.hpp"
+#include "compute/program_cache.hpp"
 #include "interop/atlas_handoff.hpp"
 #endif
 
@@ -46,7 +48,9 @@ void print_extensions(const std::vector<std::string>& extensions) {
 }
 
 // The GL context the tracker's GL renderer would use with this device, and the hand-off it gets:
-// found by setting both up for a one-tile atlas, so what is reported is what happens.
+// found by setting both up for a one-tile atlas as a Device does for its GL trackers (the GL context
+// first, then the compute context against it where the platform shares GL), so what is reported is what
+// happens.
 struct AtlasPath {
   std::string context, handoff, unavailable;  // unavailable: why not (first line), else empty
 };
@@ -60,15 +64,13 @@ AtlasPath find_atlas_path([[maybe_unused]] const compute::DeviceInfo& d) {
   return {"", "", kNoGl};
 #else
   try {
-    auto queue = compute::open_device(d.selector);
-    render::GlContextOptions options;
-    options.device_uuid = d.uuid;
-    options.path = render::GlContext::path_from_name(gl_path_from_environment());  // as demo and track would
-    render::GlContext context(options);
-    render::AtlasRenderer renderer(context, builtin_demo_mesh(), Camera::make(80, 60, 66, 66, 39.5, 29.5), 0.05, 6);
+    const auto device = std::make_shared<compute::DeviceContext>(compute::open_device(d.selector));
+    // The GL path as demo and track would take it.
+    const GlAtlasDevice gl = open_gl_atlas_device(device, gl_path_from_environment());
+    render::AtlasRenderer renderer(*gl.gl, builtin_demo_mesh(), Camera::make(80, 60, 66, 66, 39.5, 29.5), 0.05, 6);
     renderer.reserve(1);
-    const auto handoff = interop::make_atlas_handoff(*queue, renderer);
-    return {context.describe(), handoff->name(), ""};
+    const auto handoff = interop::make_atlas_handoff(*gl.compute->queue, renderer, gl.shared_context_refused);
+    return {gl.gl->describe(), handoff->name(), ""};
   } catch (const Error& e) {
     const std::string message = e.what();
     return {"", "", message.substr(0, message.find('\n'))};

@@ -48,10 +48,14 @@ class ProgramCache {
 // One open device: its queue and the programs built on it, shared by every filter on it. The cache
 // is declared after the queue, so the programs go before the queue that built them.
 struct DeviceContext {
-  explicit DeviceContext(std::unique_ptr<Queue> opened) : queue(std::move(opened)), programs(*queue) {}
+  // `against`: what the queue's context was created against and must outlive (the GL context of a
+  // cl_khr_gl_sharing context; the compute layer keeps it without knowing what it is), else null.
+  explicit DeviceContext(std::unique_ptr<Queue> opened, std::shared_ptr<const void> against = nullptr)
+      : made_against(std::move(against)), queue(std::move(opened)), programs(*queue) {}
   // A queue of a filter's own on this device (Queue::another_queue), or nullptr where the backend has one
   // queue only. The programs built here run on it.
   std::unique_ptr<Queue> make_queue() const { return queue->another_queue(); }
+  std::shared_ptr<const void> made_against;  // first, so it goes after the queue and its programs
   std::unique_ptr<Queue> queue;
   ProgramCache programs;
 };

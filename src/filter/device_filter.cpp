@@ -37,7 +37,7 @@ DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& me
     : DeviceFilter(std::make_shared<compute::DeviceContext>(std::move(queue)), mesh, camera, config) {}
 
 DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const Mesh& mesh, const Camera& camera,
-                           const TrackerConfig& config)
+                           const TrackerConfig& config, const GlAtlasDevice* gl)
     : device_(std::move(device)),
       own_queue_(device_->make_queue()),
       queue_(own_queue_ ? own_queue_.get() : device_->queue.get()),
@@ -46,7 +46,7 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
       centre_(mesh.centre().cast<double>()),
       pixels_(static_cast<size_t>(camera.pixel_count())),
       count_(checked_particle_count()),
-      atlas_source_(make_atlas_source(*queue_, device_->programs, mesh, camera, config)),
+      atlas_source_(make_atlas_source(*queue_, device_->programs, mesh, camera, config, gl)),
       mesh_(mesh) {
   const std::vector<std::string> defines = {"DT_GROUP_SIZE=" + std::to_string(kGroupSize),
                                             model::occlusion_definition(config.occlusion_storage)};

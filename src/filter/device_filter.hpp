@@ -25,9 +25,11 @@ class DeviceFilter final : public FilterBackend {
   // On a device of its own.
   DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
                const TrackerConfig& config);
-  // On a device other filters may share: its queue, and its programs (built once for them all).
+  // On a device other filters may share: its queue, and its programs (built once for them all). With
+  // config.renderer gl, `gl` is the Device's GL side (Device::gl_atlas; `device` is then gl->compute), whose
+  // GL context the atlas is drawn in; without it the GL atlas makes a context of its own.
   DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const Mesh& mesh, const Camera& camera,
-               const TrackerConfig& config);
+               const TrackerConfig& config, const GlAtlasDevice* gl = nullptr);
   ~DeviceFilter() override;
 
   void initialize(const Pose& pose, const InitialSpread& spread) override;

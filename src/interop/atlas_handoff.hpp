@@ -27,8 +27,11 @@ class AtlasHandoff {
 
 // The best hand-off between `queue` and `renderer`, whose pages must already be reserve()d (they are
 // registered once). Falls back to the staged copy, saying why in name(); BackendError only when a
-// path the platform advertises fails outright.
-std::unique_ptr<AtlasHandoff> make_atlas_handoff(compute::Queue& queue, render::AtlasRenderer& renderer);
+// path the platform advertises fails outright. `shared_context_refused` (GlAtlasDevice's): why the
+// queue's context is not one made against the renderer's GL context, reported instead of the general
+// reason when cl_khr_gl_sharing is listed.
+std::unique_ptr<AtlasHandoff> make_atlas_handoff(compute::Queue& queue, render::AtlasRenderer& renderer,
+                                                 const std::string& shared_context_refused = {});
 
 // The paths, for make_atlas_handoff and tests. make_cuda_gl_handoff returns null, with the reason in
 // `why_not`, when the queue is not CUDA or the GL context does not run on its device.

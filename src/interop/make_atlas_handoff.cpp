@@ -27,7 +27,8 @@ std::unique_ptr<AtlasHandoff> make_cl_gl_sharing_handoff(compute::Queue&, render
 }
 #endif
 
-std::unique_ptr<AtlasHandoff> make_atlas_handoff(compute::Queue& queue, render::AtlasRenderer& renderer) {
+std::unique_ptr<AtlasHandoff> make_atlas_handoff(compute::Queue& queue, render::AtlasRenderer& renderer,
+                                                 const std::string& shared_context_refused) {
   const compute::DeviceInfo& device = queue.info();
   const compute::NativeHandles native = queue.native_handles();
   std::string reason;
@@ -46,6 +47,7 @@ std::unique_ptr<AtlasHandoff> make_atlas_handoff(compute::Queue& queue, render::
   } else {
     // Sharing needs the OpenCL context created against the GL context (gl_sharing/gl_shared_queue.hpp).
     if (auto shared = make_cl_gl_sharing_handoff(queue, renderer, reason)) return shared;
+    if (!shared_context_refused.empty()) reason = shared_context_refused;
   }
   return make_staged_handoff(queue, renderer, reason);
 }

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <depthtrack/error.hpp>
 
+#include "atlas/gl_atlas_device.hpp"
 #include "core/thread_pool.hpp"
 #include "filter/device_filter.hpp"
 #include "reference/reference_filter.hpp"
@@ -25,6 +26,11 @@ std::shared_ptr<Device> open_config_device(const TrackerConfig& config) {
 
 std::unique_ptr<FilterBackend> make_filter_backend(const Device& device, const Mesh& mesh, const Camera& working_camera,
                                                    const TrackerConfig& config) {
+  if (device.context() && config.renderer == Renderer::Gl) {
+    // The Device's GL context, and the compute context made against it where the platform shares GL.
+    const GlAtlasDevice gl = device.gl_atlas(config.gl_path);
+    return std::make_unique<DeviceFilter>(gl.compute, mesh, working_camera, config, &gl);
+  }
   if (device.context()) return std::make_unique<DeviceFilter>(device.context(), mesh, working_camera, config);
   if (device.selector() == "reference")
     return std::make_unique<reference::ReferenceFilter>(mesh, working_camera, config);

@@ -3,6 +3,8 @@
 # Inputs: SOURCE_DIR, BUILD_DIR, WORK_DIR; STATIC=ON first builds the library and the command static in
 # WORK_DIR/static (GENERATOR, CXX_COMPILER, LAUNCHER, WERROR, WITH_CUDA as in the outer build, so that a
 # compiler cache finds the outer build's objects), so the package's static branch is what the consumer meets.
+# SEARCH_PATHS: a file setting the outer build's OUTER_PREFIX_PATH, OUTER_LIBRARY_PATH and OUTER_INCLUDE_PATH
+# (tests/CMakeLists.txt), handed to both configures so that they find the dependencies where it did.
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
   if(NOT rc EQUAL 0)
@@ -12,13 +14,25 @@ function(run)
   set(output "${out}" PARENT_SCOPE)
 endfunction()
 file(REMOVE_RECURSE ${WORK_DIR}/prefix ${WORK_DIR}/build)
+# The outer build's search paths as initial caches (a list in a -D argument would not survive run()'s
+# argument list), the scratch prefix first for the consumer.
+include(${SEARCH_PATHS})
+function(write_search_paths file prefix_path)
+  file(WRITE ${file} "set(CMAKE_PREFIX_PATH \"${prefix_path}\" CACHE STRING \"\")\n"
+                     "set(CMAKE_LIBRARY_PATH \"${OUTER_LIBRARY_PATH}\" CACHE STRING \"\")\n"
+                     "set(CMAKE_INCLUDE_PATH \"${OUTER_INCLUDE_PATH}\" CACHE STRING \"\")\n")
+endfunction()
+write_search_paths(${WORK_DIR}/search-paths.cmake "${OUTER_PREFIX_PATH}")
+set(consumer_prefix_path ${WORK_DIR}/prefix ${OUTER_PREFIX_PATH})  # no empty entry when the outer had none
+write_search_paths(${WORK_DIR}/consumer-search-paths.cmake "${consumer_prefix_path}")
 if(STATIC)
   set(launcher "")
   if(LAUNCHER)
     set(launcher -DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER})
   endif()
   # The tree is kept between runs, so a later run rebuilds only what changed.
-  run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/static -G ${GENERATOR} -DCMAKE_CXX_COMPILER=${CXX_COMPILER}
+  run(${CMAKE_COMMAND} -C ${WORK_DIR}/search-paths.cmake -S ${SOURCE_DIR} -B ${WORK_DIR}/static -G ${GENERATOR}
+      -DCMAKE_CXX_COMPILER=${CXX_COMPILER}
       ${launcher} -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=OFF -DDEPTHTRACK_BUILD_TESTS=OFF
       -DDEPTHTRACK_BUILD_BENCH=OFF -DDEPTHTRACK_PYTHON=OFF -DDEPTHTRACK_WERROR=${WERROR} -DDEPTHTRACK_WITH_CUDA=${WITH_CUDA})
   run(${CMAKE_COMMAND} --build ${WORK_DIR}/static -j2 --target depthtrack depthtrack_cli)
@@ -32,7 +46,7 @@ run(${CMAKE_COMMAND} -E env --unset=LD_LIBRARY_PATH ${WORK_DIR}/prefix/bin/depth
 if(NOT output MATCHES "OpenCL: [0-9]+ device" OR NOT output MATCHES "OpenGL \\(pose atlas\\):")
   message(FATAL_ERROR "the installed `depthtrack info` printed no device list:\n${output}")
 endif()
-run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/consumer -B ${WORK_DIR}/build -G Ninja
-    -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release)
+run(${CMAKE_COMMAND} -C ${WORK_DIR}/consumer-search-paths.cmake -S ${SOURCE_DIR}/tests/consumer -B ${WORK_DIR}/build
+    -G Ninja -DCMAKE_BUILD_TYPE=Release)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/consumer)

@@ -6,6 +6,7 @@
 #include "atlas/gl/atlas_renderer.hpp"
 #include "atlas/gl/gl_context.hpp"
 #include "atlas/gl/gl_draw_timer.hpp"
+#include "atlas/gl_atlas_device.hpp"
 #include "core/stopwatch.hpp"
 #include "dt_state.h"
 #include "interop/atlas_handoff.hpp"
@@ -13,21 +14,21 @@
 namespace depthtrack {
 
 namespace {
-// The GL context for a compute device: on the EGL device that is the same GPU where EGL can tell; only the
-// configuration's GL path, if it names one.
-render::GlContextOptions context_options(const compute::DeviceInfo& device, const TrackerConfig& config) {
-  render::GlContextOptions options;
-  options.device_uuid = device.uuid;
-  options.path = render::GlContext::path_from_name(config.gl_path);
-  return options;
+// The Device's GL context where the filter got one, else one of this source's own.
+std::shared_ptr<render::GlContext> context_for(const compute::Queue& queue, const TrackerConfig& config,
+                                               const GlAtlasDevice* gl) {
+  if (gl && gl->gl) return gl->gl;
+  return std::make_shared<render::GlContext>(render::GlContextOptions::for_device(queue.info().uuid, config.gl_path));
 }
 
 class GlAtlasSource final : public AtlasSource {
  public:
-  GlAtlasSource(compute::Queue& queue, const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
-      : context_(context_options(queue.info(), config)),
-        renderer_(context_, mesh, camera, config.near_plane, config.observation.max_depth),
-        timer_(context_) {
+  // Its own FBOs, textures and buffers (the renderer's) in a context other sources may share.
+  GlAtlasSource(compute::Queue& queue, const Mesh& mesh, const Camera& camera, const TrackerConfig& config,
+                const GlAtlasDevice* gl)
+      : context_(context_for(queue, config, gl)),
+        renderer_(*context_, mesh, camera, config.near_plane, config.observation.max_depth),
+        timer_(*context_) {
     renderer_.reserve(config.particles);
     // One untimed draw (every pose behind the camera: nothing to rasterize) before the timer's first
     // query, which llvmpipe misreads on a context that has executed no command yet.
@@ -39,7 +40,7 @@ class GlAtlasSource final : public AtlasSource {
     renderer_.upload_states(behind);
     renderer_.draw();
     renderer_.finish();
-    handoff_ = interop::make_atlas_handoff(queue, renderer_);
+    handoff_ = interop::make_atlas_handoff(queue, renderer_, gl ? gl->shared_context_refused : std::string());
   }
 
   const render::AtlasLayout& layout() const override { return renderer_.layout(); }
@@ -67,13 +68,13 @@ class GlAtlasSource final : public AtlasSource {
     return drawn;
   }
   std::string description() const override {
-    return "GL (" + context_.describe() + "); hand-off: " + handoff_->name() +
+    return "GL (" + context_->describe() + "); hand-off: " + handoff_->name() +
            (timer_.available() ? "; draw timed by GL timer queries"
                                : "; draw timed by the host clock (" + timer_.why_unavailable() + ")");
   }
 
  private:
-  render::GlContext context_;
+  std::shared_ptr<render::GlContext> context_;  // first: it outlives the renderer's objects in it
   render::AtlasRenderer renderer_;
   render::GlDrawTimer timer_;
   std::unique_ptr<interop::AtlasHandoff> handoff_;
@@ -81,8 +82,8 @@ class GlAtlasSource final : public AtlasSource {
 }  // namespace
 
 std::unique_ptr<AtlasSource> make_gl_atlas_source(compute::Queue& queue, const Mesh& mesh, const Camera& camera,
-                                                  const TrackerConfig& config) {
-  return std::make_unique<GlAtlasSource>(queue, mesh, camera, config);
+                                                  const TrackerConfig& config, const GlAtlasDevice* gl) {
+  return std::make_unique<GlAtlasSource>(queue, mesh, camera, config, gl);
 }
 
 }  // namespace depthtrack

@@ -53,6 +53,14 @@ std::optional<GlPath> GlContext::path_from_name(const std::string& name) {
                    "' is not a GL path; valid choices: egl-device, egl-surfaceless, osmesa (or auto for all in turn)");
 }
 
+GlContextOptions GlContextOptions::for_device(const std::optional<std::array<unsigned char, 16>>& uuid,
+                                              const std::string& gl_path) {
+  GlContextOptions options;
+  options.device_uuid = uuid;
+  options.path = GlContext::path_from_name(gl_path);
+  return options;
+}
+
 GlContext::GlContext(const GlContextOptions& options) {
   std::vector<GlPath> paths(std::begin(all_paths), std::end(all_paths));
   if (options.path) paths = {*options.path};

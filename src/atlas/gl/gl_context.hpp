@@ -23,6 +23,11 @@ struct GlContextOptions {
   // Prefer the EGL device with this UUID (EGL_EXT_device_persistent_id): the compute device's GPU.
   std::optional<std::array<unsigned char, 16>> device_uuid;
   int major = 3, minor = 3;  // the least core version accepted
+
+  // The GL context for a compute device: on its GPU where EGL can tell (`uuid`), on the one path
+  // `gl_path` names unless it is "auto" (GlContext::path_from_name; InputError for another word).
+  static GlContextOptions for_device(const std::optional<std::array<unsigned char, 16>>& uuid,
+                                     const std::string& gl_path);
 };
 
 class GlContext {

@@ -2,8 +2,9 @@
 
 #include <CL/cl_gl.h>
 
-#include <algorithm>
 #include <depthtrack/error.hpp>
+
+#include "interop/gl_shared_context_choice.hpp"
 
 namespace depthtrack::interop {
 
@@ -22,12 +23,9 @@ cl_context_properties property(std::span<const cl_context_properties> properties
 
 GlSharingChoice choose_gl_sharing(const std::vector<std::string>& device_extensions, const render::GlNativeContext& gl,
                                   std::span<const cl_context_properties> context_properties) {
-  if (std::find(device_extensions.begin(), device_extensions.end(), "cl_khr_gl_sharing") == device_extensions.end())
-    return {false, "the OpenCL platform lacks cl_khr_gl_sharing"};
-  if (gl.api == render::GlNativeContext::Api::None || !gl.context || !gl.display)
-    return {false,
-            "cl_khr_gl_sharing is listed but the GL context is OSMesa's, which OpenCL cannot share (only EGL "
-            "and GLX contexts)"};
+  // The facts a Device decides by (listed, EGL or GLX), then that it did open the context against GL.
+  if (const SharedContextChoice worth = choose_gl_shared_context(true, device_extensions, gl); !worth.open_shared)
+    return {false, worth.reason};
   const auto shared_context = property(context_properties, CL_GL_CONTEXT_KHR);
   const auto shared_display = property(context_properties, display_property(gl.api));
   if (shared_context != reinterpret_cast<cl_context_properties>(gl.context) ||
