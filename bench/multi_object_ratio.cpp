@@ -79,9 +79,9 @@ struct StageMedians {
 };
 
 StageMedians median_frame(const Scene& scene, size_t objects, bool mutual_occlusion, const TrackerConfig& config,
-                          std::string& device) {
+                          std::string& device, int host_threads = 0) {
   const std::vector<Mesh> meshes(scene.meshes.begin(), scene.meshes.begin() + static_cast<std::ptrdiff_t>(objects));
-  MultiTracker tracker(Device::open(config.backend), meshes, scene.camera, config, mutual_occlusion);
+  MultiTracker tracker(Device::open(config.backend), meshes, scene.camera, config, mutual_occlusion, host_threads);
   for (size_t j = 0; j < objects; ++j) tracker.initialize(j, scene.starts[j], {0.01, 0.05});
   std::vector<double> frame, working, occluders, masks, enqueue, upload, collect, confidence, confidence_sum,
       device_sum;
@@ -148,6 +148,10 @@ void run_multi_object_ratio(const std::string& backend, const std::string& rende
     print_row({backend, platform, name, "-", test, "one_object_ms", "ms", one.frame});
     print_row({backend, platform, name, "-", test, "three_objects_ms", "ms", three.frame});
     print_row({backend, platform, name, "-", test, "multi_object_ratio", "x", three.frame / one.frame});
+    // The same three on the calling thread alone (MultiTracker's host_threads 1): what the thread pool gains.
+    const StageMedians serial = median_frame(scene, 3, occlusion, config, device, 1);
+    print_row({backend, platform, name, "-", test, "three_objects_one_host_thread_ms", "ms", serial.frame});
+    print_row({backend, platform, name, "-", test, "one_host_thread_ratio", "x", serial.frame / one.frame});
     // Where the time goes: each stage's median, one object's run and three objects'.
     for (const auto& [label, run] : {std::pair{"one_object_", &one}, {"three_objects_", &three}})
       for (const auto& [stage, ms] : run->stages)

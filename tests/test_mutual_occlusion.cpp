@@ -52,11 +52,16 @@ TEST_CASE("Mutual occlusion hides the nearer box's pixels from the farther one, 
                     Contains("160x120, not the working camera's 80x60"));
 }
 
-TEST_CASE("MultiTracker refuses no mesh, a null device, a bad index and an object without a start", "[multi][errors]") {
+TEST_CASE("MultiTracker refuses no mesh, a null device, a bad thread count, a bad index and an object without a start",
+          "[multi][errors]") {
   const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.9375, 29.9375);
   const auto device = Device::open("reference");
   CHECK_THROWS_WITH(MultiTracker(device, {}, camera, TrackerConfig{}), Contains("no mesh"));
   CHECK_THROWS_WITH(MultiTracker(nullptr, {builtin_demo_mesh()}, camera, TrackerConfig{}), Contains("null"));
+  CHECK_THROWS_WITH(MultiTracker(device, {builtin_demo_mesh()}, camera, TrackerConfig{}, true, -1),
+                    Contains("host_threads is -1: give 0 (one per object) or a count from 1 to 1024"));
+  CHECK_THROWS_WITH(MultiTracker(device, {builtin_demo_mesh()}, camera, TrackerConfig{}, true, 5000),
+                    Contains("host_threads is 5000"));
   TrackerConfig config;
   config.particles = 10;
   MultiTracker two(device, {builtin_demo_mesh(), builtin_demo_mesh()}, camera, config);
@@ -83,11 +88,14 @@ TEST_CASE("MultiTracker's masks, from the confidence's renderings, equal masks d
   starts[1].translation.x() -= 0.03;
   starts[2].translation.x() += 0.03;
   MultiTracker together(Device::open("reference"), {mesh, mesh, mesh}, synth.camera, config);
+  // The same on the calling thread alone: the pool changes no number.
+  MultiTracker serial(Device::open("reference"), {mesh, mesh, mesh}, synth.camera, config, true, 1);
   // The expectation: trackers of their own, each fed its frame masked by MutualOcclusion from layers
   // the reference rasterizer draws at the previous estimates.
   std::vector<Tracker> alone;
   for (size_t j = 0; j < 3; ++j) {
     together.initialize(j, starts[j]);
+    serial.initialize(j, starts[j]);
     alone.emplace_back(mesh, synth.camera, config);
     alone.back().initialize(starts[j]);
   }
@@ -99,8 +107,12 @@ TEST_CASE("MultiTracker's masks, from the confidence's renderings, equal masks d
     std::vector<std::vector<float>> layers(3, std::vector<float>(80 * 60));
     for (size_t k = 0; k < 3; ++k) rasterizer.render(previous[k], layers[k]);
     const std::vector<Estimate> estimates = together.update(f.depth, f.timestamp);
+    const std::vector<Estimate> one_thread = serial.update(f.depth, f.timestamp);
     REQUIRE(estimates.size() == 3);
     for (size_t j = 0; j < 3; ++j) {
+      REQUIRE(one_thread[j].pose.translation == estimates[j].pose.translation);
+      REQUIRE(one_thread[j].pose.rotation.coeffs() == estimates[j].pose.rotation.coeffs());
+      REQUIRE(one_thread[j].confidence == estimates[j].confidence);
       size_t masked = 0;
       const Estimate own = alone[j].update(occlusion.frame_for(j, f.depth, previous, layers, &masked), f.timestamp);
       masked_pixels += masked;

@@ -11,16 +11,20 @@
 namespace depthtrack {
 
 MultiTracker::MultiTracker(std::shared_ptr<Device> device, const std::vector<Mesh>& meshes, const Camera& sensor,
-                           const TrackerConfig& config, bool mutual_occlusion)
+                           const TrackerConfig& config, bool mutual_occlusion, int host_threads)
     : device_(std::move(device)) {
   if (!device_) throw InputError("several-object tracker: the device is null (open one with Device::open)");
   if (meshes.empty()) throw InputError("several-object tracker: no mesh given");
+  if (host_threads < 0 || host_threads > 1024)
+    throw InputError("several-object tracker: host_threads is " + std::to_string(host_threads) +
+                     ": give 0 (one per object) or a count from 1 to 1024");
   for (const Mesh& mesh : meshes) trackers_.emplace_back(device_, mesh, sensor, config);
   poses_.resize(meshes.size());
   initialized_.assign(meshes.size(), false);
   const Camera& working = trackers_.front().working_camera();
   if (mutual_occlusion && meshes.size() > 1) occlusion_ = std::make_unique<MutualOcclusion>(meshes, working);
-  pool_ = std::make_unique<ThreadPool>(std::min(static_cast<int>(meshes.size()), hardware_threads()));
+  const int objects = static_cast<int>(std::min<size_t>(meshes.size(), 1024));
+  pool_ = std::make_unique<ThreadPool>(host_threads > 0 ? host_threads : std::min(objects, hardware_threads()));
 }
 
 MultiTracker::~MultiTracker() = default;
