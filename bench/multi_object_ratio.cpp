@@ -72,7 +72,8 @@ void synthetic(Scene& scene, int frames) {
 // The median of each of MultiTracker::update's stages over the frames after the first two (each frame's
 // MultiStageTimings), and sums over the objects of their own steps: the depth's upload, the confidence
 // (what the stage's wall time would be one object after another) and the filter's steps (propagate,
-// render, weigh, resample, refine: device event times on a compute backend, which overlap across objects).
+// render, weigh, resample, refine: device event times on a compute backend, which overlap across objects),
+// and of those the atlas' drawing alone (render).
 struct StageMedians {
   double frame = 0;  // the whole update, timed outside it
   std::vector<std::pair<std::string, double>> stages;
@@ -84,7 +85,7 @@ StageMedians median_frame(const Scene& scene, size_t objects, bool mutual_occlus
   MultiTracker tracker(Device::open(config.backend), meshes, scene.camera, config, mutual_occlusion, host_threads);
   for (size_t j = 0; j < objects; ++j) tracker.initialize(j, scene.starts[j], {0.01, 0.05});
   std::vector<double> frame, working, occluders, masks, enqueue, upload, collect, confidence, confidence_sum,
-      device_sum;
+      device_sum, render_sum;
   for (size_t i = 0; i < scene.frames.size(); ++i) {
     const Stopwatch clock;
     const std::vector<Estimate> estimates = tracker.update(scene.frames[i], scene.timestamps[i]);
@@ -98,13 +99,15 @@ StageMedians median_frame(const Scene& scene, size_t objects, bool mutual_occlus
     enqueue.push_back(t.enqueue_ms);
     collect.push_back(t.collect_ms);
     confidence.push_back(t.confidence_ms);
-    double uploads = 0, confidences = 0, steps = 0;
+    double uploads = 0, confidences = 0, steps = 0, renders = 0;
     for (const Estimate& e : estimates) {
       const StepTimings& o = e.timings;
       uploads += o.upload_ms;
       confidences += o.confidence_ms;
       steps += o.propagate_ms + o.render_ms + o.weigh_ms + o.resample_ms + o.refine_ms;
+      renders += o.render_ms;
     }
+    render_sum.push_back(renders);
     upload.push_back(uploads);
     confidence_sum.push_back(confidences);
     device_sum.push_back(steps);
@@ -120,7 +123,8 @@ StageMedians median_frame(const Scene& scene, size_t objects, bool mutual_occlus
                                       {"collect", &collect},
                                       {"confidence", &confidence},
                                       {"confidence_sum", &confidence_sum},
-                                      {"steps_sum", &device_sum}})
+                                      {"steps_sum", &device_sum},
+                                      {"render_sum", &render_sum}})
     m.stages.emplace_back(name, median(*samples));
   return m;
 }
