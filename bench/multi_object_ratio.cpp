@@ -69,20 +69,64 @@ void synthetic(Scene& scene, int frames) {
   }
 }
 
-// Median ms of MultiTracker::update over the frames after the first two, for the first `objects` objects.
-double median_frame_ms(const Scene& scene, size_t objects, bool mutual_occlusion, const TrackerConfig& config,
-                       std::string& device) {
+// The median of each of MultiTracker::update's stages over the frames after the first two (each frame's
+// MultiStageTimings), and sums over the objects of their own steps: the depth's upload, the confidence
+// (what the stage's wall time would be one object after another) and the filter's steps (propagate,
+// render, weigh, resample, refine: device event times on a compute backend, which overlap across objects),
+// and of those the atlas' drawing alone (render).
+struct StageMedians {
+  double frame = 0;  // the whole update, timed outside it
+  std::vector<std::pair<std::string, double>> stages;
+};
+
+StageMedians median_frame(const Scene& scene, size_t objects, bool mutual_occlusion, const TrackerConfig& config,
+                          std::string& device, int host_threads = 0) {
   const std::vector<Mesh> meshes(scene.meshes.begin(), scene.meshes.begin() + static_cast<std::ptrdiff_t>(objects));
-  MultiTracker tracker(Device::open(config.backend), meshes, scene.camera, config, mutual_occlusion);
+  MultiTracker tracker(Device::open(config.backend), meshes, scene.camera, config, mutual_occlusion, host_threads);
   for (size_t j = 0; j < objects; ++j) tracker.initialize(j, scene.starts[j], {0.01, 0.05});
-  std::vector<double> samples;
+  std::vector<double> frame, working, occluders, masks, enqueue, upload, collect, confidence, confidence_sum,
+      device_sum, render_sum;
   for (size_t i = 0; i < scene.frames.size(); ++i) {
-    const Stopwatch frame;
-    (void)tracker.update(scene.frames[i], scene.timestamps[i]);
-    if (i >= 2) samples.push_back(frame.elapsed_ms());
+    const Stopwatch clock;
+    const std::vector<Estimate> estimates = tracker.update(scene.frames[i], scene.timestamps[i]);
+    const double ms = clock.elapsed_ms();
+    if (i < 2) continue;
+    const MultiStageTimings& t = tracker.last_timings();
+    frame.push_back(ms);
+    working.push_back(t.working_ms);
+    occluders.push_back(t.occluders_ms);
+    masks.push_back(t.masks_ms);
+    enqueue.push_back(t.enqueue_ms);
+    collect.push_back(t.collect_ms);
+    confidence.push_back(t.confidence_ms);
+    double uploads = 0, confidences = 0, steps = 0, renders = 0;
+    for (const Estimate& e : estimates) {
+      const StepTimings& o = e.timings;
+      uploads += o.upload_ms;
+      confidences += o.confidence_ms;
+      steps += o.propagate_ms + o.render_ms + o.weigh_ms + o.resample_ms + o.refine_ms;
+      renders += o.render_ms;
+    }
+    render_sum.push_back(renders);
+    upload.push_back(uploads);
+    confidence_sum.push_back(confidences);
+    device_sum.push_back(steps);
   }
   device = tracker.tracker(0).backend_description();
-  return median(samples);
+  StageMedians m;
+  m.frame = median(frame);
+  for (const auto& [name, samples] : {std::pair{"working", &working},
+                                      {"occluders", &occluders},
+                                      {"masks", &masks},
+                                      {"enqueue", &enqueue},
+                                      {"upload_sum", &upload},
+                                      {"collect", &collect},
+                                      {"confidence", &confidence},
+                                      {"confidence_sum", &confidence_sum},
+                                      {"steps_sum", &device_sum},
+                                      {"render_sum", &render_sum}})
+    m.stages.emplace_back(name, median(*samples));
+  return m;
 }
 
 }  // namespace
@@ -98,16 +142,24 @@ void run_multi_object_ratio(const std::string& backend, const std::string& rende
   config.height = 60;
   const bool host = backend == "reference" || backend == "cpu" || backend.rfind("cpu:", 0) == 0;
   std::string device;
-  const double one = median_frame_ms(scene, 1, false, config, device);
+  const StageMedians one = median_frame(scene, 1, false, config, device);
   const std::string platform = host ? "cpu" : backend;
   const std::string name = host ? cpu_name() : device;
   for (const bool occlusion : {false, true}) {
-    const double three = median_frame_ms(scene, 3, occlusion, config, device);
+    const StageMedians three = median_frame(scene, 3, occlusion, config, device);
     const std::string test = (host ? "" : renderer + "_") + "multi_object_" + scene.name + "_80x60_" +
                              std::to_string(particles) + "p_occlusion_" + (occlusion ? "on" : "off");
-    print_row({backend, platform, name, "-", test, "one_object_ms", "ms", one});
-    print_row({backend, platform, name, "-", test, "three_objects_ms", "ms", three});
-    print_row({backend, platform, name, "-", test, "multi_object_ratio", "x", three / one});
+    print_row({backend, platform, name, "-", test, "one_object_ms", "ms", one.frame});
+    print_row({backend, platform, name, "-", test, "three_objects_ms", "ms", three.frame});
+    print_row({backend, platform, name, "-", test, "multi_object_ratio", "x", three.frame / one.frame});
+    // The same three on the calling thread alone (MultiTracker's host_threads 1): what the thread pool gains.
+    const StageMedians serial = median_frame(scene, 3, occlusion, config, device, 1);
+    print_row({backend, platform, name, "-", test, "three_objects_one_host_thread_ms", "ms", serial.frame});
+    print_row({backend, platform, name, "-", test, "one_host_thread_ratio", "x", serial.frame / one.frame});
+    // Where the time goes: each stage's median, one object's run and three objects'.
+    for (const auto& [label, run] : {std::pair{"one_object_", &one}, {"three_objects_", &three}})
+      for (const auto& [stage, ms] : run->stages)
+        print_row({backend, platform, name, "-", test, std::string(label) + stage + "_ms", "ms", ms});
   }
 }
 

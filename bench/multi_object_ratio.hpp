@@ -9,7 +9,10 @@ namespace depthtrack::bench {
 // 80x60 with the renderer named: the median frame (MultiTracker::update, every object's estimate out) of
 // each after two warm-up frames, and three / one. ycbv-0000's three objects and frames (started 1 cm /
 // 5 deg off, as the CLI's --init-perturb "0.01 5") where the data folder has them, else the handset (or
-// the built-in mesh) three times at three poses on the synthetic sequence, `frames` long. Prints CSV rows.
+// the built-in mesh) three times at three poses on the synthetic sequence, `frames` long. Prints CSV rows,
+// the three objects' median again with their host steps on the calling thread alone (host_threads 1), then
+// the median of each of MultiTracker::update's stages (MultiStageTimings) for one object and three:
+// <one_object|three_objects>_<stage>_ms.
 void run_multi_object_ratio(const std::string& backend, const std::string& renderer, int particles, int frames);
 
 }  // namespace depthtrack::bench

@@ -2,7 +2,7 @@
 # On the lent GPU machine: one object against ycbv-0000's three in one process, 2,000 particles each at
 # 80x60, per backend (issue 10: three objects <= 1.5x one): `depthtrack_bench --multi-objects` prints
 # multi_object_ratio rows (the median frame of one object and of three, and three / one) with mutual
-# occlusion off and on. Then the same through `track` (mean per-frame latency after the first frame, the
+# occlusion off and on, the same without the host thread pool, and each stage's median. Then the same through `track` (mean per-frame latency after the first frame, the
 # PNG decoding overlapped), as measured before the objects overlapped on the device. Carry .devdeps,
 # .device and .devdata.
 set -uo pipefail

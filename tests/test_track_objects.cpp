@@ -135,5 +135,17 @@ TEST_CASE("depthtrack_bench --multi-objects prints one and three objects' median
     CHECK(one > 0);
     CHECK(three > 0);
     CHECK(metrics.at("multi_object_ratio") == Approx(three / one).epsilon(1e-4));  // six significant digits printed
+    const double serial = metrics.at("three_objects_one_host_thread_ms");
+    CHECK(serial > 0);
+    CHECK(metrics.at("one_host_thread_ratio") == Approx(serial / one).epsilon(1e-4));
+    // Each stage's median, for one object and three; the masks only with mutual occlusion and several objects.
+    for (const char* stage : {"working", "enqueue", "collect", "confidence", "confidence_sum", "steps_sum"}) {
+      INFO(stage);
+      CHECK(metrics.at(std::string("one_object_") + stage + "_ms") >= 0);
+      CHECK(metrics.at(std::string("three_objects_") + stage + "_ms") > 0);
+    }
+    CHECK(metrics.at("one_object_masks_ms") == 0);
+    const bool occlusion = test.find("occlusion_on") != std::string::npos;
+    CHECK((metrics.at("three_objects_masks_ms") > 0) == occlusion);
   }
 }

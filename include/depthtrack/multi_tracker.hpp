@@ -1,7 +1,8 @@
 #pragma once
 // Several objects in one depth stream: a Tracker per object, all on one Device (each program compiled
 // once, each tracker on a compute queue of its own). A frame is checked and decimated once, every object's
-// update is enqueued, then every estimate collected, so the device runs the objects side by side. With
+// update is enqueued, then every estimate collected, so the device runs the objects side by side, and the
+// estimates' confidences are assessed side by side on the host. With
 // mutual occlusion, the working-resolution pixels the other objects' previous estimates hide are missing
 // for each object, so one object's surface neither rewards nor punishes another's likelihood.
 #include <depthtrack/device.hpp>
@@ -13,12 +14,27 @@
 namespace depthtrack {
 
 class MutualOcclusion;
+class ThreadPool;
+
+// Host wall time of each stage of the last MultiTracker::update, ms: where a several-object frame's time
+// goes. The stages run one after another; each object's own steps are in its Estimate::timings.
+struct MultiStageTimings {
+  double working_ms = 0;     // the frame checked and decimated to the working resolution, once
+  double occluders_ms = 0;   // mutual occlusion: the objects' previous estimates drawn (or reused)
+  double masks_ms = 0;       // mutual occlusion: each object's masked working frame
+  double enqueue_ms = 0;     // every object's start_frame: upload, enqueue (a host filter: its whole update)
+  double collect_ms = 0;     // waiting for every object's estimate, one after another
+  double confidence_ms = 0;  // every estimate's confidence and status, side by side on a thread pool
+  double total_ms = 0;       // the whole update
+};
 
 class MultiTracker {
  public:
   // InputError for no mesh or a null device; each tracker as Tracker(device, mesh, sensor, config).
+  // host_threads: the threads the objects' host steps (confidence, occluder layers) share, the caller's
+  // included; 0: one per object, at most the hardware's. Any count gives the same estimates.
   MultiTracker(std::shared_ptr<Device> device, const std::vector<Mesh>& meshes, const Camera& sensor,
-               const TrackerConfig& config, bool mutual_occlusion = true);
+               const TrackerConfig& config, bool mutual_occlusion = true, int host_threads = 0);
   ~MultiTracker();
   MultiTracker(MultiTracker&&) noexcept;
   MultiTracker& operator=(MultiTracker&&) noexcept;
@@ -32,6 +48,7 @@ class MultiTracker {
 
   const Tracker& tracker(size_t object) const;
   const Device& device() const { return *device_; }
+  const MultiStageTimings& last_timings() const { return timings_; }
 
  private:
   void check_initialized() const;  // InputError naming the first object without a start
@@ -41,8 +58,15 @@ class MultiTracker {
 
   std::shared_ptr<Device> device_;
   std::vector<Tracker> trackers_;
+  // Each object's occluder layer: its tracker's silhouette at its previous estimate (the confidence drew it).
+  std::vector<std::vector<float>> occluder_layers();
+
   std::unique_ptr<MutualOcclusion> occlusion_;  // null when off or with one object
-  std::vector<Pose> poses_;                     // each object's previous estimate (or start)
+  // The objects' host steps (confidence, occluder layers) side by side: a thread per object, at most
+  // the hardware's; the device's results are collected on the calling thread.
+  std::unique_ptr<ThreadPool> pool_;
+  MultiStageTimings timings_;
+  std::vector<Pose> poses_;  // each object's previous estimate (or start)
   std::vector<bool> initialized_;
 };
 

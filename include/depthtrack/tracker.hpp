@@ -30,6 +30,9 @@ struct StepTimings {
   // The estimate's confidence and status: its silhouette drawn and compared on the host, wall-clock;
   // included in total_ms.
   double confidence_ms = 0;
+  // Compute backends: the frame's depth written to the device, host wall time (a blocking write); included
+  // in total_ms. 0 on the host.
+  double upload_ms = 0;
 };
 
 // What a frame's estimate rests on. Tracking: the filter follows the object. Lost: the confidence
@@ -131,6 +134,14 @@ class Tracker {
   void start_frame(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame, double timestamp);
   void enqueue_frame(const DepthImage& working, double timestamp);  // start_frame after the search
   Estimate finish_frame(const DepthImage& working);
+  // finish_frame in two halves: collect_frame waits for the estimate and checks it (on the thread that
+  // enqueued it: a GL renderer's timer events are read there); assess_frame, host work on this tracker's
+  // own state only, may run on another thread, side by side with other trackers' assessments.
+  Estimate collect_frame();
+  void assess_frame(Estimate& e, const DepthImage& working);
+  // The working-resolution depth of the mesh at `pose` (0 where it covers nothing): the confidence's
+  // own rendering when it drew that very pose last, else drawn now by the same rasterizer.
+  const std::vector<float>& silhouette(const Pose& pose);
   struct PendingFrame {
     double timestamp = 0;
     bool recovered = false;

@@ -19,6 +19,8 @@ void bind_estimate(py::module_& m) {
       .def_readonly("resample_ms", &StepTimings::resample_ms)
       .def_readonly("refine_ms", &StepTimings::refine_ms)
       .def_readonly("search_ms", &StepTimings::search_ms)
+      .def_readonly("confidence_ms", &StepTimings::confidence_ms)
+      .def_readonly("upload_ms", &StepTimings::upload_ms)
       .def_readonly("total_ms", &StepTimings::total_ms);
 
   py::class_<Estimate>(m, "Estimate", "One frame's estimate")

@@ -240,7 +240,9 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   auto p = std::make_unique<Pending>();
   Kernels& k = *kernels_;
   time_ += dt;
+  const Stopwatch upload;
   observed_.upload(depth.data());
+  p->timings.upload_ms = upload.elapsed_ms();
   const unsigned count = static_cast<unsigned>(count_);
   const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
   if (dt > 0)

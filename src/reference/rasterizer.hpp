@@ -44,6 +44,7 @@ class Rasterizer {
   Camera camera_;
   double near_, far_;
   mutable std::vector<Eigen::Vector3d> transformed_;  // scratch: vertices in the camera frame
+  mutable std::vector<ScreenVertex> screen_;          // scratch: those in front of near, projected
 };
 
 }  // namespace depthtrack::reference

@@ -1,23 +1,30 @@
+#include <algorithm>
 #include <depthtrack/error.hpp>
 #include <depthtrack/multi_tracker.hpp>
 #include <exception>
 #include <optional>
 
+#include "core/stopwatch.hpp"
+#include "core/thread_pool.hpp"
 #include "tracker/mutual_occlusion.hpp"
 
 namespace depthtrack {
 
 MultiTracker::MultiTracker(std::shared_ptr<Device> device, const std::vector<Mesh>& meshes, const Camera& sensor,
-                           const TrackerConfig& config, bool mutual_occlusion)
+                           const TrackerConfig& config, bool mutual_occlusion, int host_threads)
     : device_(std::move(device)) {
   if (!device_) throw InputError("several-object tracker: the device is null (open one with Device::open)");
   if (meshes.empty()) throw InputError("several-object tracker: no mesh given");
+  if (host_threads < 0 || host_threads > 1024)
+    throw InputError("several-object tracker: host_threads is " + std::to_string(host_threads) +
+                     ": give 0 (one per object) or a count from 1 to 1024");
   for (const Mesh& mesh : meshes) trackers_.emplace_back(device_, mesh, sensor, config);
   poses_.resize(meshes.size());
   initialized_.assign(meshes.size(), false);
   const Camera& working = trackers_.front().working_camera();
-  if (mutual_occlusion && meshes.size() > 1)
-    occlusion_ = std::make_unique<MutualOcclusion>(meshes, working, config.near_plane, config.observation.max_depth);
+  if (mutual_occlusion && meshes.size() > 1) occlusion_ = std::make_unique<MutualOcclusion>(meshes, working);
+  const int objects = static_cast<int>(std::min<size_t>(meshes.size(), 1024));
+  pool_ = std::make_unique<ThreadPool>(host_threads > 0 ? host_threads : std::min(objects, hardware_threads()));
 }
 
 MultiTracker::~MultiTracker() = default;
@@ -45,29 +52,49 @@ void MultiTracker::check_initialized() const {
 
 std::vector<Estimate> MultiTracker::update(const DepthImage& depth, double timestamp) {
   check_initialized();
+  const Stopwatch clock;
+  timings_ = MultiStageTimings{};
   DepthImage storage;
   // Every tracker has the sensor's camera and the working one: the frame is checked and decimated once.
   const DepthImage& working = trackers_.front().working_frame(depth, storage);
-  return run(
+  timings_.working_ms = clock.elapsed_ms();
+  std::vector<Estimate> estimates = run(
       working, [&depth]() -> const DepthImage& { return depth; }, timestamp);
+  timings_.total_ms = clock.elapsed_ms();
+  return estimates;
 }
 
 std::vector<Estimate> MultiTracker::update(const DepthView& depth, double timestamp) {
   check_initialized();
+  const Stopwatch clock;
+  timings_ = MultiStageTimings{};
   const DepthImage working = trackers_.front().working_frame(depth);
+  timings_.working_ms = clock.elapsed_ms();
   std::optional<DepthImage> sensor;  // converted whole only if a lost object's search needs it
-  return run(
+  std::vector<Estimate> estimates = run(
       working,
       [&]() -> const DepthImage& {
         if (!sensor) sensor = depth.to_image();
         return *sensor;
       },
       timestamp);
+  timings_.total_ms = clock.elapsed_ms();
+  return estimates;
+}
+
+// The confidence of the previous frame rendered each object at its estimate, which is poses_[k]: that
+// rendering is the layer, so only a start (or a frame without data, which assesses nothing) draws.
+std::vector<std::vector<float>> MultiTracker::occluder_layers() {
+  std::vector<std::vector<float>> layers(trackers_.size());
+  pool_->run(trackers_.size(), [&](size_t k, int) { layers[k] = trackers_[k].silhouette(poses_[k]); });
+  return layers;
 }
 
 // Every object's frame is enqueued (each tracker has a compute queue of its own), then every estimate
 // is collected: the device runs the objects' work side by side. With mutual occlusion each object's
 // working frame hides what the others' previous estimates cover, so none waits for another's estimate.
+// The estimates are collected on this thread (a GL renderer's timer events are read on its thread), their
+// confidences assessed on the pool: each tracker's assessment touches its own state only.
 std::vector<Estimate> MultiTracker::run(const DepthImage& working,
                                         const std::function<const DepthImage&()>& sensor_frame, double timestamp) {
   const size_t n = trackers_.size();
@@ -76,25 +103,42 @@ std::vector<Estimate> MultiTracker::run(const DepthImage& working,
   size_t started = 0;
   std::exception_ptr failure;
   try {
-    // Each object drawn once (the previous estimates), each object's mask made from those layers.
-    std::vector<std::vector<float>> layers;
-    if (occlusion_) layers = occlusion_->draw(poses_);
-    for (; started < n; ++started) {
-      if (occlusion_) masked[started] = occlusion_->frame_for(started, working, poses_, layers);
-      trackers_[started].start_frame(frame_of(started), sensor_frame, timestamp);
+    if (occlusion_) {
+      Stopwatch clock;
+      // Every mask is made before any object starts: a lost object's search redraws its silhouette.
+      const std::vector<std::vector<float>> layers = occluder_layers();
+      timings_.occluders_ms = clock.lap_ms();
+      for (size_t j = 0; j < n; ++j) masked[j] = occlusion_->frame_for(j, working, poses_, layers);
+      timings_.masks_ms = clock.lap_ms();
     }
+    const Stopwatch clock;
+    for (; started < n; ++started) trackers_[started].start_frame(frame_of(started), sensor_frame, timestamp);
+    timings_.enqueue_ms = clock.elapsed_ms();
   } catch (...) {
     failure = std::current_exception();
   }
   // Every started frame is collected, even after a failure, so that no tracker is left mid-frame.
-  std::vector<Estimate> estimates;
+  Stopwatch clock;
+  std::vector<Estimate> estimates(started);
+  std::vector<size_t> collected;
   for (size_t j = 0; j < started; ++j) {
     try {
-      estimates.push_back(trackers_[j].finish_frame(frame_of(j)));
+      estimates[j] = trackers_[j].collect_frame();
+      collected.push_back(j);
     } catch (...) {
       if (!failure) failure = std::current_exception();
     }
   }
+  timings_.collect_ms = clock.lap_ms();
+  try {
+    pool_->run(collected.size(), [&](size_t i, int) {
+      const size_t j = collected[i];
+      trackers_[j].assess_frame(estimates[j], frame_of(j));
+    });
+  } catch (...) {
+    if (!failure) failure = std::current_exception();
+  }
+  timings_.confidence_ms = clock.lap_ms();
   if (failure) std::rethrow_exception(failure);
   for (size_t j = 0; j < n; ++j) poses_[j] = estimates[j].pose;
   return estimates;

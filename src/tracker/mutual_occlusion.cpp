@@ -2,39 +2,15 @@
 
 #include <cmath>
 #include <depthtrack/error.hpp>
-#include <future>
 #include <limits>
 
 namespace depthtrack {
 
-MutualOcclusion::MutualOcclusion(const std::vector<Mesh>& meshes, const Camera& working, double near, double far)
-    : working_(working) {
+MutualOcclusion::MutualOcclusion(const std::vector<Mesh>& meshes, const Camera& working) : working_(working) {
   for (const Mesh& mesh : meshes) {
-    rasterizers_.emplace_back(mesh, working, near, far);
     centres_.push_back(mesh.centre().cast<double>());
     radii_.push_back(mesh.radius());
   }
-}
-
-std::vector<std::vector<float>> MutualOcclusion::draw(const std::vector<Pose>& poses) const {
-  if (poses.size() != rasterizers_.size())
-    throw InputError("mutual occlusion: " + std::to_string(poses.size()) + " poses for " +
-                     std::to_string(rasterizers_.size()) + " objects");
-  const size_t pixels = static_cast<size_t>(working_.pixel_count());
-  std::vector<std::vector<float>> layers(rasterizers_.size(), std::vector<float>(pixels, 0.0f));
-  // One rasterizer per thread: each has its own scratch, and the meshes of YCB objects are large
-  // enough (tens of thousands of triangles) that drawing them one after another shows in the frame.
-  std::vector<std::future<void>> drawn;
-  for (size_t k = 1; k < rasterizers_.size(); ++k)
-    drawn.push_back(std::async(std::launch::async, [&, k] { rasterizers_[k].render(poses[k], layers[k]); }));
-  rasterizers_[0].render(poses[0], layers[0]);
-  for (auto& d : drawn) d.get();  // rethrows a thread's exception
-  return layers;
-}
-
-DepthImage MutualOcclusion::frame_for(size_t object, const DepthImage& working_depth, const std::vector<Pose>& poses,
-                                      size_t* masked) const {
-  return frame_for(object, working_depth, poses, draw(poses), masked);
 }
 
 DepthImage MutualOcclusion::frame_for(size_t object, const DepthImage& working_depth, const std::vector<Pose>& poses,
@@ -44,6 +20,13 @@ DepthImage MutualOcclusion::frame_for(size_t object, const DepthImage& working_d
                      std::to_string(working_depth.height()) + ", not the working camera's " +
                      std::to_string(working_.width) + "x" + std::to_string(working_.height));
   const size_t pixels = static_cast<size_t>(working_.pixel_count());
+  if (poses.size() != centres_.size() || layers.size() != centres_.size())
+    throw InputError("mutual occlusion: " + std::to_string(poses.size()) + " poses and " +
+                     std::to_string(layers.size()) + " layers for " + std::to_string(centres_.size()) + " objects");
+  for (const auto& layer : layers)
+    if (layer.size() != pixels)
+      throw InputError("mutual occlusion: a layer of " + std::to_string(layer.size()) + " pixels, not the working " +
+                       "camera's " + std::to_string(pixels));
   const std::vector<float>& own = layers[object];
   // The nearest of the other objects' surfaces per pixel (0: none).
   std::vector<float> other(pixels, 0.0f);

@@ -160,7 +160,26 @@ std::vector<Pose> TrackSupervisor::seeds(const search::SearchResult& result) {
 }
 
 SilhouetteShares TrackSupervisor::assess(const Pose& pose, const DepthImage& working) {
-  return silhouette_shares(rasterizer_, config_.observation, config_.loss.pixel_sigmas, pose, working, scratch_);
+  drawn_.reset();  // until the rendering is done
+  const SilhouetteShares shares =
+      silhouette_shares(rasterizer_, config_.observation, config_.loss.pixel_sigmas, pose, working, scratch_);
+  drawn_ = pose;
+  return shares;
+}
+
+namespace {
+bool same_pose(const Pose& a, const Pose& b) {
+  return a.translation == b.translation && a.rotation.coeffs() == b.rotation.coeffs();
+}
+}  // namespace
+
+const std::vector<float>& TrackSupervisor::silhouette(const Pose& pose) {
+  if (!drawn_ || !same_pose(*drawn_, pose)) {
+    drawn_.reset();
+    rasterizer_.render(pose, scratch_);
+    drawn_ = pose;
+  }
+  return scratch_;
 }
 
 bool TrackSupervisor::found(const Pose& pose, const DepthImage& working) {

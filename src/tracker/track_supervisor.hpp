@@ -5,6 +5,7 @@
 #include <depthtrack/camera.hpp>
 #include <depthtrack/init_hint.hpp>
 #include <depthtrack/tracker.hpp>
+#include <optional>
 #include <vector>
 
 #include "model/filter_backend.hpp"
@@ -37,6 +38,9 @@ class TrackSupervisor {
   static std::vector<Pose> seeds(const search::SearchResult& result);
 
   SilhouetteShares assess(const Pose& pose, const DepthImage& working);
+  // The working-resolution depth of the mesh at pose (0 where it covers nothing): assess()'s rendering
+  // when it drew that very pose last, else drawn now. Valid until the next assess() or silhouette().
+  const std::vector<float>& silhouette(const Pose& pose);
   // Whether a search candidate ends lost: the depth explains its silhouette (confidence at least
   // loss.found_above) and it stands out from its surroundings (loss.found_outline of its outline).
   bool found(const Pose& pose, const DepthImage& working);
@@ -59,7 +63,8 @@ class TrackSupervisor {
   std::unique_ptr<PoseScorer> full_;    // with the tracker's mesh
   reference::PoseRefiner refiner_;      // fits the best candidates without a hint (on the host)
   reference::Rasterizer rasterizer_;
-  std::vector<float> scratch_;
+  std::vector<float> scratch_;  // the mesh drawn at drawn_ (by assess or silhouette)
+  std::optional<Pose> drawn_;
   TrackStatus status_ = TrackStatus::Tracking;
   int bad_frames_ = 0;
 };

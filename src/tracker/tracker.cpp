@@ -214,6 +214,12 @@ void Tracker::enqueue_frame(const DepthImage& working, double timestamp) {
 }
 
 Estimate Tracker::finish_frame(const DepthImage& working) {
+  Estimate e = collect_frame();
+  assess_frame(e, working);
+  return e;
+}
+
+Estimate Tracker::collect_frame() {
   if (!frame_pending_) throw InputError("tracker: finish_frame() without a started frame");
   frame_pending_ = false;
   const double timestamp = pending_.timestamp;
@@ -232,20 +238,27 @@ Estimate Tracker::finish_frame(const DepthImage& working) {
   previous_timestamp_ = timestamp;
   has_previous_ = true;
   ++frames_since_initialize_;
+  return e;
+}
+
+void Tracker::assess_frame(Estimate& e, const DepthImage& working) {
   // A dropout: every pixel adds 0 to every particle's log-likelihood, so the weights stay as they
   // are and resampling, decided on them, cannot trigger: the filter propagates only.
   if (working.valid_count() == 0) {
     // Nothing was seen: no evidence for or against the track, so the loss hysteresis is left alone.
     e.confidence = 0;
     e.status = TrackStatus::NoData;
-    return e;
+    return;
   }
   const Stopwatch clock;
   e.confidence = supervisor_->assess(e.pose, working).confidence();
   e.status = supervisor_->observe(e.confidence);
   e.timings.confidence_ms = clock.elapsed_ms();
   e.timings.total_ms += e.timings.confidence_ms;
-  return e;
+}
+
+const std::vector<float>& Tracker::silhouette(const Pose& pose) {
+  return supervisor_->silhouette(pose);
 }
 
 const Camera& Tracker::working_camera() const {
