@@ -92,7 +92,22 @@ for f in $formats; do
   [[ -x /usr/bin/time ]] && timer=(/usr/bin/time -f '%U %S' -o "$work/cpu.txt")
   "${timer[@]}" nice -n "$niceness" "$fuzz_build/fuzz/fuzz_mesh_$f" "$work/corpus" \
     -fork="$jobs" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 -runs="$runs" -max_total_time="$max_seconds" -timeout="$timeout" \
-    -rss_limit_mb=2048 -detect_leaks=0 "${dict[@]}" -artifact_prefix="$work/artifacts/" >"$work/log.txt" 2>&1 || true
+    -rss_limit_mb=2048 -detect_leaks=0 "${dict[@]}" -artifact_prefix="$work/artifacts/" >"$work/log.txt" 2>&1 &
+  campaign=$!
+  # A fork-mode worker runs at most 300 s (libFuzzer caps -max_total_time per job), yet some PLY
+  # workers were seen asleep on a futex for 25 minutes (a deadlock inside the fuzzer's own timeout or
+  # crash handler, 2 % CPU), which stalls the whole campaign: such a worker is killed after 400 s,
+  # and the parent goes on with the next job.
+  while kill -0 "$campaign" 2>/dev/null; do
+    for worker in $(pgrep -f "fuzz_mesh_$f -ignore_crashes" || true); do
+      age=$(ps -o etimes= -p "$worker" 2>/dev/null | tr -d ' ')
+      if [[ -n $age && $age -gt 400 ]]; then
+        kill -9 "$worker" 2>/dev/null && echo "fuzz-campaign: killed worker $worker, stalled ${age} s" >>"$work/stalled.txt"
+      fi
+    done
+    sleep 10
+  done
+  wait "$campaign" || true
   seconds=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { print b - a }')
   cpu=$([[ -f $work/cpu.txt ]] && tail -1 "$work/cpu.txt" | awk '{print $1 + $2}' || echo 0)
   line=$(last_progress "$work/log.txt")
