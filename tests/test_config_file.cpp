@@ -34,6 +34,8 @@ void change_every_field(S& s, int& counter) {
       m = OcclusionStorage::GlobalTime;
     else if constexpr (std::is_same_v<M, Renderer>)
       m = Renderer::Gl;
+    else if constexpr (std::is_same_v<M, RefineLayout>)
+      m = RefineLayout::Spread;
     else if constexpr (std::is_same_v<M, std::string>)
       m = "value-" + std::to_string(counter);
     else if constexpr (std::is_same_v<M, double>)

@@ -95,8 +95,8 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
 struct DeviceFilter::Pending {
   Stopwatch clock;
   StepTimings timings;  // the atlas source's host part
-  compute::EventPtr propagated, rendered, weighed, summarized, refined, shifted;
-  std::vector<compute::EventPtr> resampling;
+  compute::EventPtr propagated, rendered, weighed, summarized, shifted;
+  std::vector<compute::EventPtr> refined, resampling;
 };
 
 DeviceFilter::~DeviceFilter() = default;
@@ -305,7 +305,10 @@ Estimate DeviceFilter::collect() {
   e.timings.weigh_ms = p->weighed->elapsed_ms();
   e.timings.resample_ms = p->summarized->elapsed_ms();
   for (const auto& event : p->resampling) e.timings.resample_ms += event->elapsed_ms();
-  if (p->refined) e.timings.refine_ms = p->refined->elapsed_ms() + p->shifted->elapsed_ms();
+  if (p->shifted) {
+    e.timings.refine_ms = p->shifted->elapsed_ms();
+    for (const auto& event : p->refined) e.timings.refine_ms += event->elapsed_ms();
+  }
   e.timings.total_ms = p->clock.elapsed_ms();
   ++frame_;
   return e;
