@@ -9,17 +9,11 @@
 #define DT_REFINE_OBJECTIVE 27
 #define DT_REFINE_PIXELS 28
 
-/* The pixels a pose can cover (dt_pose_box). */
-typedef struct {
-  dt_u32 u0, v0, width, height; /* empty: width or height 0 */
-} dt_pixel_box;
-
 typedef struct {
   dt_u32 active;     /* 1 while a candidate waits to be evaluated */
   dt_u32 evaluation; /* evaluations the step kernel has judged */
   int tried;         /* steps tried (candidates after the start) */
   float lambda;
-  dt_pixel_box box;                 /* the candidate's */
   float candidate[DT_STATE_STRIDE]; /* dt_state.h's layout (pose only) */
   float best[DT_STATE_STRIDE];      /* the best pose evaluated */
   float best_sums[DT_REFINE_SUMS];  /* its normal equations */

@@ -16,9 +16,12 @@ namespace {
 // multiprocessor. The spread layout's sums, begin and step kernels use the same size.
 constexpr size_t kRefineGroup = 256;
 constexpr size_t kLinearGroup = 64;  // shift, and the spread layout's draws: a work-item per particle / triangle
-// The spread sums kernel: enough groups for every pixel of the image to have its own work-item (a
-// pose's box is usually far smaller), at most this many rows of partials for the step to add.
+// The spread sums kernel: enough groups for every pixel of the image to have its own work-item, at
+// most this many rows of partials for the step kernel to add (beyond 256 x 256 pixels a work-item
+// sums several).
 constexpr size_t kMaxSumGroups = 256;
+constexpr size_t kStepGroup = 32;  // the spread step kernel: a work-item per sum (29), one warp
+static_assert(kStepGroup >= DT_REFINE_SUMS);
 
 size_t round_up(size_t n, size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
@@ -59,7 +62,7 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
   sum_groups_ = std::clamp<size_t>((pixels + kRefineGroup - 1) / kRefineGroup, 1, kMaxSumGroups);
   fit_state_ = compute::Buffer<float>(queue, sizeof(dt_refine_state) / sizeof(float));
   partials_ = compute::Buffer<float>(queue, sum_groups_ * DT_REFINE_SUMS);
-  // The spread layout never clears: every evaluation resets the pixels it read (refine_spread.cl).
+  // The spread layout never clears: every evaluation resets the pixels it drew (refine_spread.cl).
   tile_.upload(std::vector<unsigned>(pixels, 0x7f800000u));  // DT_NO_SURFACE
   ids_.upload(std::vector<unsigned>(pixels, 0xffffffffu));
 }
@@ -82,13 +85,14 @@ std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<floa
       model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time);
   const dt_camera cam = model::camera_params(camera_, config_);
   const dt_model model = model::model_params(config_);
-  const auto one_group = compute::NdRange::linear(kRefineGroup, kRefineGroup);
+  const auto step_group = compute::NdRange::linear(kStepGroup, kStepGroup);
   const auto per_triangle =
       compute::NdRange::linear(round_up(std::max<size_t>(mesh_.triangle_count(), 1), kLinearGroup), kLinearGroup);
   const auto over_pixels = compute::NdRange::linear(sum_groups_ * kRefineGroup, kRefineGroup);
   const unsigned triangles = mesh_.triangle_count();
   std::vector<compute::EventPtr> events;
-  events.push_back(queue_.launch(*begin_, one_group, fit_state_, estimate, in.states, mesh_.vertices, cam, args));
+  events.push_back(queue_.launch(*begin_, compute::NdRange::linear(1, 1), fit_state_, estimate, in.states,
+                                 static_cast<float>(config_.refine.damping)));
   for (int evaluation = 0; evaluation <= config_.refine.iterations; ++evaluation) {
     events.push_back(queue_.launch(*depth_, per_triangle, fit_state_, mesh_.vertices, mesh_.triangles, mesh_.planes,
                                    triangles, cam, tile_));
@@ -97,8 +101,8 @@ std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<floa
     events.push_back(queue_.launch(*sums_, over_pixels, fit_state_, estimate, in.observed, in.occlusion,
                                    in.occlusion_time, in.priors, in.atlas, in.layout.kernel_args(), mesh_.planes,
                                    triangles, cam, model, args, tile_, ids_, partials_));
-    events.push_back(queue_.launch(*step_, one_group, fit_state_, estimate, in.states, partials_,
-                                   static_cast<unsigned>(sum_groups_), mesh_.vertices, cam, args, correction_));
+    events.push_back(queue_.launch(*step_, step_group, fit_state_, estimate, in.states, partials_,
+                                   static_cast<unsigned>(sum_groups_), args, correction_));
   }
   return events;
 }
