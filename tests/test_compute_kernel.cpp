@@ -1,5 +1,6 @@
 // Programs built at run time from the prelude plus a kernel, with -D definitions, launched and timed.
 #include <catch2/catch.hpp>
+#include <optional>
 #include <vector>
 
 #include "compute/buffer.hpp"
@@ -43,6 +44,26 @@ TEST_CASE("A kernel built with a definition computes a*x + OFFSET", "[compute]")
   // The definition reaches the compiler: another value, another result.
   const auto z = run_axpy(*queue, "-1.0f");
   for (unsigned i = 0; i < z.size(); ++i) CHECK(z[i] == 2.0f * static_cast<float>(i) - 1.0f);
+}
+
+TEST_CASE("A run of launches is timed from the first one's start to the last one's end", "[compute]") {
+  auto queue = test::test_queue();
+  if (!queue) return;
+  const unsigned count = 1 << 16;
+  compute::Buffer<float> xs(*queue, count), ys(*queue, count);
+  xs.upload(std::vector<float>(count, 1.0f));
+  auto program = queue->build("axpy", compute::kernel_source("dt_prelude.h") + kAxpy, {"OFFSET=0.0f"});
+  auto kernel = program->kernel("axpy");
+  std::vector<compute::EventPtr> events;
+  for (int i = 0; i < 3; ++i)
+    events.push_back(queue->launch(*kernel, compute::NdRange::linear(count, 64), 2.0f, xs, ys, count));
+  const std::optional<double> span = events.back()->elapsed_since_ms(*events.front());
+  REQUIRE(span);  // both backends (OpenCL's profiling counters, CUDA's event pairs) have a common clock
+  // In order on one queue, the launches do not overlap: the span holds the three and the gaps between.
+  double sum = 0;
+  for (const auto& e : events) sum += e->elapsed_ms();
+  CHECK(*span >= sum * (1 - 1e-6) - 1e-6);
+  CHECK(*events.front()->elapsed_since_ms(*events.front()) == Approx(events.front()->elapsed_ms()).margin(1e-6));
 }
 
 TEST_CASE("Kernels launch over two-dimensional ranges", "[compute]") {

@@ -7,6 +7,7 @@
 #include <concepts>
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -30,6 +31,13 @@ class Event {
   virtual void wait() = 0;
   // Device time from start to end of the work, milliseconds (waits for it first).
   virtual double elapsed_ms() = 0;
+  // Device time from the start of `earlier` (enqueued before this one on the same queue) to the end of
+  // this one, milliseconds: a run of launches with the gaps between them, which adding their
+  // elapsed_ms() leaves out. Empty where the backend has no clock common to both (waits for this one).
+  virtual std::optional<double> elapsed_since_ms(Event& earlier) {
+    (void)earlier;
+    return std::nullopt;
+  }
 };
 using EventPtr = std::shared_ptr<Event>;
 
