@@ -203,9 +203,10 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
         "ESS within %.2g, refined standard deviations within %.2g (relative), "
         "%d resamplings, ancestry identical but for %d numerical ties; %d silhouette coverage flips; "
         "ancestry and estimates compared in %d of %zu frames\n",
-        scene.name.c_str(), to_string(mode), renderer.c_str(), to_string(resolved_refine_layout(layout, gpu)),
-        device.description().c_str(), worst_ll, worst_t, worst_r, worst_ess, worst_sd, resamplings, ties,
-        coverage_flips, compared_frames, scene.frames.size());
+        scene.name.c_str(), to_string(mode), renderer.c_str(),
+        to_string(resolved_refine_layout(layout, gpu, scene.mesh.triangles.size())), device.description().c_str(),
+        worst_ll, worst_t, worst_r, worst_ess, worst_sd, resamplings, ties, coverage_flips, compared_frames,
+        scene.frames.size());
     CHECK(resamplings > 0);
     CHECK(ties <= (renderer == "gl" ? 4 : 2));
     // GL rasterizes in fixed point (llvmpipe: 1/256 px), so its silhouettes differ from the double
@@ -248,13 +249,16 @@ TEST_CASE("with the compute-kernel atlas in the loop the device filter still equ
   compare_with_reference("kernel");
 }
 
-// Auto picks one layout per device kind (spread on GPUs, one group on CPU devices); the other one,
-// forced, must equal the reference just as well (the kernel atlas, as CI's default renderer).
+// Auto picks one layout per device kind and mesh (the test's handset: spread on GPUs, one group on CPU
+// devices); the other one, forced, must equal the reference just as well (the kernel atlas, as CI's
+// default renderer).
 TEST_CASE("with the refinement layout auto does not pick the device filter still equals the reference",
           "[device][kernel][refine]") {
   if (!test::device_available()) return;
   const bool gpu = compute::open_device(test::device_selector())->info().is_gpu;
-  compare_with_reference("kernel", gpu ? RefineLayout::OneGroup : RefineLayout::Spread);
+  const size_t triangles = make_scene(1).mesh.triangles.size();
+  const bool auto_spreads = resolved_refine_layout(RefineLayout::Auto, gpu, triangles) == RefineLayout::Spread;
+  compare_with_reference("kernel", auto_spreads ? RefineLayout::OneGroup : RefineLayout::Spread);
 }
 
 TEST_CASE("more particles than the device can hold is a clear error, not a crash, for every renderer",

@@ -33,8 +33,10 @@ struct RefineInputs {
   double time;  // seconds since the first frame
 };
 
-// The layout Auto picks on a device: Spread on GPUs, OneGroup on CPU devices (docs/design-notes.md).
-RefineLayout resolved_refine_layout(RefineLayout layout, bool is_gpu);
+// The layout Auto picks: Spread on GPUs; on CPU devices OneGroup for meshes of fewer than
+// kSpreadOnCpuTriangles triangles, else Spread (measured on PoCL: docs/design-notes.md).
+constexpr size_t kSpreadOnCpuTriangles = 4096;
+RefineLayout resolved_refine_layout(RefineLayout layout, bool is_gpu, size_t triangle_count);
 
 class DeviceRefiner {
  public:
