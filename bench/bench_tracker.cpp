@@ -19,6 +19,7 @@
 #include <depthtrack/init_hint.hpp>
 #include <depthtrack/synth.hpp>
 #include <depthtrack/tracker.hpp>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -79,9 +80,12 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
     total.push_back(e.timings.total_ms);
   }
   const std::string device = tracker.backend_description();
-  const std::string test = (host_backend(backend) ? "" : renderer + "_") + mesh_name + "_" + std::to_string(c.width) +
-                           "x" + std::to_string(c.height) + "_" + std::to_string(c.particles) + "p" +
-                           (refine.enabled ? "_refine" + std::to_string(refine.iterations) : "_norefine");
+  const std::string test =
+      (host_backend(backend) ? "" : renderer + "_") + mesh_name + "_" + std::to_string(c.width) + "x" +
+      std::to_string(c.height) + "_" + std::to_string(c.particles) + "p" +
+      (refine.enabled ? "_refine" + std::to_string(refine.iterations) : "_norefine") +
+      (refine.enabled && refine.layout != RefineLayout::Auto ? std::string("_") + to_string(refine.layout)
+                                                             : std::string());
   const std::string platform = host_backend(backend) ? "cpu" : backend;
   const std::string name = host_backend(backend) ? bench::cpu_name() : device;
   for (const auto& [metric, samples] : {std::pair{"propagate", &propagate},
@@ -109,7 +113,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
 const char* const kUsage =
     "usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] "
     "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N] [--refine-converged M]\n"
-    "       [--no-global] [--multi-objects]\n"
+    "       [--refine-layout auto|one-group|spread] [--mesh FILE] [--no-global] [--multi-objects]\n"
     "Times tracker frames on a synthetic occluded handset sequence, split into propagate / render / hand-off /\n"
     "weigh / resample, start-up (construction + initialize) with its peak host memory, and the off-screen start\n"
     "(one particle 10,000 km to the side, 5 frames); prints CSV rows\n"
@@ -124,6 +128,9 @@ const char* const kUsage =
     "  --refine-iterations N  refinement steps per frame at most (default: TrackerConfig's)\n"
     "  --refine-converged M   the refinement stops when a step would move the mesh less than M metres\n"
     "                         (default: TrackerConfig's; 0 takes every step)\n"
+    "  --refine-layout NAME   device backends' refinement: auto (default: spread on GPUs, one-group on CPU\n"
+    "                         devices), one-group or spread; a given one is named in the test column\n"
+    "  --mesh FILE            track this mesh instead of the handset (e.g. a 16k-triangle YCB mesh)\n"
     "  --no-global            leave out the global initialization rows (box hint and no hint, 80x60)\n"
     "  --multi-objects        instead: one object against three in one process at 80x60 (ycbv-0000's, else\n"
     "                         the handset thrice), mutual occlusion off and on: multi_object_ratio rows;\n"
@@ -210,6 +217,7 @@ int main(int argc, char** argv) {
   int frames = 20;
   Refinement refine;
   bool global = true, multi_objects = false;
+  std::string mesh_file;
   const auto option = [&](const std::string& arg, bench::ArgReader& args) {
     if (arg == "--backend")
       backend = args.value();
@@ -229,6 +237,14 @@ int main(int argc, char** argv) {
       refine.iterations = bench::parse_positive(args.value(), arg);
     else if (arg == "--refine-converged")
       refine.converged_motion = bench::parse_nonnegative_double(args.value(), arg);
+    else if (arg == "--refine-layout")
+      try {
+        refine.layout = refine_layout_from_string(args.value());
+      } catch (const InputError& e) {
+        throw bench::UsageError{e.what()};
+      }
+    else if (arg == "--mesh")
+      mesh_file = args.value();
     else if (arg == "--no-global")
       global = false;
     else if (arg == "--multi-objects")
@@ -260,7 +276,8 @@ int main(int argc, char** argv) {
   }
   try {
     std::string name;
-    const Mesh mesh = bench::bench_mesh(name);
+    const Mesh mesh = mesh_file.empty() ? bench::bench_mesh(name) : Mesh::load(mesh_file);
+    if (!mesh_file.empty()) name = std::filesystem::path(mesh_file).stem().string();
     bench::print_header();
     int failed = 0;
     for (const Case& c : cases) {

@@ -39,6 +39,18 @@ typedef struct {
   dt_u32 width, height;
 } dt_camera;
 
+/* The pose refinement's settings and the mesh facts its stopping rule needs (refine.cl, refine_spread.cl). */
+typedef struct {
+  float damping;       /* Levenberg-Marquardt lambda on diag(H) */
+  float min_incidence; /* pixels with |cos(normal, ray)| below it are left out of H */
+  float centre_x, centre_y, centre_z;
+  float now;              /* seconds since the first frame: the per-pixel-time occlusion mode ages p to it */
+  int iterations;         /* damped steps at most */
+  float radius;           /* largest vertex distance from the centre */
+  float converged_motion; /* a step moving no mesh point farther than this (metres) is not tried */
+  dt_u32 vertex_count;
+} dt_refine_args;
+
 /* How occlusion is stored, the value of the DT_OCCLUSION compile-time definition. */
 #define DT_PER_PIXEL_TIME 0
 #define DT_GLOBAL_TIME 1

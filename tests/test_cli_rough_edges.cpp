@@ -119,9 +119,8 @@ TEST_CASE("the benchmarks answer --help and refuse malformed numbers", "[cli][be
 #endif
     return !program.empty();
   };
-  for (const char* program :
-       {"depthtrack_bench", "depthtrack_bench_atlas", "depthtrack_bench_soak", "depthtrack_bench_startup",
-        "depthtrack_bench_error_axes"}) {
+  for (const char* program : {"depthtrack_bench", "depthtrack_bench_atlas", "depthtrack_bench_soak",
+                              "depthtrack_bench_startup", "depthtrack_bench_error_axes"}) {
     if (!built(program)) continue;
     const auto [status, help] = run(program, "--help");
     INFO(program << "\n" << help);
@@ -140,6 +139,8 @@ TEST_CASE("the benchmarks answer --help and refuse malformed numbers", "[cli][be
       {"depthtrack_bench", "--resolution 80by60", "is not of the form WxH"},
       {"depthtrack_bench", "--frames", "--frames needs a value"},
       {"depthtrack_bench", "--fast", "unknown option '--fast'"},
+      {"depthtrack_bench", "--refine-layout wide",
+       "unknown refinement layout 'wide' (choose auto, one-group or spread)"},
       {"depthtrack_bench_atlas", "--repeats 0", "--repeats: '0' is not a positive integer"},
       {"depthtrack_bench_atlas", "--particles 1e3", "--particles: '1e3' is not a positive integer"},
       {"depthtrack_bench_soak", "--frames 0", "--frames: '0' is not a positive integer"},

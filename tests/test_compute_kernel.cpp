@@ -1,5 +1,6 @@
 // Programs built at run time from the prelude plus a kernel, with -D definitions, launched and timed.
 #include <catch2/catch.hpp>
+#include <optional>
 #include <vector>
 
 #include "compute/buffer.hpp"
@@ -43,6 +44,29 @@ TEST_CASE("A kernel built with a definition computes a*x + OFFSET", "[compute]")
   // The definition reaches the compiler: another value, another result.
   const auto z = run_axpy(*queue, "-1.0f");
   for (unsigned i = 0; i < z.size(); ++i) CHECK(z[i] == 2.0f * static_cast<float>(i) - 1.0f);
+}
+
+TEST_CASE("A run of launches is timed from the first one's start to the last one's end", "[compute]") {
+  auto queue = test::test_queue();
+  if (!queue) return;
+  const unsigned count = 1 << 16;
+  compute::Buffer<float> xs(*queue, count), ys(*queue, count), zs(*queue, count);
+  xs.upload(std::vector<float>(count, 1.0f));
+  auto program = queue->build("axpy", compute::kernel_source("dt_prelude.h") + kAxpy, {"OFFSET=0.0f"});
+  auto kernel = program->kernel("axpy");
+  const auto range = compute::NdRange::linear(count, 64);
+  const compute::EventPtr first = queue->launch(*kernel, range, 2.0f, xs, ys, count);
+  queue->launch_untimed(*kernel, range, 3.0f, ys, zs, count);  // z = 3 y = 6, between the timed two
+  const compute::EventPtr last = queue->launch(*kernel, range, 0.5f, zs, ys, count);  // y = 0.5 z = 3
+  const std::optional<double> span = last->elapsed_since_ms(*first);
+  REQUIRE(span);  // both backends (OpenCL's profiling counters, CUDA's event pairs) have a common clock
+  // In order on one queue, the launches do not overlap: the span holds the three and the gaps between.
+  CHECK(*span >= (first->elapsed_ms() + last->elapsed_ms()) * (1 - 1e-6) - 1e-6);
+  CHECK(*first->elapsed_since_ms(*first) == Approx(first->elapsed_ms()).margin(1e-6));
+  const auto y = ys.download(), z = zs.download();
+  CHECK(z[0] == 6.0f);
+  CHECK(z[count - 1] == 6.0f);
+  CHECK(y[count / 2] == 3.0f);
 }
 
 TEST_CASE("Kernels launch over two-dimensional ranges", "[compute]") {

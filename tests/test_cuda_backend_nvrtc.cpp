@@ -59,7 +59,8 @@ TEST_CASE("A CUDA compile error carries NVRTC's log and the failing lines", "[cu
 
 TEST_CASE("The filter's kernels compile as CUDA for every occlusion variant", "[cuda]") {
   if (!nvrtc_available()) return;
-  for (const std::string file : {"propagate.cl", "weigh.cl", "summarize.cl", "resample.cl", "refine.cl", "initialize.cl"}) {
+  for (const std::string file :
+       {"propagate.cl", "weigh.cl", "summarize.cl", "resample.cl", "refine.cl", "refine_spread.cl", "initialize.cl"}) {
     for (const std::string occlusion : {"0", "1", "2"}) {
       CAPTURE(file, occlusion);
       const std::string ptx =

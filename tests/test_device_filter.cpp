@@ -7,6 +7,7 @@
 
 #include "device_support.hpp"
 #include "filter/device_filter.hpp"
+#include "filter/device_refiner.hpp"
 #include "model/occlusion_chain.hpp"
 #include "philox.h"
 #include "reference/observation_model.hpp"
@@ -79,9 +80,11 @@ int coverage_differences(const Scene& scene, const TrackerConfig& config, const 
   return differences;
 }
 
-// The whole comparison, for one atlas renderer ("cpu": the reference rasterizer; "gl": OpenGL).
-void compare_with_reference(const std::string& renderer) {
+// The whole comparison, for one atlas renderer ("cpu": the reference rasterizer; "gl": OpenGL) and
+// refinement layout (one group or spread over many: the same fit).
+void compare_with_reference(const std::string& renderer, RefineLayout layout = RefineLayout::Auto) {
   const Scene scene = make_scene(20);
+  const bool gpu = compute::open_device(test::device_selector())->info().is_gpu;
   for (auto mode : {OcclusionStorage::PerPixelTime, OcclusionStorage::GlobalTime, OcclusionStorage::Off}) {
     TrackerConfig config;
     config.renderer = renderer_from_string(renderer);
@@ -89,6 +92,7 @@ void compare_with_reference(const std::string& renderer) {
     config.occlusion_storage = mode;
     config.seed = 9;
     config.backend = test::device_selector();
+    config.refine.layout = layout;
     reference::ReferenceFilter reference(scene.mesh, scene.working, config);
     DeviceFilter device(compute::open_device(config.backend), scene.mesh, scene.working, config);
     const InitialSpread spread{0.01, 0.05};
@@ -194,12 +198,15 @@ void compare_with_reference(const std::string& renderer) {
       }
     }
     std::printf(
-        "%s, %s, renderer %s on %s: worst relative log-likelihood difference %.2g, estimates within %.2g m / %.2g rad, "
+        "%s, %s, renderer %s, refinement %s on %s: worst relative log-likelihood difference %.2g, estimates within "
+        "%.2g m / %.2g rad, "
         "ESS within %.2g, refined standard deviations within %.2g (relative), "
         "%d resamplings, ancestry identical but for %d numerical ties; %d silhouette coverage flips; "
         "ancestry and estimates compared in %d of %zu frames\n",
-        scene.name.c_str(), to_string(mode), renderer.c_str(), device.description().c_str(), worst_ll, worst_t, worst_r,
-        worst_ess, worst_sd, resamplings, ties, coverage_flips, compared_frames, scene.frames.size());
+        scene.name.c_str(), to_string(mode), renderer.c_str(),
+        to_string(resolved_refine_layout(layout, gpu, scene.mesh.triangles.size())), device.description().c_str(),
+        worst_ll, worst_t, worst_r, worst_ess, worst_sd, resamplings, ties, coverage_flips, compared_frames,
+        scene.frames.size());
     CHECK(resamplings > 0);
     CHECK(ties <= (renderer == "gl" ? 4 : 2));
     // GL rasterizes in fixed point (llvmpipe: 1/256 px), so its silhouettes differ from the double
@@ -240,6 +247,18 @@ TEST_CASE("with the compute-kernel atlas in the loop the device filter still equ
           "[device][kernel]") {
   if (!test::device_available()) return;
   compare_with_reference("kernel");
+}
+
+// Auto picks one layout per device kind and mesh (the test's handset: spread on GPUs, one group on CPU
+// devices); the other one, forced, must equal the reference just as well (the kernel atlas, as CI's
+// default renderer).
+TEST_CASE("with the refinement layout auto does not pick the device filter still equals the reference",
+          "[device][kernel][refine]") {
+  if (!test::device_available()) return;
+  const bool gpu = compute::open_device(test::device_selector())->info().is_gpu;
+  const size_t triangles = make_scene(1).mesh.triangles.size();
+  const bool auto_spreads = resolved_refine_layout(RefineLayout::Auto, gpu, triangles) == RefineLayout::Spread;
+  compare_with_reference("kernel", auto_spreads ? RefineLayout::OneGroup : RefineLayout::Spread);
 }
 
 TEST_CASE("more particles than the device can hold is a clear error, not a crash, for every renderer",

@@ -39,6 +39,15 @@ enum class Renderer {
 const char* to_string(Renderer renderer);                // "kernel", "gl", "cpu"
 Renderer renderer_from_string(const std::string& name);  // throws InputError naming the choices
 
+// How the device backends lay out the refinement (Refinement::layout); the reference has one way.
+enum class RefineLayout {
+  Auto,      // Spread on GPUs and for meshes of 4,096 triangles or more, else OneGroup (docs/design-notes.md)
+  OneGroup,  // the whole fit in one work-group, one launch (cl/refine.cl)
+  Spread,    // each step's rendering and sums over many work-groups, one small group solving (cl/refine_spread.cl)
+};
+const char* to_string(RefineLayout layout);                       // "auto", "one-group", "spread"
+RefineLayout refine_layout_from_string(const std::string& name);  // throws InputError naming the choices
+
 // Damped random walk on the velocity (Ornstein-Uhlenbeck, discretized exactly over the real dt).
 // At dt = 1/reference_rate it is dbot's v' = damping v + sigma w, in the object's local frame
 // about the mesh's centre.
@@ -61,6 +70,7 @@ struct Refinement {
   // so it is not tried. 0 always takes every step.
   double converged_motion = 5e-5;
   double min_incidence = 0.15;  // pixels whose |cos| between surface normal and ray is below this are dropped
+  RefineLayout layout = RefineLayout::Auto;  // device backends only: the same fit, laid out differently
 };
 
 // When an estimate counts as lost, from its confidence (Estimate::confidence).

@@ -7,6 +7,7 @@
 #include <concepts>
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -30,6 +31,13 @@ class Event {
   virtual void wait() = 0;
   // Device time from start to end of the work, milliseconds (waits for it first).
   virtual double elapsed_ms() = 0;
+  // Device time from the start of `earlier` (enqueued before this one on the same queue) to the end of
+  // this one, milliseconds: a run of launches with the gaps between them, which adding their
+  // elapsed_ms() leaves out. Empty where the backend has no clock common to both (waits for this one).
+  virtual std::optional<double> elapsed_since_ms(Event& earlier) {
+    (void)earlier;
+    return std::nullopt;
+  }
 };
 using EventPtr = std::shared_ptr<Event>;
 
@@ -78,6 +86,13 @@ template <KernelValue T>
 void set_launch_arg(Kernel& kernel, unsigned index, const T& value) {
   kernel.set_arg_bytes(index, &value, sizeof(T));
 }
+// Sets args as the kernel's arguments 0, 1, ... in order (what launch(kernel, range, args...) does
+// first), for launches of the same arguments that follow.
+template <class... Args>
+void set_launch_args(Kernel& kernel, const Args&... args) {
+  unsigned index = 0;
+  (set_launch_arg(kernel, index++, args), ...);
+}
 
 // OpenCL's nd-range: global work-items per dimension, divisible by the work-group size.
 // CUDA backends launch global/local blocks of local threads.
@@ -121,9 +136,17 @@ class Queue {
   // Sets args as the kernel's arguments 0, 1, ... in order, then enqueues it.
   template <class... Args>
   requires(sizeof...(Args) > 0) EventPtr launch(Kernel& kernel, const NdRange& range, const Args&... args) {
-    unsigned index = 0;
-    (set_launch_arg(kernel, index++, args), ...);
+    set_launch_args(kernel, args...);
     return launch(kernel, range);
+  }
+  // Enqueues a kernel as launch() does but without an event: for the middle of a run of launches timed
+  // by its first and last (Event::elapsed_since_ms), with no timing records on the device and less
+  // host work per launch. Backends without a cheaper way launch with an event and drop it.
+  virtual void launch_untimed(Kernel& kernel, const NdRange& range) { launch(kernel, range); }
+  template <class... Args>
+  requires(sizeof...(Args) > 0) void launch_untimed(Kernel& kernel, const NdRange& range, const Args&... args) {
+    set_launch_args(kernel, args...);
+    launch_untimed(kernel, range);
   }
   // Waits for everything enqueued.
   virtual void finish() = 0;

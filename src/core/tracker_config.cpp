@@ -42,6 +42,24 @@ Renderer renderer_from_string(const std::string& name) {
   throw InputError("unknown renderer '" + name + "' (choose cpu, gl or kernel)");
 }
 
+const char* to_string(RefineLayout layout) {
+  switch (layout) {
+    case RefineLayout::Auto:
+      return "auto";
+    case RefineLayout::OneGroup:
+      return "one-group";
+    case RefineLayout::Spread:
+      return "spread";
+  }
+  return "?";
+}
+
+RefineLayout refine_layout_from_string(const std::string& name) {
+  for (auto layout : {RefineLayout::Auto, RefineLayout::OneGroup, RefineLayout::Spread})
+    if (name == to_string(layout)) return layout;
+  throw InputError("unknown refinement layout '" + name + "' (choose auto, one-group or spread)");
+}
+
 namespace {
 void require(bool ok, const std::string& what) {
   if (!ok) throw InputError("invalid tracker configuration: " + what);
@@ -85,6 +103,9 @@ void TrackerConfig::validate() const {
   require(std::isfinite(refine.converged_motion) && refine.converged_motion >= 0,
           "refine converged motion must be >= 0 metres");
   require(probability(refine.min_incidence) && refine.min_incidence < 1, "refine min incidence must be in [0, 1)");
+  require(refine.layout == RefineLayout::Auto || refine.layout == RefineLayout::OneGroup ||
+              refine.layout == RefineLayout::Spread,
+          "refine layout must be auto, one-group or spread");
   require(positive(near_plane) && near_plane < observation.max_depth, "near plane must be in (0, max depth)");
   require(positive(max_time_step), "max time step must be positive");
   require(positive(loss.pixel_sigmas), "loss pixel_sigmas must be positive");

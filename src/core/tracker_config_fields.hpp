@@ -12,12 +12,16 @@ namespace depthtrack::config_fields {
 
 // Enumerations the file and the bindings spell as strings: to_string() and this parse.
 template <typename T>
-concept NamedEnum = std::is_same_v<T, OcclusionStorage> || std::is_same_v<T, Renderer>;
+concept NamedEnum =
+    std::is_same_v<T, OcclusionStorage> || std::is_same_v<T, Renderer> || std::is_same_v<T, RefineLayout>;
 inline void parse_named(const std::string& text, OcclusionStorage& value) {
   value = occlusion_storage_from_string(text);
 }
 inline void parse_named(const std::string& text, Renderer& value) {
   value = renderer_from_string(text);
+}
+inline void parse_named(const std::string& text, RefineLayout& value) {
+  value = refine_layout_from_string(text);
 }
 // The choices, for messages.
 inline const char* named_choices(const OcclusionStorage*) {
@@ -25,6 +29,9 @@ inline const char* named_choices(const OcclusionStorage*) {
 }
 inline const char* named_choices(const Renderer*) {
   return "kernel, gl or cpu";
+}
+inline const char* named_choices(const RefineLayout*) {
+  return "auto, one-group or spread";
 }
 
 template <typename Struct, typename Member>
@@ -80,6 +87,8 @@ inline auto fields_of(const Refinement*) {
       field("converged_motion", &S::converged_motion,
             "stop when the next step moves no mesh point farther than this (m); 0 takes every step"),
       field("min_incidence", &S::min_incidence, "pixels whose |cos(normal, ray)| is below this are left out"),
+      field("layout", &S::layout,
+            "device backends: auto, one-group (the fit in one work-group) or spread (its steps over many)"),
   };
 }
 

@@ -1,29 +1,40 @@
 #include "filter/device_refiner.hpp"
 
+#include <algorithm>
+
 #include "compute/program_cache.hpp"
+#include "dt_refine_state.h"
 #include "dt_state.h"
 #include "model/kernel_params.hpp"
 
 namespace depthtrack {
 
 namespace {
-// Work-items of the fit's one group. 128 (the filter's) left each work-item ~38 of the 80x60 pixels
-// and ~7 triangles per rendering in sequence; 256 halves that and keeps the 29 sums' local memory
-// (29.7 KB) within CUDA's 48 KB of static shared memory and the registers within a multiprocessor.
+// Work-items of the fit's groups. 128 (the filter's) left the one group's loops ~38 of the 80x60
+// pixels and ~7 triangles per rendering in sequence; 256 halves that and keeps the 29 sums' local
+// memory (29.7 KB) within CUDA's 48 KB of static shared memory and the registers within a
+// multiprocessor. The spread layout's sums kernel uses the same size (its per-group tree).
 constexpr size_t kRefineGroup = 256;
-constexpr size_t kLinearGroup = 64;  // shift: a work-item per particle
-
-struct RefineArgs {  // cl/refine.cl's dt_refine_args
-  float damping, min_incidence, centre_x, centre_y, centre_z, now;
-  int iterations;
-  float radius, converged_motion;
-  unsigned vertex_count;
-};
+constexpr size_t kLinearGroup = 64;  // shift, and the spread layout's draws: a work-item per particle / triangle
+// The spread sums kernel: enough groups for every pixel of the image to have its own work-item, at
+// most this many rows of partials for the step kernel to add (beyond 256 x 256 pixels a work-item
+// sums several).
+constexpr size_t kMaxSumGroups = 256;
+constexpr size_t kStepGroup = 32;  // the spread step kernel: a work-item per sum (29), one warp
+static_assert(kStepGroup >= DT_REFINE_SUMS);
 
 size_t round_up(size_t n, size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
 }
 }  // namespace
+
+// PoCL on 2 cores: the handset (842 triangles) 1.0 ms in one group against 1.7-2.1 ms spread (37 launches
+// of tens of microseconds each), the YCB mug (16,384) 5.9-7.9 ms against 5.0-5.4 ms (its one group loops
+// over 64 triangles per work-item twice per rendering). The threshold lies between the two, untested there.
+RefineLayout resolved_refine_layout(RefineLayout layout, bool is_gpu, size_t triangle_count) {
+  if (layout != RefineLayout::Auto) return layout;
+  return is_gpu || triangle_count >= kSpreadOnCpuTriangles ? RefineLayout::Spread : RefineLayout::OneGroup;
+}
 
 DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh,
                              const Camera& camera, const TrackerConfig& config, const std::string& occlusion_definition)
@@ -32,31 +43,80 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       radius_(mesh.radius()),
-      program_(programs.program("refine.cl", {"DT_GROUP_SIZE=" + std::to_string(kRefineGroup), occlusion_definition})),
-      refine_(program_->kernel("refine")),
-      shift_(program_->kernel("shift_particles")),
+      layout_(resolved_refine_layout(config.refine.layout, queue.info().is_gpu, mesh.triangles.size())),
+      program_(programs.program(layout_ == RefineLayout::Spread ? "refine_spread.cl" : "refine.cl",
+                                {"DT_GROUP_SIZE=" + std::to_string(kRefineGroup), occlusion_definition})),
       mesh_(queue, mesh),
       pose_(queue, DT_STATE_STRIDE),
       correction_(queue, 6),
       tile_(queue, static_cast<size_t>(camera.pixel_count())),
-      ids_(queue, static_cast<size_t>(camera.pixel_count())) {}
+      ids_(queue, static_cast<size_t>(camera.pixel_count())) {
+  shift_ = program_->kernel("shift_particles");
+  if (layout_ == RefineLayout::OneGroup) {
+    refine_ = program_->kernel("refine");
+    return;
+  }
+  begin_ = program_->kernel("refine_begin");
+  depth_ = program_->kernel("refine_depth");
+  ids_pass_ = program_->kernel("refine_ids");
+  sums_ = program_->kernel("refine_sums");
+  step_ = program_->kernel("refine_step");
+  const size_t pixels = static_cast<size_t>(camera.pixel_count());
+  sum_groups_ = std::clamp<size_t>((pixels + kRefineGroup - 1) / kRefineGroup, 1, kMaxSumGroups);
+  fit_state_ = compute::Buffer<float>(queue, sizeof(dt_refine_state) / sizeof(float));
+  partials_ = compute::Buffer<float>(queue, sum_groups_ * DT_REFINE_SUMS);
+  // The spread layout never clears: every evaluation resets the pixels it drew (refine_spread.cl).
+  tile_.upload(std::vector<unsigned>(pixels, 0x7f800000u));  // DT_NO_SURFACE
+  ids_.upload(std::vector<unsigned>(pixels, 0xffffffffu));
+}
 
-compute::EventPtr DeviceRefiner::refine(compute::Buffer<float>& estimate, const RefineInputs& in) {
-  const Refinement& r = config_.refine;
-  const RefineArgs args{static_cast<float>(r.damping),
-                        static_cast<float>(r.min_incidence),
-                        static_cast<float>(centre_.x()),
-                        static_cast<float>(centre_.y()),
-                        static_cast<float>(centre_.z()),
-                        static_cast<float>(in.time),
-                        r.iterations,
-                        static_cast<float>(radius_),
-                        static_cast<float>(r.converged_motion),
-                        static_cast<unsigned>(mesh_.vertices.size() / 3)};
-  return queue_.launch(*refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup), estimate, in.states, in.observed,
-                       in.occlusion, in.occlusion_time, in.priors, in.atlas, in.layout.kernel_args(), mesh_.vertices,
-                       mesh_.triangles, mesh_.planes, mesh_.triangle_count(), model::camera_params(camera_, config_),
-                       model::model_params(config_), args, pose_, tile_, ids_, correction_);
+std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& estimate, const RefineInputs& in) {
+  if (layout_ == RefineLayout::Spread) return refine_spread(estimate, in);
+  const dt_refine_args args =
+      model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time);
+  return {queue_.launch(*refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup), estimate, in.states,
+                        in.observed, in.occlusion, in.occlusion_time, in.priors, in.atlas, in.layout.kernel_args(),
+                        mesh_.vertices, mesh_.triangles, mesh_.planes, mesh_.triangle_count(),
+                        model::camera_params(camera_, config_), model::model_params(config_), args, pose_, tile_, ids_,
+                        correction_)};
+}
+
+// begin, then iterations + 1 evaluations (depth, ids, sums, step) with no wait: the step kernel
+// stops the fit on the device, and what follows returns at once.
+std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in) {
+  const dt_refine_args args =
+      model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time);
+  const dt_camera cam = model::camera_params(camera_, config_);
+  const dt_model model = model::model_params(config_);
+  const auto step_group = compute::NdRange::linear(kStepGroup, kStepGroup);
+  const auto per_triangle =
+      compute::NdRange::linear(round_up(std::max<size_t>(mesh_.triangle_count(), 1), kLinearGroup), kLinearGroup);
+  const auto over_pixels = compute::NdRange::linear(sum_groups_ * kRefineGroup, kRefineGroup);
+  const unsigned triangles = mesh_.triangle_count();
+  // Timed: begin and the last step, which the filter reads as one span (Event::elapsed_since_ms);
+  // the launches between them untimed. Each kernel's arguments are set once: the evaluations differ
+  // only in the fit's state on the device.
+  std::vector<compute::EventPtr> events;
+  events.push_back(queue_.launch(*begin_, compute::NdRange::linear(1, 1), fit_state_, estimate, in.states,
+                                 static_cast<float>(config_.refine.damping)));
+  compute::set_launch_args(*depth_, fit_state_, mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam, tile_);
+  compute::set_launch_args(*ids_pass_, fit_state_, mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam, tile_,
+                           ids_);
+  compute::set_launch_args(*sums_, fit_state_, estimate, in.observed, in.occlusion, in.occlusion_time, in.priors,
+                           in.atlas, in.layout.kernel_args(), mesh_.planes, triangles, cam, model, args, tile_, ids_,
+                           partials_);
+  compute::set_launch_args(*step_, fit_state_, estimate, in.states, partials_, static_cast<unsigned>(sum_groups_), args,
+                           correction_);
+  for (int evaluation = 0; evaluation <= config_.refine.iterations; ++evaluation) {
+    queue_.launch_untimed(*depth_, per_triangle);
+    queue_.launch_untimed(*ids_pass_, per_triangle);
+    queue_.launch_untimed(*sums_, over_pixels);
+    if (evaluation < config_.refine.iterations)
+      queue_.launch_untimed(*step_, step_group);
+    else
+      events.push_back(queue_.launch(*step_, step_group));
+  }
+  return events;
 }
 
 compute::EventPtr DeviceRefiner::shift(const compute::Buffer<float>& from, compute::Buffer<float>& to, size_t count) {

@@ -1,15 +1,18 @@
 #pragma once
-// The pose refinement on the device (cl/refine.cl): after weighing, one work-group fits the heaviest
-// particle's pose to the frame's likelihood and writes the refined pose, its covariance and the
-// steps it tried into the estimate buffer; shift then moves every particle by the same correction.
-// Its own program, built with a larger work-group than the filter's kernels: the fit is one group,
-// so its per-pixel and per-triangle loops are the refinement's latency. Reference:
-// reference::PoseRefiner and ReferenceFilter::refine.
+// The pose refinement on the device: after weighing, the heaviest particle's pose is fitted to the
+// frame's likelihood and the refined pose, its covariance and the steps tried go into the estimate
+// buffer; shift then moves every particle by the same correction. Two layouts of the same fit
+// (Refinement::layout): the whole fit in one work-group and one launch (cl/refine.cl), or each
+// step's rendering and sums spread over many work-groups with a one-group kernel solving and
+// deciding (cl/refine_spread.cl: 4 launches a step, iterations + 1 evaluations enqueued, the ones
+// after convergence returning at once). Its own program, built with a larger work-group than the
+// filter's kernels. Reference: reference::PoseRefiner and ReferenceFilter::refine.
 #include <depthtrack/camera.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/tracker_config.hpp>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "atlas/atlas_layout.hpp"
 #include "atlas/raster_inputs.hpp"
@@ -30,27 +33,42 @@ struct RefineInputs {
   double time;  // seconds since the first frame
 };
 
+// The layout Auto picks: Spread on GPUs; on CPU devices OneGroup for meshes of fewer than
+// kSpreadOnCpuTriangles triangles, else Spread (measured on PoCL: docs/design-notes.md).
+constexpr size_t kSpreadOnCpuTriangles = 4096;
+RefineLayout resolved_refine_layout(RefineLayout layout, bool is_gpu, size_t triangle_count);
+
 class DeviceRefiner {
  public:
   // occlusion_definition: the filter kernels' DT_OCCLUSION definition (model::occlusion_definition).
-  // refine.cl comes from programs, the cache of queue's device.
+  // refine.cl / refine_spread.cl come from programs, the cache of queue's device.
   DeviceRefiner(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh, const Camera& camera,
                 const TrackerConfig& config, const std::string& occlusion_definition);
 
-  // Enqueues the fit; estimate holds summarize's output and receives the refined pose.
-  compute::EventPtr refine(compute::Buffer<float>& estimate, const RefineInputs& in);
+  // Enqueues the fit; estimate holds summarize's output and receives the refined pose. The events of
+  // every kernel it enqueued, in order (their device times add up to the fit's).
+  std::vector<compute::EventPtr> refine(compute::Buffer<float>& estimate, const RefineInputs& in);
   // Enqueues the shift of count particles by the last fit's correction, from `from` into `to` (which
   // may be the same buffer).
   compute::EventPtr shift(const compute::Buffer<float>& from, compute::Buffer<float>& to, size_t count);
 
+  RefineLayout layout() const { return layout_; }  // OneGroup or Spread, never Auto
+
  private:
+  std::vector<compute::EventPtr> refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in);
+
   compute::Queue& queue_;
   TrackerConfig config_;
   Camera camera_;
   Eigen::Vector3d centre_;
   double radius_;
+  RefineLayout layout_;
   std::shared_ptr<compute::Program> program_;
   std::unique_ptr<compute::Kernel> refine_, shift_;
+  // The spread layout's kernels (cl/refine_spread.cl), its fit state and per-group partial sums.
+  std::unique_ptr<compute::Kernel> begin_, depth_, ids_pass_, sums_, step_;
+  size_t sum_groups_ = 0;
+  compute::Buffer<float> fit_state_, partials_;
   MeshBuffers mesh_;
   // One-pose scratch (state, depth bits, triangle ids) and the correction twist.
   compute::Buffer<float> pose_, correction_;

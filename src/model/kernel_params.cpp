@@ -38,6 +38,20 @@ dt_camera camera_params(const Camera& camera, const TrackerConfig& config) {
                    static_cast<dt_u32>(camera.width),     static_cast<dt_u32>(camera.height)};
 }
 
+dt_refine_args refine_params(const Refinement& refine, const Eigen::Vector3d& centre, double radius,
+                             size_t vertex_count, double now) {
+  return dt_refine_args{static_cast<float>(refine.damping),
+                        static_cast<float>(refine.min_incidence),
+                        static_cast<float>(centre.x()),
+                        static_cast<float>(centre.y()),
+                        static_cast<float>(centre.z()),
+                        static_cast<float>(now),
+                        refine.iterations,
+                        static_cast<float>(radius),
+                        static_cast<float>(refine.converged_motion),
+                        static_cast<dt_u32>(vertex_count)};
+}
+
 std::string occlusion_definition(OcclusionStorage storage) {
   int code = DT_OCCLUSION_OFF;
   switch (storage) {

@@ -13,7 +13,7 @@ namespace {
 // A step is kept unless it lowers the log-likelihood by more than this (nats). Near the optimum
 // steps change it by less than float rounding does (~1e-4 over a thousand pixels), so a strict
 // comparison would let the float device and the double reference decide differently and end one
-// step apart; with the tolerance both keep such steps. cl/refine.cl uses the same value.
+// step apart; with the tolerance both keep such steps. cl/dt_refine.h uses the same value.
 constexpr double kStepTolerance = 0.01;
 }  // namespace
 

@@ -81,7 +81,7 @@ double step_motion(const Vector6d& step, double radius);
 
 // Levenberg-Marquardt damping after a rejected step: tenfold, and at least 1 (which about halves the
 // step), since a silhouette pixel coming or going changes the objective by nats and a step only
-// slightly shorter than the rejected one is mostly rejected too. cl/refine.cl does the same.
+// slightly shorter than the rejected one is mostly rejected too. cl/dt_refine.h does the same.
 double damping_after_rejection(double lambda);
 
 }  // namespace depthtrack::reference

@@ -42,4 +42,13 @@ double CudaEvent::elapsed_ms() {
   return static_cast<double>(milliseconds);
 }
 
+std::optional<double> CudaEvent::elapsed_since_ms(Event& earlier) {
+  auto* first = dynamic_cast<CudaEvent*>(&earlier);
+  if (!first || first->context_ != context_) return std::nullopt;
+  wait();
+  float milliseconds = 0.0f;
+  context_->check(context_->api().cuEventElapsedTime(&milliseconds, first->start_, end_), "cuEventElapsedTime");
+  return static_cast<double>(milliseconds);
+}
+
 }  // namespace depthtrack::compute::cuda

@@ -19,6 +19,7 @@ class CudaEvent final : public Event {
   void record_end(CUstream stream);
   void wait() override;
   double elapsed_ms() override;
+  std::optional<double> elapsed_since_ms(Event& earlier) override;
 
  private:
   std::shared_ptr<const Context> context_;

@@ -108,6 +108,15 @@ std::unique_ptr<Program> CudaQueue::build(const std::string& name, const std::st
 }
 
 EventPtr CudaQueue::launch(Kernel& kernel, const NdRange& range) {
+  return enqueue(kernel, range, true);
+}
+
+void CudaQueue::launch_untimed(Kernel& kernel, const NdRange& range) {
+  enqueue(kernel, range, false);
+}
+
+// The launch, between a timing event's two records when timed (else no event: nullptr).
+EventPtr CudaQueue::enqueue(Kernel& kernel, const NdRange& range, bool timed) {
   auto* cuda = dynamic_cast<CudaKernel*>(&kernel);
   if (!cuda)
     throw InputError("launch on " + context_->where() + ": kernel '" + kernel.name() + "' is not a CUDA kernel");
@@ -117,8 +126,8 @@ EventPtr CudaQueue::launch(Kernel& kernel, const NdRange& range) {
   const LaunchShape shape = launch_shape(range, cuda->limits(), cuda->name(), context_->where());
   std::vector<void*> arguments = cuda->argument_pointers();
   context_->make_current();
-  auto event = std::make_shared<CudaEvent>(context_);
-  event->record_start(stream_);
+  std::shared_ptr<CudaEvent> event = timed ? std::make_shared<CudaEvent>(context_) : nullptr;
+  if (event) event->record_start(stream_);
   // No dynamic shared memory: kernels declare fixed-size __local arrays.
   const CUresult status =
       context_->api().cuLaunchKernel(cuda->function(), shape.grid[0], shape.grid[1], shape.grid[2], shape.block[0],
@@ -131,7 +140,7 @@ EventPtr CudaQueue::launch(Kernel& kernel, const NdRange& range) {
         "cuLaunchKernel of '" + cuda->name() + "' (grid " + dims(shape.grid) + ", block " + dims(shape.block) + ")";
     context_->check(status, call.c_str());
   }
-  event->record_end(stream_);
+  if (event) event->record_end(stream_);
   return event;
 }
 

@@ -30,6 +30,7 @@ class CudaQueue final : public Queue {
   std::unique_ptr<Program> build(const std::string& name, const std::string& source,
                                  const std::vector<std::string>& definitions) override;
   EventPtr launch(Kernel& kernel, const NdRange& range) override;
+  void launch_untimed(Kernel& kernel, const NdRange& range) override;
   void finish() override;
   // A stream of its own in this queue's context.
   std::unique_ptr<Queue> another_queue() override;
@@ -39,6 +40,7 @@ class CudaQueue final : public Queue {
   CUstream stream() const { return stream_; }
 
  private:
+  EventPtr enqueue(Kernel& kernel, const NdRange& range, bool timed);
   // A new stream in `context`.
   explicit CudaQueue(std::shared_ptr<const Context> context);
 

@@ -12,6 +12,7 @@ class ClEvent final : public Event {
   ClEvent(EventHandle event, std::string device) : event_(std::move(event)), device_(std::move(device)) {}
   void wait() override;
   double elapsed_ms() override;
+  std::optional<double> elapsed_since_ms(Event& earlier) override;
 
  private:
   EventHandle event_;

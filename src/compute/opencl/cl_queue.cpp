@@ -145,6 +145,15 @@ std::unique_ptr<Program> ClQueue::build(const std::string& name, const std::stri
 }
 
 EventPtr ClQueue::launch(Kernel& kernel, const NdRange& range) {
+  return enqueue(kernel, range, true);
+}
+
+void ClQueue::launch_untimed(Kernel& kernel, const NdRange& range) {
+  enqueue(kernel, range, false);
+}
+
+// The launch, with an event when timed (else nullptr).
+EventPtr ClQueue::enqueue(Kernel& kernel, const NdRange& range, bool timed) {
   auto* cl = dynamic_cast<ClKernel*>(&kernel);
   if (!cl) throw InputError("launch of kernel '" + kernel.name() + "': it was not built by an OpenCL queue");
   const std::string what = "kernel '" + kernel.name() + "' over global " + sizes(range.global, range.dimensions) +
@@ -163,9 +172,9 @@ EventPtr ClQueue::launch(Kernel& kernel, const NdRange& range) {
                      " work-items is more than the device's " + std::to_string(info_.max_work_group_size));
   cl_event event = nullptr;
   check(clEnqueueNDRangeKernel(queue_.get(), cl->get(), range.dimensions, nullptr, range.global, range.local, 0,
-                               nullptr, &event),
+                               nullptr, timed ? &event : nullptr),
         "clEnqueueNDRangeKernel", info_.name, what);
-  return std::make_shared<ClEvent>(EventHandle(event), info_.name);
+  return timed ? std::make_shared<ClEvent>(EventHandle(event), info_.name) : nullptr;
 }
 
 void ClQueue::finish() {

@@ -28,6 +28,7 @@ class ClQueue final : public Queue {
   std::unique_ptr<Program> build(const std::string& name, const std::string& source,
                                  const std::vector<std::string>& definitions) override;
   EventPtr launch(Kernel& kernel, const NdRange& range) override;
+  void launch_untimed(Kernel& kernel, const NdRange& range) override;
   void finish() override;
   // A command queue of its own on this queue's context.
   std::unique_ptr<Queue> another_queue() override;
@@ -38,6 +39,7 @@ class ClQueue final : public Queue {
   cl_device_id device() const { return device_; }
 
  private:
+  EventPtr enqueue(Kernel& kernel, const NdRange& range, bool timed);
   // A new command queue on `context` (retained here).
   ClQueue(cl_context context, cl_device_id device, DeviceInfo info);
   void create_queue();

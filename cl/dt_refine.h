@@ -1,0 +1,240 @@
+/* The pose refinement's pieces shared by its two layouts on the device: cl/refine.cl (the whole fit in one
+ * work-group) and cl/refine_spread.cl (each step's rendering and sums over many work-groups, a one-group
+ * kernel solving and deciding). The same model, stopping rule and damping as reference::PoseRefiner:
+ * IRLS Gauss-Newton steps (each pixel weighted by the responsibility of its visible gaussian over
+ * sigma^2) as camera-frame twists about the mesh's centre, each kept unless it lowers the
+ * log-likelihood by more than float rounding could, a rejected one damped to lambda >= 1, no step
+ * tried that would move no mesh point farther than converged_motion. Needs DT_GROUP_SIZE and
+ * DT_OCCLUSION (as weigh.cl). */
+#ifndef DT_REFINE_H
+#define DT_REFINE_H
+#include "dt_model.h"
+#include "dt_params.h" /* the DT_OCCLUSION codes, dt_refine_args */
+#include "dt_refine_state.h"
+#include "rasterize.cl"
+
+/* Pose as translation and unit quaternion, in a work-item's registers. */
+typedef struct {
+  dt_vec3 t;
+  dt_quat q;
+} dt_pose;
+
+DT_DEVICE_FN dt_vec3 dt_pose_centre(dt_pose p, dt_vec3 centre) {
+  const dt_vec3 c = dt_quat_rotate(p.q, centre);
+  return dt_vec3_make(c.x + p.t.x, c.y + p.t.y, c.z + p.t.z);
+}
+
+/* The pose moved by the camera-frame twist (dt, dw) about centre (object frame). */
+DT_DEVICE_FN dt_pose dt_apply_twist(dt_pose p, dt_vec3 centre, const float* twist) {
+  const dt_vec3 c = dt_pose_centre(p, centre);
+  dt_pose r;
+  r.q = dt_quat_normalize(dt_quat_mul(dt_quat_exp(dt_vec3_make(twist[3], twist[4], twist[5])), p.q));
+  const dt_vec3 rc = dt_quat_rotate(r.q, centre);
+  r.t = dt_vec3_make(c.x + twist[0] - rc.x, c.y + twist[1] - rc.y, c.z + twist[2] - rc.z);
+  return r;
+}
+
+DT_DEVICE_FN void dt_store_pose(__global float* s, dt_pose p) {
+  s[DT_TX] = p.t.x;
+  s[DT_TX + 1] = p.t.y;
+  s[DT_TX + 2] = p.t.z;
+  s[DT_QW] = p.q.w;
+  s[DT_QW + 1] = p.q.x;
+  s[DT_QW + 2] = p.q.y;
+  s[DT_QW + 3] = p.q.z;
+}
+
+DT_DEVICE_FN dt_pose dt_load_pose(__global const float* s) {
+  dt_pose p;
+  p.t = dt_vec3_make(s[DT_TX], s[DT_TX + 1], s[DT_TX + 2]);
+  p.q.w = s[DT_QW];
+  p.q.x = s[DT_QW + 1];
+  p.q.y = s[DT_QW + 2];
+  p.q.z = s[DT_QW + 3];
+  return p;
+}
+
+/* Solves A x = b for the symmetric 6x6 A given by its lower triangle (row by row), its diagonal times
+ * diagonal_factor (1 + lambda for a damped step), scaling it to a
+ * unit diagonal first so that float keeps the weakly observed directions; 0 when A is not positive
+ * definite. */
+DT_DEVICE_FN int dt_solve6(const float* lower, float diagonal_factor, const float* b, float* x) {
+  float a[6][6], s[6];
+  int k = 0;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j <= i; ++j) {
+      a[i][j] = lower[k++];
+      a[j][i] = a[i][j];
+    }
+  for (int i = 0; i < 6; ++i) {
+    a[i][i] *= diagonal_factor;
+    if (!(a[i][i] > 0.0f)) return 0;
+    s[i] = 1.0f / sqrt(a[i][i]);
+  }
+  float l[6][6], y[6];
+  for (int j = 0; j < 6; ++j) {
+    float d = a[j][j] * s[j] * s[j];
+    for (int m = 0; m < j; ++m) d -= l[j][m] * l[j][m];
+    if (!(d > 0.0f)) return 0;
+    l[j][j] = sqrt(d);
+    for (int i = j + 1; i < 6; ++i) {
+      float e = a[i][j] * s[i] * s[j];
+      for (int m = 0; m < j; ++m) e -= l[i][m] * l[j][m];
+      l[i][j] = e / l[j][j];
+    }
+  }
+  for (int i = 0; i < 6; ++i) {
+    float e = b[i] * s[i];
+    for (int m = 0; m < i; ++m) e -= l[i][m] * y[m];
+    y[i] = e / l[i][i];
+  }
+  for (int i = 5; i >= 0; --i) {
+    float e = y[i];
+    for (int m = i + 1; m < 6; ++m) e -= l[m][i] * x[m];
+    x[i] = e / l[i][i];
+  }
+  for (int i = 0; i < 6; ++i) {
+    x[i] *= s[i];
+    if (!isfinite(x[i])) return 0;
+  }
+  return 1;
+}
+
+/* Object-frame point (x, y, z) in the camera frame. */
+DT_DEVICE_FN dt_vec3 dt_vertex_at(dt_rigid m, float x, float y, float z) {
+  return dt_vec3_make(dt_dot(m.r0, x, y, z) + m.t.x, dt_dot(m.r1, x, y, z) + m.t.y, dt_dot(m.r2, x, y, z) + m.t.z);
+}
+
+/* Where the heaviest particle's occlusion state starts in each map, for its pixel k at offset + k (the
+ * modes without per-particle maps pass one element, read at 0 or not at all). */
+typedef struct {
+  ulong occlusion, time, prior;
+} dt_refine_offsets;
+
+DT_DEVICE_FN dt_refine_offsets dt_refine_map_offsets(uint heaviest, uint pixels) {
+  const ulong base = DT_CAST(ulong, heaviest) * pixels;
+  dt_refine_offsets o;
+#if DT_OCCLUSION == DT_OCCLUSION_OFF
+  o.occlusion = 0;
+  o.time = 0;
+  o.prior = 0;
+#elif DT_OCCLUSION == DT_GLOBAL_TIME
+  o.occlusion = base;
+  o.time = 0;
+  o.prior = base;
+#else
+  o.occlusion = base;
+  o.time = base;
+  o.prior = base;
+#endif
+  return o;
+}
+
+/* Pixel k's share of the normal equations, added to acc (DT_REFINE_SUMS), for the pose drawn with
+ * depth bits and triangle id there (pose, and its centre in the camera frame); the occlusion prior is
+ * the heaviest particle's: weigh's prior where its atlas tile covers the pixel (kept where its update
+ * changed it), its aged state elsewhere. */
+DT_DEVICE_FN void dt_refine_pixel(float* acc, uint k, uint bits, uint id, dt_rigid pose, dt_vec3 centre,
+                                  __global const float* observed, __global const float* occlusion,
+                                  __global const float* occlusion_time, __global const float* prior,
+                                  dt_refine_offsets at, __global const float* atlas, dt_atlas_layout layout,
+                                  ulong heaviest_tile, __global const float* planes, uint triangle_count, dt_camera cam,
+                                  dt_model m, dt_refine_args args) {
+  const float y = observed[k];
+  if (bits == DT_NO_SURFACE || !(y > 0.0f) || !isfinite(y)) return;
+  const float y_hat = dt_as_float(bits);
+  float p = 0.0f;
+#if DT_OCCLUSION != DT_OCCLUSION_OFF
+  if (atlas[dt_atlas_pixel(layout, heaviest_tile, k)] > 0.0f)
+    p = prior[at.prior + k];
+  else
+#if DT_OCCLUSION == DT_PER_PIXEL_TIME
+    p = dt_propagate_occlusion(m, occlusion[at.occlusion + k], args.now - occlusion_time[at.time + k]);
+#else
+    p = occlusion[at.occlusion + k];
+#endif
+#endif
+  float posterior;
+  acc[DT_REFINE_OBJECTIVE] += dt_pixel_log_ratio(m, y, y_hat, p, &posterior);
+  /* E-step: (1 - p) (1 - w) N / mixture = (1 - posterior) (1 - w) N / p_vis. */
+  const float sigma = m.sigma_constant + m.sigma_quadratic * y * y;
+  const float z = (y - y_hat) / sigma;
+  const float gaussian = m.keep * exp(-0.5f * z * z) / (2.5066282746f * sigma);
+  const float responsibility = (1.0f - posterior) * gaussian / (m.tail_density + gaussian);
+  if (id >= triangle_count) return; /* no triangle claimed the pixel: no normal to fit with */
+  const dt_plane n = dt_triangle_plane(pose, planes, id);
+  const float rx = (DT_CAST(float, k % cam.width) - cam.cx) / cam.fx;
+  const float ry = (DT_CAST(float, k / cam.width) - cam.cy) / cam.fy;
+  const float incidence = n.nx * rx + n.ny * ry + n.nz;
+  if (fabs(incidence) < args.min_incidence * sqrt(rx * rx + ry * ry + 1.0f)) return;
+  const float lx = y_hat * rx - centre.x, ly = y_hat * ry - centre.y, lz = y_hat - centre.z;
+  const float j[6] = {n.nx / incidence,
+                      n.ny / incidence,
+                      n.nz / incidence,
+                      (ly * n.nz - lz * n.ny) / incidence,
+                      (lz * n.nx - lx * n.nz) / incidence,
+                      (lx * n.ny - ly * n.nx) / incidence};
+  const float w = responsibility / (sigma * sigma), r = y - y_hat;
+  int h = 0;
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b <= a; ++b) acc[h++] += w * j[a] * j[b];
+  for (int a = 0; a < 6; ++a) acc[21 + a] += w * j[a] * r;
+  acc[DT_REFINE_PIXELS] += 1.0f;
+}
+
+/* The group's sums of every work-item's acc, left in sums[k * DT_GROUP_SIZE] (a fixed tree: the same
+ * order every time). */
+DT_DEVICE_FN void dt_refine_group_sums(const float* acc, DT_LOCAL_PTR float* sums) {
+  const uint lid = get_local_id(0);
+  barrier(CLK_LOCAL_MEM_FENCE); /* the previous sums have been read */
+  for (int k = 0; k < DT_REFINE_SUMS; ++k) sums[k * DT_GROUP_SIZE + lid] = acc[k];
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (uint stride = DT_GROUP_SIZE / 2; stride > 0; stride >>= 1) {
+    if (lid < stride)
+      for (int k = 0; k < DT_REFINE_SUMS; ++k) sums[k * DT_GROUP_SIZE + lid] += sums[k * DT_GROUP_SIZE + lid + stride];
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+}
+
+/* The damped step from the best pose's sums into step; 0 when there is none to try (too few pixels, a
+ * singular system, or converged: PoseRefiner's step_motion |dt| + radius |dw| below converged_motion). */
+DT_DEVICE_FN int dt_refine_step(const float* best_sums, float lambda, dt_refine_args args, float* step) {
+  if (!(best_sums[DT_REFINE_PIXELS] >= 6.0f && dt_solve6(best_sums, 1.0f + lambda, best_sums + 21, step))) return 0;
+  return sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]) +
+             args.radius * sqrt(step[3] * step[3] + step[4] * step[4] + step[5] * step[5]) >=
+         args.converged_motion;
+}
+
+/* A candidate is kept unless it lowers the objective by more than float rounding could (PoseRefiner's
+ * tolerance); otherwise lambda becomes PoseRefiner's damping_after_rejection. */
+DT_DEVICE_FN int dt_refine_keeps(float candidate_objective, float best_objective) {
+  return candidate_objective >= best_objective - 0.01f;
+}
+DT_DEVICE_FN float dt_refine_damping_after_rejection(float lambda) {
+  return fmax(10.0f * lambda, 1.0f);
+}
+
+/* The fit's results: the refined pose, the steps tried and the covariance (inverse of H, NaN without
+ * one) into estimate, and into correction the twist that puts the heaviest particle (start) on the
+ * refined pose (see ReferenceFilter::refine). */
+DT_DEVICE_FN void dt_refine_finish(__global float* estimate, dt_pose start, dt_pose best, const float* best_sums,
+                                   int tried, dt_vec3 centre, __global float* correction) {
+  dt_store_pose(estimate, best);
+  estimate[DT_EST_REFINE_ITERATIONS] = DT_CAST(float, tried);
+  const float nan = dt_as_float(0x7fc00000u);
+  for (int c = 0; c < 6; ++c) {
+    float unit[6] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f}, column[6];
+    unit[c] = 1.0f;
+    const int ok = best_sums[DT_REFINE_PIXELS] >= 6.0f && dt_solve6(best_sums, 1.0f, unit, column);
+    for (int r = 0; r < 6; ++r) estimate[DT_EST_COV + 6 * r + c] = ok ? column[r] : nan;
+  }
+  const dt_vec3 from = dt_pose_centre(start, centre), to = dt_pose_centre(best, centre);
+  const dt_vec3 rotation = dt_quat_log(dt_quat_mul(best.q, dt_quat_conj(start.q)));
+  correction[0] = to.x - from.x;
+  correction[1] = to.y - from.y;
+  correction[2] = to.z - from.z;
+  correction[3] = rotation.x;
+  correction[4] = rotation.y;
+  correction[5] = rotation.z;
+}
+#endif

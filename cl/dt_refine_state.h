@@ -1,0 +1,21 @@
+/* The pose refinement's sums and, for its spread layout (refine_spread.cl), the fit's state between
+ * kernels: one small device buffer, sized by the host from this struct. Only 32-bit members. */
+#ifndef DT_REFINE_STATE_H
+#define DT_REFINE_STATE_H
+#include "dt_prelude.h"
+#include "dt_state.h"
+
+#define DT_REFINE_SUMS 29 /* H's lower triangle (21), g (6), objective, pixels */
+#define DT_REFINE_OBJECTIVE 27
+#define DT_REFINE_PIXELS 28
+
+typedef struct {
+  dt_u32 active;     /* 1 while a candidate waits to be evaluated */
+  dt_u32 evaluation; /* evaluations the step kernel has judged */
+  int tried;         /* steps tried (candidates after the start) */
+  float lambda;
+  float candidate[DT_STATE_STRIDE]; /* dt_state.h's layout (pose only) */
+  float best[DT_STATE_STRIDE];      /* the best pose evaluated */
+  float best_sums[DT_REFINE_SUMS];  /* its normal equations */
+} dt_refine_state;
+#endif
