@@ -3,7 +3,7 @@
 # latency): `depthtrack_bench` at 2,000 particles, 80x60, for the handset (842 triangles) and the YCB mug
 # (16,384), each backend, refinement one-group / spread / off, rows refine_ms, refine_share,
 # refine_iterations, total_ms; then the equivalence tests with refinement on each backend (both layouts:
-# auto is spread on a GPU, the "layout auto does not pick" test runs one-group). Carry .devdeps, .device
+# auto is spread on CUDA and for large meshes, the "layout auto does not pick" test runs one-group). Carry .devdeps, .device
 # and .devdata. FRAMES (default 20), BACKENDS (default cuda opencl:nvidia), TESTS=0 skips the tests.
 set -uo pipefail
 source .device/enter .devdeps

@@ -84,7 +84,7 @@ int coverage_differences(const Scene& scene, const TrackerConfig& config, const 
 // refinement layout (one group or spread over many: the same fit).
 void compare_with_reference(const std::string& renderer, RefineLayout layout = RefineLayout::Auto) {
   const Scene scene = make_scene(20);
-  const bool gpu = compute::open_device(test::device_selector())->info().is_gpu;
+  const compute::DeviceInfo info = compute::open_device(test::device_selector())->info();
   for (auto mode : {OcclusionStorage::PerPixelTime, OcclusionStorage::GlobalTime, OcclusionStorage::Off}) {
     TrackerConfig config;
     config.renderer = renderer_from_string(renderer);
@@ -204,7 +204,7 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
         "%d resamplings, ancestry identical but for %d numerical ties; %d silhouette coverage flips; "
         "ancestry and estimates compared in %d of %zu frames\n",
         scene.name.c_str(), to_string(mode), renderer.c_str(),
-        to_string(resolved_refine_layout(layout, gpu, scene.mesh.triangles.size())), device.description().c_str(),
+        to_string(resolved_refine_layout(layout, info, scene.mesh.triangles.size())), device.description().c_str(),
         worst_ll, worst_t, worst_r, worst_ess, worst_sd, resamplings, ties, coverage_flips, compared_frames,
         scene.frames.size());
     CHECK(resamplings > 0);
@@ -249,15 +249,36 @@ TEST_CASE("with the compute-kernel atlas in the loop the device filter still equ
   compare_with_reference("kernel");
 }
 
-// Auto picks one layout per device kind and mesh (the test's handset: spread on GPUs, one group on CPU
-// devices); the other one, forced, must equal the reference just as well (the kernel atlas, as CI's
-// default renderer).
+// Auto picks one layout per device and mesh (the test's handset: spread on CUDA GPUs, one group on
+// other devices); the other one, forced, must equal the reference just as well (the kernel atlas, as
+// CI's default renderer).
+// The rule behind Auto, from the measured costs in device_refiner.cpp: large meshes spread everywhere,
+// small ones only on CUDA GPUs (NVIDIA OpenCL's and PoCL's launches cost more than one group's loops).
+TEST_CASE("the refinement layout auto spreads large meshes everywhere and small ones on CUDA GPUs", "[refine]") {
+  compute::DeviceInfo cuda_gpu, opencl_gpu, opencl_cpu;
+  cuda_gpu.backend = "cuda";
+  cuda_gpu.is_gpu = true;
+  opencl_gpu.backend = "opencl";
+  opencl_gpu.is_gpu = true;
+  opencl_cpu.backend = "opencl";
+  const size_t handset = 842, mug = 16384;
+  CHECK(resolved_refine_layout(RefineLayout::Auto, cuda_gpu, handset) == RefineLayout::Spread);
+  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, handset) == RefineLayout::OneGroup);
+  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_cpu, handset) == RefineLayout::OneGroup);
+  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, mug) == RefineLayout::Spread);
+  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_cpu, mug) == RefineLayout::Spread);
+  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_cpu, kSpreadTriangles - 1) == RefineLayout::OneGroup);
+  // A layout asked for is kept.
+  CHECK(resolved_refine_layout(RefineLayout::OneGroup, cuda_gpu, mug) == RefineLayout::OneGroup);
+  CHECK(resolved_refine_layout(RefineLayout::Spread, opencl_cpu, handset) == RefineLayout::Spread);
+}
+
 TEST_CASE("with the refinement layout auto does not pick the device filter still equals the reference",
           "[device][kernel][refine]") {
   if (!test::device_available()) return;
-  const bool gpu = compute::open_device(test::device_selector())->info().is_gpu;
+  const compute::DeviceInfo info = compute::open_device(test::device_selector())->info();
   const size_t triangles = make_scene(1).mesh.triangles.size();
-  const bool auto_spreads = resolved_refine_layout(RefineLayout::Auto, gpu, triangles) == RefineLayout::Spread;
+  const bool auto_spreads = resolved_refine_layout(RefineLayout::Auto, info, triangles) == RefineLayout::Spread;
   compare_with_reference("kernel", auto_spreads ? RefineLayout::OneGroup : RefineLayout::Spread);
 }
 

@@ -41,7 +41,7 @@ Renderer renderer_from_string(const std::string& name);  // throws InputError na
 
 // How the device backends lay out the refinement (Refinement::layout); the reference has one way.
 enum class RefineLayout {
-  Auto,      // Spread on GPUs and for meshes of 4,096 triangles or more, else OneGroup (docs/design-notes.md)
+  Auto,      // Spread for meshes of 4,096 triangles or more and on CUDA GPUs, else OneGroup (docs/design-notes.md)
   OneGroup,  // the whole fit in one work-group, one launch (cl/refine.cl)
   Spread,    // each step's rendering and sums over many work-groups, one small group solving (cl/refine_spread.cl)
 };

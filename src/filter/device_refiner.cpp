@@ -28,12 +28,16 @@ size_t round_up(size_t n, size_t multiple) {
 }
 }  // namespace
 
-// PoCL on 2 cores: the handset (842 triangles) 1.0 ms in one group against 1.7-2.1 ms spread (37 launches
-// of tens of microseconds each), the YCB mug (16,384) 5.9-7.9 ms against 5.0-5.4 ms (its one group loops
-// over 64 triangles per work-item twice per rendering). The threshold lies between the two, untested there.
-RefineLayout resolved_refine_layout(RefineLayout layout, bool is_gpu, size_t triangle_count) {
+// What each layout costs at 2,000 particles, 80x60 (refine_ms): the spread layout is 37 short launches,
+// the one group loops over the mesh's triangles per work-item twice per rendering.
+//   handset (842 triangles): PoCL (2 cores) one group 1.0 ms, spread 1.7-2.1; H200 CUDA 0.240 / 0.184;
+//     H200 NVIDIA OpenCL 0.195 / 0.278 (its launches cost more than CUDA's);
+//   YCB mug (16,384): PoCL 5.9-7.9 / 5.0-5.4; H200 CUDA 0.610 / 0.137; NVIDIA OpenCL 0.552 / 0.131.
+// The threshold lies between the two meshes and was not measured itself.
+RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceInfo& device, size_t triangle_count) {
   if (layout != RefineLayout::Auto) return layout;
-  return is_gpu || triangle_count >= kSpreadOnCpuTriangles ? RefineLayout::Spread : RefineLayout::OneGroup;
+  if (triangle_count >= kSpreadTriangles) return RefineLayout::Spread;
+  return device.is_gpu && device.backend == "cuda" ? RefineLayout::Spread : RefineLayout::OneGroup;
 }
 
 DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh,
@@ -43,7 +47,7 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       radius_(mesh.radius()),
-      layout_(resolved_refine_layout(config.refine.layout, queue.info().is_gpu, mesh.triangles.size())),
+      layout_(resolved_refine_layout(config.refine.layout, queue.info(), mesh.triangles.size())),
       program_(programs.program(layout_ == RefineLayout::Spread ? "refine_spread.cl" : "refine.cl",
                                 {"DT_GROUP_SIZE=" + std::to_string(kRefineGroup), occlusion_definition})),
       mesh_(queue, mesh),

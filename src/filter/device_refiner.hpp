@@ -17,6 +17,7 @@
 #include "atlas/atlas_layout.hpp"
 #include "atlas/raster_inputs.hpp"
 #include "compute/buffer.hpp"
+#include "compute/device_info.hpp"
 #include "compute/program_cache.hpp"
 
 namespace depthtrack {
@@ -33,10 +34,11 @@ struct RefineInputs {
   double time;  // seconds since the first frame
 };
 
-// The layout Auto picks: Spread on GPUs; on CPU devices OneGroup for meshes of fewer than
-// kSpreadOnCpuTriangles triangles, else Spread (measured on PoCL: docs/design-notes.md).
-constexpr size_t kSpreadOnCpuTriangles = 4096;
-RefineLayout resolved_refine_layout(RefineLayout layout, bool is_gpu, size_t triangle_count);
+// The layout Auto picks: Spread for meshes of kSpreadTriangles triangles or more on every device, and
+// for smaller ones on CUDA GPUs; OneGroup for smaller meshes elsewhere (measured on PoCL and the H200:
+// docs/design-notes.md).
+constexpr size_t kSpreadTriangles = 4096;
+RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceInfo& device, size_t triangle_count);
 
 class DeviceRefiner {
  public:
