@@ -1,13 +1,11 @@
 # Installs the library, the command and a CMake package: find_package(depthtrack) then
 # target_link_libraries(app PRIVATE depthtrack::depthtrack).
 include(CMakePackageConfigHelpers)
-# The installed command finds the installed library beside it, without LD_LIBRARY_PATH; both also find the
-# libraries they were linked with outside the system's folders (a dependency in a package folder, as on the
-# GPU machine: INSTALL_RPATH_USE_LINK_PATH adds those folders, and nothing on a plain Debian).
+# The installed command finds the installed library beside it, without LD_LIBRARY_PATH. Third-party
+# libraries are found as the system finds them (INSTALL_RPATH_USE_LINK_PATH would not help where a
+# package folder is on gcc's LIBRARY_PATH, as on the GPU machine: CMake counts it as implicit).
 file(RELATIVE_PATH _depthtrack_bin_to_lib ${CMAKE_INSTALL_FULL_BINDIR} ${CMAKE_INSTALL_FULL_LIBDIR})
-set_target_properties(depthtrack_cli PROPERTIES INSTALL_RPATH "$ORIGIN/${_depthtrack_bin_to_lib}"
-                                                INSTALL_RPATH_USE_LINK_PATH ON)
-set_target_properties(depthtrack PROPERTIES INSTALL_RPATH_USE_LINK_PATH ON)
+set_target_properties(depthtrack_cli PROPERTIES INSTALL_RPATH "$ORIGIN/${_depthtrack_bin_to_lib}")
 install(TARGETS depthtrack depthtrack_cli EXPORT depthtrackTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -1,5 +1,5 @@
-# ctest driver: install the built project into a scratch prefix, run the installed command without
-# LD_LIBRARY_PATH (its RUNPATH finds the library), then configure, build and run the consumer against it.
+# ctest driver: install the built project into a scratch prefix, run the installed command with no folder
+# of this build on LD_LIBRARY_PATH (its RUNPATH finds the library), then configure, build and run the consumer against it.
 # Inputs: SOURCE_DIR, BUILD_DIR, WORK_DIR; STATIC=ON first builds the library and the command static in
 # WORK_DIR/static (GENERATOR, CXX_COMPILER, LAUNCHER, WERROR, WITH_CUDA as in the outer build, so that a
 # compiler cache finds the outer build's objects), so the package's static branch is what the consumer meets.
@@ -42,7 +42,25 @@ run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix)
 if(STATIC AND NOT EXISTS ${WORK_DIR}/prefix/lib/libdepthtrack.a)
   message(FATAL_ERROR "the static build installed no lib/libdepthtrack.a")
 endif()
-run(${CMAKE_COMMAND} -E env --unset=LD_LIBRARY_PATH ${WORK_DIR}/prefix/bin/depthtrack info)
+# The installed command must find libdepthtrack by its RUNPATH: LD_LIBRARY_PATH keeps only the folders
+# outside this build and the scratch prefix (a package folder of third-party libraries stays, as on the
+# GPU machine, where assimp lives in one).
+string(REPLACE ":" ";" outer_library_path "$ENV{LD_LIBRARY_PATH}")
+set(library_path "")
+foreach(folder IN LISTS outer_library_path)
+  string(FIND "${folder}" "${BUILD_DIR}" in_build)
+  string(FIND "${folder}" "${WORK_DIR}" in_work)
+  if(NOT folder STREQUAL "" AND NOT in_build EQUAL 0 AND NOT in_work EQUAL 0)
+    list(APPEND library_path "${folder}")
+  endif()
+endforeach()
+list(JOIN library_path ":" library_path)
+if(library_path STREQUAL "")
+  set(library_env --unset=LD_LIBRARY_PATH)
+else()
+  set(library_env "LD_LIBRARY_PATH=${library_path}")
+endif()
+run(${CMAKE_COMMAND} -E env ${library_env} ${WORK_DIR}/prefix/bin/depthtrack info)
 if(NOT output MATCHES "OpenCL: [0-9]+ device" OR NOT output MATCHES "OpenGL \\(pose atlas\\):")
   message(FATAL_ERROR "the installed `depthtrack info` printed no device list:\n${output}")
 endif()
