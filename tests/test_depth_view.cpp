@@ -48,14 +48,6 @@ void require_same_estimate(const Estimate& a, const Estimate& b) {
   REQUIRE(a.status == b.status);
 }
 
-SynthConfig small_scene(int frames) {
-  SynthConfig synth;
-  synth.camera = synth.camera.decimated(4);  // 160x120, tracked at 80x60: the view is decimated
-  synth.frames = frames;
-  synth.occluder_fraction = 0.3;
-  return synth;
-}
-
 }  // namespace
 
 TEST_CASE("DepthView converts float32 and uint16 pixels exactly as DepthImage does", "[depth_view]") {
@@ -99,7 +91,7 @@ TEST_CASE("DepthView reads a sub-rectangle of a larger image through its row str
 TEST_CASE("A tracker fed DepthViews gives the DepthImage path's estimates: float32, uint16, strided",
           "[depth_view][tracker]") {
   const Mesh mesh = builtin_demo_mesh();
-  const SynthConfig synth = small_scene(8);
+  const SynthConfig synth = test::small_scene(8, 4);
   const std::vector<SynthFrame> frames = test::synthesize(mesh, synth);
   TrackerConfig config;  // reference, 80x60, seed 1
   config.particles = 60;
@@ -130,7 +122,7 @@ TEST_CASE("A tracker fed DepthViews gives the DepthImage path's estimates: float
 
 TEST_CASE("initialize_global from a DepthView equals the DepthImage path", "[depth_view][tracker]") {
   const Mesh mesh = builtin_demo_mesh();
-  const SynthConfig synth = small_scene(1);
+  const SynthConfig synth = test::small_scene(1, 4);
   const SynthFrame f = test::synthesize(mesh, synth).front();
   const std::vector<uint16_t> units = to_units(f.depth);
   const int w = synth.camera.width, h = synth.camera.height;
@@ -206,7 +198,7 @@ TEST_CASE("Camera::from_matrix reads K and rejects skew and impossible intrinsic
 
 TEST_CASE("While lost a DepthView-fed tracker searches the whole view", "[depth_view][tracker]") {
   const Mesh mesh = builtin_demo_mesh();
-  SynthConfig synth = small_scene(24);
+  SynthConfig synth = test::small_scene(24, 4);
   synth.occluder_fraction = 0;
   synth.hidden_from = 0.3;  // frames 9-23: only the wall
   synth.hidden_until = 10.0;

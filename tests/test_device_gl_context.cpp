@@ -16,14 +16,6 @@ using namespace depthtrack;
 
 namespace {
 
-SynthConfig small_scene(int frames) {
-  SynthConfig synth;
-  synth.camera = synth.camera.decimated(8);  // 80x60, the working resolution
-  synth.frames = frames;
-  synth.occluder_fraction = 0.3;
-  return synth;
-}
-
 TrackerConfig gl_config(unsigned seed) {
   TrackerConfig config;
   config.particles = 40;
@@ -45,7 +37,7 @@ TEST_CASE("GL trackers on one Device share one GL context and track as with cont
           "[device][render][device_filter]") {
   if (!test::device_available() || !test::gl_built()) return;
   const Mesh mesh = builtin_demo_mesh();
-  const SynthConfig synth = small_scene(3);
+  const SynthConfig synth = test::small_scene(3);
   const auto frames = test::synthesize(mesh, synth);
   const auto device = Device::open(test::device_selector());
   CHECK(device->gl_contexts() == 0);
@@ -76,7 +68,7 @@ TEST_CASE("a GL tracker made on another thread gets that thread's GL context and
           "[device][render][device_filter]") {
   if (!test::device_available() || !test::gl_built()) return;
   const Mesh mesh = builtin_demo_mesh();
-  const SynthConfig synth = small_scene(2);
+  const SynthConfig synth = test::small_scene(2);
   const auto frames = test::synthesize(mesh, synth);
   const auto device = Device::open(test::device_selector());
   Tracker here(device, mesh, synth.camera, gl_config(1));

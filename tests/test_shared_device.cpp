@@ -18,14 +18,6 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-SynthConfig small_scene(int frames) {
-  SynthConfig synth;
-  synth.camera = synth.camera.decimated(8);  // 80x60, the working resolution
-  synth.frames = frames;
-  synth.occluder_fraction = 0.3;
-  return synth;
-}
-
 void require_same_estimate(const Estimate& a, const Estimate& b) {
   REQUIRE(a.pose.translation == b.pose.translation);
   REQUIRE(a.pose.rotation.coeffs() == b.pose.rotation.coeffs());
@@ -53,13 +45,13 @@ TEST_CASE("Device opens host and compute selectors and names a bad one", "[devic
     CHECK(listed[i].name == devices[i].name);
     CHECK(listed[i].backend == devices[i].backend);
   }
-  CHECK_THROWS_WITH(Tracker(nullptr, builtin_demo_mesh(), small_scene(1).camera, TrackerConfig{}),
+  CHECK_THROWS_WITH(Tracker(nullptr, builtin_demo_mesh(), test::small_scene(1).camera, TrackerConfig{}),
                     Contains("device is null"));
 }
 
 TEST_CASE("A tracker on a host Device equals one that opens its backend itself", "[device]") {
   const Mesh mesh = builtin_demo_mesh();
-  const SynthConfig synth = small_scene(3);
+  const SynthConfig synth = test::small_scene(3);
   const auto frames = test::synthesize(mesh, synth);
   TrackerConfig config;
   config.particles = 40;
@@ -79,7 +71,7 @@ TEST_CASE("Two trackers on one Device build each program once and track as on th
           "[device][device_filter]") {
   if (!test::device_available()) return;
   const Mesh mesh = builtin_demo_mesh();
-  const SynthConfig synth = small_scene(4);
+  const SynthConfig synth = test::small_scene(4);
   const auto frames = test::synthesize(mesh, synth);
   TrackerConfig first, second;
   first.particles = second.particles = 64;
@@ -130,7 +122,7 @@ TEST_CASE("A MultiTracker's objects, enqueued together on one Device, equal sing
           "[device][device_filter][multi]") {
   if (!test::device_available()) return;
   const Mesh mesh = builtin_demo_mesh();
-  const SynthConfig synth = small_scene(4);
+  const SynthConfig synth = test::small_scene(4);
   const auto frames = test::synthesize(mesh, synth);
   TrackerConfig config;
   config.particles = 64;
