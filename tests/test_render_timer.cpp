@@ -4,30 +4,20 @@
 #include <depthtrack/error.hpp>
 #include <depthtrack/synth.hpp>
 #include <iostream>
-#include <random>
 
 #include "atlas/gl/atlas_renderer.hpp"
 #include "atlas/gl/gl_draw_timer.hpp"
+#include "atlas_agreement.hpp"
 #include "core/stopwatch.hpp"
 #include "device_support.hpp"
-#include "gl_support.hpp"
 #include "filter/device_filter.hpp"
+#include "gl_support.hpp"
 
 using namespace depthtrack;
 
 namespace {
 
 const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.9375, 29.9375);
-
-std::vector<Pose> random_poses(int count) {
-  std::mt19937 rng(5);
-  std::normal_distribution<double> gauss;
-  std::vector<Pose> poses;
-  for (int i = 0; i < count; ++i)
-    poses.emplace_back(Eigen::Vector3d(0.03 * gauss(rng), 0.03 * gauss(rng), 0.7 + 0.03 * gauss(rng)),
-                       Eigen::Quaterniond(1, 0.2 * gauss(rng), 0.2 * gauss(rng), 0.2 * gauss(rng)));
-  return poses;
-}
 
 }  // namespace
 
@@ -36,7 +26,7 @@ TEST_CASE("a GL timer query times the atlas draw, positive and no longer than th
   auto context = test::gl_context_or_skip();
   if (!context) return;
   render::AtlasRenderer renderer(*context, builtin_demo_mesh(), camera, 0.05, 6.0);
-  renderer.render(random_poses(500));  // allocation and shader compilation, untimed
+  renderer.render(test::random_poses(builtin_demo_mesh(), 500, 0.7, 5));  // allocation and shader compilation, untimed
   render::GlDrawTimer timer(*context);
   if (!timer.available()) {
     std::cout << "SKIPPED: " << context->describe() << " has no timer queries: " << timer.why_unavailable() << "\n";
