@@ -10,6 +10,7 @@
 #include <limits>
 #include <vector>
 
+#include "same_estimate.hpp"
 #include "synth_frames.hpp"
 
 using namespace depthtrack;
@@ -38,14 +39,6 @@ void require_same_image(const DepthImage& a, const DepthImage& b) {
     differing += !((std::isnan(x) && std::isnan(y)) || x == y);
   }
   REQUIRE(differing == 0);
-}
-
-void require_same_estimate(const Estimate& a, const Estimate& b) {
-  REQUIRE(a.pose.translation == b.pose.translation);
-  REQUIRE(a.pose.rotation.coeffs() == b.pose.rotation.coeffs());
-  REQUIRE(a.effective_sample_size == b.effective_sample_size);
-  REQUIRE(a.confidence == b.confidence);
-  REQUIRE(a.status == b.status);
 }
 
 }  // namespace
@@ -112,11 +105,12 @@ TEST_CASE("A tracker fed DepthViews gives the DepthImage path's estimates: float
       std::memcpy(&big[static_cast<size_t>(v + pad_v) * big_w + pad_u], &metres[static_cast<size_t>(v) * w],
                   w * sizeof(float));
     const Estimate expected = by_image.update(image, f.timestamp);
-    require_same_estimate(by_units.update(DepthView::units(units.data(), w, h, kMetresPerUnit), f.timestamp), expected);
-    require_same_estimate(by_metres.update(DepthView::metres(metres.data(), w, h), f.timestamp), expected);
+    test::require_same_estimate(by_units.update(DepthView::units(units.data(), w, h, kMetresPerUnit), f.timestamp),
+                                expected);
+    test::require_same_estimate(by_metres.update(DepthView::metres(metres.data(), w, h), f.timestamp), expected);
     const DepthView window = DepthView::metres(&big[static_cast<size_t>(pad_v) * big_w + pad_u], w, h,
                                                static_cast<size_t>(big_w) * sizeof(float));
-    require_same_estimate(by_window.update(window, f.timestamp), expected);
+    test::require_same_estimate(by_window.update(window, f.timestamp), expected);
   }
 }
 
@@ -131,7 +125,8 @@ TEST_CASE("initialize_global from a DepthView equals the DepthImage path", "[dep
   Tracker a(mesh, synth.camera, config), b(mesh, synth.camera, config);
   const InitHint box = InitHint::box(40, 25, 120, 95);
   const Estimate expected = a.initialize_global(DepthImage::from_units(w, h, units, kMetresPerUnit), 0.0, box);
-  require_same_estimate(b.initialize_global(DepthView::units(units.data(), w, h, kMetresPerUnit), 0.0, box), expected);
+  test::require_same_estimate(b.initialize_global(DepthView::units(units.data(), w, h, kMetresPerUnit), 0.0, box),
+                              expected);
   CHECK(translation_error(expected.pose, f.ground_truth) < 0.02);
 }
 

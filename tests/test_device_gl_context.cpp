@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "device_support.hpp"
+#include "same_estimate.hpp"
 #include "synth_frames.hpp"
 
 using namespace depthtrack;
@@ -23,12 +24,6 @@ TrackerConfig gl_config(unsigned seed) {
   config.renderer = Renderer::Gl;
   config.seed = seed;
   return config;
-}
-
-void require_same_estimate(const Estimate& a, const Estimate& b) {
-  REQUIRE(a.pose.translation == b.pose.translation);
-  REQUIRE(a.pose.rotation.coeffs() == b.pose.rotation.coeffs());
-  REQUIRE(a.effective_sample_size == b.effective_sample_size);
 }
 
 }  // namespace
@@ -55,8 +50,8 @@ TEST_CASE("GL trackers on one Device share one GL context and track as with cont
   for (Tracker* t : {&a, &b, &own_a, &own_b}) t->initialize(frames[0].ground_truth);
   for (const auto& f : frames) {  // interleaved: each draw in the shared context follows the other's
     const Estimate ea = a.update(f.depth, f.timestamp), eb = b.update(f.depth, f.timestamp);
-    require_same_estimate(ea, own_a.update(f.depth, f.timestamp));
-    require_same_estimate(eb, own_b.update(f.depth, f.timestamp));
+    test::require_same_estimate(ea, own_a.update(f.depth, f.timestamp));
+    test::require_same_estimate(eb, own_b.update(f.depth, f.timestamp));
   }
 
   // A MultiTracker's objects, made on this thread, draw in the same context.
@@ -93,6 +88,6 @@ TEST_CASE("a GL tracker made on another thread gets that thread's GL context and
   Tracker own(mesh, synth.camera, gl_config(5));
   own.initialize(frames[0].ground_truth);
   for (size_t i = 0; i < frames.size(); ++i)
-    require_same_estimate(there[i], own.update(frames[i].depth, frames[i].timestamp));
+    test::require_same_estimate(there[i], own.update(frames[i].depth, frames[i].timestamp));
   (void)here.update(frames[1].depth, frames[1].timestamp);  // this thread's tracker is undisturbed
 }

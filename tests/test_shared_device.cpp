@@ -11,21 +11,11 @@
 #include "compute/program_cache.hpp"
 #include "compute/queue.hpp"
 #include "device_support.hpp"
+#include "same_estimate.hpp"
 #include "synth_frames.hpp"
 
 using namespace depthtrack;
 using Catch::Matchers::Contains;
-
-namespace {
-
-void require_same_estimate(const Estimate& a, const Estimate& b) {
-  REQUIRE(a.pose.translation == b.pose.translation);
-  REQUIRE(a.pose.rotation.coeffs() == b.pose.rotation.coeffs());
-  REQUIRE(a.effective_sample_size == b.effective_sample_size);
-  REQUIRE(a.confidence == b.confidence);
-}
-
-}  // namespace
 
 TEST_CASE("Device opens host and compute selectors and names a bad one", "[device]") {
   const auto reference = Device::open("reference");
@@ -64,7 +54,7 @@ TEST_CASE("A tracker on a host Device equals one that opens its backend itself",
   own.initialize(frames[0].ground_truth);
   shared.initialize(frames[0].ground_truth);
   for (const auto& f : frames)
-    require_same_estimate(shared.update(f.depth, f.timestamp), own.update(f.depth, f.timestamp));
+    test::require_same_estimate(shared.update(f.depth, f.timestamp), own.update(f.depth, f.timestamp));
 }
 
 TEST_CASE("Two trackers on one Device build each program once and track as on their own devices",
@@ -98,8 +88,8 @@ TEST_CASE("Two trackers on one Device build each program once and track as on th
   for (Tracker* t : {&a, &b, &own_a, &own_b}) t->initialize(frames[0].ground_truth);
   for (const auto& f : frames) {
     const Estimate ea = a.update(f.depth, f.timestamp), eb = b.update(f.depth, f.timestamp);
-    require_same_estimate(ea, own_a.update(f.depth, f.timestamp));
-    require_same_estimate(eb, own_b.update(f.depth, f.timestamp));
+    test::require_same_estimate(ea, own_a.update(f.depth, f.timestamp));
+    test::require_same_estimate(eb, own_b.update(f.depth, f.timestamp));
   }
 }
 
@@ -142,6 +132,6 @@ TEST_CASE("A MultiTracker's objects, enqueued together on one Device, equal sing
   for (const auto& f : frames) {
     const std::vector<Estimate> estimates = together.update(f.depth, f.timestamp);
     REQUIRE(estimates.size() == 3);
-    for (size_t j = 0; j < 3; ++j) require_same_estimate(estimates[j], alone[j].update(f.depth, f.timestamp));
+    for (size_t j = 0; j < 3; ++j) test::require_same_estimate(estimates[j], alone[j].update(f.depth, f.timestamp));
   }
 }
