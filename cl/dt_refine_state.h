@@ -11,7 +11,8 @@
 
 typedef struct {
   dt_u32 active;     /* 1 while a candidate waits to be evaluated */
-  dt_u32 evaluation; /* evaluations the step kernel has judged */
+  dt_u32 evaluation; /* evaluations judged */
+  dt_u32 arrived;    /* the sums kernel's groups done with this evaluation (the last one judges it) */
   int tried;         /* steps tried (candidates after the start) */
   float lambda;
   float candidate[DT_STATE_STRIDE]; /* dt_state.h's layout (pose only) */

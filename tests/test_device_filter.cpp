@@ -254,13 +254,14 @@ TEST_CASE("with the compute-kernel atlas in the loop the device filter still equ
 // CI's default renderer).
 // The rule behind Auto, from the measured costs in device_refiner.cpp: large meshes spread everywhere,
 // small ones only on CUDA GPUs (NVIDIA OpenCL's and PoCL's launches cost more than one group's loops).
-TEST_CASE("the refinement layout auto spreads large meshes everywhere and small ones on CUDA GPUs", "[refine]") {
+TEST_CASE("the refinement layout auto spreads large meshes everywhere and small ones on CUDA GPUs, given 64-bit atomics", "[refine]") {
   compute::DeviceInfo cuda_gpu, opencl_gpu, opencl_cpu;
   cuda_gpu.backend = "cuda";
   cuda_gpu.is_gpu = true;
   opencl_gpu.backend = "opencl";
   opencl_gpu.is_gpu = true;
   opencl_cpu.backend = "opencl";
+  for (compute::DeviceInfo* d : {&cuda_gpu, &opencl_gpu, &opencl_cpu}) d->int64_atomics = true;
   const size_t handset = 842, mug = 16384;
   CHECK(resolved_refine_layout(RefineLayout::Auto, cuda_gpu, handset) == RefineLayout::Spread);
   CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, handset) == RefineLayout::OneGroup);
@@ -271,6 +272,14 @@ TEST_CASE("the refinement layout auto spreads large meshes everywhere and small 
   // A layout asked for is kept.
   CHECK(resolved_refine_layout(RefineLayout::OneGroup, cuda_gpu, mug) == RefineLayout::OneGroup);
   CHECK(resolved_refine_layout(RefineLayout::Spread, opencl_cpu, handset) == RefineLayout::Spread);
+  // The spread drawing keeps depth and triangle in one 64-bit atomic min: a device without it fits
+  // in one group, and spread asked for there is refused by name.
+  compute::DeviceInfo no_int64 = opencl_gpu;
+  no_int64.int64_atomics = false;
+  no_int64.name = "an old GPU";
+  CHECK(resolved_refine_layout(RefineLayout::Auto, no_int64, mug) == RefineLayout::OneGroup);
+  CHECK_THROWS_WITH(resolved_refine_layout(RefineLayout::Spread, no_int64, mug),
+                    Catch::Contains("cl_khr_int64_extended_atomics") && Catch::Contains("an old GPU"));
 }
 
 TEST_CASE("with the refinement layout auto does not pick the device filter still equals the reference",

@@ -104,6 +104,7 @@ void print_device(const compute::DeviceInfo& d, bool extensions) {
   std::printf("    %-18s%s\n", "external memory", yes_no(d.external_memory));
   std::printf("    %-18s%s\n", "fp64", yes_no(d.fp64));
   std::printf("    %-18s%s\n", "subgroups", yes_no(d.subgroups));
+  std::printf("    %-18s%s\n", "int64 atomics", yes_no(d.int64_atomics));
   print_atlas_path(d);
   if (extensions) print_extensions(d.extensions);
 }

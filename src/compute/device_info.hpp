@@ -27,6 +27,7 @@ struct DeviceInfo {
   bool external_memory = false;  // cl_khr_external_memory(_opaque_fd) / CUDA external memory
   bool fp64 = false;
   bool subgroups = false;               // cl_khr_subgroups or warps
+  bool int64_atomics = false;           // 64-bit atomic min: cl_khr_int64_extended_atomics / CUDA
   std::vector<std::string> extensions;  // the full list, where the API has one
   // The GPU's UUID (cuDeviceGetUuid, cl_khr_device_uuid), to find the EGL device on the same GPU.
   std::optional<std::array<unsigned char, 16>> uuid;

@@ -1,6 +1,8 @@
 #include "filter/device_refiner.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <depthtrack/error.hpp>
 
 #include "compute/program_cache.hpp"
 #include "dt_refine_state.h"
@@ -17,25 +19,30 @@ namespace {
 constexpr size_t kRefineGroup = 256;
 constexpr size_t kLinearGroup = 64;  // shift, and the spread layout's draws: a work-item per particle / triangle
 // The spread sums kernel: enough groups for every pixel of the image to have its own work-item, at
-// most this many rows of partials for the step kernel to add (beyond 256 x 256 pixels a work-item
+// most this many rows of partials for its last group to add (beyond 256 x 256 pixels a work-item
 // sums several).
 constexpr size_t kMaxSumGroups = 256;
-constexpr size_t kStepGroup = 32;  // the spread step kernel: a work-item per sum (29), one warp
-static_assert(kStepGroup >= DT_REFINE_SUMS);
+static_assert(kRefineGroup >= DT_REFINE_SUMS);  // the last sums group adds one sum per work-item
+constexpr uint64_t kNearestEmpty = (uint64_t{0x7f800000u} << 32) | 0xffffffffu;  // DT_NEAREST_EMPTY
 
 size_t round_up(size_t n, size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
 }
 }  // namespace
 
-// What each layout costs at 2,000 particles, 80x60 (refine_ms): the spread layout is 37 short launches,
-// the one group loops over the mesh's triangles per work-item twice per rendering.
+// What each layout costs at 2,000 particles, 80x60 (refine_ms): the spread layout was 37 short launches
+// (depth, ids, sums and step per evaluation), the one group loops over the mesh's triangles per
+// work-item twice per rendering.
 //   handset (842 triangles): PoCL (2 cores) one group 1.0 ms, spread 1.7-2.1; H200 CUDA 0.240 / 0.184;
 //     H200 NVIDIA OpenCL 0.195 / 0.278 (its launches cost more than CUDA's);
 //   YCB mug (16,384): PoCL 5.9-7.9 / 5.0-5.4; H200 CUDA 0.610 / 0.137; NVIDIA OpenCL 0.552 / 0.131.
 // The threshold lies between the two meshes and was not measured itself.
 RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceInfo& device, size_t triangle_count) {
+  if (layout == RefineLayout::Spread && !device.int64_atomics)
+    throw InputError("refinement layout spread needs 64-bit atomic min (cl_khr_int64_extended_atomics), which " +
+                     device.name + " does not list; use --refine-layout one-group or auto");
   if (layout != RefineLayout::Auto) return layout;
+  if (!device.int64_atomics) return RefineLayout::OneGroup;
   if (triangle_count >= kSpreadTriangles) return RefineLayout::Spread;
   return device.is_gpu && device.backend == "cuda" ? RefineLayout::Spread : RefineLayout::OneGroup;
 }
@@ -61,17 +68,15 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
     return;
   }
   begin_ = program_->kernel("refine_begin");
-  depth_ = program_->kernel("refine_depth");
-  ids_pass_ = program_->kernel("refine_ids");
+  draw_ = program_->kernel("refine_draw");
   sums_ = program_->kernel("refine_sums");
-  step_ = program_->kernel("refine_step");
   const size_t pixels = static_cast<size_t>(camera.pixel_count());
   sum_groups_ = std::clamp<size_t>((pixels + kRefineGroup - 1) / kRefineGroup, 1, kMaxSumGroups);
   fit_state_ = compute::Buffer<float>(queue, sizeof(dt_refine_state) / sizeof(float));
   partials_ = compute::Buffer<float>(queue, sum_groups_ * DT_REFINE_SUMS);
   // The spread layout never clears: every evaluation resets the pixels it drew (refine_spread.cl).
-  tile_.upload(std::vector<unsigned>(pixels, 0x7f800000u));  // DT_NO_SURFACE
-  ids_.upload(std::vector<unsigned>(pixels, 0xffffffffu));
+  nearest_ = compute::Buffer<uint64_t>(queue, pixels);
+  nearest_.upload(std::vector<uint64_t>(pixels, kNearestEmpty));
 }
 
 std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& estimate, const RefineInputs& in) {
@@ -85,40 +90,34 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
                         correction_)};
 }
 
-// begin, then iterations + 1 evaluations (depth, ids, sums, step) with no wait: the step kernel
+// begin, then iterations + 1 evaluations (draw, sums) with no wait: the sums kernel's last group
 // stops the fit on the device, and what follows returns at once.
 std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in) {
   const dt_refine_args args =
       model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time);
   const dt_camera cam = model::camera_params(camera_, config_);
   const dt_model model = model::model_params(config_);
-  const auto step_group = compute::NdRange::linear(kStepGroup, kStepGroup);
   const auto per_triangle =
       compute::NdRange::linear(round_up(std::max<size_t>(mesh_.triangle_count(), 1), kLinearGroup), kLinearGroup);
   const auto over_pixels = compute::NdRange::linear(sum_groups_ * kRefineGroup, kRefineGroup);
   const unsigned triangles = mesh_.triangle_count();
-  // Timed: begin and the last step, which the filter reads as one span (Event::elapsed_since_ms);
+  // Timed: begin and the last sums, which the filter reads as one span (Event::elapsed_since_ms);
   // the launches between them untimed. Each kernel's arguments are set once: the evaluations differ
   // only in the fit's state on the device.
   std::vector<compute::EventPtr> events;
   events.push_back(queue_.launch(*begin_, compute::NdRange::linear(1, 1), fit_state_, estimate, in.states,
                                  static_cast<float>(config_.refine.damping)));
-  compute::set_launch_args(*depth_, fit_state_, mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam, tile_);
-  compute::set_launch_args(*ids_pass_, fit_state_, mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam, tile_,
-                           ids_);
-  compute::set_launch_args(*sums_, fit_state_, estimate, in.observed, in.occlusion, in.occlusion_time, in.priors,
-                           in.atlas, in.layout.kernel_args(), mesh_.planes, triangles, cam, model, args, tile_, ids_,
-                           partials_);
-  compute::set_launch_args(*step_, fit_state_, estimate, in.states, partials_, static_cast<unsigned>(sum_groups_), args,
-                           correction_);
+  compute::set_launch_args(*draw_, fit_state_, mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam,
+                           nearest_);
+  compute::set_launch_args(*sums_, fit_state_, estimate, in.states, in.observed, in.occlusion, in.occlusion_time,
+                           in.priors, in.atlas, in.layout.kernel_args(), mesh_.planes, triangles, cam, model, args,
+                           nearest_, partials_, correction_);
   for (int evaluation = 0; evaluation <= config_.refine.iterations; ++evaluation) {
-    queue_.launch_untimed(*depth_, per_triangle);
-    queue_.launch_untimed(*ids_pass_, per_triangle);
-    queue_.launch_untimed(*sums_, over_pixels);
+    queue_.launch_untimed(*draw_, per_triangle);
     if (evaluation < config_.refine.iterations)
-      queue_.launch_untimed(*step_, step_group);
+      queue_.launch_untimed(*sums_, over_pixels);
     else
-      events.push_back(queue_.launch(*step_, step_group));
+      events.push_back(queue_.launch(*sums_, over_pixels));
   }
   return events;
 }

@@ -3,9 +3,9 @@
 // frame's likelihood and the refined pose, its covariance and the steps tried go into the estimate
 // buffer; shift then moves every particle by the same correction. Two layouts of the same fit
 // (Refinement::layout): the whole fit in one work-group and one launch (cl/refine.cl), or each
-// step's rendering and sums spread over many work-groups with a one-group kernel solving and
-// deciding (cl/refine_spread.cl: 4 launches a step, iterations + 1 evaluations enqueued, the ones
-// after convergence returning at once). Its own program, built with a larger work-group than the
+// step's rendering and sums spread over many work-groups, the sums' last group solving and deciding
+// (cl/refine_spread.cl: 2 launches a step, iterations + 1 evaluations enqueued, the ones after
+// convergence returning at once; it needs 64-bit atomics). Its own program, built with a larger work-group than the
 // filter's kernels. Reference: reference::PoseRefiner and ReferenceFilter::refine.
 #include <depthtrack/camera.hpp>
 #include <depthtrack/mesh.hpp>
@@ -36,7 +36,8 @@ struct RefineInputs {
 
 // The layout Auto picks: Spread for meshes of kSpreadTriangles triangles or more on every device, and
 // for smaller ones on CUDA GPUs; OneGroup for smaller meshes elsewhere (measured on PoCL and the H200:
-// docs/design-notes.md).
+// docs/design-notes.md), and on devices without 64-bit atomic min (DeviceInfo::int64_atomics), where
+// Spread asked for is an InputError.
 constexpr size_t kSpreadTriangles = 4096;
 RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceInfo& device, size_t triangle_count);
 
@@ -67,10 +68,12 @@ class DeviceRefiner {
   RefineLayout layout_;
   std::shared_ptr<compute::Program> program_;
   std::unique_ptr<compute::Kernel> refine_, shift_;
-  // The spread layout's kernels (cl/refine_spread.cl), its fit state and per-group partial sums.
-  std::unique_ptr<compute::Kernel> begin_, depth_, ids_pass_, sums_, step_;
+  // The spread layout's kernels (cl/refine_spread.cl), its fit state, per-group partial sums and
+  // the candidate's drawing (depth bits and triangle per pixel).
+  std::unique_ptr<compute::Kernel> begin_, draw_, sums_;
   size_t sum_groups_ = 0;
   compute::Buffer<float> fit_state_, partials_;
+  compute::Buffer<uint64_t> nearest_;
   MeshBuffers mesh_;
   // One-pose scratch (state, depth bits, triangle ids) and the correction twist.
   compute::Buffer<float> pose_, correction_;

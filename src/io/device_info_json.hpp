@@ -26,6 +26,7 @@ inline nlohmann::ordered_json device_facts_json(const compute::DeviceInfo& d) {
   j["external_memory"] = d.external_memory;
   j["fp64"] = d.fp64;
   j["subgroups"] = d.subgroups;
+  j["int64_atomics"] = d.int64_atomics;
   return j;
 }
 

@@ -98,6 +98,7 @@ DeviceInfo query_device(cl_platform_id platform, cl_device_id device, unsigned p
   info.gl_sharing = has("cl_khr_gl_sharing");
   info.external_memory = has("cl_khr_external_memory") || has("cl_khr_external_memory_opaque_fd");
   info.fp64 = has("cl_khr_fp64");
+  info.int64_atomics = has("cl_khr_int64_extended_atomics");
   info.subgroups = has("cl_khr_subgroups") || has("cl_intel_subgroups");
   if (has("cl_khr_device_uuid")) {
     std::array<unsigned char, CL_UUID_SIZE_KHR> uuid{};
