@@ -4,7 +4,7 @@
  * (depth bits and triangle index, kept by atomic min: dt_raster_triangle's `nearest`), then the
  * image's pixels summed into one row of DT_REFINE_SUMS partial sums per work-group. The last group
  * of the sums to finish (a counter in the fit's state) adds the rows in a fixed order (no float
- * atomics: the same sums every run), keeps or rejects the candidate, solves the next step and writes
+ * atomics: the same sums every run; how it knows the rows are complete: refine_sums), keeps or rejects the candidate, solves the next step and writes
  * the next candidate into the fit's state (dt_refine_state.h). The host enqueues begin, then
  * iterations + 1 evaluations, with no round trip; once the fit has stopped (converged, or no step left
  * to try), `active` is 0 and the later kernels return at once. The judgement that stops it writes the
@@ -36,6 +36,7 @@ __kernel void refine_begin(__global dt_refine_state* s, __global const float* es
 }
 
 #define DT_NEAREST_EMPTY ((DT_CAST(dt_u64, DT_NO_SURFACE) << 32) | 0xffffffffu)
+#define DT_REFINE_MAX_POLLS (1u << 20)
 
 /* A work-item per triangle: the candidate's depth and each pixel's triangle, in one pass. */
 __kernel void refine_draw(__global const dt_refine_state* s, __global const float* vertices,
@@ -79,19 +80,23 @@ DT_DEVICE_FN void dt_refine_judge(__global dt_refine_state* s, __global float* e
   dt_refine_finish(estimate, start, best, best_sums, s->tried, centre, correction);
 }
 
-/* The image's pixels over all work-items of the grid; each group's sums into
- * partials[group * DT_REFINE_SUMS + k], every pixel read reset for the next evaluation. The last
- * group to finish then adds the rows in group order and judges (dt_refine_judge).
- * The other groups have read the fit's state before they count themselves in, so the last one may
- * write it. */
+/* The image's pixels over all work-items of the grid; each group's sums into its row of partials,
+ * every pixel read reset for the next evaluation. The last group to count itself in then adds the
+ * rows in group order and judges (dt_refine_judge). The other groups have read the fit's state
+ * before they count themselves in, so the last one may write it.
+ * No fence is needed for the rows: OpenCL 1.2 has none that reaches other work-groups (NVIDIA's
+ * mem_fence is membar.cta), so each partial is stored with the evaluation's stamp in one 64-bit
+ * word, (stamp << 32) | bits, and the last group waits for every word to carry this evaluation's
+ * stamp: the other groups have finished, only their stores can still be on the way. */
 __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate, __global const float* states,
                           __global const float* observed, __global const float* occlusion,
                           __global const float* occlusion_time, __global const float* prior,
                           __global const float* atlas, dt_atlas_layout layout, __global const float* planes,
                           uint triangle_count, dt_camera cam, dt_model m, dt_refine_args args,
-                          __global dt_u64* nearest, __global float* partials, __global float* correction) {
+                          __global dt_u64* nearest, __global dt_u64* partials, __global float* correction) {
   __local float sums[DT_REFINE_SUMS * DT_GROUP_SIZE];
   if (!s->active) return; /* the same for every work-item, before any barrier */
+  const uint stamp = s->stamp;
   const uint pixels = cam.width * cam.height;
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
   const dt_refine_offsets at = dt_refine_map_offsets(heaviest, pixels);
@@ -110,20 +115,30 @@ __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate,
   }
   dt_refine_group_sums(acc, sums);
   const uint lid = get_local_id(0), groups = get_num_groups(0);
-  if (lid < DT_REFINE_SUMS) {
-    partials[DT_CAST(ulong, get_group_id(0)) * DT_REFINE_SUMS + lid] = sums[lid * DT_GROUP_SIZE];
-    dt_fence_device(); /* the row is out before the group counts itself in */
-  }
+  if (lid < DT_REFINE_SUMS)
+    partials[DT_CAST(ulong, get_group_id(0)) * DT_REFINE_SUMS + lid] =
+        (DT_CAST(dt_u64, stamp) << 32) | dt_as_uint(sums[lid * DT_GROUP_SIZE]);
   barrier(CLK_GLOBAL_MEM_FENCE);
   /* No barrier after the count: one work-item of the last group adds the rows and judges alone
    * (PoCL ran every work-item of that group through a return after a barrier there). */
   if (lid != 0 || dt_atomic_add_u32(&s->arrived, 1u) != groups - 1) return;
-  /* volatile: the other groups' rows from memory, not from a cache this group filled earlier */
-  __global volatile const float* rows = partials;
+  __global volatile const dt_u64* rows = partials; /* volatile: read again, not from a cache */
   float total[DT_REFINE_SUMS];
   for (int k = 0; k < DT_REFINE_SUMS; ++k) total[k] = 0.0f;
+  int complete = 1;
   for (uint g = 0; g < groups; ++g)
-    for (int k = 0; k < DT_REFINE_SUMS; ++k) total[k] += rows[DT_CAST(ulong, g) * DT_REFINE_SUMS + k];
+    for (int k = 0; k < DT_REFINE_SUMS; ++k) {
+      const ulong at_row = DT_CAST(ulong, g) * DT_REFINE_SUMS + k;
+      dt_u64 word = rows[at_row];
+      /* A bound, so that a fault can never hang the device: past it the evaluation counts as lost. */
+      for (uint polls = 0; DT_CAST(uint, word >> 32) != stamp && polls < DT_REFINE_MAX_POLLS; ++polls)
+        word = rows[at_row];
+      complete &= DT_CAST(uint, word >> 32) == stamp;
+      total[k] += dt_as_float(DT_CAST(uint, word & 0xffffffffu));
+    }
   s->arrived = 0;
+  s->stamp = stamp + 1;
+  /* A lost evaluation counts as a rejected candidate (the start as one without pixels: the fit ends there). */
+  if (!complete) total[DT_REFINE_PIXELS] = 0.0f, total[DT_REFINE_OBJECTIVE] = DT_LOWEST;
   dt_refine_judge(s, estimate, states, total, args, correction);
 }

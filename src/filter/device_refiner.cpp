@@ -72,8 +72,12 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
   sums_ = program_->kernel("refine_sums");
   const size_t pixels = static_cast<size_t>(camera.pixel_count());
   sum_groups_ = std::clamp<size_t>((pixels + kRefineGroup - 1) / kRefineGroup, 1, kMaxSumGroups);
+  // Stamp 0 in the state and rows tagged 0xffffffff: no row counts as written before its group
+  // writes it (refine_spread.cl's refine_sums).
   fit_state_ = compute::Buffer<float>(queue, sizeof(dt_refine_state) / sizeof(float));
-  partials_ = compute::Buffer<float>(queue, sum_groups_ * DT_REFINE_SUMS);
+  fit_state_.upload(std::vector<float>(fit_state_.size(), 0.0f));
+  partials_ = compute::Buffer<uint64_t>(queue, sum_groups_ * DT_REFINE_SUMS);
+  partials_.upload(std::vector<uint64_t>(partials_.size(), uint64_t{0xffffffffu} << 32));
   // The spread layout never clears: every evaluation resets the pixels it drew (refine_spread.cl).
   nearest_ = compute::Buffer<uint64_t>(queue, pixels);
   nearest_.upload(std::vector<uint64_t>(pixels, kNearestEmpty));

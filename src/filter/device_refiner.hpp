@@ -72,8 +72,8 @@ class DeviceRefiner {
   // the candidate's drawing (depth bits and triangle per pixel).
   std::unique_ptr<compute::Kernel> begin_, draw_, sums_;
   size_t sum_groups_ = 0;
-  compute::Buffer<float> fit_state_, partials_;
-  compute::Buffer<uint64_t> nearest_;
+  compute::Buffer<float> fit_state_;
+  compute::Buffer<uint64_t> partials_, nearest_;  // (stamp << 32) | sum bits; (depth bits << 32) | triangle
   MeshBuffers mesh_;
   // One-pose scratch (state, depth bits, triangle ids) and the correction twist.
   compute::Buffer<float> pose_, correction_;

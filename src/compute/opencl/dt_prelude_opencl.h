@@ -19,7 +19,3 @@ typedef ulong dt_u64;
 /* cl_khr_int64_extended_atomics: a program using it enables the extension (cl/refine_spread.cl) */
 #define dt_atomic_min_u64(p, v) atom_min((volatile __global ulong*)(p), (v))
 #define dt_atomic_add_u32(p, v) atomic_add((volatile __global uint*)(p), (v))
-/* This work-item's global writes are seen before its later ones, across work-groups too: OpenCL 1.2
- * promises this only within a group, the drivers used here (NVIDIA: membar.gl, PoCL: coherent
- * CPU caches) give it device-wide, as CUDA's __threadfence. */
-#define dt_fence_device() mem_fence(CLK_GLOBAL_MEM_FENCE)
