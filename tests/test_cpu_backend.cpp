@@ -1,6 +1,9 @@
 // The cpu backend: the reference filter's per-particle loops on a thread pool, equal to the sequential
 // reference bit for bit (issue 12 item 5).
 #include <atomic>
+#include <chrono>
+#include <functional>
+#include <thread>
 #include <catch2/catch.hpp>
 #include <depthtrack/error.hpp>
 #include <depthtrack/synth.hpp>
@@ -47,6 +50,55 @@ TEST_CASE("a thread pool runs every task of a batch exactly once and rethrows a 
     CHECK(after.load() == 4);
   }
   CHECK_THROWS_AS(ThreadPool(0), InputError);
+}
+
+TEST_CASE("a thread pool runs released tasks while the producer is still preparing the next", "[cpu]") {
+  for (const int threads : {1, 3}) {
+    ThreadPool pool(threads);
+    std::vector<std::atomic<int>> runs(4);
+    std::vector<int> ready(4, 0);
+    std::atomic<bool> overlapped{false}, early{false};
+    pool.run_as_released(
+        4,
+        [&](const std::function<void()>& release) {
+          for (size_t t = 0; t < 4; ++t) {
+            ready[t] = 1;  // the task's input, written before its release
+            release();
+            if (threads > 1 && t == 0) {
+              // A worker takes task 0 while this thread still holds tasks 1-3 back.
+              const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+              while (runs[0].load() == 0 && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
+              overlapped = runs[0].load() == 1;
+            }
+          }
+        },
+        [&](size_t t, int) {
+          if (ready[t] != 1) early = true;
+          runs[t].fetch_add(1);
+        });
+    CHECK_FALSE(early.load());
+    for (auto& r : runs) CHECK(r.load() == 1);
+    if (threads > 1) CHECK(overlapped.load());
+    // A producer that fails after releasing two tasks: those two run, the others never, and its
+    // exception is the one that arrives.
+    std::atomic<int> ran{0};
+    CHECK_THROWS_WITH(pool.run_as_released(
+                          5,
+                          [&](const std::function<void()>& release) {
+                            release();
+                            release();
+                            throw std::runtime_error("producer failed");
+                          },
+                          [&](size_t t, int) {
+                            ran.fetch_add(1);
+                            if (t == 1) throw std::runtime_error("task failed");
+                          }),
+                      "producer failed");
+    CHECK(ran.load() == 2);
+    std::atomic<int> after{0};
+    pool.run(3, [&](size_t, int) { after.fetch_add(1); });  // still usable
+    CHECK(after.load() == 3);
+  }
 }
 
 namespace {

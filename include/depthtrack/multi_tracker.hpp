@@ -23,8 +23,8 @@ struct MultiStageTimings {
   double occluders_ms = 0;   // mutual occlusion: the objects' previous estimates drawn (or reused)
   double masks_ms = 0;       // mutual occlusion: each object's masked working frame
   double enqueue_ms = 0;     // every object's start_frame: upload, enqueue (a host filter: its whole update)
-  double collect_ms = 0;     // waiting for every object's estimate, one after another
-  double confidence_ms = 0;  // every estimate's confidence and status, side by side on a thread pool
+  double collect_ms = 0;     // waiting for every object's estimate, one after another (confidences meanwhile)
+  double confidence_ms = 0;  // the confidences and statuses still running after the last collection (a pool)
   double total_ms = 0;       // the whole update
 };
 

@@ -26,16 +26,60 @@ ThreadPool::~ThreadPool() {
 
 void ThreadPool::run(size_t tasks, const std::function<void(size_t, int)>& task) {
   if (tasks == 0) return;
+  start_batch(tasks, tasks, task);
+  finish_batch();
+}
+
+void ThreadPool::run_as_released(size_t tasks,
+                                 const std::function<void(const std::function<void()>& release)>& producer,
+                                 const std::function<void(size_t, int)>& task) {
+  if (tasks == 0) {
+    producer([] {});
+    return;
+  }
+  start_batch(tasks, 0, task);
+  const auto release = [this] {
+    {
+      const std::lock_guard lock(mutex_);
+      if (released_ < tasks_) ++released_;
+    }
+    released_more_.notify_all();
+  };
+  std::exception_ptr producer_error;
+  try {
+    producer(release);
+  } catch (...) {
+    producer_error = std::current_exception();
+  }
+  {
+    const std::lock_guard lock(mutex_);
+    tasks_ = released_;  // what was not released is not run
+    if (finished_ == tasks_) done_.notify_all();
+  }
+  released_more_.notify_all();
+  if (!producer_error) return finish_batch();
+  try {
+    finish_batch();
+  } catch (...) {  // the producer's failure is the one reported
+  }
+  std::rethrow_exception(producer_error);
+}
+
+void ThreadPool::start_batch(size_t tasks, size_t released, const std::function<void(size_t, int)>& task) {
   {
     const std::lock_guard lock(mutex_);
     task_ = &task;
     tasks_ = tasks;
+    released_ = released;
     next_ = 0;
     finished_ = 0;
     error_ = nullptr;
     ++batch_;
   }
   start_.notify_all();
+}
+
+void ThreadPool::finish_batch() {
   take_tasks(0);
   std::unique_lock lock(mutex_);
   done_.wait(lock, [&] { return finished_ == tasks_; });
@@ -45,7 +89,11 @@ void ThreadPool::run(size_t tasks, const std::function<void(size_t, int)>& task)
 
 void ThreadPool::take_tasks(int thread) {
   std::unique_lock lock(mutex_);
-  while (task_ && next_ < tasks_) {
+  const unsigned batch = batch_;
+  for (;;) {
+    // Workers wait here for the producer's next release; the caller arrives once all are released.
+    released_more_.wait(lock, [&] { return batch_ != batch || !task_ || next_ >= tasks_ || next_ < released_; });
+    if (batch_ != batch || !task_ || next_ >= tasks_) return;
     const size_t t = next_++;
     const auto* task = task_;
     lock.unlock();

@@ -28,16 +28,25 @@ class ThreadPool {
   // so per-thread scratch may be indexed by it); returns when all are done. The first exception a task
   // throws is rethrown here (the other tasks still run).
   void run(size_t tasks, const std::function<void(size_t task, int thread)>& task);
+  // As run(), but the tasks are handed out only as they are released: producer runs on the caller's
+  // thread and calls release() once per task, in order, when its input is ready (the workers start
+  // on task t while the caller prepares t + 1); then the caller takes part in what is left. If the
+  // producer throws, the tasks it did not release are dropped, and its exception is rethrown once the
+  // released ones are done (before a task's).
+  void run_as_released(size_t tasks, const std::function<void(const std::function<void()>& release)>& producer,
+                       const std::function<void(size_t task, int thread)>& task);
 
  private:
+  void start_batch(size_t tasks, size_t released, const std::function<void(size_t, int)>& task);
+  void finish_batch();          // takes part, waits for the batch, rethrows a task's exception
   void work(int thread);        // a worker's loop
-  void take_tasks(int thread);  // runs tasks of the current batch until none is left
+  void take_tasks(int thread);  // runs released tasks of the current batch until none is left
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
-  std::condition_variable start_, done_;
+  std::condition_variable start_, done_, released_more_;
   const std::function<void(size_t, int)>* task_ = nullptr;
-  size_t tasks_ = 0, next_ = 0, finished_ = 0;
+  size_t tasks_ = 0, next_ = 0, finished_ = 0, released_ = 0;
   unsigned batch_ = 0;  // counts batches, so a worker knows a new one from the one it finished
   bool stop_ = false;
   std::exception_ptr error_;

@@ -94,7 +94,8 @@ std::vector<std::vector<float>> MultiTracker::occluder_layers() {
 // is collected: the device runs the objects' work side by side. With mutual occlusion each object's
 // working frame hides what the others' previous estimates cover, so none waits for another's estimate.
 // The estimates are collected on this thread (a GL renderer's timer events are read on its thread), their
-// confidences assessed on the pool: each tracker's assessment touches its own state only.
+// confidences assessed on the pool as each arrives: each tracker's assessment touches its own state only.
+// collect_ms ends with the last collection, confidence_ms is what the assessments take after it.
 std::vector<Estimate> MultiTracker::run(const DepthImage& working,
                                         const std::function<const DepthImage&()>& sensor_frame, double timestamp) {
   const size_t n = trackers_.size();
@@ -117,24 +118,31 @@ std::vector<Estimate> MultiTracker::run(const DepthImage& working,
   } catch (...) {
     failure = std::current_exception();
   }
-  // Every started frame is collected, even after a failure, so that no tracker is left mid-frame.
+  // Every started frame is collected, even after a failure, so that no tracker is left mid-frame;
+  // each collected estimate's confidence is assessed on the pool while the next is collected.
   Stopwatch clock;
   std::vector<Estimate> estimates(started);
-  std::vector<size_t> collected;
-  for (size_t j = 0; j < started; ++j) {
-    try {
-      estimates[j] = trackers_[j].collect_frame();
-      collected.push_back(j);
-    } catch (...) {
-      if (!failure) failure = std::current_exception();
-    }
-  }
-  timings_.collect_ms = clock.lap_ms();
+  std::vector<size_t> collected(started);  // sized once: the pool reads entries as they are released
   try {
-    pool_->run(collected.size(), [&](size_t i, int) {
-      const size_t j = collected[i];
-      trackers_[j].assess_frame(estimates[j], frame_of(j));
-    });
+    pool_->run_as_released(
+        started,
+        [&](const std::function<void()>& release) {
+          size_t count = 0;
+          for (size_t j = 0; j < started; ++j) {
+            try {
+              estimates[j] = trackers_[j].collect_frame();
+              collected[count++] = j;
+              release();
+            } catch (...) {
+              if (!failure) failure = std::current_exception();
+            }
+          }
+          timings_.collect_ms = clock.lap_ms();
+        },
+        [&](size_t i, int) {
+          const size_t j = collected[i];
+          trackers_[j].assess_frame(estimates[j], frame_of(j));
+        });
   } catch (...) {
     if (!failure) failure = std::current_exception();
   }
