@@ -54,7 +54,7 @@ TEST_CASE("median, p95 and the bytes each step moves", "[bench]") {
 
 TEST_CASE("bench writes results.json with every column and the four figures", "[bench][cli]") {
   const auto dir = test::temp_dir("bench_cli");
-  std::string backends = "--backend reference";
+  std::string backends = "--backend reference --backend cpu:2";
   const bool device = test::device_available();
   if (device) backends += " --backend " + test::device_selector();
   const auto [status, output] =
@@ -86,6 +86,14 @@ TEST_CASE("bench writes results.json with every column and the four figures", "[
     for (const auto& r : rows) found |= r["test"].get<std::string>().rfind(sweep, 0) == 0;
     CHECK(found);
   }
+  // The CPU path: its speedup is the reference's frame over its own, and it reports no device memory.
+  const auto* cpu_frame = find_row(rows, "cpu:2", test, "frame_ms");
+  const auto* cpu_speedup = find_row(rows, "cpu:2", test, "speedup_vs_reference");
+  REQUIRE(cpu_frame);
+  REQUIRE(cpu_speedup);
+  CHECK((*cpu_speedup)["median"].get<double>() ==
+        Approx(frame->at("median").get<double>() / cpu_frame->at("median").get<double>()));
+  CHECK_FALSE(find_row(rows, "cpu:2", test, "device_memory"));
   if (device) {
     const auto* speedup = find_row(rows, test::device_selector(), test, "speedup_vs_reference");
     const auto* device_frame = find_row(rows, test::device_selector(), test, "frame_ms");
@@ -144,6 +152,7 @@ TEST_CASE("bench refuses bad arguments and corrupt results with a clear error", 
       << R"( "metric": "m", "unit": "u", "p95": 1, "samples": 1}]})";
   const std::pair<std::string, std::string> cases[] = {
       {"bench --test-grid --backend nosuch --out " + (dir / "o").string(), "unknown backend 'nosuch'"},
+      {"bench --test-grid --backend cpu:0 --out " + (dir / "o").string(), "cpu:N takes a thread count N from 1 to 1024"},
       {"bench --test-grid --backend reference", "bench needs --out DIR"},
       {"bench --test-grid --backend reference --out " + (dir / "file.txt/sub").string(),
        "cannot create the output folder"},

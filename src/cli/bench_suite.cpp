@@ -7,6 +7,7 @@
 #include "cli/environment_defaults.hpp"
 #include "cli/step_bytes.hpp"
 #include "compute/queue.hpp"
+#include "tracker/make_filter_backend.hpp"
 
 namespace depthtrack::cli {
 
@@ -40,10 +41,14 @@ BenchMesh make_bench_mesh(const std::string& name, Mesh mesh, int frames) {
 }
 
 BenchTarget describe_target(const std::string& backend) {
-  if (backend == "reference") return {backend, "cpu", bench::cpu_name(), "-", true};
+  if (backend == "reference") return {backend, "cpu", bench::cpu_name(), "-", true, false};
+  // The reference on a thread pool (cpu, cpu:N): no compute device to open; the count is checked here.
+  if (backend == "cpu" || backend.rfind("cpu:", 0) == 0)
+    return {backend, "cpu", bench::cpu_name() + ", " + std::to_string(cpu_backend_threads(backend)) + " threads", "-",
+            true, false};
   const auto queue = compute::open_device(backend);
   const compute::DeviceInfo& info = queue->info();
-  return {backend, info.platform, info.name, info.driver, !info.is_gpu};
+  return {backend, info.platform, info.name, info.driver, !info.is_gpu, true};
 }
 
 std::string BenchCase::test() const {
@@ -92,7 +97,7 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
   };
   const size_t pixels = static_cast<size_t>(c.width) * static_cast<size_t>(c.height);
   const StepBytes b =
-      step_bytes(static_cast<size_t>(c.particles), pixels, c.mode, target.backend != "reference" && renderer == "gl",
+      step_bytes(static_cast<size_t>(c.particles), pixels, c.mode, target.on_device && renderer == "gl",
                  config.refine.enabled ? config.refine.iterations : 0);
   const char* names[6] = {"propagate", "render", "handoff", "weigh", "resample", "refine"};
   const double bytes[6] = {b.propagate, b.render, b.handoff, b.weigh, b.resample, b.refine};
@@ -106,11 +111,12 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
   row("frame_ms", "ms", frame_ms, frame_p95, total.size());
   row("frames_per_second", "Hz", 1000 / frame_ms, 1000 / frame_p95, total.size());
   CaseResult result{c, target.backend, frame_ms, NAN};
-  if (target.backend != "reference") {
+  if (target.on_device) {
     result.memory_mib = filter_memory_mib(static_cast<size_t>(c.particles), pixels, c.mode);
     row("device_memory", "MiB", result.memory_mib, result.memory_mib, 1);
-    if (std::isfinite(reference_ms)) row("speedup_vs_reference", "x", reference_ms / frame_ms, NAN, total.size());
   }
+  if (target.backend != "reference" && std::isfinite(reference_ms))
+    row("speedup_vs_reference", "x", reference_ms / frame_ms, NAN, total.size());
   return result;
 }
 

@@ -32,12 +32,15 @@ struct BenchMesh {
 };
 BenchMesh make_bench_mesh(const std::string& name, Mesh mesh, int frames);
 
-// What to run on: "reference" or a device selector, with the facts results.json names it by.
+// What to run on: "reference", the reference on a thread pool ("cpu", "cpu:N") or a device selector,
+// with the facts results.json names it by.
 struct BenchTarget {
   std::string backend, platform, device, driver;
-  bool cpu = true;  // the reference or a CPU device: cases beyond cpu_max_work are skipped
+  bool cpu = true;          // the reference or a CPU device: cases beyond cpu_max_work are skipped
+  bool on_device = false;   // a compute device's filter: device_memory is reported
 };
-// Opens each device once (InputError from the compute layer for an unknown or absent one).
+// Opens each device once (InputError from the compute layer for an unknown or absent one; cpu:N
+// with an impossible N).
 BenchTarget describe_target(const std::string& backend);
 
 struct BenchCase {

@@ -74,6 +74,7 @@ void run_bench(const BenchArgs& a) {
   std::vector<std::string> backends = a.backends;
   if (backends.empty()) {
     backends.push_back("reference");
+    backends.push_back("cpu");  // the reference on every hardware thread: the CPU path a user would pick
     for (const auto& d : compute::list_devices()) backends.push_back(d.selector);
   }
   std::vector<BenchTarget> targets;
@@ -140,7 +141,8 @@ void add_bench_command(CLI::App& app) {
       "memory; per-step split with bytes moved and GB/s; speedup over the reference) on the devices present; "
       "write DIR/results.json and PNG figures");
   c->add_option("--backend", args->backends,
-                "Backend to measure, repeatable (default: the reference and every device `depthtrack info` lists)");
+                "Backend to measure, repeatable: reference, cpu, cpu:N or a device (default: the reference, cpu and "
+                "every device `depthtrack info` lists)");
   c->add_option("--renderer", args->renderer, "Atlas renderer of device backends: kernel (default), gl, cpu");
   c->add_option("--out", args->out, "Folder for results.json and the figures (created)");
   c->add_flag("--quick", args->quick, "The small grid: a few minutes on a 2-core CPU (PoCL and the reference)");
