@@ -30,13 +30,14 @@ size_t round_up(size_t n, size_t multiple) {
 }
 }  // namespace
 
-// What each layout costs at 2,000 particles, 80x60 (refine_ms): the spread layout was 37 short launches
-// (depth, ids, sums and step per evaluation), the one group loops over the mesh's triangles per
-// work-item twice per rendering.
-//   handset (842 triangles): PoCL (2 cores) one group 1.0 ms, spread 1.7-2.1; H200 CUDA 0.240 / 0.184;
-//     H200 NVIDIA OpenCL 0.195 / 0.278 (its launches cost more than CUDA's);
-//   YCB mug (16,384): PoCL 5.9-7.9 / 5.0-5.4; H200 CUDA 0.610 / 0.137; NVIDIA OpenCL 0.552 / 0.131.
-// The threshold lies between the two meshes and was not measured itself.
+// What each layout costs at 2,000 particles, 80x60 (refine_ms, one group / spread): the spread layout is
+// 19 short launches (a draw and the sums per evaluation; it was 37 with separate id and step kernels),
+// the one group loops over the mesh's triangles per work-item twice per rendering.
+//   handset (842 triangles): PoCL (2 cores) 1.14 / 1.34 ms; H200 CUDA 0.202 / 0.149; H200 NVIDIA
+//     OpenCL 0.168 / 0.176 (its launches cost more than CUDA's);
+//   YCB mug (16,384): PoCL 6.1 / 2.7; H200 CUDA 1.01 / 0.150; NVIDIA OpenCL 0.92 / 0.149.
+// (H200: the 19-launch layout with a fence in place of the rows' stamps, docs/design-notes.md.) The
+// threshold lies between the two meshes and was not measured itself.
 RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceInfo& device, size_t triangle_count) {
   if (layout == RefineLayout::Spread && !device.int64_atomics)
     throw InputError("refinement layout spread needs 64-bit atomic min (cl_khr_int64_extended_atomics), which " +
