@@ -28,8 +28,9 @@ struct Scene {
   Camera working;
 };
 
-// The handset when ../shared is there, else the built-in object; 30 % occluded, decimated to 80x60.
-Scene make_scene(int frames) {
+// The handset when ../shared is there, else the built-in object; 30 % occluded, decimated to 80x60
+// (decimation 8 of the 640x480 sensor).
+Scene make_scene(int frames, int decimation = 8) {
   Scene s;
   const char* env = std::getenv("DEPTHTRACK_DATA_DIR");
   const auto handset = std::filesystem::path(env ? env : DEPTHTRACK_DATA_DIR) / "meshes/dbot/handset.obj";
@@ -41,10 +42,10 @@ Scene make_scene(int frames) {
   const Synthesizer synthesizer(s.mesh, synth);
   for (int i = 0; i < frames; ++i) {
     SynthFrame f = synthesizer.frame(i);
-    f.depth = f.depth.decimated(8);
+    f.depth = f.depth.decimated(decimation);
     s.frames.push_back(std::move(f));
   }
-  s.working = synth.camera.decimated(8);
+  s.working = synth.camera.decimated(decimation);
   return s;
 }
 
@@ -289,6 +290,45 @@ TEST_CASE("with the refinement layout auto does not pick the device filter still
   const size_t triangles = make_scene(1).mesh.triangles.size();
   const bool auto_spreads = resolved_refine_layout(RefineLayout::Auto, info, triangles) == RefineLayout::Spread;
   compare_with_reference("kernel", auto_spreads ? RefineLayout::OneGroup : RefineLayout::Spread);
+}
+
+// At 320x240 the spread sums kernel has 300 groups' worth of pixels, clamped to 256 groups (work-items
+// sum several pixels), and its last group adds 256 stamped rows per evaluation. From a common state
+// each frame (the reference's), the device's refined estimate must be the reference's.
+TEST_CASE("the spread refinement at 320x240 (more pixels than its groups' work-items) equals the reference",
+          "[device][kernel][refine]") {
+  if (!test::device_available()) return;
+  const compute::DeviceInfo info = compute::open_device(test::device_selector())->info();
+  if (!info.int64_atomics) {
+    std::cout << "SKIPPED: " << info.name << " has no 64-bit atomic min (the spread layout needs it)\n";
+    return;
+  }
+  const Scene scene = make_scene(4, 2);
+  REQUIRE(scene.working.width == 320);
+  TrackerConfig config;
+  config.particles = 16;
+  config.seed = 5;
+  config.backend = test::device_selector();
+  config.refine.layout = RefineLayout::Spread;
+  reference::ReferenceFilter reference(scene.mesh, scene.working, config);
+  DeviceFilter device(compute::open_device(config.backend), scene.mesh, scene.working, config);
+  const InitialSpread spread{0.01, 0.05};
+  reference.initialize(scene.frames[0].ground_truth, spread);
+  device.initialize(scene.frames[0].ground_truth, spread);
+  int refined = 0;
+  for (size_t f = 0; f < scene.frames.size(); ++f) {
+    INFO(scene.name << ", frame " << f);
+    device.set_state(reference.particles(), reference.occlusion_state(), reference.occlusion_times(),
+                     reference.log_weights());
+    const double dt = f == 0 ? 0.0 : scene.frames[f].timestamp - scene.frames[f - 1].timestamp;
+    const Estimate a = reference.update(scene.frames[f].depth, dt);
+    const Estimate b = device.update(scene.frames[f].depth, dt);
+    CHECK(translation_error(a.pose, b.pose) <= 1e-5);
+    CHECK(rotation_error(a.pose, b.pose) <= 1e-4);
+    CHECK(a.refine_iterations == b.refine_iterations);
+    refined += a.refine_iterations > 0;
+  }
+  CHECK(refined > 0);  // the fit took steps: the rows were added and judged
 }
 
 TEST_CASE("more particles than the device can hold is a clear error, not a crash, for every renderer",
