@@ -19,6 +19,7 @@
 #endif
 #include <cmath>
 #include <cstdint>
+typedef std::uint16_t dt_u16;
 typedef std::uint32_t dt_u32;
 typedef std::uint64_t dt_u64;
 #define DT_FN inline

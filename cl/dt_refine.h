@@ -136,10 +136,10 @@ DT_DEVICE_FN dt_refine_offsets dt_refine_map_offsets(uint heaviest, uint pixels)
  * changed it), its aged state elsewhere. */
 DT_DEVICE_FN void dt_refine_pixel(float* acc, uint k, uint bits, uint id, dt_rigid pose, dt_vec3 centre,
                                   __global const float* observed, __global const float* occlusion,
-                                  __global const float* occlusion_time, __global const float* prior,
-                                  dt_refine_offsets at, __global const float* atlas, dt_atlas_layout layout,
-                                  ulong heaviest_tile, __global const float* planes, uint triangle_count, dt_camera cam,
-                                  dt_model m, dt_refine_args args) {
+                                  __global const dt_u16* occlusion_time, __global const float* frame_times,
+                                  __global const float* prior, dt_refine_offsets at, __global const float* atlas,
+                                  dt_atlas_layout layout, ulong heaviest_tile, __global const float* planes,
+                                  uint triangle_count, dt_camera cam, dt_model m, dt_refine_args args) {
   const float y = observed[k];
   if (bits == DT_NO_SURFACE || !(y > 0.0f) || !isfinite(y)) return;
   const float y_hat = dt_as_float(bits);
@@ -149,7 +149,7 @@ DT_DEVICE_FN void dt_refine_pixel(float* acc, uint k, uint bits, uint id, dt_rig
     p = prior[at.prior + k];
   else
 #if DT_OCCLUSION == DT_PER_PIXEL_TIME
-    p = dt_propagate_occlusion(m, occlusion[at.occlusion + k], args.now - occlusion_time[at.time + k]);
+    p = dt_propagate_occlusion(m, occlusion[at.occlusion + k], args.now - frame_times[occlusion_time[at.time + k]]);
 #else
     p = occlusion[at.occlusion + k];
 #endif

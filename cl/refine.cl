@@ -75,9 +75,10 @@ DT_DEVICE_FN uint dt_box_pixel(dt_pixel_box box, uint k, dt_camera cam) {
 /* Draws the pose in pose_state into tile (depth bits, DT_NO_SURFACE where empty) and each covered
  * pixel's triangle into ids, then sums the normal equations over the group into sums[k * G]. */
 DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global const float* observed,
-                                     __global const float* occlusion, __global const float* occlusion_time,
-                                     __global const float* prior, dt_refine_offsets at, __global const float* atlas,
-                                     dt_atlas_layout layout, ulong heaviest_tile, __global const float* vertices,
+                                     __global const float* occlusion, __global const dt_u16* occlusion_time,
+                                     __global const float* frame_times, __global const float* prior,
+                                     dt_refine_offsets at, __global const float* atlas, dt_atlas_layout layout,
+                                     ulong heaviest_tile, __global const float* vertices,
                                      __global const uint* triangles, __global const float* planes, uint triangle_count,
                                      dt_camera cam, dt_model m, dt_refine_args args, __global uint* tile,
                                      __global uint* ids, DT_LOCAL_PTR float* sums) {
@@ -105,8 +106,8 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
   for (int k = 0; k < DT_REFINE_SUMS; ++k) acc[k] = 0.0f;
   for (uint b = lid; b < pixels; b += DT_GROUP_SIZE) {
     const uint k = dt_box_pixel(box, b, cam);
-    dt_refine_pixel(acc, k, tile[k], ids[k], pose, centre, observed, occlusion, occlusion_time, prior, at, atlas,
-                    layout, heaviest_tile, planes, triangle_count, cam, m, args);
+    dt_refine_pixel(acc, k, tile[k], ids[k], pose, centre, observed, occlusion, occlusion_time, frame_times, prior, at,
+                    atlas, layout, heaviest_tile, planes, triangle_count, cam, m, args);
   }
   dt_refine_group_sums(acc, sums);
 }
@@ -116,11 +117,11 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
  * where the particle's tile in atlas covers the pixel, its state elsewhere); pose_state, tile and ids:
  * scratch for one pose; correction: the twist from the heaviest particle to the refined pose. */
 __kernel void refine(__global float* estimate, __global const float* states, __global const float* observed,
-                     __global const float* occlusion, __global const float* occlusion_time, __global const float* prior,
-                     __global const float* atlas, dt_atlas_layout layout, __global const float* vertices,
-                     __global const uint* triangles, __global const float* planes, uint triangle_count, dt_camera cam,
-                     dt_model m, dt_refine_args args, __global float* pose_state, __global uint* tile,
-                     __global uint* ids, __global float* correction) {
+                     __global const float* occlusion, __global const dt_u16* occlusion_time,
+                     __global const float* frame_times, __global const float* prior, __global const float* atlas,
+                     dt_atlas_layout layout, __global const float* vertices, __global const uint* triangles,
+                     __global const float* planes, uint triangle_count, dt_camera cam, dt_model m, dt_refine_args args,
+                     __global float* pose_state, __global uint* tile, __global uint* ids, __global float* correction) {
   __local float sums[DT_REFINE_SUMS * DT_GROUP_SIZE];
   __local int proceed;
   int tried = 0; /* work-item 0's count of steps evaluated */
@@ -135,8 +136,8 @@ __kernel void refine(__global float* estimate, __global const float* states, __g
   const dt_pose start = dt_load_pose(states + DT_CAST(ulong, heaviest) * DT_STATE_STRIDE);
   if (lid == 0) dt_store_pose(pose_state, start);
   barrier(CLK_GLOBAL_MEM_FENCE);
-  dt_refine_evaluate(pose_state, observed, occlusion, occlusion_time, prior, at, atlas, layout, heaviest_tile, vertices,
-                     triangles, planes, triangle_count, cam, m, args, tile, ids, sums);
+  dt_refine_evaluate(pose_state, observed, occlusion, occlusion_time, frame_times, prior, at, atlas, layout,
+                     heaviest_tile, vertices, triangles, planes, triangle_count, cam, m, args, tile, ids, sums);
   /* Work-item 0's: the best pose evaluated, its sums, the damping. */
   dt_pose best = start;
   float best_sums[DT_REFINE_SUMS];
@@ -154,8 +155,8 @@ __kernel void refine(__global float* estimate, __global const float* states, __g
     }
     barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
     if (!proceed) break;
-    dt_refine_evaluate(pose_state, observed, occlusion, occlusion_time, prior, at, atlas, layout, heaviest_tile,
-                       vertices, triangles, planes, triangle_count, cam, m, args, tile, ids, sums);
+    dt_refine_evaluate(pose_state, observed, occlusion, occlusion_time, frame_times, prior, at, atlas, layout,
+                       heaviest_tile, vertices, triangles, planes, triangle_count, cam, m, args, tile, ids, sums);
     if (lid == 0) {
       if (dt_refine_keeps(sums[DT_REFINE_OBJECTIVE * DT_GROUP_SIZE], best_sums[DT_REFINE_OBJECTIVE])) {
         best = dt_load_pose(pose_state);

@@ -4,17 +4,16 @@
  * (depth bits and triangle index, kept by atomic min: dt_raster_triangle's `nearest`), then the
  * image's pixels summed into one row of DT_REFINE_SUMS partial sums per work-group. The last group
  * of the sums to finish (a counter in the fit's state) adds the rows in a fixed order (no float
- * atomics: the same sums every run; how it knows the rows are complete: refine_sums), keeps or rejects the candidate, solves the next step and writes
- * the next candidate into the fit's state (dt_refine_state.h). The host enqueues begin, then
- * iterations + 1 evaluations, with no round trip; once the fit has stopped (converged, or no step left
- * to try), `active` is 0 and the later kernels return at once. The judgement that stops it writes the
- * results, as the one-group kernel does. No pixel box: a work-item per pixel costs nothing more on a
- * GPU than one per box pixel, and the judgement then has no vertex loop.
- * Invariant between evaluations: nearest holds DT_NEAREST_EMPTY at every pixel (the sums kernel
- * resets every pixel it reads), so no kernel clears.
- * Needs 64-bit atomic min (cl_khr_int64_extended_atomics; CUDA has it): without it Auto picks the
- * one-group layout (resolved_refine_layout). Compile-time choices as for refine.cl (DT_GROUP_SIZE:
- * the sums kernel's groups; DT_OCCLUSION). Reference: PoseRefiner::refine and ReferenceFilter::refine. */
+ * atomics: the same sums every run; how it knows the rows are complete: refine_sums), keeps or rejects the candidate,
+ * solves the next step and writes the next candidate into the fit's state (dt_refine_state.h). The host enqueues begin,
+ * then iterations + 1 evaluations, with no round trip; once the fit has stopped (converged, or no step left to try),
+ * `active` is 0 and the later kernels return at once. The judgement that stops it writes the results, as the one-group
+ * kernel does. No pixel box: a work-item per pixel costs nothing more on a GPU than one per box pixel, and the
+ * judgement then has no vertex loop. Invariant between evaluations: nearest holds DT_NEAREST_EMPTY at every pixel (the
+ * sums kernel resets every pixel it reads), so no kernel clears. Needs 64-bit atomic min
+ * (cl_khr_int64_extended_atomics; CUDA has it): without it Auto picks the one-group layout (resolved_refine_layout).
+ * Compile-time choices as for refine.cl (DT_GROUP_SIZE: the sums kernel's groups; DT_OCCLUSION). Reference:
+ * PoseRefiner::refine and ReferenceFilter::refine. */
 #ifdef __OPENCL_VERSION__
 #pragma OPENCL EXTENSION cl_khr_int64_extended_atomics : enable
 #endif
@@ -90,10 +89,11 @@ DT_DEVICE_FN void dt_refine_judge(__global dt_refine_state* s, __global float* e
  * stamp: the other groups have finished, only their stores can still be on the way. */
 __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate, __global const float* states,
                           __global const float* observed, __global const float* occlusion,
-                          __global const float* occlusion_time, __global const float* prior,
-                          __global const float* atlas, dt_atlas_layout layout, __global const float* planes,
-                          uint triangle_count, dt_camera cam, dt_model m, dt_refine_args args,
-                          __global dt_u64* nearest, __global dt_u64* partials, __global float* correction) {
+                          __global const dt_u16* occlusion_time, __global const float* frame_times,
+                          __global const float* prior, __global const float* atlas, dt_atlas_layout layout,
+                          __global const float* planes, uint triangle_count, dt_camera cam, dt_model m,
+                          dt_refine_args args, __global dt_u64* nearest, __global dt_u64* partials,
+                          __global float* correction) {
   __local float sums[DT_REFINE_SUMS * DT_GROUP_SIZE];
   if (!s->active) return; /* the same for every work-item, before any barrier */
   const uint stamp = s->stamp;
@@ -110,8 +110,8 @@ __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate,
     if (drawn == DT_NEAREST_EMPTY) continue; /* nothing drawn: nothing to reset or sum */
     nearest[k] = DT_NEAREST_EMPTY;
     dt_refine_pixel(acc, k, DT_CAST(uint, drawn >> 32), DT_CAST(uint, drawn & 0xffffffffu), pose, centre, observed,
-                    occlusion, occlusion_time, prior, at, atlas, layout, heaviest_tile, planes, triangle_count, cam, m,
-                    args);
+                    occlusion, occlusion_time, frame_times, prior, at, atlas, layout, heaviest_tile, planes,
+                    triangle_count, cam, m, args);
   }
   dt_refine_group_sums(acc, sums);
   const uint lid = get_local_id(0), groups = get_num_groups(0);

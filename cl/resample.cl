@@ -128,3 +128,5 @@ __kernel void fill_when_resampling(__global float* values, uint count, float val
   const uint i = get_global_id(0);
   if (i < count && dt_resampling(estimate)) values[i] = value;
 }
+
+#include "time_index.cl"

@@ -37,17 +37,17 @@ TEST_CASE("median, p95 and the bytes each step moves", "[bench]") {
   CHECK(cli::p95_of(twenty) == 19);  // nearest rank: ceil(0.95 * 20) = 19th of 1..20
   CHECK(cli::p95_of({7}) == 7);
   CHECK(std::isnan(cli::median_of({})));
-  // 10 particles at 80x60: state 16 floats, atlas, occlusion p and t one float per pixel each.
+  // 10 particles at 80x60: state 16 floats, atlas and occlusion p a float per pixel, t a 16-bit index.
   const auto b = cli::step_bytes(10, 4800, OcclusionStorage::PerPixelTime, false, 0);
   CHECK(b.propagate == 10 * 2 * 64);
   CHECK(b.render == 10 * 4800 * 4);
   CHECK(b.handoff == 0);
-  CHECK(b.weigh == 10 * (4800 * 4 + 4 * 4800 * 4 + 8));
-  CHECK(b.resample == 10 * (2 * 64 + 4 * 4800 * 4 + 12));
+  CHECK(b.weigh == 10 * (4800 * 4 + 2 * 4800 * 4 + 2 * 4800 * 2 + 8));
+  CHECK(b.resample == 10 * (2 * 64 + 2 * 4800 * 4 + 2 * 4800 * 2 + 12));
   CHECK(cli::step_bytes(10, 4800, OcclusionStorage::Off, true, 0).weigh == 10 * (4800 * 4 + 8));
   CHECK(cli::step_bytes(10, 4800, OcclusionStorage::Off, true, 0).handoff == 10 * 4800 * 4 * 2);
   // DeviceFilter's buffers: 4 bytes x (5 per pixel + 2 x 16 state + 6) per particle.
-  CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::PerPixelTime) == Approx(961520.0 / (1 << 20)));
+  CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::PerPixelTime) == Approx(769520.0 / (1 << 20)));
   CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::GlobalTime) == Approx(577520.0 / (1 << 20)));
   CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::Off) == Approx(193520.0 / (1 << 20)));
 }
@@ -103,7 +103,7 @@ TEST_CASE("bench writes results.json with every column and the four figures", "[
     REQUIRE(memory);
     CHECK((*speedup)["median"].get<double>() ==
           Approx(frame->at("median").get<double>() / device_frame->at("median").get<double>()));
-    CHECK(memory->at("median").get<double>() == Approx(961520.0 / (1 << 20)));
+    CHECK(memory->at("median").get<double>() == Approx(769520.0 / (1 << 20)));
   }
   for (const char* figure : {"particles.png", "resolution.png", "triangles.png", "occlusion.png"})
     CHECK(text_of(dir / "out" / figure).rfind("\x89PNG\r\n\x1a\n", 0) == 0);
@@ -152,7 +152,8 @@ TEST_CASE("bench refuses bad arguments and corrupt results with a clear error", 
       << R"( "metric": "m", "unit": "u", "p95": 1, "samples": 1}]})";
   const std::pair<std::string, std::string> cases[] = {
       {"bench --test-grid --backend nosuch --out " + (dir / "o").string(), "unknown backend 'nosuch'"},
-      {"bench --test-grid --backend cpu:0 --out " + (dir / "o").string(), "cpu:N takes a thread count N from 1 to 1024"},
+      {"bench --test-grid --backend cpu:0 --out " + (dir / "o").string(),
+       "cpu:N takes a thread count N from 1 to 1024"},
       {"bench --test-grid --backend reference", "bench needs --out DIR"},
       {"bench --test-grid --backend reference --out " + (dir / "file.txt/sub").string(),
        "cannot create the output folder"},

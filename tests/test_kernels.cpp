@@ -1,4 +1,5 @@
 // Each kernel under cl/ against the reference function it implements, on the test device.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <random>
 
@@ -8,6 +9,7 @@
 #include "dt_atlas.h"
 #include "dt_params.h"
 #include "dt_state.h"
+#include "dt_time_index.h"
 #include "model/occlusion_chain.hpp"
 #include "model/particle.hpp"
 #include "model/particle_packing.hpp"
@@ -107,7 +109,10 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
     if (k % 80 >= 30 && k % 80 < 36) observed[k] = 0.55f;
     if (k % 17 == 0) observed[k] = NAN;
   }
-  std::vector<float> atlas(count * pixels), occlusion(count * pixels), times(count * pixels);
+  std::vector<float> atlas(count * pixels), occlusion(count * pixels);
+  // Per-pixel time: each pixel's last frame as an index into a table of frame times (dt_time_index.h).
+  std::vector<uint16_t> time_index(count * pixels);
+  std::vector<float> frame_times(DT_TIME_TABLE, 0.0f);
   for (size_t i = 0; i < count; ++i) {
     const Pose pose =
         model::move_about_centre(truth, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.004 * i - 0.03, 0.002 * i, 0),
@@ -115,8 +120,10 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
     r.render(pose, std::span<float>(atlas.data() + i * pixels, pixels));
   }
   for (auto& p : occlusion) p = unit(rng);
-  for (auto& t : times) t = 0.5f * unit(rng);
+  for (unsigned f = 0; f < 64; ++f) frame_times[f] = 0.5f * unit(rng);
+  for (auto& t : time_index) t = static_cast<uint16_t>(std::min(63.0f, 64 * unit(rng)));
   const double now = 0.7, dt = 0.04;
+  const unsigned now_index = 64;
   // The tiles also go into a paged layout like the GL atlas's: 3 tiles per row, 6 per page, 3 pages
   // (placed here by hand: page p at p * 6 tiles, tile t of it at column t % 3, row t / 3).
   const size_t width = 80, height = 60, page_width = 3 * width;
@@ -137,19 +144,25 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
     INFO("atlas with " << layout.tiles_per_row << " tiles per row");
     auto program = build(*q, "weigh.cl", mode);
     auto kernel = program->kernel("weigh");
-    compute::Buffer<float> a(*q, laid_out->size()), o(*q, pixels), occ(*q, occlusion.size()), tim(*q, times.size()),
+    compute::Buffer<float> a(*q, laid_out->size()), o(*q, pixels), occ(*q, occlusion.size()), table(*q, DT_TIME_TABLE),
         ll(*q, count), lw(*q, count), prior(*q, occlusion.size());
+    compute::Buffer<uint16_t> tim(*q, time_index.size());
     a.upload(*laid_out);
     o.upload(observed);
     occ.upload(occlusion);
-    tim.upload(times);
+    tim.upload(time_index);
+    table.upload(frame_times);
     lw.upload(std::vector<float>(count, 1.0f));
     // The last argument: keep each updated pixel's prior (the refinement's occlusion map).
-    q->launch(*kernel, compute::NdRange::linear(count * kGroup, kGroup), a, o, occ, tim, ll, lw,
-              static_cast<unsigned>(pixels), model_args(), static_cast<float>(now), static_cast<float>(dt), layout,
-              prior, 1u)
+    q->launch(*kernel, compute::NdRange::linear(count * kGroup, kGroup), a, o, occ, tim, table, ll, lw,
+              static_cast<unsigned>(pixels), model_args(), static_cast<float>(now), now_index, static_cast<float>(dt),
+              layout, prior, 1u)
         ->wait();
     const auto got_ll = ll.download(), got_lw = lw.download(), got_occ = occ.download(), got_prior = prior.download();
+    const auto got_index = tim.download();
+    const auto got_table = table.download();
+    // Per-pixel time writes this frame's time into the table; the other modes leave it.
+    CHECK(got_table[now_index] == (mode == 0 ? static_cast<float>(now) : 0.0f));
     const OcclusionModel chain;
     for (size_t i = 0; i < count; ++i) {
       double expected = 0;
@@ -159,7 +172,8 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
         if (mode == 1) p = model::propagate_occlusion(chain, p, dt);
         const double y = observed[k], y_hat = atlas[at];
         const bool used = y_hat > 0 && DepthImage::is_valid(static_cast<float>(y));
-        if (used && mode == 0) p = model::propagate_occlusion(chain, p, now - times[at]);
+        if (used && mode == 0) p = model::propagate_occlusion(chain, p, now - frame_times[time_index[at]]);
+        if (mode == 0) REQUIRE(got_index[at] == (used ? now_index : time_index[at]));
         if (mode == 2) p = 0;
         double updated = mode == 2 ? occlusion[at] : p;
         if (used) {
@@ -187,17 +201,20 @@ TEST_CASE("weigh kernel stays finite and equal to the reference for observations
   const size_t pixels = observed.size();
   auto program = build(*q, "weigh.cl", 0);
   auto kernel = program->kernel("weigh");
-  const std::vector<float> occlusion(pixels, 0.3f), times(pixels, 0.0f);
-  compute::Buffer<float> a(*q, pixels), o(*q, pixels), occ(*q, pixels), tim(*q, pixels), ll(*q, 1), lw(*q, 1);
+  const std::vector<float> occlusion(pixels, 0.3f);
+  compute::Buffer<float> a(*q, pixels), o(*q, pixels), occ(*q, pixels), table(*q, DT_TIME_TABLE), ll(*q, 1), lw(*q, 1);
+  compute::Buffer<uint16_t> tim(*q, pixels);
   a.upload(atlas);
   o.upload(observed);
   occ.upload(occlusion);
-  tim.upload(times);
+  tim.upload(std::vector<uint16_t>(pixels, DT_TIME_NEVER));  // time 0, as now: no ageing
+  table.upload(std::vector<float>(DT_TIME_TABLE, 0.0f));
   lw.upload(std::vector<float>(1, 0.0f));
   compute::Buffer<float> prior(*q, pixels);
   // The last argument: the refinement's prior map is not asked for here.
-  q->launch(*kernel, compute::NdRange::linear(kGroup, kGroup), a, o, occ, tim, ll, lw, static_cast<unsigned>(pixels),
-            model_args(), 0.0f, 0.0f, dt_atlas_layout{static_cast<dt_u32>(pixels), 1, 1, 1}, prior, 0u)
+  q->launch(*kernel, compute::NdRange::linear(kGroup, kGroup), a, o, occ, tim, table, ll, lw,
+            static_cast<unsigned>(pixels), model_args(), 0.0f, 0u, 0.0f,
+            dt_atlas_layout{static_cast<dt_u32>(pixels), 1, 1, 1}, prior, 0u)
       ->wait();
   double expected = 0;
   for (size_t k = 0; k < pixels; ++k) {

@@ -8,7 +8,7 @@ StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, boo
   const double n = static_cast<double>(particles), px = static_cast<double>(pixels), f = sizeof(float);
   const double state = DT_STATE_STRIDE * f;                                    // per particle
   const double occlusion = mode == OcclusionStorage::Off ? 0 : px * f;         // p per pixel
-  const double times = mode == OcclusionStorage::PerPixelTime ? px * f : 0.0;  // t_last per pixel
+  const double times = mode == OcclusionStorage::PerPixelTime ? px * 2 : 0.0;  // t_last's 16-bit frame index
   StepBytes b;
   b.propagate = n * 2 * state;                                       // read and write each state
   b.render = n * px * f;                                             // write each tile's depths
@@ -22,7 +22,9 @@ StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, boo
 double filter_memory_mib(size_t particles, size_t pixels, OcclusionStorage mode) {
   const double px = static_cast<double>(pixels);
   const bool occlusion = mode != OcclusionStorage::Off, times = mode == OcclusionStorage::PerPixelTime;
-  const double per_particle = 4.0 * (px * (1 + (occlusion ? 2 : 0) + (times ? 2 : 0)) + 2 * DT_STATE_STRIDE + 6);
+  // Atlas and occlusion 4 bytes a pixel, the time index 2, each state with its resampling twin.
+  const double per_particle =
+      px * (4 * (1 + (occlusion ? 2 : 0)) + (times ? 2 * 2 : 0)) + 4.0 * (2 * DT_STATE_STRIDE + 6);
   return per_particle * static_cast<double>(particles) / (1 << 20);
 }
 

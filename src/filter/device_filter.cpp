@@ -8,6 +8,7 @@
 #include "compute/program_cache.hpp"
 #include "core/stopwatch.hpp"
 #include "dt_state.h"
+#include "dt_time_index.h"
 #include "filter/device_pose_scorer.hpp"
 #include "filter/device_refiner.hpp"
 #include "model/kernel_params.hpp"
@@ -29,7 +30,8 @@ struct DeviceFilter::Kernels {
   std::shared_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
       initialize_program;
   std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state, gather_pixels,
-      fill, fill_when_resampling, initialize_particles, fill_per_particle;
+      fill, fill_when_resampling, initialize_particles, fill_per_particle, fill_time_indices, retire_time_indices,
+      gather_time_indices;
 };
 
 DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
@@ -68,6 +70,11 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   k.initialize_program = device_->programs.program("initialize.cl", defines);
   k.initialize_particles = k.initialize_program->kernel("initialize_particles");
   k.fill_per_particle = k.initialize_program->kernel("fill_per_particle");
+  if (config.occlusion_storage == OcclusionStorage::PerPixelTime) {  // cl/time_index.cl, in resample.cl's program
+    k.fill_time_indices = k.resample_program->kernel("fill_time_indices");
+    k.retire_time_indices = k.resample_program->kernel("retire_time_indices");
+    k.gather_time_indices = k.resample_program->kernel("gather_time_indices");
+  }
 
   compute::Queue& q = *queue_;
   state_ = compute::Buffer<float>(q, count_ * DT_STATE_STRIDE);
@@ -85,8 +92,9 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   const bool times = config.occlusion_storage == OcclusionStorage::PerPixelTime;
   occlusion_ = compute::Buffer<float>(q, occlusion ? count_ * pixels_ : 1);
   scratch_occlusion_ = compute::Buffer<float>(q, occlusion ? count_ * pixels_ : 1);
-  occlusion_time_ = compute::Buffer<float>(q, times ? count_ * pixels_ : 1);
-  scratch_occlusion_time_ = compute::Buffer<float>(q, times ? count_ * pixels_ : 1);
+  occlusion_time_ = compute::Buffer<uint16_t>(q, times ? count_ * pixels_ : 2);
+  scratch_occlusion_time_ = compute::Buffer<uint16_t>(q, times ? count_ * pixels_ : 2);
+  frame_times_ = std::make_unique<FrameTimeTable>(q);
   if (config.refine.enabled)
     refiner_ = std::make_unique<DeviceRefiner>(q, device_->programs, mesh, camera, config,
                                                model::occlusion_definition(config.occlusion_storage));
@@ -105,11 +113,11 @@ size_t DeviceFilter::checked_particle_count() const {
   const size_t count = static_cast<size_t>(config_.particles);
   const bool occlusion = config_.occlusion_storage != OcclusionStorage::Off;
   const bool times = config_.occlusion_storage == OcclusionStorage::PerPixelTime;
-  // Atlas, occlusion probabilities and times, each with a resampling twin, plus per-particle state;
-  // GL's colour and depth pages and its pose buffer sit on the same GPU.
+  // Atlas, occlusion probabilities and (16-bit) time indices, each with a resampling twin, plus
+  // per-particle state; GL's colour and depth pages and its pose buffer sit on the same GPU.
   const bool gl = config_.renderer == Renderer::Gl && queue_->info().is_gpu;
   const double per_particle =
-      4.0 * (static_cast<double>(pixels_) * (1 + (occlusion ? 2 : 0) + (times ? 2 : 0) + (gl ? 2 : 0)) +
+      4.0 * (static_cast<double>(pixels_) * (1 + (occlusion ? 2 : 0) + (times ? 1 : 0) + (gl ? 2 : 0)) +
              (2 + (gl ? 1 : 0)) * DT_STATE_STRIDE + 6);
   const double needed = per_particle * static_cast<double>(count);
   const auto& info = queue_->info();
@@ -177,7 +185,11 @@ void DeviceFilter::initialize_modes(std::span<const Pose> modes, const InitialSp
   };
   if (config_.occlusion_storage != OcclusionStorage::Off)
     fill_pixels(occlusion_, static_cast<float>(config_.occlusion.initial));
-  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime) fill_pixels(occlusion_time_, 0.0f);
+  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime) {
+    queue_->launch(*k.fill_time_indices, compute::NdRange::linear(count_ * kGroupSize, kGroupSize), occlusion_time_,
+                   static_cast<unsigned>(pixels_), static_cast<unsigned>(DT_TIME_NEVER));
+    frame_times_->reset();
+  }
   queue_->finish();
   frame_ = 0;
   time_ = 0;
@@ -192,7 +204,7 @@ void DeviceFilter::set_state(const std::vector<model::ParticleState>& particles,
   upload_particles(particles);
   log_weight_.upload(std::vector<float>(log_weights.begin(), log_weights.end()));
   if (!occlusion.empty()) occlusion_.upload(occlusion);
-  if (!occlusion_time.empty()) occlusion_time_.upload(occlusion_time);
+  if (!occlusion_time.empty()) occlusion_time_.upload(frame_times_->indices(occlusion_time));
 }
 
 std::vector<model::ParticleState> DeviceFilter::unpack(const compute::Buffer<float>& state) const {
@@ -208,7 +220,7 @@ std::vector<float> DeviceFilter::occlusion_state() const {
 }
 
 std::vector<float> DeviceFilter::occlusion_times() const {
-  return config_.occlusion_storage == OcclusionStorage::PerPixelTime ? occlusion_time_.download()
+  return config_.occlusion_storage == OcclusionStorage::PerPixelTime ? frame_times_->times(occlusion_time_.download())
                                                                      : std::vector<float>{};
 }
 
@@ -253,20 +265,31 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
 
   p->rendered = render_atlas(p->timings);
 
+  unsigned now_index = 0;
+  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime) {
+    now_index = frame_times_->begin_frame(static_cast<float>(time_));
+    if (frame_times_->retire_due()) {
+      // Before this frame's index is written anywhere; rare (cl/dt_time_index.h), so untimed.
+      queue_->launch_untimed(*k.retire_time_indices, compute::NdRange::linear(256 * kGroupSize, kGroupSize),
+                             occlusion_time_, static_cast<uint64_t>(count_ * pixels_), now_index);
+      frame_times_->retired();
+    }
+  }
   // The occlusion priors for the refinement go to the resampling's scratch, free until it gathers.
   p->weighed = queue_->launch(*k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize), atlas_, observed_,
-                              occlusion_, occlusion_time_, log_likelihood_, log_weight_, static_cast<unsigned>(pixels_),
-                              model::model_params(config_), static_cast<float>(time_), static_cast<float>(dt),
-                              atlas_source_->layout().kernel_args(), scratch_occlusion_,
-                              static_cast<unsigned>(config_.refine.enabled));
+                              occlusion_, occlusion_time_, frame_times_->device(), log_likelihood_, log_weight_,
+                              static_cast<unsigned>(pixels_), model::model_params(config_), static_cast<float>(time_),
+                              now_index, static_cast<float>(dt), atlas_source_->layout().kernel_args(),
+                              scratch_occlusion_, static_cast<unsigned>(config_.refine.enabled));
   p->summarized = queue_->launch(*k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize), state_, log_weight_,
                                  log_likelihood_, weights_, estimate_, count, static_cast<float>(centre_.x()),
                                  static_cast<float>(centre_.y()), static_cast<float>(centre_.z()),
                                  model::float_threshold(config_.resample_kl_threshold));
   // The occlusion priors weigh kept for the refinement are in the resampling's scratch.
   if (refiner_)
-    p->refined = refiner_->refine(estimate_, RefineInputs{state_, observed_, occlusion_, occlusion_time_,
-                                                          scratch_occlusion_, atlas_, atlas_source_->layout(), time_});
+    p->refined =
+        refiner_->refine(estimate_, RefineInputs{state_, observed_, occlusion_, occlusion_time_, frame_times_->device(),
+                                                 scratch_occlusion_, atlas_, atlas_source_->layout(), time_});
   p->resampling = resample();
   if (refiner_) p->shifted = shift_particles();
   pending_ = std::move(p);
@@ -341,9 +364,14 @@ std::vector<compute::EventPtr> DeviceFilter::resample() {
   if (config_.occlusion_storage != OcclusionStorage::Off)
     events.push_back(queue_->launch(*k.gather_pixels, per_particle_group, occlusion_, scratch_occlusion_, parents_,
                                     static_cast<unsigned>(pixels_), estimate_));
-  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
+  // The 16-bit time indices: an even row moves as 32-bit words (gather_pixels copies bits), an odd one
+  // in its own kernel.
+  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime && pixels_ % 2 == 0)
     events.push_back(queue_->launch(*k.gather_pixels, per_particle_group, occlusion_time_, scratch_occlusion_time_,
-                                    parents_, static_cast<unsigned>(pixels_), estimate_));
+                                    parents_, static_cast<unsigned>(pixels_ / 2), estimate_));
+  else if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
+    events.push_back(queue_->launch(*k.gather_time_indices, per_particle_group, occlusion_time_,
+                                    scratch_occlusion_time_, parents_, static_cast<unsigned>(pixels_), estimate_));
   events.push_back(queue_->launch(*k.fill_when_resampling, linear, log_weight_, count, 0.0f, estimate_));
   return events;
 }

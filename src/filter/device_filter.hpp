@@ -11,6 +11,7 @@
 #include "atlas/raster_inputs.hpp"
 #include "compute/buffer.hpp"
 #include "compute/program_cache.hpp"
+#include "filter/frame_time_table.hpp"
 #include "model/filter_backend.hpp"
 #include "model/particle.hpp"
 
@@ -52,7 +53,8 @@ class DeviceFilter final : public FilterBackend {
   std::vector<int> last_parents() const;
   std::vector<model::ParticleState> particles() const;
   // The occlusion probabilities and times, particles x pixels (empty where the mode keeps none):
-  // downloaded only when asked, for tests.
+  // downloaded only when asked, for tests. A time is its frame's (0 for the start, and for a pixel
+  // unseen for DT_TIME_RETIRE_AGE frames: cl/dt_time_index.h).
   std::vector<float> occlusion_state() const;
   std::vector<float> occlusion_times() const;
   // The atlas the last update weighed: particles x pixels depths, tile i = particle i.
@@ -60,7 +62,8 @@ class DeviceFilter final : public FilterBackend {
   // The particles as the last update weighed them (before it resampled).
   std::vector<model::ParticleState> weighed_particles() const;
   // Replaces the whole filter state (for comparing backends from a common state). occlusion and
-  // occlusion_time hold particles x pixels values, or are empty where the mode keeps none.
+  // occlusion_time hold particles x pixels values, or are empty where the mode keeps none; each time
+  // must be 0 or the time of a frame this filter has weighed since it was initialized.
   void set_state(const std::vector<model::ParticleState>& particles, const std::vector<float>& occlusion,
                  const std::vector<float>& occlusion_time, const std::vector<double>& log_weights);
 
@@ -96,7 +99,10 @@ class DeviceFilter final : public FilterBackend {
   compute::Buffer<float> state_, scratch_state_, log_weight_, log_likelihood_, weights_, cumulative_, estimate_;
   compute::Buffer<unsigned> parents_;
   compute::Buffer<float> atlas_, observed_;
-  compute::Buffer<float> occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_;
+  compute::Buffer<float> occlusion_, scratch_occlusion_;
+  // Per-pixel time: each pixel's last frame as an index into frame_times_ (cl/dt_time_index.h).
+  compute::Buffer<uint16_t> occlusion_time_, scratch_occlusion_time_;
+  std::unique_ptr<FrameTimeTable> frame_times_;
   std::unique_ptr<DeviceRefiner> refiner_;  // when config.refine.enabled
   std::unique_ptr<Pending> pending_;
   bool last_resampled_ = false;

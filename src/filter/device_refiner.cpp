@@ -89,8 +89,8 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
   const dt_refine_args args =
       model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time);
   return {queue_.launch(*refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup), estimate, in.states,
-                        in.observed, in.occlusion, in.occlusion_time, in.priors, in.atlas, in.layout.kernel_args(),
-                        mesh_.vertices, mesh_.triangles, mesh_.planes, mesh_.triangle_count(),
+                        in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.priors, in.atlas,
+                        in.layout.kernel_args(), mesh_.vertices, mesh_.triangles, mesh_.planes, mesh_.triangle_count(),
                         model::camera_params(camera_, config_), model::model_params(config_), args, pose_, tile_, ids_,
                         correction_)};
 }
@@ -112,11 +112,10 @@ std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<floa
   std::vector<compute::EventPtr> events;
   events.push_back(queue_.launch(*begin_, compute::NdRange::linear(1, 1), fit_state_, estimate, in.states,
                                  static_cast<float>(config_.refine.damping)));
-  compute::set_launch_args(*draw_, fit_state_, mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam,
-                           nearest_);
+  compute::set_launch_args(*draw_, fit_state_, mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam, nearest_);
   compute::set_launch_args(*sums_, fit_state_, estimate, in.states, in.observed, in.occlusion, in.occlusion_time,
-                           in.priors, in.atlas, in.layout.kernel_args(), mesh_.planes, triangles, cam, model, args,
-                           nearest_, partials_, correction_);
+                           in.frame_times, in.priors, in.atlas, in.layout.kernel_args(), mesh_.planes, triangles, cam,
+                           model, args, nearest_, partials_, correction_);
   for (int evaluation = 0; evaluation <= config_.refine.iterations; ++evaluation) {
     queue_.launch_untimed(*draw_, per_triangle);
     if (evaluation < config_.refine.iterations)

@@ -27,7 +27,8 @@ struct RefineInputs {
   const compute::Buffer<float>& states;
   const compute::Buffer<float>& observed;
   const compute::Buffer<float>& occlusion;
-  const compute::Buffer<float>& occlusion_time;
+  const compute::Buffer<uint16_t>& occlusion_time;  // frame indices (cl/dt_time_index.h)
+  const compute::Buffer<float>& frame_times;
   const compute::Buffer<float>& priors;  // weigh's occlusion priors of this frame
   const compute::Buffer<float>& atlas;
   const render::AtlasLayout& layout;

@@ -4,6 +4,7 @@
 #define DT_DEVICE_PRELUDE 1
 typedef unsigned int uint;
 typedef unsigned long long ulong;
+typedef unsigned short dt_u16;
 typedef unsigned int dt_u32;
 typedef unsigned long long dt_u64;
 #define DT_FN __device__ __host__ inline

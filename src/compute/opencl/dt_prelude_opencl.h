@@ -2,6 +2,7 @@
  * OpenCL backend puts this text before every program it builds (opencl_prelude.cpp), so cl/ names no
  * backend; DT_DEVICE_PRELUDE tells cl/dt_prelude.h that a device's words are here. */
 #define DT_DEVICE_PRELUDE 1
+typedef ushort dt_u16;
 typedef uint dt_u32;
 typedef ulong dt_u64;
 #define DT_FN inline

@@ -1,0 +1,109 @@
+// Per-pixel-time occlusion's 16-bit frame indices (cl/dt_time_index.h): the retirement kernel before an
+// index comes round again, the odd-row gather, and the host's table of frame times.
+#include <catch2/catch.hpp>
+#include <depthtrack/error.hpp>
+#include <vector>
+
+#include "compute/buffer.hpp"
+#include "compute/kernel_sources.hpp"
+#include "device_support.hpp"
+#include "dt_state.h"
+#include "dt_time_index.h"
+#include "filter/frame_time_table.hpp"
+
+using namespace depthtrack;
+
+namespace {
+std::unique_ptr<compute::Program> resample_program(compute::Queue& q) {
+  return q.build("resample.cl", compute::kernel_source("resample.cl"), {"DT_GROUP_SIZE=64", "DT_OCCLUSION=0"});
+}
+}  // namespace
+
+TEST_CASE("indices last written 32768 frames ago or more are retired to time 0, counted round the cycle",
+          "[device][kernels]") {
+  if (!test::device_available()) return;
+  auto q = compute::open_device(test::device_selector());
+  auto program = resample_program(*q);
+  auto retire = program->kernel("retire_time_indices");
+  const unsigned now = 100;  // indices above it were written in the previous round of the cycle
+  // (index, its age in frames): the age is (now - index) mod 65535.
+  const std::vector<std::pair<unsigned, unsigned>> cases = {
+      {100, 0}, {99, 1}, {0, 100}, {65534, 101}, {32868, 32767}, {32867, 32768}, {32767, 32868}, {101, 65534}};
+  std::vector<uint16_t> indices;
+  for (const auto& c : cases) indices.push_back(static_cast<uint16_t>(c.first));
+  indices.push_back(static_cast<uint16_t>(DT_TIME_NEVER));
+  // Many more than the grid's work-items, so the grid-stride loop is exercised too.
+  const std::vector<uint16_t> one_round = indices;
+  for (int r = 0; r < 500; ++r) indices.insert(indices.end(), one_round.begin(), one_round.end());
+  compute::Buffer<uint16_t> buffer(*q, indices.size());
+  buffer.upload(indices);
+  q->launch(*retire, compute::NdRange::linear(64 * 4, 64), buffer, static_cast<uint64_t>(indices.size()), now)->wait();
+  const auto got = buffer.download();
+  for (size_t i = 0; i < got.size(); ++i) {
+    const size_t c = i % one_round.size();
+    INFO("value " << i << ": index " << one_round[c]);
+    if (c == cases.size()) {
+      CHECK(got[i] == DT_TIME_NEVER);
+    } else {
+      const bool old = cases[c].second >= DT_TIME_RETIRE_AGE;
+      CHECK(got[i] == (old ? DT_TIME_NEVER : one_round[c]));
+    }
+  }
+}
+
+TEST_CASE("rows of time indices of odd length are gathered from their parents when the device resampled",
+          "[device][kernels]") {
+  if (!test::device_available()) return;
+  auto q = compute::open_device(test::device_selector());
+  auto program = resample_program(*q);
+  auto gather = program->kernel("gather_time_indices");
+  const unsigned pixels = 7, count = 3;
+  std::vector<uint16_t> rows(count * pixels);
+  for (size_t i = 0; i < rows.size(); ++i) rows[i] = static_cast<uint16_t>(1000 + i);
+  const std::vector<unsigned> parents = {2, 2, 0};
+  compute::Buffer<uint16_t> from(*q, rows.size()), to(*q, rows.size());
+  compute::Buffer<unsigned> parent_buffer(*q, count);
+  compute::Buffer<float> estimate(*q, DT_EST_SIZE);
+  from.upload(rows);
+  to.upload(std::vector<uint16_t>(rows.size(), 0));
+  parent_buffer.upload(parents);
+  for (const float resampled : {0.0f, 1.0f}) {
+    std::vector<float> e(DT_EST_SIZE, 0.0f);
+    e[DT_EST_RESAMPLE] = resampled;
+    estimate.upload(e);
+    q->launch(*gather, compute::NdRange::linear(count * 64, 64), from, to, parent_buffer, pixels, estimate)->wait();
+    const auto got = to.download();
+    for (unsigned child = 0; child < count; ++child)
+      for (unsigned k = 0; k < pixels; ++k)
+        CHECK(got[child * pixels + k] == (resampled != 0 ? rows[parents[child] * pixels + k] : 0));
+  }
+}
+
+TEST_CASE("the frame time table hands out indices in turn, retires on schedule and maps times both ways", "[device]") {
+  if (!test::device_available()) return;
+  auto q = compute::open_device(test::device_selector());
+  FrameTimeTable table(*q);
+  CHECK_FALSE(table.retire_due());
+  // The start: every pixel at DT_TIME_NEVER, which is time 0.
+  CHECK(table.times({static_cast<uint16_t>(DT_TIME_NEVER)}) == std::vector<float>{0.0f});
+  CHECK(table.indices({0.0f}) == std::vector<uint16_t>{static_cast<uint16_t>(DT_TIME_NEVER)});
+  for (unsigned f = 0; f < 3; ++f) CHECK(table.begin_frame(0.25f * static_cast<float>(f + 1)) == f);
+  CHECK(table.times({0, 1, 2}) == std::vector<float>{0.25f, 0.5f, 0.75f});
+  CHECK(table.indices({0.5f, 0.75f, 0.0f}) == std::vector<uint16_t>{1, 2, static_cast<uint16_t>(DT_TIME_NEVER)});
+  CHECK_THROWS_WITH(table.indices({0.6f}), Catch::Contains("occlusion time 0.6") && Catch::Contains("not the time"));
+  // Retirement every DT_TIME_RETIRE_EVERY frames; the indices come round after DT_TIME_CYCLE.
+  unsigned last = 2;
+  for (unsigned f = 3; f < DT_TIME_RETIRE_EVERY; ++f) last = table.begin_frame(1.0f + static_cast<float>(f));
+  CHECK(last == DT_TIME_RETIRE_EVERY - 1);
+  CHECK(table.retire_due());
+  table.retired();
+  CHECK_FALSE(table.retire_due());
+  for (unsigned f = DT_TIME_RETIRE_EVERY; f < DT_TIME_CYCLE; ++f)
+    last = table.begin_frame(1.0f + static_cast<float>(f));
+  CHECK(last == DT_TIME_CYCLE - 1);
+  CHECK(table.begin_frame(1e5f) == 0);  // round again
+  CHECK(table.indices({1e5f}) == std::vector<uint16_t>{0});
+  CHECK_THROWS_AS(table.indices({0.25f}), InputError);  // frame 0's first time has been overwritten
+  table.reset();
+  CHECK(table.begin_frame(0.0f) == 0);
+}
