@@ -99,22 +99,23 @@ __kernel void gather_state(__global const float* from, __global float* to, __glo
   for (int k = 0; k < DT_STATE_STRIDE; ++k) target[k] = source[k];
 }
 
-/* Children copy their parent's per-pixel occlusion state: a work-group per child. Without
+/* Children copy their parent's per-pixel occlusion state: a work-group per child, `words` 32-bit words
+ * a row (the probabilities' floats, or the time indices two to a word), copied as bits. Without
  * resampling nothing moves (the host swaps these buffers only after reading the decision). The copy
  * is bound by its stores (the few parents' rows stay in cache), so where every row starts 16-byte
- * aligned (pixels a multiple of 4) it moves whole float4s: a quarter of the store instructions. */
-__kernel void gather_pixels(__global const float* from, __global float* to, __global const uint* parents,
-                            uint pixels, __global const float* estimate) {
+ * aligned (words a multiple of 4) it moves whole uint4s: a quarter of the store instructions. */
+__kernel void gather_pixels(__global const uint* from, __global uint* to, __global const uint* parents, uint words,
+                            __global const float* estimate) {
   if (!dt_resampling(estimate)) return;
   const uint child = get_group_id(0);
-  __global const float* source = from + DT_CAST(ulong, parents[child]) * pixels;
-  __global float* target = to + DT_CAST(ulong, child) * pixels;
-  if ((pixels & 3u) == 0) {
-    __global const float4* source4 = (__global const float4*)source;
-    __global float4* target4 = (__global float4*)target;
-    for (uint k = get_local_id(0); k < pixels / 4; k += DT_GROUP_SIZE) target4[k] = source4[k];
+  __global const uint* source = from + DT_CAST(ulong, parents[child]) * words;
+  __global uint* target = to + DT_CAST(ulong, child) * words;
+  if ((words & 3u) == 0) {
+    __global const uint4* source4 = (__global const uint4*)source;
+    __global uint4* target4 = (__global uint4*)target;
+    for (uint k = get_local_id(0); k < words / 4; k += DT_GROUP_SIZE) target4[k] = source4[k];
   } else {
-    for (uint k = get_local_id(0); k < pixels; k += DT_GROUP_SIZE) target[k] = source[k];
+    for (uint k = get_local_id(0); k < words; k += DT_GROUP_SIZE) target[k] = source[k];
   }
 }
 
