@@ -2,6 +2,7 @@
 // index comes round again, the odd-row gather, and the host's table of frame times.
 #include <catch2/catch.hpp>
 #include <depthtrack/error.hpp>
+#include <depthtrack/synth.hpp>
 #include <vector>
 
 #include "compute/buffer.hpp"
@@ -9,7 +10,9 @@
 #include "device_support.hpp"
 #include "dt_state.h"
 #include "dt_time_index.h"
+#include "filter/device_filter.hpp"
 #include "filter/frame_time_table.hpp"
+#include "reference/reference_filter.hpp"
 
 using namespace depthtrack;
 
@@ -106,4 +109,54 @@ TEST_CASE("the frame time table hands out indices in turn, retires on schedule a
   CHECK_THROWS_AS(table.indices({0.25f}), InputError);  // frame 0's first time has been overwritten
   table.reset();
   CHECK(table.begin_frame(0.0f) == 0);
+}
+
+// The filter launches the retirement itself every DT_TIME_RETIRE_EVERY frames. A tiny scene (20x15, two
+// particles that do not move) is seen for a few frames, then the sensor drops out for 49,152 frames, so
+// the pixels it saw are last seen longer than DT_TIME_RETIRE_AGE frames ago: the device retires them to
+// time 0, the reference keeps their float times, and when the depth comes back both age them to the
+// same stationary value (1,638 s at c = 0.6: c^age underflows), so the filter still equals the reference.
+TEST_CASE("a device filter retires time indices unseen for 32,768 frames and still equals the reference",
+          "[device][slow]") {
+  if (!test::device_available()) return;
+  const Mesh mesh = builtin_demo_mesh();
+  SynthConfig synth;
+  synth.frames = 1;
+  const Synthesizer synthesizer(mesh, synth);
+  const Camera camera = synth.camera.decimated(32);  // 20x15
+  const SynthFrame first = synthesizer.frame(0);
+  const DepthImage seen = first.depth.decimated(32);
+  DepthImage dropout = seen;
+  for (int v = 0; v < dropout.height(); ++v)
+    for (int u = 0; u < dropout.width(); ++u) dropout.at(u, v) = NAN;
+  TrackerConfig config;
+  config.particles = 2;
+  config.refine.enabled = false;
+  config.motion.sigma_linear = config.motion.sigma_angular = 0;  // still particles: no float drift
+  config.backend = test::device_selector();
+  reference::ReferenceFilter reference(mesh, camera, config);
+  DeviceFilter device(compute::open_device(config.backend), mesh, camera, config);
+  reference.initialize(first.ground_truth, InitialSpread{0.002, 0.01});
+  device.initialize(first.ground_truth, InitialSpread{0.002, 0.01});
+  const double dt = 1.0 / 30;
+  const unsigned seen_frames = 3, dark = DT_TIME_RETIRE_AGE + DT_TIME_RETIRE_EVERY;
+  for (unsigned f = 0; f < seen_frames + dark; ++f) {
+    const DepthImage& depth = f < seen_frames ? seen : dropout;
+    reference.update(depth, f == 0 ? 0.0 : dt);
+    device.update(depth, f == 0 ? 0.0 : dt);
+  }
+  // Retired: the pixels seen at the start read time 0 on the device, their own time on the reference.
+  const auto device_times = device.occlusion_times(), reference_times = reference.occlusion_times();
+  REQUIRE(device_times.size() == reference_times.size());
+  size_t retired = 0;
+  for (size_t k = 0; k < device_times.size(); ++k) {
+    CHECK(device_times[k] == 0.0f);
+    retired += reference_times[k] > 0.0f;
+  }
+  CHECK(retired > 0);
+  // The depth comes back: the same likelihoods and estimate.
+  const Estimate a = reference.update(seen, dt), b = device.update(seen, dt);
+  CHECK(translation_error(a.pose, b.pose) <= 1e-5);
+  const auto ll_ref = reference.last_log_likelihoods(), ll_dev = device.last_log_likelihoods();
+  for (size_t i = 0; i < ll_ref.size(); ++i) CHECK(ll_dev[i] == Approx(ll_ref[i]).epsilon(1e-4));
 }
