@@ -8,6 +8,11 @@
 #define DT_REFINE_SUMS 29 /* H's lower triangle (21), g (6), objective, pixels */
 #define DT_REFINE_OBJECTIVE 27
 #define DT_REFINE_PIXELS 28
+/* The spread layout's buffers (refine_spread.cl), also filled by the host: a pixel's (depth bits << 32)
+ * | triangle with nothing drawn (+inf's bits, no triangle), and a partial row's (stamp << 32) | bits
+ * before any group wrote it (a stamp no evaluation has). */
+#define DT_NEAREST_EMPTY DT_CAST(dt_u64, 0x7f800000ffffffff)
+#define DT_ROW_UNWRITTEN DT_CAST(dt_u64, 0xffffffff00000000)
 
 typedef struct {
   dt_u32 active;     /* 1 while a candidate waits to be evaluated */

@@ -34,7 +34,6 @@ __kernel void refine_begin(__global dt_refine_state* s, __global const float* es
   s->lambda = damping;
 }
 
-#define DT_NEAREST_EMPTY ((DT_CAST(dt_u64, DT_NO_SURFACE) << 32) | 0xffffffffu)
 #define DT_REFINE_MAX_POLLS (1u << 20)
 
 /* A work-item per triangle: the candidate's depth and each pixel's triangle, in one pass. */

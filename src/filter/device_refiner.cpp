@@ -22,8 +22,7 @@ constexpr size_t kLinearGroup = 64;  // shift, and the spread layout's draws: a 
 // most this many rows of partials for its last group to add (beyond 256 x 256 pixels a work-item
 // sums several).
 constexpr size_t kMaxSumGroups = 256;
-static_assert(kRefineGroup >= DT_REFINE_SUMS);  // the last sums group adds one sum per work-item
-constexpr uint64_t kNearestEmpty = (uint64_t{0x7f800000u} << 32) | 0xffffffffu;  // DT_NEAREST_EMPTY
+static_assert(kRefineGroup >= DT_REFINE_SUMS);  // a group writes its row of partials a sum per work-item
 
 size_t round_up(size_t n, size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
@@ -59,13 +58,13 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
       program_(programs.program(layout_ == RefineLayout::Spread ? "refine_spread.cl" : "refine.cl",
                                 {"DT_GROUP_SIZE=" + std::to_string(kRefineGroup), occlusion_definition})),
       mesh_(queue, mesh),
-      pose_(queue, DT_STATE_STRIDE),
-      correction_(queue, 6),
-      tile_(queue, static_cast<size_t>(camera.pixel_count())),
-      ids_(queue, static_cast<size_t>(camera.pixel_count())) {
+      correction_(queue, 6) {
   shift_ = program_->kernel("shift_particles");
   if (layout_ == RefineLayout::OneGroup) {
     refine_ = program_->kernel("refine");
+    pose_ = compute::Buffer<float>(queue, DT_STATE_STRIDE);
+    tile_ = compute::Buffer<unsigned>(queue, static_cast<size_t>(camera.pixel_count()));
+    ids_ = compute::Buffer<unsigned>(queue, static_cast<size_t>(camera.pixel_count()));
     return;
   }
   begin_ = program_->kernel("refine_begin");
@@ -73,15 +72,15 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
   sums_ = program_->kernel("refine_sums");
   const size_t pixels = static_cast<size_t>(camera.pixel_count());
   sum_groups_ = std::clamp<size_t>((pixels + kRefineGroup - 1) / kRefineGroup, 1, kMaxSumGroups);
-  // Stamp 0 in the state and rows tagged 0xffffffff: no row counts as written before its group
-  // writes it (refine_spread.cl's refine_sums).
+  // Stamp 0 in the state and rows unwritten: no row counts as written before its group writes it
+  // (refine_spread.cl's refine_sums).
   fit_state_ = compute::Buffer<float>(queue, sizeof(dt_refine_state) / sizeof(float));
   fit_state_.upload(std::vector<float>(fit_state_.size(), 0.0f));
   partials_ = compute::Buffer<uint64_t>(queue, sum_groups_ * DT_REFINE_SUMS);
-  partials_.upload(std::vector<uint64_t>(partials_.size(), uint64_t{0xffffffffu} << 32));
+  partials_.upload(std::vector<uint64_t>(partials_.size(), DT_ROW_UNWRITTEN));
   // The spread layout never clears: every evaluation resets the pixels it drew (refine_spread.cl).
   nearest_ = compute::Buffer<uint64_t>(queue, pixels);
-  nearest_.upload(std::vector<uint64_t>(pixels, kNearestEmpty));
+  nearest_.upload(std::vector<uint64_t>(pixels, DT_NEAREST_EMPTY));
 }
 
 std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& estimate, const RefineInputs& in) {

@@ -76,8 +76,9 @@ class DeviceRefiner {
   compute::Buffer<float> fit_state_;
   compute::Buffer<uint64_t> partials_, nearest_;  // (stamp << 32) | sum bits; (depth bits << 32) | triangle
   MeshBuffers mesh_;
-  // One-pose scratch (state, depth bits, triangle ids) and the correction twist.
-  compute::Buffer<float> pose_, correction_;
+  compute::Buffer<float> correction_;  // the twist shift applies
+  // The one-group layout's one-pose scratch (state, depth bits, triangle ids).
+  compute::Buffer<float> pose_;
   compute::Buffer<unsigned> tile_, ids_;
 };
 

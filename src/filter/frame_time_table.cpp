@@ -3,23 +3,22 @@
 #include <algorithm>
 #include <bit>
 #include <depthtrack/error.hpp>
+#include <span>
 #include <sstream>
 #include <unordered_map>
 
-#include "dt_time_index.h"
-
 namespace depthtrack {
 
-static_assert(DT_TIME_RETIRE_EVERY == 16384 && DT_TIME_RETIRE_AGE + DT_TIME_RETIRE_EVERY < DT_TIME_CYCLE,
+static_assert(DT_TIME_RETIRE_AGE + DT_TIME_RETIRE_EVERY < DT_TIME_CYCLE,
               "a pixel must be retired before its index comes round again");
 
+// DT_TIME_NEVER's entry is time 0 for good (no frame takes that index); the others are written per frame.
 FrameTimeTable::FrameTimeTable(compute::Queue& queue) : table_(queue, DT_TIME_TABLE), mirror_(DT_TIME_TABLE, 0.0f) {
-  reset();
+  const float zero = 0.0f;
+  table_.upload(std::span<const float>(&zero, 1), DT_TIME_NEVER);
 }
 
 void FrameTimeTable::reset() {
-  std::fill(mirror_.begin(), mirror_.end(), 0.0f);
-  table_.upload(mirror_);  // DT_TIME_NEVER's entry is 0 for good; the others are written per frame
   next_ = 0;
   frames_since_retire_ = 0;
   frames_ = 0;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "compute/buffer.hpp"
+#include "dt_time_index.h"
 
 namespace depthtrack {
 
@@ -13,12 +14,13 @@ class FrameTimeTable {
  public:
   explicit FrameTimeTable(compute::Queue& queue);
 
-  // After initialize: no frame yet, every pixel at DT_TIME_NEVER (time 0).
+  // After initialize: no frame yet, every pixel at DT_TIME_NEVER (time 0). The device table is left
+  // as it is: an entry is read only by pixels of its frame, after weigh wrote it.
   void reset();
   // This frame's index, its time recorded in the mirror (weigh writes it on the device).
   unsigned begin_frame(float now);
   // Whether this frame must retire old indices before it weighs (every DT_TIME_RETIRE_EVERY frames).
-  bool retire_due() const { return frames_since_retire_ >= kRetireEvery; }
+  bool retire_due() const { return frames_since_retire_ >= DT_TIME_RETIRE_EVERY; }
   void retired() { frames_since_retire_ = 0; }
 
   std::vector<float> times(const std::vector<uint16_t>& indices) const;
@@ -28,7 +30,6 @@ class FrameTimeTable {
   compute::Buffer<float>& device() { return table_; }
 
  private:
-  static constexpr unsigned kRetireEvery = 16384;  // DT_TIME_RETIRE_EVERY
   compute::Buffer<float> table_;
   std::vector<float> mirror_;
   unsigned next_ = 0, frames_since_retire_ = 0;
