@@ -1,6 +1,7 @@
 #include "cli/step_bytes.hpp"
 
 #include "dt_state.h"
+#include "filter/device_filter.hpp"
 
 namespace depthtrack::cli {
 
@@ -20,12 +21,7 @@ StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, boo
 }
 
 double filter_memory_mib(size_t particles, size_t pixels, OcclusionStorage mode) {
-  const double px = static_cast<double>(pixels);
-  const bool occlusion = mode != OcclusionStorage::Off, times = mode == OcclusionStorage::PerPixelTime;
-  // Atlas and occlusion 4 bytes a pixel, the time index 2, each state with its resampling twin.
-  const double per_particle =
-      px * (4 * (1 + (occlusion ? 2 : 0)) + (times ? 2 * 2 : 0)) + 4.0 * (2 * DT_STATE_STRIDE + 6);
-  return per_particle * static_cast<double>(particles) / (1 << 20);
+  return device_filter_bytes_per_particle(pixels, mode, false) * static_cast<double>(particles) / (1 << 20);
 }
 
 }  // namespace depthtrack::cli

@@ -1,7 +1,7 @@
 #pragma once
 // Bytes each step of a device frame moves through memory, from the layout (cl/dt_state.h: 16 floats of
-// state per particle; one float of atlas depth, occlusion probability and occlusion time per particle
-// per pixel), so `depthtrack bench` can print GB/s next to each step's time. The one place the formula
+// state per particle; a float of atlas depth and occlusion probability, a 16-bit occlusion time index per
+// particle per pixel), so `depthtrack bench` can print GB/s next to each step's time. The one place the formula
 // lives. Upper bounds: per-pixel-time touches only covered pixels, resampling copies only when it runs.
 #include <cstddef>
 #include <depthtrack/tracker_config.hpp>
@@ -15,8 +15,7 @@ struct StepBytes {
 // One frame of `particles` particles at `pixels` pixels each; handoff only for the GL renderer.
 StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, bool gl_handoff, int refine_iterations);
 
-// Device memory the filter's buffers take (DeviceFilter's layout: atlas, occlusion state and times
-// with their resampling twins, state twice, weights), MiB.
+// Device memory the filter's buffers take without GL pages, MiB (device_filter_bytes_per_particle).
 double filter_memory_mib(size_t particles, size_t pixels, OcclusionStorage mode);
 
 }  // namespace depthtrack::cli

@@ -26,6 +26,12 @@ size_t round_up(size_t n, size_t multiple) {
 }
 }  // namespace
 
+double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bool gl_pages) {
+  const bool occlusion = mode != OcclusionStorage::Off, times = mode == OcclusionStorage::PerPixelTime;
+  const double floats_per_pixel = 1 + (occlusion ? 2 : 0) + (times ? 1 : 0) + (gl_pages ? 2 : 0);  // times: 2 x 16 bits
+  return 4.0 * (static_cast<double>(pixels) * floats_per_pixel + (2 + (gl_pages ? 1 : 0)) * DT_STATE_STRIDE + 6);
+}
+
 struct DeviceFilter::Kernels {
   std::shared_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
       initialize_program;
@@ -111,14 +117,9 @@ DeviceFilter::~DeviceFilter() = default;
 
 size_t DeviceFilter::checked_particle_count() const {
   const size_t count = static_cast<size_t>(config_.particles);
-  const bool occlusion = config_.occlusion_storage != OcclusionStorage::Off;
-  const bool times = config_.occlusion_storage == OcclusionStorage::PerPixelTime;
-  // Atlas, occlusion probabilities and (16-bit) time indices, each with a resampling twin, plus
-  // per-particle state; GL's colour and depth pages and its pose buffer sit on the same GPU.
-  const bool gl = config_.renderer == Renderer::Gl && queue_->info().is_gpu;
-  const double per_particle =
-      4.0 * (static_cast<double>(pixels_) * (1 + (occlusion ? 2 : 0) + (times ? 1 : 0) + (gl ? 2 : 0)) +
-             (2 + (gl ? 1 : 0)) * DT_STATE_STRIDE + 6);
+  // GL's pages sit on the same GPU.
+  const double per_particle = device_filter_bytes_per_particle(
+      pixels_, config_.occlusion_storage, config_.renderer == Renderer::Gl && queue_->info().is_gpu);
   const double needed = per_particle * static_cast<double>(count);
   const auto& info = queue_->info();
   if (info.global_memory > 0 && needed > 0.9 * static_cast<double>(info.global_memory)) {

@@ -17,6 +17,11 @@
 
 namespace depthtrack {
 
+// Device memory one particle's buffers take (atlas, occlusion probabilities and 16-bit time indices with
+// their resampling twins, the state twice, weights; with GL pages, GL's colour and depth pages and its
+// pose buffer): what the memory check refuses by and `depthtrack bench` reports.
+double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bool gl_pages);
+
 class DevicePoseScorer;
 class DeviceRefiner;
 struct DevicePoseScorerPrograms;
