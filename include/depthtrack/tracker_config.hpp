@@ -41,9 +41,9 @@ Renderer renderer_from_string(const std::string& name);  // throws InputError na
 
 // How the device backends lay out the refinement (Refinement::layout); the reference has one way.
 enum class RefineLayout {
-  Auto,      // Spread for meshes of 4,096 triangles or more and on CUDA GPUs, else OneGroup (docs/design-notes.md)
+  Auto,      // Spread for meshes of 4,096 triangles or more and on CUDA GPUs, given 64-bit atomics; else OneGroup
   OneGroup,  // the whole fit in one work-group, one launch (cl/refine.cl)
-  Spread,    // each step's rendering and sums over many work-groups, one small group solving (cl/refine_spread.cl)
+  Spread,    // each step a draw and a sums launch over many work-groups, the last one solving (cl/refine_spread.cl)
 };
 const char* to_string(RefineLayout layout);                       // "auto", "one-group", "spread"
 RefineLayout refine_layout_from_string(const std::string& name);  // throws InputError naming the choices
