@@ -45,6 +45,7 @@ typedef struct {
   float min_incidence; /* pixels with |cos(normal, ray)| below it are left out of H */
   float centre_x, centre_y, centre_z;
   float now;              /* seconds since the first frame: the per-pixel-time occlusion mode ages p to it */
+  float dt;               /* this frame's time step: the global-time occlusion mode ages p by it */
   int iterations;         /* damped steps at most */
   float radius;           /* largest vertex distance from the centre */
   float converged_motion; /* a step moving no mesh point farther than this (metres) is not tried */

@@ -105,54 +105,46 @@ DT_DEVICE_FN dt_vec3 dt_vertex_at(dt_rigid m, float x, float y, float z) {
   return dt_vec3_make(dt_dot(m.r0, x, y, z) + m.t.x, dt_dot(m.r1, x, y, z) + m.t.y, dt_dot(m.r2, x, y, z) + m.t.z);
 }
 
-/* Where the heaviest particle's occlusion state starts in each map, for its pixel k at offset + k (the
- * modes without per-particle maps pass one element, read at 0 or not at all). */
+/* Where the heaviest particle's occlusion state from before this frame's weigh starts in each map
+ * (its row: weigh's parents[heaviest], weigh.cl), for its pixel k at offset + k (the modes without
+ * per-particle maps pass one element, read at 0 or not at all). */
 typedef struct {
-  ulong occlusion, time, prior;
+  ulong occlusion, time;
 } dt_refine_offsets;
 
-DT_DEVICE_FN dt_refine_offsets dt_refine_map_offsets(uint heaviest, uint pixels) {
-  const ulong base = DT_CAST(ulong, heaviest) * pixels;
+DT_DEVICE_FN dt_refine_offsets dt_refine_map_offsets(uint row, uint pixels) {
+  const ulong base = DT_CAST(ulong, row) * pixels;
   dt_refine_offsets o;
 #if DT_OCCLUSION == DT_OCCLUSION_OFF
   o.occlusion = 0;
   o.time = 0;
-  o.prior = 0;
 #elif DT_OCCLUSION == DT_GLOBAL_TIME
   o.occlusion = base;
   o.time = 0;
-  o.prior = base;
 #else
   o.occlusion = base;
   o.time = base;
-  o.prior = base;
 #endif
   return o;
 }
 
 /* Pixel k's share of the normal equations, added to acc (DT_REFINE_SUMS), for the pose drawn with
  * depth bits and triangle id there (pose, and its centre in the camera frame); the occlusion prior is
- * the heaviest particle's: weigh's prior where its atlas tile covers the pixel (kept where its update
- * changed it), its aged state elsewhere. */
+ * the heaviest particle's: its state from before this frame's weigh aged to now, which is weigh's
+ * prior where the particle's update changed the pixel and its state elsewhere. */
 DT_DEVICE_FN void dt_refine_pixel(float* acc, uint k, uint bits, uint id, dt_rigid pose, dt_vec3 centre,
                                   __global const float* observed, __global const float* occlusion,
                                   __global const dt_u16* occlusion_time, __global const float* frame_times,
-                                  __global const float* prior, dt_refine_offsets at, __global const float* atlas,
-                                  dt_atlas_layout layout, ulong heaviest_tile, __global const float* planes,
-                                  uint triangle_count, dt_camera cam, dt_model m, dt_refine_args args) {
+                                  dt_refine_offsets at, __global const float* planes, uint triangle_count,
+                                  dt_camera cam, dt_model m, dt_refine_args args) {
   const float y = observed[k];
   if (bits == DT_NO_SURFACE || !(y > 0.0f) || !isfinite(y)) return;
   const float y_hat = dt_as_float(bits);
   float p = 0.0f;
-#if DT_OCCLUSION != DT_OCCLUSION_OFF
-  if (atlas[dt_atlas_pixel(layout, heaviest_tile, k)] > 0.0f)
-    p = prior[at.prior + k];
-  else
 #if DT_OCCLUSION == DT_PER_PIXEL_TIME
-    p = dt_propagate_occlusion(m, occlusion[at.occlusion + k], args.now - frame_times[occlusion_time[at.time + k]]);
-#else
-    p = occlusion[at.occlusion + k];
-#endif
+  p = dt_propagate_occlusion(m, occlusion[at.occlusion + k], args.now - frame_times[occlusion_time[at.time + k]]);
+#elif DT_OCCLUSION == DT_GLOBAL_TIME
+  p = dt_propagate_occlusion(m, occlusion[at.occlusion + k], args.dt);
 #endif
   float posterior;
   acc[DT_REFINE_OBJECTIVE] += dt_pixel_log_ratio(m, y, y_hat, p, &posterior);

@@ -76,12 +76,11 @@ DT_DEVICE_FN uint dt_box_pixel(dt_pixel_box box, uint k, dt_camera cam) {
  * pixel's triangle into ids, then sums the normal equations over the group into sums[k * G]. */
 DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global const float* observed,
                                      __global const float* occlusion, __global const dt_u16* occlusion_time,
-                                     __global const float* frame_times, __global const float* prior,
-                                     dt_refine_offsets at, __global const float* atlas, dt_atlas_layout layout,
-                                     ulong heaviest_tile, __global const float* vertices,
-                                     __global const uint* triangles, __global const float* planes, uint triangle_count,
-                                     dt_camera cam, dt_model m, dt_refine_args args, __global uint* tile,
-                                     __global uint* ids, DT_LOCAL_PTR float* sums) {
+                                     __global const float* frame_times, dt_refine_offsets at,
+                                     __global const float* vertices, __global const uint* triangles,
+                                     __global const float* planes, uint triangle_count, dt_camera cam, dt_model m,
+                                     dt_refine_args args, __global uint* tile, __global uint* ids,
+                                     DT_LOCAL_PTR float* sums) {
   const uint lid = get_local_id(0);
   const dt_rigid pose = dt_particle_pose(pose_state);
   /* Only the pose's box is cleared and summed: the silhouette is a small part of the image, and no
@@ -106,22 +105,23 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
   for (int k = 0; k < DT_REFINE_SUMS; ++k) acc[k] = 0.0f;
   for (uint b = lid; b < pixels; b += DT_GROUP_SIZE) {
     const uint k = dt_box_pixel(box, b, cam);
-    dt_refine_pixel(acc, k, tile[k], ids[k], pose, centre, observed, occlusion, occlusion_time, frame_times, prior, at,
-                    atlas, layout, heaviest_tile, planes, triangle_count, cam, m, args);
+    dt_refine_pixel(acc, k, tile[k], ids[k], pose, centre, observed, occlusion, occlusion_time, frame_times, at, planes,
+                    triangle_count, cam, m, args);
   }
   dt_refine_group_sums(acc, sums);
 }
 
 /* estimate: holds summarize's heaviest particle and receives the refined pose and its covariance
- * (dt_state.h); states: the particles (the heaviest particle's occlusion prior is used: weigh's prior
- * where the particle's tile in atlas covers the pixel, its state elsewhere); pose_state, tile and ids:
- * scratch for one pose; correction: the twist from the heaviest particle to the refined pose. */
+ * (dt_state.h); states: the particles; occlusion, occlusion_time: the per-pixel state from before this
+ * frame's weigh, particle i's in row parents[i] (the heaviest particle's prior is its row aged to now);
+ * pose_state, tile and ids: scratch for one pose; correction: the twist from the heaviest particle to
+ * the refined pose. */
 __kernel void refine(__global float* estimate, __global const float* states, __global const float* observed,
                      __global const float* occlusion, __global const dt_u16* occlusion_time,
-                     __global const float* frame_times, __global const float* prior, __global const float* atlas,
-                     dt_atlas_layout layout, __global const float* vertices, __global const uint* triangles,
-                     __global const float* planes, uint triangle_count, dt_camera cam, dt_model m, dt_refine_args args,
-                     __global float* pose_state, __global uint* tile, __global uint* ids, __global float* correction) {
+                     __global const float* frame_times, __global const uint* parents, __global const float* vertices,
+                     __global const uint* triangles, __global const float* planes, uint triangle_count, dt_camera cam,
+                     dt_model m, dt_refine_args args, __global float* pose_state, __global uint* tile,
+                     __global uint* ids, __global float* correction) {
   __local float sums[DT_REFINE_SUMS * DT_GROUP_SIZE];
   __local int proceed;
   int tried = 0; /* work-item 0's count of steps evaluated */
@@ -130,14 +130,13 @@ __kernel void refine(__global float* estimate, __global const float* states, __g
 
   /* summarize found it (the first of equal maximal log weights, as the reference): not searched again. */
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
-  const dt_refine_offsets at = dt_refine_map_offsets(heaviest, cam.width * cam.height);
-  const ulong heaviest_tile = dt_atlas_tile_start(layout, heaviest);
+  const dt_refine_offsets at = dt_refine_map_offsets(parents[heaviest], cam.width * cam.height);
 
   const dt_pose start = dt_load_pose(states + DT_CAST(ulong, heaviest) * DT_STATE_STRIDE);
   if (lid == 0) dt_store_pose(pose_state, start);
   barrier(CLK_GLOBAL_MEM_FENCE);
-  dt_refine_evaluate(pose_state, observed, occlusion, occlusion_time, frame_times, prior, at, atlas, layout,
-                     heaviest_tile, vertices, triangles, planes, triangle_count, cam, m, args, tile, ids, sums);
+  dt_refine_evaluate(pose_state, observed, occlusion, occlusion_time, frame_times, at, vertices, triangles, planes,
+                     triangle_count, cam, m, args, tile, ids, sums);
   /* Work-item 0's: the best pose evaluated, its sums, the damping. */
   dt_pose best = start;
   float best_sums[DT_REFINE_SUMS];
@@ -155,8 +154,8 @@ __kernel void refine(__global float* estimate, __global const float* states, __g
     }
     barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
     if (!proceed) break;
-    dt_refine_evaluate(pose_state, observed, occlusion, occlusion_time, frame_times, prior, at, atlas, layout,
-                       heaviest_tile, vertices, triangles, planes, triangle_count, cam, m, args, tile, ids, sums);
+    dt_refine_evaluate(pose_state, observed, occlusion, occlusion_time, frame_times, at, vertices, triangles, planes,
+                       triangle_count, cam, m, args, tile, ids, sums);
     if (lid == 0) {
       if (dt_refine_keeps(sums[DT_REFINE_OBJECTIVE * DT_GROUP_SIZE], best_sums[DT_REFINE_OBJECTIVE])) {
         best = dt_load_pose(pose_state);

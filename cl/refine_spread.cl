@@ -104,17 +104,15 @@ DT_DEVICE_FN int dt_refine_add_rows(__global volatile const dt_u64* rows, uint g
 __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate, __global const float* states,
                           __global const float* observed, __global const float* occlusion,
                           __global const dt_u16* occlusion_time, __global const float* frame_times,
-                          __global const float* prior, __global const float* atlas, dt_atlas_layout layout,
-                          __global const float* planes, uint triangle_count, dt_camera cam, dt_model m,
-                          dt_refine_args args, __global dt_u64* nearest, __global dt_u64* partials,
-                          __global float* correction) {
+                          __global const uint* parents, __global const float* planes, uint triangle_count,
+                          dt_camera cam, dt_model m, dt_refine_args args, __global dt_u64* nearest,
+                          __global dt_u64* partials, __global float* correction) {
   __local float sums[DT_REFINE_SUMS * DT_GROUP_SIZE];
   if (!s->active) return; /* the same for every work-item, before any barrier */
   const uint stamp = s->stamp;
   const uint pixels = cam.width * cam.height;
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
-  const dt_refine_offsets at = dt_refine_map_offsets(heaviest, pixels);
-  const ulong heaviest_tile = dt_atlas_tile_start(layout, heaviest);
+  const dt_refine_offsets at = dt_refine_map_offsets(parents[heaviest], pixels);
   const dt_rigid pose = dt_particle_pose(s->candidate);
   const dt_vec3 centre = dt_vertex_at(pose, args.centre_x, args.centre_y, args.centre_z);
   float acc[DT_REFINE_SUMS];
@@ -124,8 +122,7 @@ __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate,
     if (drawn == DT_NEAREST_EMPTY) continue; /* nothing drawn: nothing to reset or sum */
     nearest[k] = DT_NEAREST_EMPTY;
     dt_refine_pixel(acc, k, DT_CAST(uint, drawn >> 32), DT_CAST(uint, drawn & 0xffffffffu), pose, centre, observed,
-                    occlusion, occlusion_time, frame_times, prior, at, atlas, layout, heaviest_tile, planes,
-                    triangle_count, cam, m, args);
+                    occlusion, occlusion_time, frame_times, at, planes, triangle_count, cam, m, args);
   }
   dt_refine_group_sums(acc, sums);
   const uint lid = get_local_id(0), groups = get_num_groups(0);

@@ -1,9 +1,12 @@
 /* Systematic resampling on the device: prefix sum of the normalized weights, each child's parent
- * by binary search, then gathers of the particles' state. Reference: systematic_resample.
+ * by binary search, then the gather of the particles' kinematic state. Their per-pixel occlusion
+ * state is not copied here: the next frame's weigh reads each child's row from its parent
+ * (weigh.cl), so parents always holds the last frame's choice (the identity without resampling).
+ * Reference: systematic_resample.
  * Whether to resample is decided on the device too: summarize.cl sets estimate[DT_EST_RESAMPLE],
  * and every kernel here that takes `estimate` reads it, so that the host enqueues the same
  * sequence each frame without waiting for the decision: without it they return at once, but
- * gather_state copies (the host swaps the state buffers every frame). */
+ * find_parents writes the identity and gather_state copies (the host swaps the state buffers every frame). */
 #include "dt_prelude.h"
 #include "dt_state.h"
 
@@ -72,11 +75,16 @@ DT_DEVICE_FN int dt_exceeds(float hi, float lo, float count, float u, float chil
   return (p - s) + (p_err - s_err) > 0.0f;
 }
 
-/* Child j takes the first parent whose cumulative weight exceeds (u + j) / count (the last if none). */
+/* Child j takes the first parent whose cumulative weight exceeds (u + j) / count (the last if none);
+ * without resampling each particle is its own parent. */
 __kernel void find_parents(__global const float* cumulative, __global uint* parents, uint count, float u,
                            __global const float* estimate) {
   const uint child = get_global_id(0);
-  if (child >= count || !dt_resampling(estimate)) return;
+  if (child >= count) return;
+  if (!dt_resampling(estimate)) {
+    parents[child] = child;
+    return;
+  }
   uint lo = 0, hi = count - 1; /* the answer lies in [lo, hi] */
   while (lo < hi) {
     const uint mid = lo + (hi - lo) / 2;
@@ -99,24 +107,10 @@ __kernel void gather_state(__global const float* from, __global float* to, __glo
   for (int k = 0; k < DT_STATE_STRIDE; ++k) target[k] = source[k];
 }
 
-/* Children copy their parent's per-pixel occlusion state: a work-group per child, `words` 32-bit words
- * a row (the probabilities' floats, or the time indices two to a word), copied as bits. Without
- * resampling nothing moves (the host swaps these buffers only after reading the decision). The copy
- * is bound by its stores (the few parents' rows stay in cache), so where every row starts 16-byte
- * aligned (words a multiple of 4) it moves whole uint4s: a quarter of the store instructions. */
-__kernel void gather_pixels(__global const uint* from, __global uint* to, __global const uint* parents, uint words,
-                            __global const float* estimate) {
-  if (!dt_resampling(estimate)) return;
-  const uint child = get_group_id(0);
-  __global const uint* source = from + DT_CAST(ulong, parents[child]) * words;
-  __global uint* target = to + DT_CAST(ulong, child) * words;
-  if ((words & 3u) == 0) {
-    __global const uint4* source4 = (__global const uint4*)source;
-    __global uint4* target4 = (__global uint4*)target;
-    for (uint k = get_local_id(0); k < words / 4; k += DT_GROUP_SIZE) target4[k] = source4[k];
-  } else {
-    for (uint k = get_local_id(0); k < words; k += DT_GROUP_SIZE) target[k] = source[k];
-  }
+/* Each particle its own parent: the start, and a state set from the host. */
+__kernel void identity_parents(__global uint* parents, uint count) {
+  const uint i = get_global_id(0);
+  if (i < count) parents[i] = i;
 }
 
 __kernel void fill(__global float* values, uint count, float value) {

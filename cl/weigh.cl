@@ -3,51 +3,67 @@
  *   DT_GROUP_SIZE     work-items per group (power of two)
  *   DT_OCCLUSION      0 per-pixel time, 1 global time, 2 off
  * The atlas lies in the renderer's page layout (dt_atlas.h); occlusion state is particle-major.
- * With keep_prior, each updated pixel's occlusion probability before its Bayes update goes to prior
- * (particle-major too): the pose refinement's occlusion map (refine.cl).
+ * The last frame's resampling is folded in here: particle i's occlusion state before this frame is
+ * row parents[i] of (occlusion_from, time_from) (the identity where it did not resample), and its
+ * state after this frame's Bayes update goes to row i of (occlusion_to, time_to), every pixel
+ * written, so that no pass copies whole rows between frames (the host swaps the two buffers). With
+ * an effective sample size near 1 most children read one parent's row, which stays in cache.
  * Per-pixel time keeps each pixel's last frame as an index into frame_times (dt_time_index.h); this
  * frame is now_index, whose time (now) the first work-item writes into the table: no pixel holds that
  * index while it is written (indices are retired long before they come round).
- * Reference: ReferenceFilter::weigh_particle. */
-#include "dt_prelude.h"
-#include "dt_model.h"
-#include "dt_group.h"
+ * Reference: ReferenceFilter::weigh_particle (and its resampling's gather). */
 #include "dt_atlas.h"
+#include "dt_group.h"
+#include "dt_model.h"
 #include "dt_params.h" /* the DT_OCCLUSION codes */
+#include "dt_prelude.h"
 #include "dt_time_index.h"
 
-__kernel void weigh(__global const float* atlas, __global const float* observed, __global float* occlusion,
-                    __global dt_u16* occlusion_time, __global float* frame_times, __global float* log_likelihood,
-                    __global float* log_weight, uint pixels, dt_model m, float now, uint now_index, float dt,
-                    dt_atlas_layout layout, __global float* prior, uint keep_prior) {
+__kernel void weigh(__global const float* atlas, __global const float* observed, __global const uint* parents,
+                    __global const float* occlusion_from, __global const dt_u16* time_from,
+                    __global float* occlusion_to, __global dt_u16* time_to, __global float* frame_times,
+                    __global float* log_likelihood, __global float* log_weight, uint pixels, dt_model m, float now,
+                    uint now_index, float dt, dt_atlas_layout layout) {
   __local float scratch[DT_GROUP_SIZE];
   const uint particle = get_group_id(0);
 #if DT_OCCLUSION == DT_PER_PIXEL_TIME
   if (particle == 0 && get_local_id(0) == 0) frame_times[now_index] = now;
 #endif
-  const ulong base = DT_CAST(ulong, particle) * pixels;
+#if DT_OCCLUSION != DT_OCCLUSION_OFF
+  const ulong from = DT_CAST(ulong, parents[particle]) * pixels, to = DT_CAST(ulong, particle) * pixels;
+#endif
   const ulong tile = dt_atlas_tile_start(layout, particle);
   float sum = 0.0f;
   for (uint k = get_local_id(0); k < pixels; k += DT_GROUP_SIZE) {
-    float p = 0.0f;
-#if DT_OCCLUSION == DT_GLOBAL_TIME
-    p = dt_propagate_occlusion(m, occlusion[base + k], dt);
-    occlusion[base + k] = p; /* every pixel ages, covered or not */
-#endif
     const float y_hat = atlas[dt_atlas_pixel(layout, tile, k)];
     const float y = observed[k];
-    if (!(y_hat > 0.0f) || !(y > 0.0f) || !isfinite(y)) continue; /* adds 0 */
-#if DT_OCCLUSION == DT_PER_PIXEL_TIME
-    p = dt_propagate_occlusion(m, occlusion[base + k], now - frame_times[occlusion_time[base + k]]);
+    const int used = y_hat > 0.0f && y > 0.0f && isfinite(y);
+    float p = 0.0f;
+#if DT_OCCLUSION == DT_GLOBAL_TIME
+    p = dt_propagate_occlusion(m, occlusion_from[from + k], dt); /* every pixel ages, covered or not */
+    if (!used) {
+      occlusion_to[to + k] = p;
+      continue;
+    }
+#elif DT_OCCLUSION == DT_PER_PIXEL_TIME
+    const float kept = occlusion_from[from + k];
+    const dt_u16 seen = time_from[from + k];
+    if (!used) { /* unchanged: the parent's value and time */
+      occlusion_to[to + k] = kept;
+      time_to[to + k] = seen;
+      continue;
+    }
+    p = dt_propagate_occlusion(m, kept, now - frame_times[seen]);
+#else
+    if (!used) continue; /* adds 0 */
 #endif
     float posterior;
     sum += dt_pixel_log_ratio(m, y, y_hat, p, &posterior);
 #if DT_OCCLUSION != DT_OCCLUSION_OFF
-    if (keep_prior) prior[base + k] = p;
-    occlusion[base + k] = posterior;
+    occlusion_to[to + k] = posterior;
 #endif
 #if DT_OCCLUSION == DT_PER_PIXEL_TIME
-    occlusion_time[base + k] = DT_CAST(dt_u16, now_index);
+    time_to[to + k] = DT_CAST(dt_u16, now_index);
 #endif
   }
   sum = dt_group_sum(scratch, sum);

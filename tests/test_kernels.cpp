@@ -122,6 +122,10 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
   for (auto& p : occlusion) p = unit(rng);
   for (unsigned f = 0; f < 64; ++f) frame_times[f] = 0.5f * unit(rng);
   for (auto& t : time_index) t = static_cast<uint16_t>(std::min(63.0f, 64 * unit(rng)));
+  // The last frame's resampling, folded into weigh: particle i's state is row parents[i] (with repeats,
+  // as resampling makes, and some particles nobody's parent).
+  std::vector<unsigned> parents(count);
+  for (size_t i = 0; i < count; ++i) parents[i] = static_cast<unsigned>((i * 5 + 3) % count / 2);
   const double now = 0.7, dt = 0.04;
   const unsigned now_index = 64;
   // The tiles also go into a paged layout like the GL atlas's: 3 tiles per row, 6 per page, 3 pages
@@ -144,22 +148,26 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
     INFO("atlas with " << layout.tiles_per_row << " tiles per row");
     auto program = build(*q, "weigh.cl", mode);
     auto kernel = program->kernel("weigh");
-    compute::Buffer<float> a(*q, laid_out->size()), o(*q, pixels), occ(*q, occlusion.size()), table(*q, DT_TIME_TABLE),
-        ll(*q, count), lw(*q, count), prior(*q, occlusion.size());
-    compute::Buffer<uint16_t> tim(*q, time_index.size());
+    compute::Buffer<float> a(*q, laid_out->size()), o(*q, pixels), occ(*q, occlusion.size()),
+        occ_to(*q, occlusion.size()), table(*q, DT_TIME_TABLE), ll(*q, count), lw(*q, count);
+    compute::Buffer<uint16_t> tim(*q, time_index.size()), tim_to(*q, time_index.size());
+    compute::Buffer<unsigned> parent_buffer(*q, count);
     a.upload(*laid_out);
     o.upload(observed);
     occ.upload(occlusion);
     tim.upload(time_index);
+    // Written where the mode keeps state: the off mode must leave these as they are.
+    occ_to.upload(std::vector<float>(occlusion.size(), -1.0f));
+    tim_to.upload(std::vector<uint16_t>(time_index.size(), 7));
+    parent_buffer.upload(parents);
     table.upload(frame_times);
     lw.upload(std::vector<float>(count, 1.0f));
-    // The last argument: keep each updated pixel's prior (the refinement's occlusion map).
-    q->launch(*kernel, compute::NdRange::linear(count * kGroup, kGroup), a, o, occ, tim, table, ll, lw,
-              static_cast<unsigned>(pixels), model_args(), static_cast<float>(now), now_index, static_cast<float>(dt),
-              layout, prior, 1u)
+    q->launch(*kernel, compute::NdRange::linear(count * kGroup, kGroup), a, o, parent_buffer, occ, tim, occ_to, tim_to,
+              table, ll, lw, static_cast<unsigned>(pixels), model_args(), static_cast<float>(now), now_index,
+              static_cast<float>(dt), layout)
         ->wait();
-    const auto got_ll = ll.download(), got_lw = lw.download(), got_occ = occ.download(), got_prior = prior.download();
-    const auto got_index = tim.download();
+    const auto got_ll = ll.download(), got_lw = lw.download(), got_occ = occ_to.download();
+    const auto got_index = tim_to.download();
     const auto got_table = table.download();
     // Per-pixel time writes this frame's time into the table; the other modes leave it.
     CHECK(got_table[now_index] == (mode == 0 ? static_cast<float>(now) : 0.0f));
@@ -167,22 +175,23 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
     for (size_t i = 0; i < count; ++i) {
       double expected = 0;
       for (size_t k = 0; k < pixels; ++k) {
-        const size_t at = i * pixels + k;
-        double p = occlusion[at];
+        // Particle i's own row (its rendering, and where its state goes), its parent's state.
+        const size_t at = i * pixels + k, from = parents[i] * pixels + k;
+        double p = occlusion[from];
         if (mode == 1) p = model::propagate_occlusion(chain, p, dt);
         const double y = observed[k], y_hat = atlas[at];
         const bool used = y_hat > 0 && DepthImage::is_valid(static_cast<float>(y));
-        if (used && mode == 0) p = model::propagate_occlusion(chain, p, now - frame_times[time_index[at]]);
-        if (mode == 0) REQUIRE(got_index[at] == (used ? now_index : time_index[at]));
+        if (used && mode == 0) p = model::propagate_occlusion(chain, p, now - frame_times[time_index[from]]);
+        REQUIRE(got_index[at] == (mode == 0 ? (used ? now_index : time_index[from]) : 7));
         if (mode == 2) p = 0;
-        double updated = mode == 2 ? occlusion[at] : p;
+        double updated = mode == 2 ? -1.0 : p;
         if (used) {
           const auto d = reference::pixel_densities(ObservationModel{}, y, y_hat);
           expected += reference::pixel_log_ratio(d, p);
           if (mode != 2) updated = reference::occlusion_posterior(d, p);
         }
-        if (mode != 2 && (used || mode == 1)) REQUIRE(got_occ[at] == Approx(updated).epsilon(1e-4).margin(1e-6));
-        if (mode != 2 && used) REQUIRE(got_prior[at] == Approx(p).epsilon(1e-4).margin(1e-6));
+        // Every pixel's state written: the parent's carried over where the particle's update left it.
+        REQUIRE(got_occ[at] == Approx(updated).epsilon(1e-4).margin(1e-6));
       }
       INFO("mode " << mode << " particle " << i);
       REQUIRE(got_ll[i] == Approx(expected).epsilon(1e-4).margin(1e-3));
@@ -202,19 +211,20 @@ TEST_CASE("weigh kernel stays finite and equal to the reference for observations
   auto program = build(*q, "weigh.cl", 0);
   auto kernel = program->kernel("weigh");
   const std::vector<float> occlusion(pixels, 0.3f);
-  compute::Buffer<float> a(*q, pixels), o(*q, pixels), occ(*q, pixels), table(*q, DT_TIME_TABLE), ll(*q, 1), lw(*q, 1);
-  compute::Buffer<uint16_t> tim(*q, pixels);
+  compute::Buffer<float> a(*q, pixels), o(*q, pixels), occ(*q, pixels), occ_to(*q, pixels), table(*q, DT_TIME_TABLE),
+      ll(*q, 1), lw(*q, 1);
+  compute::Buffer<uint16_t> tim(*q, pixels), tim_to(*q, pixels);
+  compute::Buffer<unsigned> parents(*q, 1);
+  parents.upload(std::vector<unsigned>{0});
   a.upload(atlas);
   o.upload(observed);
   occ.upload(occlusion);
   tim.upload(std::vector<uint16_t>(pixels, DT_TIME_NEVER));  // time 0, as now: no ageing
   table.upload(std::vector<float>(DT_TIME_TABLE, 0.0f));
   lw.upload(std::vector<float>(1, 0.0f));
-  compute::Buffer<float> prior(*q, pixels);
-  // The last argument: the refinement's prior map is not asked for here.
-  q->launch(*kernel, compute::NdRange::linear(kGroup, kGroup), a, o, occ, tim, table, ll, lw,
+  q->launch(*kernel, compute::NdRange::linear(kGroup, kGroup), a, o, parents, occ, tim, occ_to, tim_to, table, ll, lw,
             static_cast<unsigned>(pixels), model_args(), 0.0f, 0u, 0.0f,
-            dt_atlas_layout{static_cast<dt_u32>(pixels), 1, 1, 1}, prior, 0u)
+            dt_atlas_layout{static_cast<dt_u32>(pixels), 1, 1, 1})
       ->wait();
   double expected = 0;
   for (size_t k = 0; k < pixels; ++k) {
@@ -225,7 +235,7 @@ TEST_CASE("weigh kernel stays finite and equal to the reference for observations
     REQUIRE(std::isfinite(reference::occlusion_posterior(d, 0.3)));
     expected += term;
   }
-  const auto got_occ = occ.download();
+  const auto got_occ = occ_to.download();
   for (size_t k = 0; k < pixels; ++k) {
     INFO("pixel " << k);
     REQUIRE(std::isfinite(got_occ[k]));
@@ -326,33 +336,29 @@ TEST_CASE("prefix-sum and find-parents kernels resample as the reference does", 
 
 TEST_CASE("resampling kernels follow the decision in the estimate buffer: gather, or copy and keep",
           "[device][kernels]") {
+  // The per-pixel rows are not gathered here: the next weigh reads them through parents (its test).
   if (!test::device_available()) return;
   auto q = compute::open_device(test::device_selector());
   auto program = build(*q, "resample.cl");
   auto find = program->kernel("find_parents");
   auto gather_state = program->kernel("gather_state");
-  auto gather_pixels = program->kernel("gather_pixels");
   auto reset = program->kernel("fill_when_resampling");
-  const unsigned count = 3, pixels = 5;
+  const unsigned count = 3;
   const std::vector<unsigned> parents_in = {2, 2, 0};
-  std::vector<float> state(count * DT_STATE_STRIDE), pixel_state(count * pixels);
+  std::vector<float> state(count * DT_STATE_STRIDE);
   for (size_t i = 0; i < state.size(); ++i) state[i] = static_cast<float>(i);
-  for (size_t i = 0; i < pixel_state.size(); ++i) pixel_state[i] = 100.0f + static_cast<float>(i);
   // Cumulative weights (float-float pairs) that would make every child take particle 0.
   const std::vector<float> cumulative_in = {1.0f, 0.0f, 1.0f, 0.0f, 1.0f, 0.0f};
   for (const bool resample : {false, true}) {
     INFO((resample ? "resampling" : "not resampling"));
     std::vector<float> flag(DT_EST_SIZE, 0.0f);
     flag[DT_EST_RESAMPLE] = resample ? 1.0f : 0.0f;
-    compute::Buffer<float> decision(*q, DT_EST_SIZE), from(*q, state.size()), to(*q, state.size()),
-        pixels_from(*q, pixel_state.size()), pixels_to(*q, pixel_state.size()), weights(*q, count),
+    compute::Buffer<float> decision(*q, DT_EST_SIZE), from(*q, state.size()), to(*q, state.size()), weights(*q, count),
         cumulative(*q, cumulative_in.size());
     compute::Buffer<unsigned> parents(*q, count);
     decision.upload(flag);
     from.upload(state);
     to.upload(std::vector<float>(state.size(), -1.0f));
-    pixels_from.upload(pixel_state);
-    pixels_to.upload(std::vector<float>(pixel_state.size(), -1.0f));
     weights.upload(std::vector<float>(count, 7.0f));
     cumulative.upload(cumulative_in);
     parents.upload(parents_in);
@@ -364,19 +370,17 @@ TEST_CASE("resampling kernels follow the decision in the estimate buffer: gather
       parents.upload(parents_in);
     } else {
       q->launch(*find, linear, cumulative, parents, count, 0.5f, decision);
-      CHECK(parents.download() == parents_in);  // untouched
+      // Each its own parent: the next weigh reads every particle's own row.
+      CHECK(parents.download() == std::vector<unsigned>{0, 1, 2});
+      parents.upload(parents_in);  // gather_state must not follow these
     }
     q->launch(*gather_state, linear, from, to, parents, count, decision);
-    q->launch(*gather_pixels, compute::NdRange::linear(count * kGroup, kGroup), pixels_from, pixels_to, parents, pixels,
-              decision);
     q->launch(*reset, linear, weights, count, 0.0f, decision);
-    const auto got_state = to.download(), got_pixels = pixels_to.download(), got_weights = weights.download();
+    const auto got_state = to.download(), got_weights = weights.download();
     for (unsigned child = 0; child < count; ++child) {
       const unsigned source = resample ? parents_in[child] : child;
       for (unsigned k = 0; k < DT_STATE_STRIDE; ++k)
         REQUIRE(got_state[child * DT_STATE_STRIDE + k] == state[source * DT_STATE_STRIDE + k]);
-      for (unsigned k = 0; k < pixels; ++k)
-        REQUIRE(got_pixels[child * pixels + k] == (resample ? pixel_state[source * pixels + k] : -1.0f));
       REQUIRE(got_weights[child] == (resample ? 0.0f : 7.0f));
     }
   }

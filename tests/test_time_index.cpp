@@ -1,5 +1,5 @@
 // Per-pixel-time occlusion's 16-bit frame indices (cl/dt_time_index.h): the retirement kernel before an
-// index comes round again, the odd-row gather, and the host's table of frame times.
+// index comes round again, and the host's table of frame times.
 #include <catch2/catch.hpp>
 #include <depthtrack/error.hpp>
 #include <depthtrack/synth.hpp>
@@ -51,34 +51,6 @@ TEST_CASE("indices last written 32768 frames ago or more are retired to time 0, 
       const bool old = cases[c].second >= DT_TIME_RETIRE_AGE;
       CHECK(got[i] == (old ? DT_TIME_NEVER : one_round[c]));
     }
-  }
-}
-
-TEST_CASE("rows of time indices of odd length are gathered from their parents when the device resampled",
-          "[device][kernels]") {
-  if (!test::device_available()) return;
-  auto q = compute::open_device(test::device_selector());
-  auto program = resample_program(*q);
-  auto gather = program->kernel("gather_time_indices");
-  const unsigned pixels = 7, count = 3;
-  std::vector<uint16_t> rows(count * pixels);
-  for (size_t i = 0; i < rows.size(); ++i) rows[i] = static_cast<uint16_t>(1000 + i);
-  const std::vector<unsigned> parents = {2, 2, 0};
-  compute::Buffer<uint16_t> from(*q, rows.size()), to(*q, rows.size());
-  compute::Buffer<unsigned> parent_buffer(*q, count);
-  compute::Buffer<float> estimate(*q, DT_EST_SIZE);
-  from.upload(rows);
-  to.upload(std::vector<uint16_t>(rows.size(), 0));
-  parent_buffer.upload(parents);
-  for (const float resampled : {0.0f, 1.0f}) {
-    std::vector<float> e(DT_EST_SIZE, 0.0f);
-    e[DT_EST_RESAMPLE] = resampled;
-    estimate.upload(e);
-    q->launch(*gather, compute::NdRange::linear(count * 64, 64), from, to, parent_buffer, pixels, estimate)->wait();
-    const auto got = to.download();
-    for (unsigned child = 0; child < count; ++child)
-      for (unsigned k = 0; k < pixels; ++k)
-        CHECK(got[child * pixels + k] == (resampled != 0 ? rows[parents[child] * pixels + k] : 0));
   }
 }
 

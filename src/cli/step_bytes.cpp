@@ -11,12 +11,12 @@ StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, boo
   const double occlusion = mode == OcclusionStorage::Off ? 0 : px * f;         // p per pixel
   const double times = mode == OcclusionStorage::PerPixelTime ? px * 2 : 0.0;  // t_last's 16-bit frame index
   StepBytes b;
-  b.propagate = n * 2 * state;                                       // read and write each state
-  b.render = n * px * f;                                             // write each tile's depths
-  b.handoff = gl_handoff ? n * px * f * 2 : 0;                       // GL's page read, atlas written
-  b.weigh = n * (px * f + 2 * occlusion + 2 * times + 2 * f);        // atlas read, state read+write
-  b.resample = n * (2 * state + 2 * occlusion + 2 * times + 3 * f);  // gather: read parent, write child
-  b.refine = refine_iterations * 3 * px * f;                         // one pose: its tile, depth, ids
+  b.propagate = n * 2 * state;                                 // read and write each state
+  b.render = n * px * f;                                       // write each tile's depths
+  b.handoff = gl_handoff ? n * px * f * 2 : 0;                 // GL's page read, atlas written
+  b.weigh = n * (px * f + 2 * occlusion + 2 * times + 3 * f);  // atlas, parent's row read, own row written
+  b.resample = n * (2 * state + 3 * f);                        // the kinematic gather (weigh gathers the rows)
+  b.refine = refine_iterations * 3 * px * f;                   // one pose: its tile, depth, ids
   return b;
 }
 

@@ -1,5 +1,6 @@
 #include "filter/device_filter.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <depthtrack/error.hpp>
 #include <numeric>
@@ -35,9 +36,9 @@ double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bo
 struct DeviceFilter::Kernels {
   std::shared_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
       initialize_program;
-  std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state, gather_pixels,
-      fill, fill_when_resampling, initialize_particles, fill_per_particle, fill_time_indices, retire_time_indices,
-      gather_time_indices;
+  std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state,
+      identity_parents, fill, fill_when_resampling, initialize_particles, fill_per_particle, fill_time_indices,
+      retire_time_indices;
 };
 
 DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
@@ -70,7 +71,7 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   k.prefix_sum = k.resample_program->kernel("prefix_sum");
   k.find_parents = k.resample_program->kernel("find_parents");
   k.gather_state = k.resample_program->kernel("gather_state");
-  k.gather_pixels = k.resample_program->kernel("gather_pixels");
+  k.identity_parents = k.resample_program->kernel("identity_parents");
   k.fill = k.resample_program->kernel("fill");
   k.fill_when_resampling = k.resample_program->kernel("fill_when_resampling");
   k.initialize_program = device_->programs.program("initialize.cl", defines);
@@ -79,7 +80,6 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   if (config.occlusion_storage == OcclusionStorage::PerPixelTime) {  // cl/time_index.cl, in resample.cl's program
     k.fill_time_indices = k.resample_program->kernel("fill_time_indices");
     k.retire_time_indices = k.resample_program->kernel("retire_time_indices");
-    k.gather_time_indices = k.resample_program->kernel("gather_time_indices");
   }
 
   compute::Queue& q = *queue_;
@@ -180,6 +180,7 @@ void DeviceFilter::initialize_modes(std::span<const Pose> modes, const InitialSp
                  static_cast<unsigned>(config_.seed >> 32), mode_buffer,
                  model::initial_params(spread, centre_, modes.size()));
   queue_->launch(*k.fill, linear, log_weight_, count, 0.0f);
+  queue_->launch(*k.identity_parents, linear, parents_, count);
   auto fill_pixels = [&](compute::Buffer<float>& values, float value) {
     queue_->launch(*k.fill_per_particle, compute::NdRange::linear(count_ * kGroupSize, kGroupSize), values,
                    static_cast<unsigned>(pixels_), value);
@@ -206,6 +207,21 @@ void DeviceFilter::set_state(const std::vector<model::ParticleState>& particles,
   log_weight_.upload(std::vector<float>(log_weights.begin(), log_weights.end()));
   if (!occlusion.empty()) occlusion_.upload(occlusion);
   if (!occlusion_time.empty()) occlusion_time_.upload(frame_times_->indices(occlusion_time));
+  queue_->launch(*kernels_->identity_parents, compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup),
+                 parents_, static_cast<unsigned>(count_));
+  queue_->finish();
+}
+
+// Particle i's row is parents_[i] of the buffer (cl/weigh.cl folds the gather into the next frame).
+template <typename T>
+std::vector<T> DeviceFilter::rows_by_parent(const compute::Buffer<T>& rows) const {
+  const std::vector<T> all = rows.download();
+  const std::vector<unsigned> parents = parents_.download();
+  std::vector<T> gathered(count_ * pixels_);
+  for (size_t i = 0; i < count_; ++i)
+    std::copy_n(all.begin() + static_cast<std::ptrdiff_t>(parents[i] * pixels_), pixels_,
+                gathered.begin() + static_cast<std::ptrdiff_t>(i * pixels_));
+  return gathered;
 }
 
 std::vector<model::ParticleState> DeviceFilter::unpack(const compute::Buffer<float>& state) const {
@@ -217,12 +233,13 @@ std::vector<model::ParticleState> DeviceFilter::particles() const {
 }
 
 std::vector<float> DeviceFilter::occlusion_state() const {
-  return config_.occlusion_storage == OcclusionStorage::Off ? std::vector<float>{} : occlusion_.download();
+  return config_.occlusion_storage == OcclusionStorage::Off ? std::vector<float>{} : rows_by_parent(occlusion_);
 }
 
 std::vector<float> DeviceFilter::occlusion_times() const {
-  return config_.occlusion_storage == OcclusionStorage::PerPixelTime ? frame_times_->times(occlusion_time_.download())
-                                                                     : std::vector<float>{};
+  return config_.occlusion_storage == OcclusionStorage::PerPixelTime
+             ? frame_times_->times(rows_by_parent(occlusion_time_))
+             : std::vector<float>{};
 }
 
 // Resampling gathers into the scratch buffer and swaps, so the weighed states are left there.
@@ -276,21 +293,24 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
       frame_times_->retired();
     }
   }
-  // The occlusion priors for the refinement go to the resampling's scratch, free until it gathers.
+  // Each particle's state from its parent's row (the last frame's resampling) into its own row of the
+  // other buffer, which then becomes the state; the rows before stay for the refinement's prior.
   p->weighed = queue_->launch(*k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize), atlas_, observed_,
-                              occlusion_, occlusion_time_, frame_times_->device(), log_likelihood_, log_weight_,
-                              static_cast<unsigned>(pixels_), model::model_params(config_), static_cast<float>(time_),
-                              now_index, static_cast<float>(dt), atlas_source_->layout().kernel_args(),
-                              scratch_occlusion_, static_cast<unsigned>(config_.refine.enabled));
+                              parents_, occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_,
+                              frame_times_->device(), log_likelihood_, log_weight_, static_cast<unsigned>(pixels_),
+                              model::model_params(config_), static_cast<float>(time_), now_index,
+                              static_cast<float>(dt), atlas_source_->layout().kernel_args());
+  std::swap(occlusion_, scratch_occlusion_);
+  std::swap(occlusion_time_, scratch_occlusion_time_);
   p->summarized = queue_->launch(*k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize), state_, log_weight_,
                                  log_likelihood_, weights_, estimate_, count, static_cast<float>(centre_.x()),
                                  static_cast<float>(centre_.y()), static_cast<float>(centre_.z()),
                                  model::float_threshold(config_.resample_kl_threshold));
-  // The occlusion priors weigh kept for the refinement are in the resampling's scratch.
+  // Before resample() overwrites parents_ with this frame's choice.
   if (refiner_)
     p->refined =
-        refiner_->refine(estimate_, RefineInputs{state_, observed_, occlusion_, occlusion_time_, frame_times_->device(),
-                                                 scratch_occlusion_, atlas_, atlas_source_->layout(), time_});
+        refiner_->refine(estimate_, RefineInputs{state_, observed_, scratch_occlusion_, scratch_occlusion_time_,
+                                                 frame_times_->device(), parents_, time_, dt});
   p->resampling = resample();
   if (refiner_) p->shifted = shift_particles();
   pending_ = std::move(p);
@@ -316,10 +336,6 @@ Estimate DeviceFilter::collect() {
       for (int c = 0; c < 6; ++c) e.covariance(r, c) = est[DT_EST_COV + 6 * r + c];
     e.refine_iterations = static_cast<int>(est[DT_EST_REFINE_ITERATIONS]);
   }
-  // The per-pixel gathers ran only if the device resampled: only then is their target the state.
-  if (e.resampled && config_.occlusion_storage != OcclusionStorage::Off) std::swap(occlusion_, scratch_occlusion_);
-  if (e.resampled && config_.occlusion_storage == OcclusionStorage::PerPixelTime)
-    std::swap(occlusion_time_, scratch_occlusion_time_);
   last_resampled_ = e.resampled;
   weighed_in_scratch_ = true;
 
@@ -347,13 +363,12 @@ Estimate DeviceFilter::collect() {
 
 // Enqueued every frame; the kernels read the device's decision (estimate_[DT_EST_RESAMPLE]). The
 // state is gathered, or copied without resampling, into the scratch buffer, which becomes the state:
-// the weighed states stay in scratch_state_. The per-pixel state is swapped by update() once it
-// knows the decision.
+// the weighed states stay in scratch_state_. The per-pixel state is not copied: parents_ keeps the
+// choice (the identity without resampling) and the next frame's weigh reads each row from its parent.
 std::vector<compute::EventPtr> DeviceFilter::resample() {
   Kernels& k = *kernels_;
   const dt_philox4 words = dt_random_words(config_.seed, 0u, frame_, DT_STREAM_RESAMPLE, 0u);
   const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
-  const auto per_particle_group = compute::NdRange::linear(count_ * kGroupSize, kGroupSize);
   const unsigned count = static_cast<unsigned>(count_);
   std::vector<compute::EventPtr> events;
   events.push_back(queue_->launch(*k.prefix_sum, compute::NdRange::linear(kGroupSize, kGroupSize), weights_,
@@ -362,17 +377,6 @@ std::vector<compute::EventPtr> DeviceFilter::resample() {
       queue_->launch(*k.find_parents, linear, cumulative_, parents_, count, dt_uniform01(words.v[0]), estimate_));
   events.push_back(queue_->launch(*k.gather_state, linear, state_, scratch_state_, parents_, count, estimate_));
   std::swap(state_, scratch_state_);
-  if (config_.occlusion_storage != OcclusionStorage::Off)
-    events.push_back(queue_->launch(*k.gather_pixels, per_particle_group, occlusion_, scratch_occlusion_, parents_,
-                                    static_cast<unsigned>(pixels_), estimate_));
-  // The 16-bit time indices: an even row moves as 32-bit words (gather_pixels copies bits), an odd one
-  // in its own kernel.
-  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime && pixels_ % 2 == 0)
-    events.push_back(queue_->launch(*k.gather_pixels, per_particle_group, occlusion_time_, scratch_occlusion_time_,
-                                    parents_, static_cast<unsigned>(pixels_ / 2), estimate_));
-  else if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
-    events.push_back(queue_->launch(*k.gather_time_indices, per_particle_group, occlusion_time_,
-                                    scratch_occlusion_time_, parents_, static_cast<unsigned>(pixels_), estimate_));
   events.push_back(queue_->launch(*k.fill_when_resampling, linear, log_weight_, count, 0.0f, estimate_));
   return events;
 }

@@ -17,9 +17,9 @@
 
 namespace depthtrack {
 
-// Device memory one particle's buffers take (atlas, occlusion probabilities and 16-bit time indices with
-// their resampling twins, the state twice, weights; with GL pages, GL's colour and depth pages and its
-// pose buffer): what the memory check refuses by and `depthtrack bench` reports.
+// Device memory one particle's buffers take (atlas, occlusion probabilities and 16-bit time indices
+// twice (weigh reads one and writes the other), the state twice, weights; with GL pages, GL's colour and
+// depth pages and its pose buffer): what the memory check refuses by and `depthtrack bench` reports.
 double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bool gl_pages);
 
 class DevicePoseScorer;
@@ -79,6 +79,9 @@ class DeviceFilter final : public FilterBackend {
   size_t checked_particle_count() const;
   void upload_particles(const std::vector<model::ParticleState>& particles);
   std::vector<model::ParticleState> unpack(const compute::Buffer<float>& state) const;
+  // Per-pixel rows downloaded in particle order: particle i's is row parents_[i].
+  template <typename T>
+  std::vector<T> rows_by_parent(const compute::Buffer<T>& rows) const;
   // Enqueues the resampling kernels, which resample only if the device decided to; their events.
   std::vector<compute::EventPtr> resample();
   // Enqueues the shift of the cloud by the refinement's correction, leaving the weighed states in
@@ -104,6 +107,9 @@ class DeviceFilter final : public FilterBackend {
   compute::Buffer<float> state_, scratch_state_, log_weight_, log_likelihood_, weights_, cumulative_, estimate_;
   compute::Buffer<unsigned> parents_;
   compute::Buffer<float> atlas_, observed_;
+  // Per-pixel occlusion state, double-buffered: weigh reads particle i's row parents_[i] of one and
+  // writes row i of the other (cl/weigh.cl), so resampling copies no rows; parents_ is the identity
+  // after initialize and set_state.
   compute::Buffer<float> occlusion_, scratch_occlusion_;
   // Per-pixel time: each pixel's last frame as an index into frame_times_ (cl/dt_time_index.h).
   compute::Buffer<uint16_t> occlusion_time_, scratch_occlusion_time_;

@@ -86,19 +86,18 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
 std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& estimate, const RefineInputs& in) {
   if (layout_ == RefineLayout::Spread) return refine_spread(estimate, in);
   const dt_refine_args args =
-      model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time);
+      model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time, in.dt);
   return {queue_.launch(*refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup), estimate, in.states,
-                        in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.priors, in.atlas,
-                        in.layout.kernel_args(), mesh_.vertices, mesh_.triangles, mesh_.planes, mesh_.triangle_count(),
-                        model::camera_params(camera_, config_), model::model_params(config_), args, pose_, tile_, ids_,
-                        correction_)};
+                        in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.parents, mesh_.vertices,
+                        mesh_.triangles, mesh_.planes, mesh_.triangle_count(), model::camera_params(camera_, config_),
+                        model::model_params(config_), args, pose_, tile_, ids_, correction_)};
 }
 
 // begin, then iterations + 1 evaluations (draw, sums) with no wait: the sums kernel's last group
 // stops the fit on the device, and what follows returns at once.
 std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in) {
   const dt_refine_args args =
-      model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time);
+      model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time, in.dt);
   const dt_camera cam = model::camera_params(camera_, config_);
   const dt_model model = model::model_params(config_);
   const auto per_triangle =
@@ -113,8 +112,8 @@ std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<floa
                                  static_cast<float>(config_.refine.damping)));
   compute::set_launch_args(*draw_, fit_state_, mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam, nearest_);
   compute::set_launch_args(*sums_, fit_state_, estimate, in.states, in.observed, in.occlusion, in.occlusion_time,
-                           in.frame_times, in.priors, in.atlas, in.layout.kernel_args(), mesh_.planes, triangles, cam,
-                           model, args, nearest_, partials_, correction_);
+                           in.frame_times, in.parents, mesh_.planes, triangles, cam, model, args, nearest_, partials_,
+                           correction_);
   for (int evaluation = 0; evaluation <= config_.refine.iterations; ++evaluation) {
     queue_.launch_untimed(*draw_, per_triangle);
     if (evaluation < config_.refine.iterations)

@@ -14,7 +14,6 @@
 #include <string>
 #include <vector>
 
-#include "atlas/atlas_layout.hpp"
 #include "atlas/raster_inputs.hpp"
 #include "compute/buffer.hpp"
 #include "compute/device_info.hpp"
@@ -26,13 +25,14 @@ namespace depthtrack {
 struct RefineInputs {
   const compute::Buffer<float>& states;
   const compute::Buffer<float>& observed;
+  // The occlusion state from before this frame's weigh, particle i's in row parents[i] (cl/weigh.cl):
+  // the heaviest particle's, aged to now, is the fit's occlusion prior.
   const compute::Buffer<float>& occlusion;
   const compute::Buffer<uint16_t>& occlusion_time;  // frame indices (cl/dt_time_index.h)
   const compute::Buffer<float>& frame_times;
-  const compute::Buffer<float>& priors;  // weigh's occlusion priors of this frame
-  const compute::Buffer<float>& atlas;
-  const render::AtlasLayout& layout;
+  const compute::Buffer<unsigned>& parents;
   double time;  // seconds since the first frame
+  double dt;    // seconds since the frame before
 };
 
 // The layout Auto picks: Spread for meshes of kSpreadTriangles triangles or more on every device, and

@@ -39,13 +39,14 @@ dt_camera camera_params(const Camera& camera, const TrackerConfig& config) {
 }
 
 dt_refine_args refine_params(const Refinement& refine, const Eigen::Vector3d& centre, double radius,
-                             size_t vertex_count, double now) {
+                             size_t vertex_count, double now, double dt) {
   return dt_refine_args{static_cast<float>(refine.damping),
                         static_cast<float>(refine.min_incidence),
                         static_cast<float>(centre.x()),
                         static_cast<float>(centre.y()),
                         static_cast<float>(centre.z()),
                         static_cast<float>(now),
+                        static_cast<float>(dt),
                         refine.iterations,
                         static_cast<float>(radius),
                         static_cast<float>(refine.converged_motion),
