@@ -5,11 +5,13 @@
 
 #include "compute/buffer.hpp"
 #include "compute/kernel_sources.hpp"
+#include "compute/program_cache.hpp"
 #include "device_support.hpp"
 #include "dt_atlas.h"
 #include "dt_params.h"
 #include "dt_state.h"
 #include "dt_time_index.h"
+#include "filter/one_group_kernel.hpp"
 #include "model/occlusion_chain.hpp"
 #include "model/particle.hpp"
 #include "model/particle_packing.hpp"
@@ -250,11 +252,16 @@ TEST_CASE("weigh kernel stays finite and equal to the reference for observations
 TEST_CASE("summarize kernel equals the reference normalization and mean pose", "[device][kernels]") {
   if (!test::device_available()) return;
   auto q = compute::open_device(test::device_selector());
-  auto program = build(*q, "summarize.cl");
-  auto kernel = program->kernel("summarize");
+  compute::ProgramCache programs(*q);
+  // 1,000 particles: more than one pass of the narrow group; 40,000: the widened group the filter
+  // builds for large clouds (as wide as this device and kernel allow).
+  const size_t count = GENERATE(size_t{1000}, size_t{40000});
+  const OneGroupKernel summarize = build_one_group_kernel(programs, "summarize.cl", "summarize", {"DT_OCCLUSION=0"},
+                                                          one_group_size(count, q->info()));
+  INFO(count << " particles, a group of " << summarize.group);
+  if (count >= kWideGroupParticles) CHECK(summarize.group > kGroup);
   std::mt19937 rng(11);
   std::normal_distribution<double> n;
-  const size_t count = 1000;  // more than one pass of the work-group
   std::vector<model::ParticleState> states(count);
   std::vector<double> log_weights(count), log_likelihoods(count);
   const model::ParticleState base = random_state(rng);
@@ -273,8 +280,8 @@ TEST_CASE("summarize kernel equals the reference normalization and mean pose", "
   lw.upload(std::vector<float>(log_weights.begin(), log_weights.end()));
   ll.upload(std::vector<float>(log_likelihoods.begin(), log_likelihoods.end()));
   const float kl_threshold = 2.0f;
-  q->launch(*kernel, compute::NdRange::linear(kGroup, kGroup), state, lw, ll, w, est, static_cast<unsigned>(count),
-            0.0f, 0.0f, 0.02f, kl_threshold)
+  q->launch(*summarize.kernel, compute::NdRange::linear(summarize.group, summarize.group), state, lw, ll, w, est,
+            static_cast<unsigned>(count), 0.0f, 0.0f, 0.02f, kl_threshold)
       ->wait();
   const auto e = est.download();
   const auto summary = reference::summarize_log_weights(log_weights);
@@ -301,11 +308,15 @@ TEST_CASE("prefix-sum and find-parents kernels resample as the reference does", 
   if (!test::device_available()) return;
   auto q = compute::open_device(test::device_selector());
   auto program = build(*q, "resample.cl");
-  auto prefix = program->kernel("prefix_sum");
   auto find = program->kernel("find_parents");
+  compute::ProgramCache programs(*q);
   std::mt19937 rng(2);
   std::exponential_distribution<double> e;
-  for (size_t count : {5u, 200u, 5000u}) {
+  // The last: the widened group the filter builds for large clouds.
+  for (size_t count : {size_t{5}, size_t{200}, size_t{5000}, size_t{40000}}) {
+    const OneGroupKernel prefix = build_one_group_kernel(programs, "resample.cl", "prefix_sum", {"DT_OCCLUSION=0"},
+                                                         one_group_size(count, q->info()));
+    INFO(count << " particles, a group of " << prefix.group);
     std::vector<double> w(count);
     double sum = 0;
     for (auto& x : w) sum += x = e(rng) * (e(rng) > 1.5 ? 20 : 1);  // a few heavy particles
@@ -320,8 +331,8 @@ TEST_CASE("prefix-sum and find-parents kernels resample as the reference does", 
     const std::vector<float> w_float(w.begin(), w.end());
     weights.upload(w_float);
     w.assign(w_float.begin(), w_float.end());
-    q->launch(*prefix, compute::NdRange::linear(kGroup, kGroup), weights, cumulative, static_cast<unsigned>(count),
-              decision);
+    q->launch(*prefix.kernel, compute::NdRange::linear(prefix.group, prefix.group), weights, cumulative,
+              static_cast<unsigned>(count), decision);
     const float u = dt_uniform01(dt_random_words(4, 0, 1, DT_STREAM_RESAMPLE, 0).v[0]);
     q->launch(*find, compute::NdRange::linear((count + 63) / 64 * 64, 64), cumulative, parents,
               static_cast<unsigned>(count), u, decision)
