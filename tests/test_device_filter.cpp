@@ -8,6 +8,7 @@
 #include "device_support.hpp"
 #include "filter/device_filter.hpp"
 #include "filter/device_refiner.hpp"
+#include "filter/one_group_kernel.hpp"
 #include "model/occlusion_chain.hpp"
 #include "philox.h"
 #include "reference/observation_model.hpp"
@@ -345,6 +346,54 @@ TEST_CASE("the spread refinement at 320x240 (more pixels than its groups' work-i
     refined += a.refine_iterations > 0;
   }
   CHECK(refined > 0);  // the fit took steps: the rows were added and judged
+}
+
+TEST_CASE("a cloud large enough for the widened summarize and prefix sum equals the reference", "[device][kernels]") {
+  if (!test::device_available()) return;
+  // 40x30, so that the reference's 16,384 renderings a frame stay quick; the host rasterizer's atlas
+  // (renderer cpu) leaves only the device's float arithmetic to differ.
+  const Scene scene = make_scene(3, 16);
+  TrackerConfig config;
+  config.particles = static_cast<int>(kWideGroupParticles);
+  config.seed = 9;
+  config.backend = test::device_selector();
+  config.renderer = Renderer::Cpu;
+  config.refine.enabled = false;
+  reference::ReferenceFilter reference(scene.mesh, scene.working, config);
+  DeviceFilter device(compute::open_device(config.backend), scene.mesh, scene.working, config);
+  const InitialSpread spread{0.01, 0.05};
+  reference.initialize(scene.frames[0].ground_truth, spread);
+  device.initialize(scene.frames[0].ground_truth, spread);
+  for (size_t f = 0; f < scene.frames.size(); ++f) {
+    INFO(scene.name << ", frame " << f);
+    device.set_state(reference.particles(), reference.occlusion_state(), reference.occlusion_times(),
+                     reference.log_weights());
+    const double dt = f == 0 ? 0.0 : scene.frames[f].timestamp - scene.frames[f - 1].timestamp;
+    const Estimate a = reference.update(scene.frames[f].depth, dt);
+    const Estimate b = device.update(scene.frames[f].depth, dt);
+    CHECK(translation_error(a.pose, b.pose) <= 1e-5);
+    CHECK(rotation_error(a.pose, b.pose) <= 1e-4);
+    CHECK(b.effective_sample_size == Approx(a.effective_sample_size).epsilon(1e-3).margin(1e-3));
+    REQUIRE(a.resampled == b.resampled);
+    if (a.resampled) {
+      // Ancestry from the wide prefix sum: the reference's resampling of the device's own likelihoods
+      // (with 16,384 children some points lie within the likelihoods' float rounding of a boundary),
+      // but for children within the float log weights' rounding of one (log weights of hundreds of
+      // nats carry ~3e-5 of it: 1-3 children a frame here, as many with the narrow group at 16,383
+      // particles). The prefix sum itself is held to exact ancestry on given weights (test_kernels.cpp).
+      std::vector<double> w = reference.last_normalized_weights();
+      const auto ll_ref = reference.last_log_likelihoods(), ll_dev = device.last_log_likelihoods();
+      double sum = 0;
+      for (size_t i = 0; i < w.size(); ++i) sum += w[i] *= std::exp(ll_dev[i] - ll_ref[i]);
+      for (double& x : w) x /= sum;
+      const double u =
+          dt_uniform01(dt_random_words(config.seed, 0u, static_cast<dt_u32>(f), DT_STREAM_RESAMPLE, 0u).v[0]);
+      const auto expected = reference::systematic_resample(w, u), got = device.last_parents();
+      size_t differing = 0;
+      for (size_t i = 0; i < expected.size(); ++i) differing += expected[i] != got[i];
+      CHECK(differing <= expected.size() / 1000);
+    }
+  }
 }
 
 TEST_CASE("more particles than the device can hold is a clear error, not a crash, for every renderer",
