@@ -1,7 +1,11 @@
 /* Normalization, degeneracy and the estimate, in one work-group of DT_GROUP_SIZE that strides over
  * all particles: log-sum-exp, ESS, KL from uniform, the weighted mean centre and velocities, and the
  * rotation mean in the tangent space of the heaviest particle (4 Karcher iterations), and the
- * resampling decision (KL > kl_threshold) that resample.cl's kernels read.
+ * resampling decision (KL > kl_threshold) that resample.cl's kernels read. With the effective sample
+ * size near 1 nearly every weight is exactly 0 in float, and such a particle adds exactly 0 to every
+ * weighted sum (its state is finite), so its state is not read: the passes over the states then cost
+ * a read of the weights (one group strides over all particles: at a million particles each state read
+ * was a wait on memory).
  * Reference: summarize_log_weights and weighted_mean_pose. */
 #include "dt_prelude.h"
 #include "dt_quaternion.h"
@@ -50,6 +54,7 @@ __kernel void summarize(__global const float* state, __global const float* log_w
   for (uint i = lid; i < count; i += DT_GROUP_SIZE) {
     const float w = exp(log_weight[i] - max_log_weight) / total;
     weights[i] = w;
+    if (w == 0.0f) continue; /* adds exactly 0 */
     __global const float* s = state + DT_CAST(ulong, i) * DT_STATE_STRIDE;
     const dt_vec3 c = dt_quat_rotate(dt_load_rotation(state, i), centre);
     acc[0] += w * w;
@@ -67,6 +72,7 @@ __kernel void summarize(__global const float* state, __global const float* log_w
     float step[3] = {0.0f, 0.0f, 0.0f};
     for (uint i = lid; i < count; i += DT_GROUP_SIZE) {
       const float w = weights[i];
+      if (w == 0.0f) continue; /* adds exactly 0 */
       const dt_vec3 d = dt_quat_log(dt_quat_mul(dt_quat_conj(mean), dt_load_rotation(state, i)));
       step[0] += w * d.x;
       step[1] += w * d.y;
