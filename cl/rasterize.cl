@@ -62,10 +62,11 @@ typedef struct {
  * atomic min. With nearest (the refinement's one pass, where 64-bit atomics exist: programs defining
  * DT_NEAREST_PACKED), it keeps depth bits and triangle together, (bits << 32) | triangle, by a 64-bit
  * atomic min: the nearest depth and, on a tie, the lowest index, as the reference's strict `<` in
- * triangle order. */
+ * triangle order. With local_tile (render_weigh.cl's tile in work-group memory) it keeps the nearer
+ * depth there, as tile does in global memory. */
 DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_plane plane, dt_camera cam,
                                      __global uint* tile, __global uint* ids, __global dt_u64* nearest,
-                                     uint triangle) {
+                                     DT_LOCAL_PTR uint* local_tile, uint triangle) {
   const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
   if (area == 0.0f || !isfinite(area)) return;
   /* Pixel centres in the bounding box, clamped in float to [-1, size] before the conversion to int,
@@ -92,7 +93,9 @@ DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_plan
       const float z = dt_divide(plane.d, plane.nx * ((pu - cam.cx) * inverse_fx) + plane.ny * ray_y + plane.nz);
       if (!(z >= cam.near && z <= cam.far)) continue;
       const uint k = DT_CAST(uint, v) * cam.width + DT_CAST(uint, u);
-      if (nearest) {
+      if (local_tile) {
+        dt_atomic_min_u32(local_tile + k, dt_as_uint(z));
+      } else if (nearest) {
 #ifdef DT_NEAREST_PACKED
         dt_atomic_min_u64(nearest + k, (DT_CAST(dt_u64, dt_as_uint(z)) << 32) | triangle);
 #endif
@@ -126,7 +129,7 @@ DT_DEVICE_FN dt_vec3 dt_cut(dt_vec3 inside, dt_vec3 outside, float near) {
  * plane, 3 or 4 vertices remain), then drawn as a fan. */
 DT_DEVICE_FN void dt_draw_cut_triangle(dt_vec3 a, dt_vec3 b, dt_vec3 c, dt_plane plane, dt_camera cam,
                                        __global uint* tile, __global uint* ids, __global dt_u64* nearest,
-                                       uint triangle) {
+                                       DT_LOCAL_PTR uint* local_tile, uint triangle) {
   const dt_vec3 p[3] = {a, b, c};
   dt_vec3 kept[4];
   int n = 0;
@@ -139,7 +142,7 @@ DT_DEVICE_FN void dt_draw_cut_triangle(dt_vec3 a, dt_vec3 b, dt_vec3 c, dt_plane
   const dt_point first = dt_project(kept[0], cam);
   for (int i = 1; i + 1 < n; ++i)
     dt_raster_triangle(first, dt_project(kept[i], cam), dt_project(kept[i + 1], cam), plane, cam, tile, ids, nearest,
-                       triangle);
+                       local_tile, triangle);
 }
 
 /* camera_from_object as the rows of [R | t]. */
@@ -188,11 +191,11 @@ DT_DEVICE_FN dt_plane dt_triangle_plane(dt_rigid m, __global const float* planes
   return p;
 }
 
-/* Triangle t of the mesh placed by pose, cut at the near plane where it crosses it (tile, ids and
- * nearest as for dt_raster_triangle, t its triangle index). */
+/* Triangle t of the mesh placed by pose, cut at the near plane where it crosses it (tile, ids,
+ * nearest and local_tile as for dt_raster_triangle, t its triangle index). */
 DT_DEVICE_FN void dt_draw_triangle(dt_rigid pose, __global const float* vertices, __global const uint* triangles,
                                    __global const float* planes, uint t, dt_camera cam, __global uint* tile,
-                                   __global uint* ids, __global dt_u64* nearest) {
+                                   __global uint* ids, __global dt_u64* nearest, DT_LOCAL_PTR uint* local_tile) {
   __global const uint* corners = triangles + 3 * DT_CAST(ulong, t);
   const dt_vec3 a = dt_vertex(pose, vertices, corners[0]), b = dt_vertex(pose, vertices, corners[1]),
                 c = dt_vertex(pose, vertices, corners[2]);
@@ -200,9 +203,10 @@ DT_DEVICE_FN void dt_draw_triangle(dt_rigid pose, __global const float* vertices
   if (in_front == 0) return;
   const dt_plane plane = dt_triangle_plane(pose, planes, t);
   if (in_front == 3)
-    dt_raster_triangle(dt_project(a, cam), dt_project(b, cam), dt_project(c, cam), plane, cam, tile, ids, nearest, t);
+    dt_raster_triangle(dt_project(a, cam), dt_project(b, cam), dt_project(c, cam), plane, cam, tile, ids, nearest,
+                       local_tile, t);
   else
-    dt_draw_cut_triangle(a, b, c, plane, cam, tile, ids, nearest, t);
+    dt_draw_cut_triangle(a, b, c, plane, cam, tile, ids, nearest, local_tile, t);
 }
 
 /* vertices: 3 floats each, object frame; triangles: 3 vertex indices each; planes: object-frame
@@ -219,7 +223,7 @@ __kernel void rasterize(__global const float* states, __global const float* vert
 
   const dt_rigid pose = dt_particle_pose(states + DT_CAST(ulong, particle) * DT_STATE_STRIDE);
   for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
-    dt_draw_triangle(pose, vertices, triangles, planes, t, cam, tile, 0, 0);
+    dt_draw_triangle(pose, vertices, triangles, planes, t, cam, tile, 0, 0, 0);
   barrier(CLK_GLOBAL_MEM_FENCE);
 
   for (uint k = lid; k < pixels; k += DT_GROUP_SIZE)

@@ -42,7 +42,7 @@ __kernel void refine_draw(__global const dt_refine_state* s, __global const floa
                           dt_camera cam, __global dt_u64* nearest) {
   const uint t = get_global_id(0);
   if (!s->active || t >= triangle_count) return;
-  dt_draw_triangle(dt_particle_pose(s->candidate), vertices, triangles, planes, t, cam, 0, 0, nearest);
+  dt_draw_triangle(dt_particle_pose(s->candidate), vertices, triangles, planes, t, cam, 0, 0, nearest, 0);
 }
 
 /* One work-item of the last group, with the candidate's sums: PoseRefiner's loop body. Keeps or

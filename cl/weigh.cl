@@ -12,12 +12,10 @@
  * frame is now_index, whose time (now) the first work-item writes into the table: no pixel holds that
  * index while it is written (indices are retired long before they come round).
  * Reference: ReferenceFilter::weigh_particle (and its resampling's gather). */
+#include "dt_prelude.h"
 #include "dt_atlas.h"
 #include "dt_group.h"
-#include "dt_model.h"
-#include "dt_params.h" /* the DT_OCCLUSION codes */
-#include "dt_prelude.h"
-#include "dt_time_index.h"
+#include "dt_weigh.h" /* the pixel's term and state: shared with render_weigh.cl */
 
 __kernel void weigh(__global const float* atlas, __global const float* observed, __global const uint* parents,
                     __global const float* occlusion_from, __global const dt_u16* time_from,
@@ -29,43 +27,12 @@ __kernel void weigh(__global const float* atlas, __global const float* observed,
 #if DT_OCCLUSION == DT_PER_PIXEL_TIME
   if (particle == 0 && get_local_id(0) == 0) frame_times[now_index] = now;
 #endif
-#if DT_OCCLUSION != DT_OCCLUSION_OFF
   const ulong from = DT_CAST(ulong, parents[particle]) * pixels, to = DT_CAST(ulong, particle) * pixels;
-#endif
   const ulong tile = dt_atlas_tile_start(layout, particle);
   float sum = 0.0f;
-  for (uint k = get_local_id(0); k < pixels; k += DT_GROUP_SIZE) {
-    const float y_hat = atlas[dt_atlas_pixel(layout, tile, k)];
-    const float y = observed[k];
-    const int used = y_hat > 0.0f && y > 0.0f && isfinite(y);
-    float p = 0.0f;
-#if DT_OCCLUSION == DT_GLOBAL_TIME
-    p = dt_propagate_occlusion(m, occlusion_from[from + k], dt); /* every pixel ages, covered or not */
-    if (!used) {
-      occlusion_to[to + k] = p;
-      continue;
-    }
-#elif DT_OCCLUSION == DT_PER_PIXEL_TIME
-    const float kept = occlusion_from[from + k];
-    const dt_u16 seen = time_from[from + k];
-    if (!used) { /* unchanged: the parent's value and time */
-      occlusion_to[to + k] = kept;
-      time_to[to + k] = seen;
-      continue;
-    }
-    p = dt_propagate_occlusion(m, kept, now - frame_times[seen]);
-#else
-    if (!used) continue; /* adds 0 */
-#endif
-    float posterior;
-    sum += dt_pixel_log_ratio(m, y, y_hat, p, &posterior);
-#if DT_OCCLUSION != DT_OCCLUSION_OFF
-    occlusion_to[to + k] = posterior;
-#endif
-#if DT_OCCLUSION == DT_PER_PIXEL_TIME
-    time_to[to + k] = DT_CAST(dt_u16, now_index);
-#endif
-  }
+  for (uint k = get_local_id(0); k < pixels; k += DT_GROUP_SIZE)
+    sum += dt_weigh_pixel(atlas[dt_atlas_pixel(layout, tile, k)], observed[k], from + k, to + k, occlusion_from,
+                          time_from, occlusion_to, time_to, frame_times, m, now, now_index, dt);
   sum = dt_group_sum(scratch, sum);
   if (get_local_id(0) == 0) {
     log_likelihood[particle] = sum;

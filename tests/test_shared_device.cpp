@@ -71,7 +71,8 @@ TEST_CASE("Two trackers on one Device build each program once and track as on th
   const auto device = Device::open(test::device_selector());
   REQUIRE_FALSE(device->is_host());
   Tracker a(device, mesh, synth.camera, first);
-  // propagate, weigh, summarize, resample, initialize, rasterize (the atlas's and the search's: one key),
+  // propagate, weigh (at 80x60 render_weigh: the kernel renderer draws inside it), summarize, resample,
+  // initialize, rasterize (the atlas's and the search's: one key),
   // refine, score: eight programs.
   const size_t builds = device->program_builds();
   CHECK(builds == 8);

@@ -7,6 +7,7 @@
 #include "cli/environment_defaults.hpp"
 #include "cli/step_bytes.hpp"
 #include "compute/queue.hpp"
+#include "filter/device_filter.hpp"
 #include "tracker/make_filter_backend.hpp"
 
 namespace depthtrack::cli {
@@ -44,11 +45,11 @@ BenchTarget describe_target(const std::string& backend) {
   if (backend == "reference") return {backend, "cpu", bench::cpu_name(), "-", true, false};
   // The reference on a thread pool (cpu, cpu:N): no compute device to open; the count is checked here.
   if (backend == "cpu" || backend.rfind("cpu:", 0) == 0)
-    return {backend, "cpu", bench::cpu_name() + ", " + std::to_string(cpu_backend_threads(backend)) + " threads", "-",
-            true, false};
+    return {backend, "cpu", bench::cpu_name() + ", " + std::to_string(cpu_backend_threads(backend)) + " threads",
+            "-",     true,  false};
   const auto queue = compute::open_device(backend);
   const compute::DeviceInfo& info = queue->info();
-  return {backend, info.platform, info.name, info.driver, !info.is_gpu, true};
+  return {backend, info.platform, info.name, info.driver, !info.is_gpu, true, info.local_memory};
 }
 
 std::string BenchCase::test() const {
@@ -96,9 +97,10 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
                     p95, static_cast<int>(samples)});
   };
   const size_t pixels = static_cast<size_t>(c.width) * static_cast<size_t>(c.height);
-  const StepBytes b =
-      step_bytes(static_cast<size_t>(c.particles), pixels, c.mode, target.on_device && renderer == "gl",
-                 config.refine.enabled ? config.refine.iterations : 0);
+  const bool inside_weigh =
+      target.on_device && renderer == "kernel" && renders_inside_weigh(pixels, target.local_memory);
+  const StepBytes b = step_bytes(static_cast<size_t>(c.particles), pixels, c.mode, target.on_device && renderer == "gl",
+                                 config.refine.enabled ? config.refine.iterations : 0, inside_weigh);
   const char* names[6] = {"propagate", "render", "handoff", "weigh", "resample", "refine"};
   const double bytes[6] = {b.propagate, b.render, b.handoff, b.weigh, b.resample, b.refine};
   for (int s = 0; s < 6; ++s) {
@@ -112,7 +114,7 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
   row("frames_per_second", "Hz", 1000 / frame_ms, 1000 / frame_p95, total.size());
   CaseResult result{c, target.backend, frame_ms, NAN};
   if (target.on_device) {
-    result.memory_mib = filter_memory_mib(static_cast<size_t>(c.particles), pixels, c.mode);
+    result.memory_mib = filter_memory_mib(static_cast<size_t>(c.particles), pixels, c.mode, !inside_weigh);
     row("device_memory", "MiB", result.memory_mib, result.memory_mib, 1);
   }
   if (target.backend != "reference" && std::isfinite(reference_ms))

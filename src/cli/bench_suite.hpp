@@ -38,6 +38,7 @@ struct BenchTarget {
   std::string backend, platform, device, driver;
   bool cpu = true;          // the reference or a CPU device: cases beyond cpu_max_work are skipped
   bool on_device = false;   // a compute device's filter: device_memory is reported
+  size_t local_memory = 0;  // its bytes per work-group: whether the kernel renderer draws inside weigh
 };
 // Opens each device once (InputError from the compute layer for an unknown or absent one; cpu:N
 // with an impossible N).

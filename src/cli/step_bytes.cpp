@@ -5,23 +5,25 @@
 
 namespace depthtrack::cli {
 
-StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, bool gl_handoff, int refine_iterations) {
+StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, bool gl_handoff, int refine_iterations,
+                     bool inside_weigh) {
   const double n = static_cast<double>(particles), px = static_cast<double>(pixels), f = sizeof(float);
   const double state = DT_STATE_STRIDE * f;                                    // per particle
   const double occlusion = mode == OcclusionStorage::Off ? 0 : px * f;         // p per pixel
   const double times = mode == OcclusionStorage::PerPixelTime ? px * 2 : 0.0;  // t_last's 16-bit frame index
   StepBytes b;
-  b.propagate = n * 2 * state;                                 // read and write each state
-  b.render = n * px * f;                                       // write each tile's depths
-  b.handoff = gl_handoff ? n * px * f * 2 : 0;                 // GL's page read, atlas written
-  b.weigh = n * (px * f + 2 * occlusion + 2 * times + 3 * f);  // atlas, parent's row read, own row written
-  b.resample = n * (2 * state + 3 * f);                        // the kinematic gather (weigh gathers the rows)
-  b.refine = refine_iterations * 3 * px * f;                   // one pose: its tile, depth, ids
+  b.propagate = n * 2 * state;                                // read and write each state
+  const double atlas = inside_weigh ? 0 : px * f;             // a tile's depths through memory
+  b.render = n * atlas;                                       // written
+  b.handoff = gl_handoff ? n * px * f * 2 : 0;                // GL's page read, atlas written
+  b.weigh = n * (atlas + 2 * occlusion + 2 * times + 3 * f);  // atlas, parent's row read, own row written
+  b.resample = n * (2 * state + 3 * f);                       // the kinematic gather (weigh gathers the rows)
+  b.refine = refine_iterations * 3 * px * f;                  // one pose: its tile, depth, ids
   return b;
 }
 
-double filter_memory_mib(size_t particles, size_t pixels, OcclusionStorage mode) {
-  return device_filter_bytes_per_particle(pixels, mode, false) * static_cast<double>(particles) / (1 << 20);
+double filter_memory_mib(size_t particles, size_t pixels, OcclusionStorage mode, bool atlas) {
+  return device_filter_bytes_per_particle(pixels, mode, false, atlas) * static_cast<double>(particles) / (1 << 20);
 }
 
 }  // namespace depthtrack::cli

@@ -2,7 +2,9 @@
 // Bytes each step of a device frame moves through memory, from the layout (cl/dt_state.h: 16 floats of
 // state per particle; a float of atlas depth and occlusion probability, a 16-bit occlusion time index per
 // particle per pixel), so `depthtrack bench` can print GB/s next to each step's time. The one place the formula
-// lives. Upper bounds: per-pixel-time touches only covered pixels, resampling copies only when it runs.
+// lives. Weigh reads each particle's occlusion row from its parent (the last resampling, folded in) and
+// writes its own: with an effective sample size near 1 most of those reads hit the cache, so the
+// figures are upper bounds.
 #include <cstddef>
 #include <depthtrack/tracker_config.hpp>
 
@@ -12,10 +14,12 @@ struct StepBytes {
   double propagate = 0, render = 0, handoff = 0, weigh = 0, resample = 0, refine = 0;
 };
 
-// One frame of `particles` particles at `pixels` pixels each; handoff only for the GL renderer.
-StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, bool gl_handoff, int refine_iterations);
+// One frame of `particles` particles at `pixels` pixels each; handoff only for the GL renderer; with
+// inside_weigh (renders_inside_weigh) the tiles stay in work-group memory: no atlas written or read.
+StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, bool gl_handoff, int refine_iterations,
+                     bool inside_weigh = false);
 
 // Device memory the filter's buffers take without GL pages, MiB (device_filter_bytes_per_particle).
-double filter_memory_mib(size_t particles, size_t pixels, OcclusionStorage mode);
+double filter_memory_mib(size_t particles, size_t pixels, OcclusionStorage mode, bool atlas = true);
 
 }  // namespace depthtrack::cli

@@ -28,10 +28,17 @@ size_t round_up(size_t n, size_t multiple) {
 }
 }  // namespace
 
-double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bool gl_pages) {
+double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bool gl_pages, bool atlas) {
   const bool occlusion = mode != OcclusionStorage::Off, times = mode == OcclusionStorage::PerPixelTime;
-  const double floats_per_pixel = 1 + (occlusion ? 2 : 0) + (times ? 1 : 0) + (gl_pages ? 2 : 0);  // times: 2 x 16 bits
+  const double floats_per_pixel =
+      (atlas ? 1 : 0) + (occlusion ? 2 : 0) + (times ? 1 : 0) + (gl_pages ? 2 : 0);  // times: 2 x 16 bits
   return 4.0 * (static_cast<double>(pixels) * floats_per_pixel + (2 + (gl_pages ? 1 : 0)) * DT_STATE_STRIDE + 6);
+}
+
+bool renders_inside_weigh(size_t pixels, size_t local_memory) {
+  constexpr size_t kStaticLocalLimit = 48 * 1024;  // CUDA's for a block's static shared memory
+  const size_t needed = pixels * sizeof(float) + kGroupSize * sizeof(float);  // the tile, the group sum's scratch
+  return needed <= std::min(local_memory, kStaticLocalLimit);
 }
 
 struct DeviceFilter::Kernels {
@@ -62,10 +69,8 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   kernels_ = std::make_unique<Kernels>();
   Kernels& k = *kernels_;
   k.propagate_program = device_->programs.program("propagate.cl", defines);
-  k.weigh_program = device_->programs.program("weigh.cl", defines);
   k.resample_program = device_->programs.program("resample.cl", defines);
   k.propagate = k.propagate_program->kernel("propagate");
-  k.weigh = k.weigh_program->kernel("weigh");
   const size_t one_group = one_group_size(count_, queue_->info());
   const std::vector<std::string> occlusion_define = {model::occlusion_definition(config.occlusion_storage)};
   k.summarize = build_one_group_kernel(device_->programs, "summarize.cl", "summarize", occlusion_define, one_group);
@@ -92,7 +97,22 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   cumulative_ = compute::Buffer<float>(q, 2 * count_);  // float-float pairs
   parents_ = compute::Buffer<unsigned>(q, count_);
   estimate_ = compute::Buffer<float>(q, DT_EST_SIZE);
-  atlas_ = compute::Buffer<float>(q, atlas_source_->layout().floats());
+  if (config.renderer == Renderer::Kernel && renders_inside_weigh(pixels_, q.info().local_memory)) {
+    auto program = device_->programs.program("render_weigh.cl",
+                                             {defines[0], defines[1], "DT_TILE_PIXELS=" + std::to_string(pixels_)});
+    auto kernel = program->kernel("render_weigh");
+    // Registers may not allow a group of kGroupSize on some device: then the atlas goes through memory.
+    if (kernel->max_group_size() == 0 || kernel->max_group_size() >= kGroupSize) {
+      render_weigh_ = std::move(kernel);
+      render_weigh_mesh_ = std::make_unique<MeshBuffers>(q, mesh);
+    }
+  }
+  if (!render_weigh_) {  // the atlas drawn by its source, then weighed
+    k.weigh_program = device_->programs.program("weigh.cl", defines);
+    k.weigh = k.weigh_program->kernel("weigh");
+  }
+  // Drawn inside weigh, the atlas is stored only when asked for (keep_atlas).
+  atlas_ = compute::Buffer<float>(q, render_weigh_ ? 1 : atlas_source_->layout().floats());
   observed_ = compute::Buffer<float>(q, pixels_);
   // Kernels always take the occlusion buffers; modes that do not use one get a single element.
   const bool occlusion = config.occlusion_storage != OcclusionStorage::Off;
@@ -119,8 +139,10 @@ DeviceFilter::~DeviceFilter() = default;
 size_t DeviceFilter::checked_particle_count() const {
   const size_t count = static_cast<size_t>(config_.particles);
   // GL's pages sit on the same GPU.
+  // GL's pages sit on the same GPU; the kernel renderer's atlas stays in work-group memory where it fits.
   const double per_particle = device_filter_bytes_per_particle(
-      pixels_, config_.occlusion_storage, config_.renderer == Renderer::Gl && queue_->info().is_gpu);
+      pixels_, config_.occlusion_storage, config_.renderer == Renderer::Gl && queue_->info().is_gpu,
+      !(config_.renderer == Renderer::Kernel && renders_inside_weigh(pixels_, queue_->info().local_memory)));
   const double needed = per_particle * static_cast<double>(count);
   const auto& info = queue_->info();
   if (info.global_memory > 0 && needed > 0.9 * static_cast<double>(info.global_memory)) {
@@ -137,7 +159,8 @@ size_t DeviceFilter::checked_particle_count() const {
 
 std::string DeviceFilter::description() const {
   const auto& info = queue_->info();
-  return info.selector + " " + info.name + " (" + info.platform + "); atlas: " + atlas_source_->description();
+  return info.selector + " " + info.name + " (" + info.platform + "); atlas: " + atlas_source_->description() +
+         (render_weigh_ ? "; drawn inside weigh (tiles in work-group memory)" : "");
 }
 
 void DeviceFilter::upload_particles(const std::vector<model::ParticleState>& particles) {
@@ -254,7 +277,14 @@ compute::EventPtr DeviceFilter::render_atlas(StepTimings& timings) {
 }
 
 std::vector<float> DeviceFilter::last_atlas() const {
+  if (render_weigh_ && !keep_atlas_)
+    throw InputError("device filter: the atlas is drawn inside weigh and not kept (keep_atlas(true) keeps it)");
   return atlas_source_->layout().tiles_in_order(atlas_.download(), count_);
+}
+
+void DeviceFilter::keep_atlas(bool keep) {
+  keep_atlas_ = keep;
+  if (render_weigh_) atlas_ = compute::Buffer<float>(*queue_, keep ? atlas_source_->layout().floats() : 1);
 }
 
 // One enqueue sequence per frame and one wait, the estimate's read in collect(): the depth goes up
@@ -282,7 +312,7 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
                        static_cast<unsigned>(config_.seed >> 32), frame_,
                        model::motion_params(model::motion_step(config_.motion, dt), centre_));
 
-  p->rendered = render_atlas(p->timings);
+  if (!render_weigh_) p->rendered = render_atlas(p->timings);
 
   unsigned now_index = 0;
   if (config_.occlusion_storage == OcclusionStorage::PerPixelTime) {
@@ -296,11 +326,20 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   }
   // Each particle's state from its parent's row (the last frame's resampling) into its own row of the
   // other buffer, which then becomes the state; the rows before stay for the refinement's prior.
-  p->weighed = queue_->launch(*k.weigh, compute::NdRange::linear(count_ * kGroupSize, kGroupSize), atlas_, observed_,
-                              parents_, occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_,
-                              frame_times_->device(), log_likelihood_, log_weight_, static_cast<unsigned>(pixels_),
-                              model::model_params(config_), static_cast<float>(time_), now_index,
-                              static_cast<float>(dt), atlas_source_->layout().kernel_args());
+  const auto per_particle_group = compute::NdRange::linear(count_ * kGroupSize, kGroupSize);
+  if (render_weigh_)
+    p->weighed = queue_->launch(
+        *render_weigh_, per_particle_group, state_, render_weigh_mesh_->vertices, render_weigh_mesh_->triangles,
+        render_weigh_mesh_->planes, render_weigh_mesh_->triangle_count(), model::camera_params(camera_, config_),
+        observed_, parents_, occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_,
+        frame_times_->device(), log_likelihood_, log_weight_, model::model_params(config_), static_cast<float>(time_),
+        now_index, static_cast<float>(dt), atlas_, static_cast<unsigned>(keep_atlas_));
+  else
+    p->weighed = queue_->launch(*k.weigh, per_particle_group, atlas_, observed_, parents_, occlusion_, occlusion_time_,
+                                scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(), log_likelihood_,
+                                log_weight_, static_cast<unsigned>(pixels_), model::model_params(config_),
+                                static_cast<float>(time_), now_index, static_cast<float>(dt),
+                                atlas_source_->layout().kernel_args());
   std::swap(occlusion_, scratch_occlusion_);
   std::swap(occlusion_time_, scratch_occlusion_time_);
   p->summarized = queue_->launch(

@@ -17,10 +17,16 @@
 
 namespace depthtrack {
 
-// Device memory one particle's buffers take (atlas, occlusion probabilities and 16-bit time indices
-// twice (weigh reads one and writes the other), the state twice, weights; with GL pages, GL's colour and
-// depth pages and its pose buffer): what the memory check refuses by and `depthtrack bench` reports.
-double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bool gl_pages);
+// Device memory one particle's buffers take (the atlas unless it is drawn inside weigh, occlusion
+// probabilities and 16-bit time indices twice (weigh reads one and writes the other), the state twice,
+// weights; with GL pages, GL's colour and depth pages and its pose buffer): what the memory check
+// refuses by and `depthtrack bench` reports.
+double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bool gl_pages, bool atlas = true);
+
+// Whether the kernel renderer draws each particle's tile inside weigh (cl/render_weigh.cl), the tile in
+// work-group memory: where pixels' depths fit in the device's local memory per group, within the
+// 48 KiB a CUDA block may declare statically (80x60 does; 160x120 does not).
+bool renders_inside_weigh(size_t pixels, size_t local_memory);
 
 class DevicePoseScorer;
 class DeviceRefiner;
@@ -62,8 +68,11 @@ class DeviceFilter final : public FilterBackend {
   // unseen for DT_TIME_RETIRE_AGE frames: cl/dt_time_index.h).
   std::vector<float> occlusion_state() const;
   std::vector<float> occlusion_times() const;
-  // The atlas the last update weighed: particles x pixels depths, tile i = particle i.
+  // The atlas the last update weighed: particles x pixels depths, tile i = particle i. Where the
+  // kernel renderer draws inside weigh the atlas is kept only after keep_atlas(true) (for tests; it
+  // costs a store per pixel and particle and the atlas' memory), else this is an InputError.
   std::vector<float> last_atlas() const;
+  void keep_atlas(bool keep);
   // The particles as the last update weighed them (before it resampled).
   std::vector<model::ParticleState> weighed_particles() const;
   // Replaces the whole filter state (for comparing backends from a common state). occlusion and
@@ -107,6 +116,10 @@ class DeviceFilter final : public FilterBackend {
   compute::Buffer<float> state_, scratch_state_, log_weight_, log_likelihood_, weights_, cumulative_, estimate_;
   compute::Buffer<unsigned> parents_;
   compute::Buffer<float> atlas_, observed_;
+  // The kernel renderer's rasterization inside weigh (renders_inside_weigh): its kernel and the mesh.
+  std::unique_ptr<compute::Kernel> render_weigh_;
+  std::unique_ptr<MeshBuffers> render_weigh_mesh_;
+  bool keep_atlas_ = false;
   // Per-pixel occlusion state, double-buffered: weigh reads particle i's row parents_[i] of one and
   // writes row i of the other (cl/weigh.cl), so resampling copies no rows; parents_ is the identity
   // after initialize and set_state.

@@ -1,0 +1,48 @@
+/* One pixel of one particle's weigh (weigh.cl, render_weigh.cl): its log-ratio term, and its occlusion
+ * state after the frame written to row `to` from the state before it in row `from` (its parent's:
+ * the last frame's resampling, folded in). y_hat: the particle's rendered depth there (0: not covered);
+ * y: the observed depth. An unused pixel (not covered, or no valid depth) adds 0 and carries its state
+ * over (global time: aged by dt). Reference: ReferenceFilter::weigh_particle. */
+#ifndef DT_WEIGH_H
+#define DT_WEIGH_H
+#include "dt_prelude.h"
+#include "dt_model.h"
+#include "dt_params.h" /* the DT_OCCLUSION codes */
+#include "dt_time_index.h"
+
+DT_DEVICE_FN float dt_weigh_pixel(float y_hat, float y, ulong from, ulong to, __global const float* occlusion_from,
+                                  __global const dt_u16* time_from, __global float* occlusion_to,
+                                  __global dt_u16* time_to, __global const float* frame_times, dt_model m, float now,
+                                  uint now_index, float dt) {
+  const int used = y_hat > 0.0f && y > 0.0f && isfinite(y);
+  float p = 0.0f;
+#if DT_OCCLUSION == DT_GLOBAL_TIME
+  p = dt_propagate_occlusion(m, occlusion_from[from], dt); /* every pixel ages, covered or not */
+  if (!used) {
+    occlusion_to[to] = p;
+    return 0.0f;
+  }
+#elif DT_OCCLUSION == DT_PER_PIXEL_TIME
+  const float kept = occlusion_from[from];
+  const dt_u16 seen = time_from[from];
+  if (!used) { /* unchanged: the parent's value and time */
+    occlusion_to[to] = kept;
+    time_to[to] = seen;
+    return 0.0f;
+  }
+  p = dt_propagate_occlusion(m, kept, now - frame_times[seen]);
+#else
+  if (!used) return 0.0f;
+#endif
+  float posterior;
+  const float term = dt_pixel_log_ratio(m, y, y_hat, p, &posterior);
+#if DT_OCCLUSION != DT_OCCLUSION_OFF
+  occlusion_to[to] = posterior;
+#endif
+#if DT_OCCLUSION == DT_PER_PIXEL_TIME
+  time_to[to] = DT_CAST(dt_u16, now_index);
+#endif
+  return term;
+}
+
+#endif

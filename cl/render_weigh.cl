@@ -1,0 +1,48 @@
+/* The kernel renderer's rasterization and weigh in one kernel: a work-group per particle draws its
+ * tile into work-group memory (rasterize.cl's drawing, its atomic min on local memory) and weighs it
+ * from there (dt_weigh.h, as weigh.cl), so the atlas never goes through device memory: per pixel and
+ * particle that saves the tile's clear, its atomics in global memory, its finishing pass and weigh's
+ * read of it. The same depths and the same sums in the same order as rasterize.cl + weigh.cl (the
+ * atomic minimum does not depend on the order the triangles come in). With keep_atlas the tile is also
+ * stored in the atlas (particle-major, as rasterize.cl writes it), for tests that compare it.
+ * Compile-time choices: DT_GROUP_SIZE (power of two), DT_OCCLUSION as weigh.cl, DT_TILE_PIXELS the
+ * image's pixels (the tile's size in work-group memory: the host uses this kernel only where it fits).
+ * Reference: Rasterizer::render and ReferenceFilter::weigh_particle. */
+#include "rasterize.cl"
+#include "dt_group.h"
+#include "dt_weigh.h"
+
+__kernel void render_weigh(__global const float* states, __global const float* vertices,
+                           __global const uint* triangles, __global const float* planes, uint triangle_count,
+                           dt_camera cam, __global const float* observed, __global const uint* parents,
+                           __global const float* occlusion_from, __global const dt_u16* time_from,
+                           __global float* occlusion_to, __global dt_u16* time_to, __global float* frame_times,
+                           __global float* log_likelihood, __global float* log_weight, dt_model m, float now,
+                           uint now_index, float dt, __global uint* atlas, uint keep_atlas) {
+  __local uint tile[DT_TILE_PIXELS];
+  __local float scratch[DT_GROUP_SIZE];
+  const uint particle = get_group_id(0), lid = get_local_id(0), pixels = cam.width * cam.height;
+#if DT_OCCLUSION == DT_PER_PIXEL_TIME
+  if (particle == 0 && lid == 0) frame_times[now_index] = now;
+#endif
+  for (uint k = lid; k < pixels; k += DT_GROUP_SIZE) tile[k] = DT_NO_SURFACE;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  const dt_rigid pose = dt_particle_pose(states + DT_CAST(ulong, particle) * DT_STATE_STRIDE);
+  for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
+    dt_draw_triangle(pose, vertices, triangles, planes, t, cam, 0, 0, 0, tile);
+  barrier(CLK_LOCAL_MEM_FENCE);
+
+  const ulong from = DT_CAST(ulong, parents[particle]) * pixels, to = DT_CAST(ulong, particle) * pixels;
+  float sum = 0.0f;
+  for (uint k = lid; k < pixels; k += DT_GROUP_SIZE) {
+    const uint bits = tile[k] == DT_NO_SURFACE ? 0u : tile[k]; /* 0.0f's bits where nothing was drawn */
+    if (keep_atlas) atlas[DT_CAST(ulong, particle) * pixels + k] = bits;
+    sum += dt_weigh_pixel(dt_as_float(bits), observed[k], from + k, to + k, occlusion_from, time_from, occlusion_to,
+                          time_to, frame_times, m, now, now_index, dt);
+  }
+  sum = dt_group_sum(scratch, sum);
+  if (lid == 0) {
+    log_likelihood[particle] = sum;
+    log_weight[particle] += sum;
+  }
+}

@@ -1,0 +1,124 @@
+// The kernel renderer's rasterization inside weigh (cl/render_weigh.cl) against rasterize.cl followed by
+// weigh.cl: the same tiles, log-likelihoods and occlusion states bit for bit, in every occlusion mode.
+#include <catch2/catch.hpp>
+#include <random>
+
+#include "atlas/atlas_layout.hpp"
+#include "atlas/raster_inputs.hpp"
+#include "compute/buffer.hpp"
+#include "compute/kernel_sources.hpp"
+#include "device_support.hpp"
+#include "dt_state.h"
+#include "dt_time_index.h"
+#include "filter/device_filter.hpp"
+#include "model/kernel_params.hpp"
+#include "model/particle.hpp"
+#include "model/particle_packing.hpp"
+#include "reference/rasterizer.hpp"
+
+using namespace depthtrack;
+
+TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "[device][kernels][render]") {
+  if (!test::device_available()) return;
+  auto q = compute::open_device(test::device_selector());
+  const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.9375, 29.9375);
+  const size_t pixels = 4800, count = 24;
+  REQUIRE(renders_inside_weigh(pixels, 48 * 1024));
+  const Mesh mesh = builtin_demo_mesh();
+  TrackerConfig config;
+  const Pose truth({0, 0, 0.8}, rotation_exp(Eigen::Vector3d(0.4, 0.5, 0.1)));
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  // Observed: the object with an occluding band and missing pixels; particles around it.
+  std::vector<float> observed(pixels);
+  reference::Rasterizer(mesh, camera, config.near_plane, config.observation.max_depth).render(truth, observed);
+  for (size_t k = 0; k < pixels; ++k) {
+    if (observed[k] == 0) observed[k] = 1.5f;
+    if (k % 80 >= 30 && k % 80 < 36) observed[k] = 0.55f;
+    if (k % 13 == 0) observed[k] = NAN;
+  }
+  std::vector<model::ParticleState> particles(count);
+  for (size_t i = 0; i < count; ++i)
+    particles[i].pose =
+        model::move_about_centre(truth, Eigen::Vector3d::Zero(),
+                                 Eigen::Vector3d(0.02 * unit(rng) - 0.01, 0.02 * unit(rng) - 0.01, 0.3 * unit(rng)),
+                                 Eigen::Vector3d(0.2 * unit(rng), 0.2 * unit(rng), 0.2 * unit(rng)));
+  std::vector<float> occlusion(count * pixels);
+  std::vector<uint16_t> times(count * pixels);
+  std::vector<unsigned> parents(count);
+  for (auto& p : occlusion) p = unit(rng);
+  for (auto& t : times) t = static_cast<uint16_t>(std::min(31.0f, 32 * unit(rng)));
+  for (size_t i = 0; i < count; ++i) parents[i] = static_cast<unsigned>((i * 7) % count / 3);
+  std::vector<float> frame_times(DT_TIME_TABLE, 0.0f);
+  for (unsigned f = 0; f < 32; ++f) frame_times[f] = 0.02f * static_cast<float>(f);
+  const float now = 0.9f, dt = 0.033f;
+  const unsigned now_index = 40;
+
+  const MeshBuffers mesh_buffers(*q, mesh);
+  const dt_camera cam = model::camera_params(camera, config);
+  const dt_model m = model::model_params(config);
+  const auto layout = render::AtlasLayout::particle_major(static_cast<int>(count), 80, 60);
+  const auto range = compute::NdRange::linear(count * 128, 128);
+  for (const int mode : {0, 1, 2}) {
+    INFO("occlusion mode " << mode);
+    const std::vector<std::string> defines = {"DT_GROUP_SIZE=128", "DT_OCCLUSION=" + std::to_string(mode)};
+    auto build = [&](const std::string& file, std::vector<std::string> d) {
+      return q->build(file, compute::kernel_source(file), d);
+    };
+    auto raster_program = build("rasterize.cl", {"DT_GROUP_SIZE=128"});
+    auto weigh_program = build("weigh.cl", defines);
+    auto fused_program = build("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=4800"});
+    auto rasterize = raster_program->kernel("rasterize");
+    auto weigh = weigh_program->kernel("weigh");
+    auto fused = fused_program->kernel("render_weigh");
+
+    struct Run {
+      std::vector<float> atlas, ll, lw, occlusion, table;
+      std::vector<uint16_t> times;
+    };
+    auto run = [&](bool inside, unsigned keep_atlas) {
+      compute::Buffer<float> states(*q, count * DT_STATE_STRIDE), obs(*q, pixels), occ_from(*q, occlusion.size()),
+          occ_to(*q, occlusion.size()), table(*q, DT_TIME_TABLE), ll(*q, count), lw(*q, count),
+          atlas(*q, layout.floats());
+      compute::Buffer<uint16_t> t_from(*q, times.size()), t_to(*q, times.size());
+      compute::Buffer<unsigned> parent_buffer(*q, count);
+      states.upload(pack_particles(particles));
+      obs.upload(observed);
+      occ_from.upload(occlusion);
+      occ_to.upload(std::vector<float>(occlusion.size(), -1.0f));
+      t_from.upload(times);
+      t_to.upload(std::vector<uint16_t>(times.size(), 7));
+      table.upload(frame_times);
+      lw.upload(std::vector<float>(count, 2.0f));
+      atlas.upload(std::vector<float>(layout.floats(), -3.0f));
+      parent_buffer.upload(parents);
+      if (inside) {
+        q->launch(*fused, range, states, mesh_buffers.vertices, mesh_buffers.triangles, mesh_buffers.planes,
+                  mesh_buffers.triangle_count(), cam, obs, parent_buffer, occ_from, t_from, occ_to, t_to, table, ll, lw,
+                  m, now, now_index, dt, atlas, keep_atlas);
+      } else {
+        q->launch(*rasterize, range, states, mesh_buffers.vertices, mesh_buffers.triangles, mesh_buffers.planes,
+                  mesh_buffers.triangle_count(), cam, layout.kernel_args(), atlas);
+        q->launch(*weigh, range, atlas, obs, parent_buffer, occ_from, t_from, occ_to, t_to, table, ll, lw,
+                  static_cast<unsigned>(pixels), m, now, now_index, dt, layout.kernel_args());
+      }
+      q->finish();
+      return Run{atlas.download(), ll.download(), lw.download(), occ_to.download(), table.download(), t_to.download()};
+    };
+    const Run apart = run(false, 0), inside = run(true, 1), unkept = run(true, 0);
+    for (size_t i = 0; i < count; ++i) {  // every particle is in view
+      size_t covered = 0;
+      for (size_t k = 0; k < pixels; ++k) covered += apart.atlas[i * pixels + k] > 0;
+      CHECK(covered >= 20);
+    }
+    CHECK(inside.atlas == apart.atlas);
+    CHECK(unkept.atlas == std::vector<float>(layout.floats(), -3.0f));  // not stored unless asked
+    for (const Run* r : {&inside, &unkept}) {
+      CHECK(r->ll == apart.ll);
+      CHECK(r->lw == apart.lw);
+      CHECK(r->occlusion == apart.occlusion);
+      CHECK(r->times == apart.times);
+      CHECK(r->table == apart.table);
+    }
+  }
+}
