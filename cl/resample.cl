@@ -29,40 +29,120 @@ DT_DEVICE_FN void dt_ff_add(float* hi, float* lo, float value) {
   dt_two_sum(s, e, hi, lo);
 }
 
-/* Inclusive prefix sum over count values in one work-group, as float-float pairs written to
- * cumulative[2i], cumulative[2i+1]: each work-item sums a contiguous chunk, work-item 0 scans the
- * chunk totals, then each writes its chunk's running sums. */
-__kernel void prefix_sum(__global const float* values, __global float* cumulative, uint count,
-                         __global const float* estimate) {
-  __local float start_hi[DT_GROUP_SIZE];
-  __local float start_lo[DT_GROUP_SIZE];
-  if (!dt_resampling(estimate)) return; /* the same for the whole group: no barrier is split */
+/* The float-float sum of values [begin, end), added in order. */
+DT_DEVICE_FN void dt_ff_sum(__global const float* values, uint begin, uint end, float* hi, float* lo) {
+  *hi = 0.0f;
+  *lo = 0.0f;
+  for (uint i = begin; i < end; ++i) dt_ff_add(hi, lo, values[i]);
+}
+
+/* Inclusive prefix sum of values [begin, end) in one work-group, starting from (hi, lo) before begin,
+ * as float-float pairs written to cumulative[2i], cumulative[2i+1]: each work-item sums a contiguous
+ * sub-chunk, work-item 0 scans the sub-chunk totals, then each writes its sub-chunk's running sums. */
+DT_DEVICE_FN void dt_scan_range(__global const float* values, __global float* cumulative, uint begin, uint end,
+                                float start_hi, float start_lo, DT_LOCAL_PTR float* part_hi,
+                                DT_LOCAL_PTR float* part_lo) {
   const uint lid = get_local_id(0);
-  const uint chunk = (count + DT_GROUP_SIZE - 1) / DT_GROUP_SIZE;
-  const uint begin = min(count, lid * chunk), end = min(count, begin + chunk);
-  float hi = 0.0f, lo = 0.0f;
-  for (uint i = begin; i < end; ++i) dt_ff_add(&hi, &lo, values[i]);
-  start_hi[lid] = hi;
-  start_lo[lid] = lo;
+  const uint chunk = (end - begin + DT_GROUP_SIZE - 1) / DT_GROUP_SIZE;
+  const uint from = min(end, begin + lid * chunk), to = min(end, from + chunk);
+  float hi, lo;
+  dt_ff_sum(values, from, to, &hi, &lo);
+  part_hi[lid] = hi;
+  part_lo[lid] = lo;
   barrier(CLK_LOCAL_MEM_FENCE);
   if (lid == 0) {
-    float run_hi = 0.0f, run_lo = 0.0f;
+    float run_hi = start_hi, run_lo = start_lo;
     for (uint g = 0; g < DT_GROUP_SIZE; ++g) {
-      const float chunk_hi = start_hi[g], chunk_lo = start_lo[g];
-      start_hi[g] = run_hi;
-      start_lo[g] = run_lo;
+      const float chunk_hi = part_hi[g], chunk_lo = part_lo[g];
+      part_hi[g] = run_hi;
+      part_lo[g] = run_lo;
       dt_ff_add(&run_hi, &run_lo, chunk_hi);
       dt_ff_add(&run_hi, &run_lo, chunk_lo);
     }
   }
   barrier(CLK_LOCAL_MEM_FENCE);
-  hi = start_hi[lid];
-  lo = start_lo[lid];
-  for (uint i = begin; i < end; ++i) {
+  hi = part_hi[lid];
+  lo = part_lo[lid];
+  for (uint i = from; i < to; ++i) {
     dt_ff_add(&hi, &lo, values[i]);
     cumulative[2 * i] = hi;
     cumulative[2 * i + 1] = lo;
   }
+}
+
+/* Inclusive prefix sum over count values in one work-group (small clouds). */
+__kernel void prefix_sum(__global const float* values, __global float* cumulative, uint count,
+                         __global const float* estimate) {
+  __local float part_hi[DT_GROUP_SIZE];
+  __local float part_lo[DT_GROUP_SIZE];
+  if (!dt_resampling(estimate)) return; /* the same for the whole group: no barrier is split */
+  dt_scan_range(values, cumulative, 0, count, 0.0f, 0.0f, part_hi, part_lo);
+}
+
+/* The same over many groups (large clouds), two launches: group g takes the g-th of get_num_groups
+ * contiguous ranges; prefix_sum_totals leaves each range's float-float total in totals[2g, 2g+1],
+ * prefix_sum_ranges scans each range from the sum of the totals before it. */
+DT_DEVICE_FN uint dt_range_begin(uint count, uint group, uint groups) {
+  const uint length = (count + groups - 1) / groups;
+  return min(count, group * length);
+}
+
+__kernel void prefix_sum_totals(__global const float* values, uint count, __global float* totals,
+                                __global const float* estimate) {
+  __local float part_hi[DT_GROUP_SIZE];
+  __local float part_lo[DT_GROUP_SIZE];
+  if (!dt_resampling(estimate)) return;
+  const uint group = get_group_id(0), groups = get_num_groups(0), lid = get_local_id(0);
+  const uint begin = dt_range_begin(count, group, groups), end = dt_range_begin(count, group + 1, groups);
+  const uint chunk = (end - begin + DT_GROUP_SIZE - 1) / DT_GROUP_SIZE;
+  const uint from = min(end, begin + lid * chunk), to = min(end, from + chunk);
+  float hi, lo;
+  dt_ff_sum(values, from, to, &hi, &lo);
+  part_hi[lid] = hi;
+  part_lo[lid] = lo;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (lid == 0) {
+    float run_hi = 0.0f, run_lo = 0.0f;
+    for (uint g = 0; g < DT_GROUP_SIZE; ++g) {
+      dt_ff_add(&run_hi, &run_lo, part_hi[g]);
+      dt_ff_add(&run_hi, &run_lo, part_lo[g]);
+    }
+    totals[2 * group] = run_hi;
+    totals[2 * group + 1] = run_lo;
+  }
+}
+
+__kernel void prefix_sum_ranges(__global const float* values, __global float* cumulative, uint count,
+                                __global const float* totals, __global const float* estimate) {
+  __local float part_hi[DT_GROUP_SIZE];
+  __local float part_lo[DT_GROUP_SIZE];
+  __local float start[2];
+  if (!dt_resampling(estimate)) return;
+  const uint group = get_group_id(0), groups = get_num_groups(0), lid = get_local_id(0);
+  /* The totals of the ranges before this one: each work-item adds every DT_GROUP_SIZE-th, work-item 0
+   * adds those sums in order (the same order in every run). */
+  float hi = 0.0f, lo = 0.0f;
+  for (uint g = lid; g < group; g += DT_GROUP_SIZE) {
+    dt_ff_add(&hi, &lo, totals[2 * g]);
+    dt_ff_add(&hi, &lo, totals[2 * g + 1]);
+  }
+  part_hi[lid] = hi;
+  part_lo[lid] = lo;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (lid == 0) {
+    float run_hi = 0.0f, run_lo = 0.0f;
+    for (uint g = 0; g < DT_GROUP_SIZE; ++g) {
+      dt_ff_add(&run_hi, &run_lo, part_hi[g]);
+      dt_ff_add(&run_hi, &run_lo, part_lo[g]);
+    }
+    start[0] = run_hi;
+    start[1] = run_lo;
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  const float start_hi = start[0], start_lo = start[1];
+  barrier(CLK_LOCAL_MEM_FENCE); /* part_hi and part_lo are used again */
+  dt_scan_range(values, cumulative, dt_range_begin(count, group, groups), dt_range_begin(count, group + 1, groups),
+                start_hi, start_lo, part_hi, part_lo);
 }
 
 /* Does cumulative weight (hi + lo) exceed (u + child) / count? Compared as

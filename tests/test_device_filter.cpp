@@ -8,7 +8,7 @@
 #include "device_support.hpp"
 #include "filter/device_filter.hpp"
 #include "filter/device_refiner.hpp"
-#include "filter/one_group_kernel.hpp"
+#include "filter/wide_summary.hpp"
 #include "model/occlusion_chain.hpp"
 #include "philox.h"
 #include "reference/observation_model.hpp"
@@ -349,13 +349,14 @@ TEST_CASE("the spread refinement at 320x240 (more pixels than its groups' work-i
   CHECK(refined > 0);  // the fit took steps: the rows were added and judged
 }
 
-TEST_CASE("a cloud large enough for the widened summarize and prefix sum equals the reference", "[device][kernels]") {
+TEST_CASE("a cloud large enough for the summary and prefix sum over many work-groups equals the reference",
+          "[device][kernels]") {
   if (!test::device_available()) return;
   // 40x30, so that the reference's 16,384 renderings a frame stay quick; the host rasterizer's atlas
   // (renderer cpu) leaves only the device's float arithmetic to differ.
   const Scene scene = make_scene(3, 16);
   TrackerConfig config;
-  config.particles = static_cast<int>(kWideGroupParticles);
+  config.particles = static_cast<int>(kWideSummaryParticles);
   config.seed = 9;
   config.backend = test::device_selector();
   config.renderer = Renderer::Cpu;
@@ -377,7 +378,7 @@ TEST_CASE("a cloud large enough for the widened summarize and prefix sum equals 
     CHECK(b.effective_sample_size == Approx(a.effective_sample_size).epsilon(1e-3).margin(1e-3));
     REQUIRE(a.resampled == b.resampled);
     if (a.resampled) {
-      // Ancestry from the wide prefix sum: the reference's resampling of the device's own likelihoods
+      // Ancestry from the prefix sum over many groups: the reference's resampling of the device's own likelihoods
       // (with 16,384 children some points lie within the likelihoods' float rounding of a boundary),
       // but for children within the float log weights' rounding of one (log weights of hundreds of
       // nats carry ~3e-5 of it: 1-3 children a frame here, as many with the narrow group at 16,383

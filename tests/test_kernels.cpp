@@ -11,7 +11,7 @@
 #include "dt_params.h"
 #include "dt_state.h"
 #include "dt_time_index.h"
-#include "filter/one_group_kernel.hpp"
+#include "filter/wide_summary.hpp"
 #include "model/occlusion_chain.hpp"
 #include "model/particle.hpp"
 #include "model/particle_packing.hpp"
@@ -253,13 +253,11 @@ TEST_CASE("summarize kernel equals the reference normalization and mean pose", "
   if (!test::device_available()) return;
   auto q = compute::open_device(test::device_selector());
   compute::ProgramCache programs(*q);
-  // 1,000 particles: more than one pass of the narrow group; 40,000: the widened group the filter
-  // builds for large clouds (as wide as this device and kernel allow).
+  // 1,000 particles: more than one pass of summarize.cl's one group; 40,000: summarize_wide.cl's passes
+  // over many groups, as the filter runs them for large clouds.
   const size_t count = GENERATE(size_t{1000}, size_t{40000});
-  const OneGroupKernel summarize = build_one_group_kernel(programs, "summarize.cl", "summarize", {"DT_OCCLUSION=0"},
-                                                          one_group_size(count, q->info()));
-  INFO(count << " particles, a group of " << summarize.group);
-  if (count >= kWideGroupParticles) CHECK(summarize.group > kGroup);
+  const bool wide = count >= kWideSummaryParticles;
+  INFO(count << " particles, " << (wide ? "many groups" : "one group"));
   std::mt19937 rng(11);
   std::normal_distribution<double> n;
   std::vector<model::ParticleState> states(count);
@@ -271,7 +269,8 @@ TEST_CASE("summarize kernel equals the reference normalization and mean pose", "
                                               Eigen::Vector3d(0.01 * n(rng), 0.01 * n(rng), 0.01 * n(rng)),
                                               Eigen::Vector3d(0.1 * n(rng), 0.1 * n(rng), 0.1 * n(rng)));
     states[i].linear_velocity = Eigen::Vector3d(n(rng), n(rng), n(rng));
-    log_weights[i] = -500 + 3 * n(rng);  // far from 0: the kernel must subtract the maximum
+    log_weights[i] = -500 + 3 * n(rng);     // far from 0: the kernel must subtract the maximum
+    if (i % 7 == 3) log_weights[i] -= 300;  // weights 0 in float, whose states are not read
     log_likelihoods[i] = 10 * n(rng);
   }
   compute::Buffer<float> state(*q, count * DT_STATE_STRIDE), lw(*q, count), ll(*q, count), w(*q, count),
@@ -280,9 +279,17 @@ TEST_CASE("summarize kernel equals the reference normalization and mean pose", "
   lw.upload(std::vector<float>(log_weights.begin(), log_weights.end()));
   ll.upload(std::vector<float>(log_likelihoods.begin(), log_likelihoods.end()));
   const float kl_threshold = 2.0f;
-  q->launch(*summarize.kernel, compute::NdRange::linear(summarize.group, summarize.group), state, lw, ll, w, est,
-            static_cast<unsigned>(count), 0.0f, 0.0f, 0.02f, kl_threshold)
-      ->wait();
+  if (wide) {
+    WideSummary summary(*q, programs, {"DT_GROUP_SIZE=" + std::to_string(kGroup), "DT_OCCLUSION=0"}, kGroup, count);
+    CHECK(summary.groups() > 1);
+    summary.summarize(state, lw, ll, w, est, 0.0f, 0.0f, 0.02f, kl_threshold);
+    q->finish();
+  } else {
+    auto summarize = build(*q, "summarize.cl")->kernel("summarize");
+    q->launch(*summarize, compute::NdRange::linear(kGroup, kGroup), state, lw, ll, w, est, static_cast<unsigned>(count),
+              0.0f, 0.0f, 0.02f, kl_threshold)
+        ->wait();
+  }
   const auto e = est.download();
   const auto summary = reference::summarize_log_weights(log_weights);
   std::vector<Pose> poses;
@@ -308,15 +315,15 @@ TEST_CASE("prefix-sum and find-parents kernels resample as the reference does", 
   if (!test::device_available()) return;
   auto q = compute::open_device(test::device_selector());
   auto program = build(*q, "resample.cl");
+  auto prefix = program->kernel("prefix_sum");
   auto find = program->kernel("find_parents");
   compute::ProgramCache programs(*q);
   std::mt19937 rng(2);
   std::exponential_distribution<double> e;
-  // The last: the widened group the filter builds for large clouds.
+  // The last: over many groups (prefix_sum_totals, prefix_sum_ranges), as the filter for large clouds.
   for (size_t count : {size_t{5}, size_t{200}, size_t{5000}, size_t{40000}}) {
-    const OneGroupKernel prefix = build_one_group_kernel(programs, "resample.cl", "prefix_sum", {"DT_OCCLUSION=0"},
-                                                         one_group_size(count, q->info()));
-    INFO(count << " particles, a group of " << prefix.group);
+    const bool wide = count >= kWideSummaryParticles;
+    INFO(count << " particles, " << (wide ? "many groups" : "one group"));
     std::vector<double> w(count);
     double sum = 0;
     for (auto& x : w) sum += x = e(rng) * (e(rng) > 1.5 ? 20 : 1);  // a few heavy particles
@@ -331,8 +338,14 @@ TEST_CASE("prefix-sum and find-parents kernels resample as the reference does", 
     const std::vector<float> w_float(w.begin(), w.end());
     weights.upload(w_float);
     w.assign(w_float.begin(), w_float.end());
-    q->launch(*prefix.kernel, compute::NdRange::linear(prefix.group, prefix.group), weights, cumulative,
-              static_cast<unsigned>(count), decision);
+    if (wide) {
+      WideSummary summary(*q, programs, {"DT_GROUP_SIZE=" + std::to_string(kGroup), "DT_OCCLUSION=0"}, kGroup, count);
+      CHECK(summary.groups() > 1);
+      summary.prefix_sum(weights, cumulative, decision);
+    } else {
+      q->launch(*prefix, compute::NdRange::linear(kGroup, kGroup), weights, cumulative, static_cast<unsigned>(count),
+                decision);
+    }
     const float u = dt_uniform01(dt_random_words(4, 0, 1, DT_STREAM_RESAMPLE, 0).v[0]);
     q->launch(*find, compute::NdRange::linear((count + 63) / 64 * 64, 64), cumulative, parents,
               static_cast<unsigned>(count), u, decision)

@@ -12,7 +12,7 @@
 #include "dt_time_index.h"
 #include "filter/device_pose_scorer.hpp"
 #include "filter/device_refiner.hpp"
-#include "filter/one_group_kernel.hpp"
+#include "filter/wide_summary.hpp"
 #include "model/kernel_params.hpp"
 #include "model/particle_packing.hpp"
 #include "philox.h"
@@ -20,7 +20,7 @@
 namespace depthtrack {
 
 namespace {
-constexpr size_t kGroupSize = 128;   // work-items per group in weigh and the per-pixel fills
+constexpr size_t kGroupSize = 128;   // work-items per group in weigh, summarize and the per-pixel fills
 constexpr size_t kLinearGroup = 64;  // work-items per group in the per-particle kernels
 
 size_t round_up(size_t n, size_t multiple) {
@@ -42,10 +42,11 @@ bool renders_inside_weigh(size_t pixels, size_t local_memory) {
 }
 
 struct DeviceFilter::Kernels {
-  std::shared_ptr<compute::Program> propagate_program, weigh_program, resample_program, initialize_program;
-  OneGroupKernel summarize, prefix_sum;  // one group over every particle, widened for large clouds
-  std::unique_ptr<compute::Kernel> propagate, weigh, find_parents, gather_state, identity_parents, fill,
-      fill_when_resampling, initialize_particles, fill_per_particle, fill_time_indices, retire_time_indices;
+  std::shared_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
+      initialize_program;
+  std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state,
+      identity_parents, fill, fill_when_resampling, initialize_particles, fill_per_particle, fill_time_indices,
+      retire_time_indices;
 };
 
 DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
@@ -71,10 +72,14 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   k.propagate_program = device_->programs.program("propagate.cl", defines);
   k.resample_program = device_->programs.program("resample.cl", defines);
   k.propagate = k.propagate_program->kernel("propagate");
-  const size_t one_group = one_group_size(count_, queue_->info());
-  const std::vector<std::string> occlusion_define = {model::occlusion_definition(config.occlusion_storage)};
-  k.summarize = build_one_group_kernel(device_->programs, "summarize.cl", "summarize", occlusion_define, one_group);
-  k.prefix_sum = build_one_group_kernel(device_->programs, "resample.cl", "prefix_sum", occlusion_define, one_group);
+  // The summary and prefix sum: one group for a few thousand particles, many for large clouds.
+  if (count_ >= kWideSummaryParticles) {
+    wide_ = std::make_unique<WideSummary>(*queue_, device_->programs, defines, kGroupSize, count_);
+  } else {
+    k.summarize_program = device_->programs.program("summarize.cl", defines);
+    k.summarize = k.summarize_program->kernel("summarize");
+    k.prefix_sum = k.resample_program->kernel("prefix_sum");
+  }
   k.find_parents = k.resample_program->kernel("find_parents");
   k.gather_state = k.resample_program->kernel("gather_state");
   k.identity_parents = k.resample_program->kernel("identity_parents");
@@ -130,8 +135,8 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
 struct DeviceFilter::Pending {
   Stopwatch clock;
   StepTimings timings;  // the atlas source's host part
-  compute::EventPtr propagated, rendered, weighed, summarized, shifted;
-  std::vector<compute::EventPtr> refined, resampling;
+  compute::EventPtr propagated, rendered, weighed, shifted;
+  std::vector<compute::EventPtr> summarized, refined, resampling;
 };
 
 DeviceFilter::~DeviceFilter() = default;
@@ -342,10 +347,15 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
                                 atlas_source_->layout().kernel_args());
   std::swap(occlusion_, scratch_occlusion_);
   std::swap(occlusion_time_, scratch_occlusion_time_);
-  p->summarized = queue_->launch(
-      *k.summarize.kernel, compute::NdRange::linear(k.summarize.group, k.summarize.group), state_, log_weight_,
-      log_likelihood_, weights_, estimate_, count, static_cast<float>(centre_.x()), static_cast<float>(centre_.y()),
-      static_cast<float>(centre_.z()), model::float_threshold(config_.resample_kl_threshold));
+  const float kl_threshold = model::float_threshold(config_.resample_kl_threshold);
+  const float cx = static_cast<float>(centre_.x()), cy = static_cast<float>(centre_.y()),
+              cz = static_cast<float>(centre_.z());
+  if (wide_)
+    p->summarized =
+        wide_->summarize(state_, log_weight_, log_likelihood_, weights_, estimate_, cx, cy, cz, kl_threshold);
+  else
+    p->summarized = {queue_->launch(*k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize), state_, log_weight_,
+                                    log_likelihood_, weights_, estimate_, count, cx, cy, cz, kl_threshold)};
   // Before resample() overwrites parents_ with this frame's choice.
   if (refiner_)
     p->refined =
@@ -385,7 +395,7 @@ Estimate DeviceFilter::collect() {
     e.timings.render_on_device = true;
   }
   e.timings.weigh_ms = p->weighed->elapsed_ms();
-  e.timings.resample_ms = p->summarized->elapsed_ms();
+  for (const auto& event : p->summarized) e.timings.resample_ms += event->elapsed_ms();
   for (const auto& event : p->resampling) e.timings.resample_ms += event->elapsed_ms();
   if (p->shifted) {
     // The fit's launches as one span on the device, with the gaps between them (the spread layout
@@ -411,9 +421,11 @@ std::vector<compute::EventPtr> DeviceFilter::resample() {
   const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
   const unsigned count = static_cast<unsigned>(count_);
   std::vector<compute::EventPtr> events;
-  events.push_back(queue_->launch(*k.prefix_sum.kernel,
-                                  compute::NdRange::linear(k.prefix_sum.group, k.prefix_sum.group), weights_,
-                                  cumulative_, count, estimate_));
+  if (wide_)
+    events = wide_->prefix_sum(weights_, cumulative_, estimate_);
+  else
+    events.push_back(queue_->launch(*k.prefix_sum, compute::NdRange::linear(kGroupSize, kGroupSize), weights_,
+                                    cumulative_, count, estimate_));
   events.push_back(
       queue_->launch(*k.find_parents, linear, cumulative_, parents_, count, dt_uniform01(words.v[0]), estimate_));
   events.push_back(queue_->launch(*k.gather_state, linear, state_, scratch_state_, parents_, count, estimate_));

@@ -29,6 +29,7 @@ double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bo
 bool renders_inside_weigh(size_t pixels, size_t local_memory);
 
 class DevicePoseScorer;
+class WideSummary;
 class DeviceRefiner;
 struct DevicePoseScorerPrograms;
 
@@ -128,6 +129,7 @@ class DeviceFilter final : public FilterBackend {
   compute::Buffer<uint16_t> occlusion_time_, scratch_occlusion_time_;
   std::unique_ptr<FrameTimeTable> frame_times_;
   std::unique_ptr<DeviceRefiner> refiner_;  // when config.refine.enabled
+  std::unique_ptr<WideSummary> wide_;       // the summary over many groups, for large clouds
   std::unique_ptr<Pending> pending_;
   bool last_resampled_ = false;
   bool weighed_in_scratch_ = false;  // the last update left the weighed states in scratch_state_

@@ -1,0 +1,50 @@
+#pragma once
+// The frame's summary (cl/summarize_wide.cl) and the resampling's prefix sum (cl/resample.cl's
+// prefix_sum_totals / prefix_sum_ranges) over many work-groups, for clouds of kWideSummaryParticles
+// particles or more: summarize.cl and prefix_sum run in one work-group, which is the fastest for a few
+// thousand particles (one launch each) but left one multiprocessor waiting on memory at a million
+// (H200: ~10 ms a frame on CUDA, ~20 on NVIDIA OpenCL). Each pass leaves one row of partial results
+// per group and the next combines them in a fixed order: the same estimate every run.
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "compute/buffer.hpp"
+#include "compute/program_cache.hpp"
+
+namespace depthtrack {
+
+constexpr size_t kWideSummaryParticles = 16384;
+
+class WideSummary {
+ public:
+  // definitions: the filter kernels' (DT_GROUP_SIZE, DT_OCCLUSION); particles: the cloud's size.
+  WideSummary(compute::Queue& queue, compute::ProgramCache& programs, const std::vector<std::string>& definitions,
+              size_t group_size, size_t particles);
+
+  // Groups for a cloud: about 8 particles a work-item, at most 1,024 groups (the partial rows each later
+  // pass combines).
+  static size_t groups_for(size_t particles, size_t group_size);
+
+  // summarize.cl's outputs (weights, estimate) from the states and log weights; the launches' events.
+  std::vector<compute::EventPtr> summarize(const compute::Buffer<float>& states,
+                                           const compute::Buffer<float>& log_weight,
+                                           const compute::Buffer<float>& log_likelihood,
+                                           compute::Buffer<float>& weights, compute::Buffer<float>& estimate,
+                                           float centre_x, float centre_y, float centre_z, float kl_threshold);
+  // prefix_sum's output (float-float cumulative weights), if the estimate says to resample.
+  std::vector<compute::EventPtr> prefix_sum(const compute::Buffer<float>& weights, compute::Buffer<float>& cumulative,
+                                            const compute::Buffer<float>& estimate);
+
+  size_t groups() const { return groups_; }
+
+ private:
+  compute::Queue& queue_;
+  size_t group_size_, particles_, groups_;
+  std::shared_ptr<compute::Program> summarize_program_, resample_program_;
+  std::unique_ptr<compute::Kernel> max_, sum_, weights_, karcher_, finish_, totals_, ranges_;
+  compute::Buffer<float> partials_, range_totals_;
+};
+
+}  // namespace depthtrack
