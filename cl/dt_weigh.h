@@ -5,9 +5,9 @@
  * over (global time: aged by dt). Reference: ReferenceFilter::weigh_particle. */
 #ifndef DT_WEIGH_H
 #define DT_WEIGH_H
-#include "dt_prelude.h"
 #include "dt_model.h"
 #include "dt_params.h" /* the DT_OCCLUSION codes */
+#include "dt_prelude.h"
 #include "dt_time_index.h"
 
 DT_DEVICE_FN float dt_weigh_pixel(float y_hat, float y, ulong from, ulong to, __global const float* occlusion_from,

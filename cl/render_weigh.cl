@@ -8,13 +8,13 @@
  * Compile-time choices: DT_GROUP_SIZE (power of two), DT_OCCLUSION as weigh.cl, DT_TILE_PIXELS the
  * image's pixels (the tile's size in work-group memory: the host uses this kernel only where it fits).
  * Reference: Rasterizer::render and ReferenceFilter::weigh_particle. */
-#include "rasterize.cl"
 #include "dt_group.h"
 #include "dt_weigh.h"
+#include "rasterize.cl"
 
-__kernel void render_weigh(__global const float* states, __global const float* vertices,
-                           __global const uint* triangles, __global const float* planes, uint triangle_count,
-                           dt_camera cam, __global const float* observed, __global const uint* parents,
+__kernel void render_weigh(__global const float* states, __global const float* vertices, __global const uint* triangles,
+                           __global const float* planes, uint triangle_count, dt_camera cam,
+                           __global const float* observed, __global const uint* parents,
                            __global const float* occlusion_from, __global const dt_u16* time_from,
                            __global float* occlusion_to, __global dt_u16* time_to, __global float* frame_times,
                            __global float* log_likelihood, __global float* log_weight, dt_model m, float now,

@@ -36,6 +36,32 @@ DT_DEVICE_FN void dt_ff_sum(__global const float* values, uint begin, uint end, 
   for (uint i = begin; i < end; ++i) dt_ff_add(hi, lo, values[i]);
 }
 
+/* Values [begin, end) cut into one contiguous sub-chunk per work-item, [*from, *to): each work-item's
+ * float-float sum of its sub-chunk goes to part_hi, part_lo[lid]; on return every work-item sees all. */
+DT_DEVICE_FN void dt_sub_chunk_sums(__global const float* values, uint begin, uint end, DT_LOCAL_PTR float* part_hi,
+                                    DT_LOCAL_PTR float* part_lo, uint* from, uint* to) {
+  const uint lid = get_local_id(0);
+  const uint chunk = (end - begin + DT_GROUP_SIZE - 1) / DT_GROUP_SIZE;
+  *from = min(end, begin + lid * chunk);
+  *to = min(end, *from + chunk);
+  float hi, lo;
+  dt_ff_sum(values, *from, *to, &hi, &lo);
+  part_hi[lid] = hi;
+  part_lo[lid] = lo;
+  barrier(CLK_LOCAL_MEM_FENCE);
+}
+
+/* The float-float sum of the group's DT_GROUP_SIZE pairs, in order (work-item 0 calls it). */
+DT_DEVICE_FN void dt_pairs_total(DT_LOCAL_PTR const float* part_hi, DT_LOCAL_PTR const float* part_lo, float* hi,
+                                 float* lo) {
+  *hi = 0.0f;
+  *lo = 0.0f;
+  for (uint g = 0; g < DT_GROUP_SIZE; ++g) {
+    dt_ff_add(hi, lo, part_hi[g]);
+    dt_ff_add(hi, lo, part_lo[g]);
+  }
+}
+
 /* Inclusive prefix sum of values [begin, end) in one work-group, starting from (hi, lo) before begin,
  * as float-float pairs written to cumulative[2i], cumulative[2i+1]: each work-item sums a contiguous
  * sub-chunk, work-item 0 scans the sub-chunk totals, then each writes its sub-chunk's running sums. */
@@ -43,13 +69,8 @@ DT_DEVICE_FN void dt_scan_range(__global const float* values, __global float* cu
                                 float start_hi, float start_lo, DT_LOCAL_PTR float* part_hi,
                                 DT_LOCAL_PTR float* part_lo) {
   const uint lid = get_local_id(0);
-  const uint chunk = (end - begin + DT_GROUP_SIZE - 1) / DT_GROUP_SIZE;
-  const uint from = min(end, begin + lid * chunk), to = min(end, from + chunk);
-  float hi, lo;
-  dt_ff_sum(values, from, to, &hi, &lo);
-  part_hi[lid] = hi;
-  part_lo[lid] = lo;
-  barrier(CLK_LOCAL_MEM_FENCE);
+  uint from, to;
+  dt_sub_chunk_sums(values, begin, end, part_hi, part_lo, &from, &to);
   if (lid == 0) {
     float run_hi = start_hi, run_lo = start_lo;
     for (uint g = 0; g < DT_GROUP_SIZE; ++g) {
@@ -61,8 +82,7 @@ DT_DEVICE_FN void dt_scan_range(__global const float* values, __global float* cu
     }
   }
   barrier(CLK_LOCAL_MEM_FENCE);
-  hi = part_hi[lid];
-  lo = part_lo[lid];
+  float hi = part_hi[lid], lo = part_lo[lid];
   for (uint i = from; i < to; ++i) {
     dt_ff_add(&hi, &lo, values[i]);
     cumulative[2 * i] = hi;
@@ -92,23 +112,15 @@ __kernel void prefix_sum_totals(__global const float* values, uint count, __glob
   __local float part_hi[DT_GROUP_SIZE];
   __local float part_lo[DT_GROUP_SIZE];
   if (!dt_resampling(estimate)) return;
-  const uint group = get_group_id(0), groups = get_num_groups(0), lid = get_local_id(0);
-  const uint begin = dt_range_begin(count, group, groups), end = dt_range_begin(count, group + 1, groups);
-  const uint chunk = (end - begin + DT_GROUP_SIZE - 1) / DT_GROUP_SIZE;
-  const uint from = min(end, begin + lid * chunk), to = min(end, from + chunk);
-  float hi, lo;
-  dt_ff_sum(values, from, to, &hi, &lo);
-  part_hi[lid] = hi;
-  part_lo[lid] = lo;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  if (lid == 0) {
-    float run_hi = 0.0f, run_lo = 0.0f;
-    for (uint g = 0; g < DT_GROUP_SIZE; ++g) {
-      dt_ff_add(&run_hi, &run_lo, part_hi[g]);
-      dt_ff_add(&run_hi, &run_lo, part_lo[g]);
-    }
-    totals[2 * group] = run_hi;
-    totals[2 * group + 1] = run_lo;
+  const uint group = get_group_id(0), groups = get_num_groups(0);
+  uint from, to;
+  dt_sub_chunk_sums(values, dt_range_begin(count, group, groups), dt_range_begin(count, group + 1, groups), part_hi,
+                    part_lo, &from, &to);
+  if (get_local_id(0) == 0) {
+    float hi, lo;
+    dt_pairs_total(part_hi, part_lo, &hi, &lo);
+    totals[2 * group] = hi;
+    totals[2 * group + 1] = lo;
   }
 }
 
@@ -130,13 +142,9 @@ __kernel void prefix_sum_ranges(__global const float* values, __global float* cu
   part_lo[lid] = lo;
   barrier(CLK_LOCAL_MEM_FENCE);
   if (lid == 0) {
-    float run_hi = 0.0f, run_lo = 0.0f;
-    for (uint g = 0; g < DT_GROUP_SIZE; ++g) {
-      dt_ff_add(&run_hi, &run_lo, part_hi[g]);
-      dt_ff_add(&run_hi, &run_lo, part_lo[g]);
-    }
-    start[0] = run_hi;
-    start[1] = run_lo;
+    dt_pairs_total(part_hi, part_lo, &hi, &lo);
+    start[0] = hi;
+    start[1] = lo;
   }
   barrier(CLK_LOCAL_MEM_FENCE);
   const float start_hi = start[0], start_lo = start[1];

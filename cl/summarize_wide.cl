@@ -15,22 +15,12 @@
  * The partial rows: dt_summary.h.
  * DT_GROUP_SIZE: work-items per group (power of two). Reference: summarize_log_weights and
  * weighted_mean_pose. */
+#include "dt_estimate.h"
+#include "dt_group.h"
 #include "dt_prelude.h"
 #include "dt_quaternion.h"
 #include "dt_state.h"
-#include "dt_group.h"
 #include "dt_summary.h"
-
-
-DT_DEVICE_FN dt_quat dt_wide_rotation(__global const float* state, uint i) {
-  __global const float* s = state + DT_CAST(ulong, i) * DT_STATE_STRIDE;
-  dt_quat q;
-  q.w = s[DT_QW];
-  q.x = s[DT_QW + 1];
-  q.y = s[DT_QW + 2];
-  q.z = s[DT_QW + 3];
-  return q;
-}
 
 /* The sum of one field's partials over all groups, returned to every work-item (fixed order). */
 DT_DEVICE_FN float dt_partials_sum(DT_LOCAL_PTR float* scratch, __global const float* partials, uint field,
@@ -59,7 +49,7 @@ DT_DEVICE_FN float dt_partials_max(DT_LOCAL_PTR float* scratch, DT_LOCAL_PTR uin
 /* The rotation mean after `steps` Karcher steps, from the heaviest particle's rotation. */
 DT_DEVICE_FN dt_quat dt_partials_mean(DT_LOCAL_PTR float* scratch, __global const float* state,
                                       __global const float* partials, uint groups, uint heaviest, uint steps) {
-  dt_quat mean = dt_wide_rotation(state, heaviest);
+  dt_quat mean = dt_load_rotation(state, heaviest);
   for (uint s = 0; s < steps; ++s) {
     float step[3];
     for (uint k = 0; k < 3; ++k) step[k] = dt_partials_sum(scratch, partials, DT_PARTIAL_STEP + 3 * s + k, groups);
@@ -116,30 +106,21 @@ __kernel void summarize_weights(__global const float* state, __global const floa
   uint heaviest;
   const float max_log_weight = dt_partials_max(scratch, scratch_index, partials, groups, &heaviest);
   const float total = dt_partials_sum(scratch, partials, DT_PARTIAL_SUM, groups);
-  float acc[12];
-  for (int k = 0; k < 12; ++k) acc[k] = 0.0f;
+  float acc[DT_WEIGHTED_SUMS];
+  for (int k = 0; k < DT_WEIGHTED_SUMS; ++k) acc[k] = 0.0f;
   for (uint i = get_global_id(0); i < count; i += get_global_size(0)) {
     const float w = exp(log_weight[i] - max_log_weight) / total;
     weights[i] = w;
-    if (w == 0.0f) continue;
-    __global const float* s = state + DT_CAST(ulong, i) * DT_STATE_STRIDE;
-    const dt_vec3 c = dt_quat_rotate(dt_wide_rotation(state, i), centre);
-    acc[0] += w * w;
-    acc[1] -= w * log(w);
-    acc[2] += w * log_likelihood[i];
-    acc[3] += w * (s[DT_TX] + c.x);
-    acc[4] += w * (s[DT_TX + 1] + c.y);
-    acc[5] += w * (s[DT_TX + 2] + c.z);
-    for (int k = 0; k < 6; ++k) acc[6 + k] += w * s[DT_VX + k];
+    if (w > 0.0f) dt_add_weighted(acc, state, log_likelihood, i, w, centre);
   }
-  for (int k = 0; k < 12; ++k) {
+  for (int k = 0; k < DT_WEIGHTED_SUMS; ++k) {
     const float sum = dt_group_sum(scratch, acc[k]);
     if (get_local_id(0) == 0) partials[(DT_PARTIAL_ACC + k) * groups + get_group_id(0)] = sum;
   }
 }
 
-__kernel void summarize_karcher(__global const float* state, __global const float* weights, uint count,
-                                uint iteration, __global float* partials) {
+__kernel void summarize_karcher(__global const float* state, __global const float* weights, uint count, uint iteration,
+                                __global float* partials) {
   __local float scratch[DT_GROUP_SIZE];
   __local uint scratch_index[DT_GROUP_SIZE];
   const uint groups = get_num_groups(0);
@@ -147,14 +128,8 @@ __kernel void summarize_karcher(__global const float* state, __global const floa
   dt_partials_max(scratch, scratch_index, partials, groups, &heaviest);
   const dt_quat mean = dt_partials_mean(scratch, state, partials, groups, heaviest, iteration);
   float step[3] = {0.0f, 0.0f, 0.0f};
-  for (uint i = get_global_id(0); i < count; i += get_global_size(0)) {
-    const float w = weights[i];
-    if (w == 0.0f) continue;
-    const dt_vec3 d = dt_quat_log(dt_quat_mul(dt_quat_conj(mean), dt_wide_rotation(state, i)));
-    step[0] += w * d.x;
-    step[1] += w * d.y;
-    step[2] += w * d.z;
-  }
+  for (uint i = get_global_id(0); i < count; i += get_global_size(0))
+    if (weights[i] > 0.0f) dt_add_karcher_step(step, state, i, weights[i], mean);
   for (uint k = 0; k < 3; ++k) {
     const float sum = dt_group_sum(scratch, step[k]);
     if (get_local_id(0) == 0) partials[(DT_PARTIAL_STEP + 3 * iteration + k) * groups + get_group_id(0)] = sum;
@@ -175,25 +150,8 @@ __kernel void summarize_finish(__global const float* state, __global float* esti
     max_ll = fmax(max_ll, partials[DT_PARTIAL_MAX_LL * groups + g]);
   uint unused;
   max_ll = dt_group_argmax(scratch, scratch_index, max_ll, 0, &unused);
-  float acc[12];
-  for (uint k = 0; k < 12; ++k) acc[k] = dt_partials_sum(scratch, partials, DT_PARTIAL_ACC + k, groups);
+  float acc[DT_WEIGHTED_SUMS];
+  for (uint k = 0; k < DT_WEIGHTED_SUMS; ++k) acc[k] = dt_partials_sum(scratch, partials, DT_PARTIAL_ACC + k, groups);
   const dt_quat mean = dt_partials_mean(scratch, state, partials, groups, heaviest, DT_KARCHER_STEPS);
-  if (get_local_id(0) == 0) {
-    const dt_vec3 c = dt_quat_rotate(mean, centre);
-    estimate[DT_EST_TX] = acc[3] - c.x;
-    estimate[DT_EST_TX + 1] = acc[4] - c.y;
-    estimate[DT_EST_TX + 2] = acc[5] - c.z;
-    estimate[DT_EST_QW] = mean.w;
-    estimate[DT_EST_QW + 1] = mean.x;
-    estimate[DT_EST_QW + 2] = mean.y;
-    estimate[DT_EST_QW + 3] = mean.z;
-    for (int k = 0; k < 6; ++k) estimate[DT_EST_VX + k] = acc[6 + k];
-    estimate[DT_EST_ESS] = 1.0f / acc[0];
-    const float kl = log(DT_CAST(float, count)) - acc[1];
-    estimate[DT_EST_KL] = kl;
-    estimate[DT_EST_RESAMPLE] = kl > kl_threshold ? 1.0f : 0.0f;
-    estimate[DT_EST_MAX_LL] = max_ll;
-    estimate[DT_EST_MEAN_LL] = acc[2];
-    estimate[DT_EST_HEAVIEST] = dt_as_float(heaviest); /* for refine.cl */
-  }
+  if (get_local_id(0) == 0) dt_write_estimate(estimate, acc, mean, centre, count, max_ll, heaviest, kl_threshold);
 }

@@ -12,9 +12,9 @@
  * frame is now_index, whose time (now) the first work-item writes into the table: no pixel holds that
  * index while it is written (indices are retired long before they come round).
  * Reference: ReferenceFilter::weigh_particle (and its resampling's gather). */
-#include "dt_prelude.h"
 #include "dt_atlas.h"
 #include "dt_group.h"
+#include "dt_prelude.h"
 #include "dt_weigh.h" /* the pixel's term and state: shared with render_weigh.cl */
 
 __kernel void weigh(__global const float* atlas, __global const float* observed, __global const uint* parents,

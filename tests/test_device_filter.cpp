@@ -313,6 +313,26 @@ TEST_CASE("with the refinement layout auto does not pick the device filter still
 // At 320x240 the spread sums kernel has 300 groups' worth of pixels, clamped to 256 groups (work-items
 // sum several pixels), and its last group adds 256 stamped rows per evaluation. From a common state
 // each frame (the reference's), the device's refined estimate must be the reference's.
+// Both filters started alike; each frame the device starts from the reference's state, both update, and
+// check sees the frame's index, both estimates and both filters.
+template <class Check>
+void each_frame_from_common_state(const Scene& scene, const TrackerConfig& config, Check check) {
+  reference::ReferenceFilter reference(scene.mesh, scene.working, config);
+  DeviceFilter device(compute::open_device(config.backend), scene.mesh, scene.working, config);
+  const InitialSpread spread{0.01, 0.05};
+  reference.initialize(scene.frames[0].ground_truth, spread);
+  device.initialize(scene.frames[0].ground_truth, spread);
+  for (size_t f = 0; f < scene.frames.size(); ++f) {
+    INFO(scene.name << ", frame " << f);
+    device.set_state(reference.particles(), reference.occlusion_state(), reference.occlusion_times(),
+                     reference.log_weights());
+    const double dt = f == 0 ? 0.0 : scene.frames[f].timestamp - scene.frames[f - 1].timestamp;
+    const Estimate a = reference.update(scene.frames[f].depth, dt);
+    const Estimate b = device.update(scene.frames[f].depth, dt);
+    check(f, a, b, reference, device);
+  }
+}
+
 TEST_CASE("the spread refinement at 320x240 (more pixels than its groups' work-items) equals the reference",
           "[device][kernel][refine]") {
   if (!test::device_available()) return;
@@ -328,24 +348,13 @@ TEST_CASE("the spread refinement at 320x240 (more pixels than its groups' work-i
   config.seed = 5;
   config.backend = test::device_selector();
   config.refine.layout = RefineLayout::Spread;
-  reference::ReferenceFilter reference(scene.mesh, scene.working, config);
-  DeviceFilter device(compute::open_device(config.backend), scene.mesh, scene.working, config);
-  const InitialSpread spread{0.01, 0.05};
-  reference.initialize(scene.frames[0].ground_truth, spread);
-  device.initialize(scene.frames[0].ground_truth, spread);
   int refined = 0;
-  for (size_t f = 0; f < scene.frames.size(); ++f) {
-    INFO(scene.name << ", frame " << f);
-    device.set_state(reference.particles(), reference.occlusion_state(), reference.occlusion_times(),
-                     reference.log_weights());
-    const double dt = f == 0 ? 0.0 : scene.frames[f].timestamp - scene.frames[f - 1].timestamp;
-    const Estimate a = reference.update(scene.frames[f].depth, dt);
-    const Estimate b = device.update(scene.frames[f].depth, dt);
+  each_frame_from_common_state(scene, config, [&](size_t, const Estimate& a, const Estimate& b, auto&, auto&) {
     CHECK(translation_error(a.pose, b.pose) <= 1e-5);
     CHECK(rotation_error(a.pose, b.pose) <= 1e-4);
     CHECK(a.refine_iterations == b.refine_iterations);
     refined += a.refine_iterations > 0;
-  }
+  });
   CHECK(refined > 0);  // the fit took steps: the rows were added and judged
 }
 
@@ -361,41 +370,32 @@ TEST_CASE("a cloud large enough for the summary and prefix sum over many work-gr
   config.backend = test::device_selector();
   config.renderer = Renderer::Cpu;
   config.refine.enabled = false;
-  reference::ReferenceFilter reference(scene.mesh, scene.working, config);
-  DeviceFilter device(compute::open_device(config.backend), scene.mesh, scene.working, config);
-  const InitialSpread spread{0.01, 0.05};
-  reference.initialize(scene.frames[0].ground_truth, spread);
-  device.initialize(scene.frames[0].ground_truth, spread);
-  for (size_t f = 0; f < scene.frames.size(); ++f) {
-    INFO(scene.name << ", frame " << f);
-    device.set_state(reference.particles(), reference.occlusion_state(), reference.occlusion_times(),
-                     reference.log_weights());
-    const double dt = f == 0 ? 0.0 : scene.frames[f].timestamp - scene.frames[f - 1].timestamp;
-    const Estimate a = reference.update(scene.frames[f].depth, dt);
-    const Estimate b = device.update(scene.frames[f].depth, dt);
-    CHECK(translation_error(a.pose, b.pose) <= 1e-5);
-    CHECK(rotation_error(a.pose, b.pose) <= 1e-4);
-    CHECK(b.effective_sample_size == Approx(a.effective_sample_size).epsilon(1e-3).margin(1e-3));
-    REQUIRE(a.resampled == b.resampled);
-    if (a.resampled) {
-      // Ancestry from the prefix sum over many groups: the reference's resampling of the device's own likelihoods
-      // (with 16,384 children some points lie within the likelihoods' float rounding of a boundary),
-      // but for children within the float log weights' rounding of one (log weights of hundreds of
-      // nats carry ~3e-5 of it: 1-3 children a frame here, as many with the narrow group at 16,383
-      // particles). The prefix sum itself is held to exact ancestry on given weights (test_kernels.cpp).
-      std::vector<double> w = reference.last_normalized_weights();
-      const auto ll_ref = reference.last_log_likelihoods(), ll_dev = device.last_log_likelihoods();
-      double sum = 0;
-      for (size_t i = 0; i < w.size(); ++i) sum += w[i] *= std::exp(ll_dev[i] - ll_ref[i]);
-      for (double& x : w) x /= sum;
-      const double u =
-          dt_uniform01(dt_random_words(config.seed, 0u, static_cast<dt_u32>(f), DT_STREAM_RESAMPLE, 0u).v[0]);
-      const auto expected = reference::systematic_resample(w, u), got = device.last_parents();
-      size_t differing = 0;
-      for (size_t i = 0; i < expected.size(); ++i) differing += expected[i] != got[i];
-      CHECK(differing <= expected.size() / 1000);
-    }
-  }
+  each_frame_from_common_state(
+      scene, config,
+      [&](size_t f, const Estimate& a, const Estimate& b, reference::ReferenceFilter& reference, DeviceFilter& device) {
+        CHECK(translation_error(a.pose, b.pose) <= 1e-5);
+        CHECK(rotation_error(a.pose, b.pose) <= 1e-4);
+        CHECK(b.effective_sample_size == Approx(a.effective_sample_size).epsilon(1e-3).margin(1e-3));
+        REQUIRE(a.resampled == b.resampled);
+        if (a.resampled) {
+          // Ancestry from the prefix sum over many groups: the reference's resampling of the device's own
+          // likelihoods (with 16,384 children some points lie within the likelihoods' float rounding of a
+          // boundary), but for children within the float log weights' rounding of one (log weights of
+          // hundreds of nats carry ~3e-5 of it: 1-3 children a frame here, as many with one group at 16,383
+          // particles). The prefix sum itself is held to exact ancestry on given weights (test_kernels.cpp).
+          std::vector<double> w = reference.last_normalized_weights();
+          const auto ll_ref = reference.last_log_likelihoods(), ll_dev = device.last_log_likelihoods();
+          double sum = 0;
+          for (size_t i = 0; i < w.size(); ++i) sum += w[i] *= std::exp(ll_dev[i] - ll_ref[i]);
+          for (double& x : w) x /= sum;
+          const double u =
+              dt_uniform01(dt_random_words(config.seed, 0u, static_cast<dt_u32>(f), DT_STREAM_RESAMPLE, 0u).v[0]);
+          const auto expected = reference::systematic_resample(w, u), got = device.last_parents();
+          size_t differing = 0;
+          for (size_t i = 0; i < expected.size(); ++i) differing += expected[i] != got[i];
+          CHECK(differing <= expected.size() / 1000);
+        }
+      });
 }
 
 TEST_CASE("more particles than the device can hold is a clear error, not a crash, for every renderer",
