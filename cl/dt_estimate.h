@@ -3,6 +3,7 @@
  * written from the totals. Reference: summarize_log_weights and weighted_mean_pose. */
 #ifndef DT_ESTIMATE_H
 #define DT_ESTIMATE_H
+#include "dt_group.h"
 #include "dt_prelude.h"
 #include "dt_quaternion.h"
 #include "dt_state.h"
@@ -17,6 +18,27 @@ DT_DEVICE_FN dt_quat dt_load_rotation(__global const float* state, uint i) {
   q.y = s[DT_QW + 2];
   q.z = s[DT_QW + 3];
   return q;
+}
+
+/* Over the group's particles first, first + stride, ... below count: the largest log weight (returned,
+ * with the first particle holding it in *heaviest; count where the group has none) and the largest
+ * log-likelihood (*max_ll), to every work-item. */
+DT_DEVICE_FN float dt_group_max_weight(DT_LOCAL_PTR float* scratch, DT_LOCAL_PTR uint* scratch_index,
+                                       __global const float* log_weight, __global const float* log_likelihood,
+                                       uint first, uint stride, uint count, uint* heaviest, float* max_ll) {
+  float best = DT_LOWEST, best_ll = DT_LOWEST;
+  uint best_index = count;
+  for (uint i = first; i < count; i += stride) {
+    if (log_weight[i] > best) {
+      best = log_weight[i];
+      best_index = i;
+    }
+    best_ll = fmax(best_ll, log_likelihood[i]);
+  }
+  const float max_log_weight = dt_group_argmax(scratch, scratch_index, best, best_index, heaviest);
+  uint unused;
+  *max_ll = dt_group_argmax(scratch, scratch_index, best_ll, 0, &unused);
+  return max_log_weight;
 }
 
 /* Particle i's share (weight w > 0) of the weighted sums. */

@@ -22,19 +22,10 @@ __kernel void summarize(__global const float* state, __global const float* log_w
   const uint lid = get_local_id(0);
   const dt_vec3 centre = dt_vec3_make(centre_x, centre_y, centre_z);
 
-  float best = DT_LOWEST, best_ll = DT_LOWEST;
-  uint best_index = count;
-  for (uint i = lid; i < count; i += DT_GROUP_SIZE) {
-    if (log_weight[i] > best) {
-      best = log_weight[i];
-      best_index = i;
-    }
-    best_ll = fmax(best_ll, log_likelihood[i]);
-  }
   uint heaviest;
-  const float max_log_weight = dt_group_argmax(scratch, scratch_index, best, best_index, &heaviest);
-  uint unused;
-  const float max_ll = dt_group_argmax(scratch, scratch_index, best_ll, 0, &unused);
+  float max_ll;
+  const float max_log_weight = dt_group_max_weight(scratch, scratch_index, log_weight, log_likelihood, lid,
+                                                   DT_GROUP_SIZE, count, &heaviest, &max_ll);
 
   float sum = 0.0f;
   for (uint i = lid; i < count; i += DT_GROUP_SIZE) sum += exp(log_weight[i] - max_log_weight);

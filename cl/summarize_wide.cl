@@ -63,19 +63,10 @@ __kernel void summarize_max(__global const float* log_weight, __global const flo
   __local float scratch[DT_GROUP_SIZE];
   __local uint scratch_index[DT_GROUP_SIZE];
   const uint groups = get_num_groups(0), group = get_group_id(0);
-  float best = DT_LOWEST, best_ll = DT_LOWEST;
-  uint best_index = 0xffffffffu;
-  for (uint i = get_global_id(0); i < count; i += get_global_size(0)) {
-    if (log_weight[i] > best) {
-      best = log_weight[i];
-      best_index = i;
-    }
-    best_ll = fmax(best_ll, log_likelihood[i]);
-  }
   uint heaviest;
-  const float max_log_weight = dt_group_argmax(scratch, scratch_index, best, best_index, &heaviest);
-  uint unused;
-  const float max_ll = dt_group_argmax(scratch, scratch_index, best_ll, 0, &unused);
+  float max_ll;
+  const float max_log_weight = dt_group_max_weight(scratch, scratch_index, log_weight, log_likelihood,
+                                                   get_global_id(0), get_global_size(0), count, &heaviest, &max_ll);
   if (get_local_id(0) == 0) {
     partials[DT_PARTIAL_MAX * groups + group] = max_log_weight;
     partials[DT_PARTIAL_ARGMAX * groups + group] = dt_as_float(heaviest);
