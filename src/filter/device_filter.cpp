@@ -143,7 +143,6 @@ DeviceFilter::~DeviceFilter() = default;
 
 size_t DeviceFilter::checked_particle_count() const {
   const size_t count = static_cast<size_t>(config_.particles);
-  // GL's pages sit on the same GPU.
   // GL's pages sit on the same GPU; the kernel renderer's atlas stays in work-group memory where it fits.
   const double per_particle = device_filter_bytes_per_particle(
       pixels_, config_.occlusion_storage, config_.renderer == Renderer::Gl && queue_->info().is_gpu,
