@@ -112,7 +112,7 @@ TEST_CASE("bench writes results.json with every column and the four figures", "[
     CHECK((*speedup)["median"].get<double>() ==
           Approx(frame->at("median").get<double>() / device_frame->at("median").get<double>()));
     // Without the atlas where the kernel renderer draws inside weigh (the tile fits in work-group memory).
-    const bool inside = renders_inside_weigh(4800, compute::open_device(test::device_selector())->info().local_memory);
+    const bool inside = renders_inside_weigh(Renderer::Kernel, 4800, compute::open_device(test::device_selector())->info().local_memory);
     CHECK(memory->at("median").get<double>() == Approx((inside ? 577520.0 : 769520.0) / (1 << 20)));
   }
   for (const char* figure : {"particles.png", "resolution.png", "triangles.png", "occlusion.png"})

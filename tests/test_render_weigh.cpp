@@ -23,7 +23,7 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
   auto q = compute::open_device(test::device_selector());
   const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.9375, 29.9375);
   const size_t pixels = 4800, count = 24;
-  REQUIRE(renders_inside_weigh(pixels, 48 * 1024));
+  REQUIRE(renders_inside_weigh(Renderer::Kernel, pixels, 48 * 1024));
   const Mesh mesh = builtin_demo_mesh();
   TrackerConfig config;
   const Pose truth({0, 0, 0.8}, rotation_exp(Eigen::Vector3d(0.4, 0.5, 0.1)));

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "atlas/atlas_layout.hpp"
+#include "atlas/raster_inputs.hpp"
 #include "compute/buffer.hpp"
 #include "compute/program_cache.hpp"
 
@@ -29,6 +30,9 @@ class AtlasSource {
                                  StepTimings& timings) = 0;
   // e.g. "GL (EGL device 0: ...); hand-off: CUDA-GL interop (zero-copy)".
   virtual std::string description() const = 0;
+  // The mesh as the compute kernels draw it, where this source keeps it on the filter's device (the
+  // kernel source: the filter's render_weigh draws from it too), else null.
+  virtual const MeshBuffers* device_mesh() const { return nullptr; }
 };
 
 struct GlAtlasDevice;  // atlas/gl_atlas_device.hpp

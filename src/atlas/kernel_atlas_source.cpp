@@ -42,6 +42,8 @@ class KernelAtlasSource final : public AtlasSource {
                          mesh_.triangles, mesh_.planes, mesh_.triangle_count(), camera_, layout_.kernel_args(), atlas);
   }
 
+  const MeshBuffers* device_mesh() const override { return &mesh_; }
+
   std::string description() const override {
     return "compute-kernel rasterizer on " + queue_.info().name + "; hand-off: none (rendered in device memory)";
   }

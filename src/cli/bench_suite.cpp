@@ -45,8 +45,8 @@ BenchTarget describe_target(const std::string& backend) {
   if (backend == "reference") return {backend, "cpu", bench::cpu_name(), "-", true, false};
   // The reference on a thread pool (cpu, cpu:N): no compute device to open; the count is checked here.
   if (backend == "cpu" || backend.rfind("cpu:", 0) == 0)
-    return {backend, "cpu", bench::cpu_name() + ", " + std::to_string(cpu_backend_threads(backend)) + " threads",
-            "-",     true,  false};
+    return {backend, "cpu", bench::cpu_name() + ", " + std::to_string(cpu_backend_threads(backend)) + " threads", "-",
+            true, false};
   const auto queue = compute::open_device(backend);
   const compute::DeviceInfo& info = queue->info();
   return {backend, info.platform, info.name, info.driver, !info.is_gpu, true, info.local_memory};
@@ -98,7 +98,7 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
   };
   const size_t pixels = static_cast<size_t>(c.width) * static_cast<size_t>(c.height);
   const bool inside_weigh =
-      target.on_device && renderer == "kernel" && renders_inside_weigh(pixels, target.local_memory);
+      target.on_device && renders_inside_weigh(config.renderer, pixels, target.local_memory);
   const StepBytes b = step_bytes(static_cast<size_t>(c.particles), pixels, c.mode, target.on_device && renderer == "gl",
                                  config.refine.enabled ? config.refine.iterations : 0, inside_weigh);
   const char* names[6] = {"propagate", "render", "handoff", "weigh", "resample", "refine"};

@@ -45,9 +45,6 @@ class Kernel {
  public:
   virtual ~Kernel() = default;
   virtual const std::string& name() const = 0;
-  // The most work-items a group of this kernel may have on its device, its registers and local
-  // memory counted; 0 where the backend cannot say (the device's max_work_group_size then holds).
-  virtual size_t max_group_size() const { return 0; }
   virtual void set_arg(unsigned index, const DeviceMemory& memory) = 0;
   virtual void set_arg_bytes(unsigned index, const void* value, size_t size) = 0;
   // A plain value argument (int, float, unsigned, a struct of them).

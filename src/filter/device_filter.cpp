@@ -35,10 +35,10 @@ double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bo
   return 4.0 * (static_cast<double>(pixels) * floats_per_pixel + (2 + (gl_pages ? 1 : 0)) * DT_STATE_STRIDE + 6);
 }
 
-bool renders_inside_weigh(size_t pixels, size_t local_memory) {
+bool renders_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory) {
   constexpr size_t kStaticLocalLimit = 48 * 1024;  // CUDA's for a block's static shared memory
   const size_t needed = pixels * sizeof(float) + kGroupSize * sizeof(float);  // the tile, the group sum's scratch
-  return needed <= std::min(local_memory, kStaticLocalLimit);
+  return renderer == Renderer::Kernel && needed <= std::min(local_memory, kStaticLocalLimit);
 }
 
 struct DeviceFilter::Kernels {
@@ -102,17 +102,12 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   cumulative_ = compute::Buffer<float>(q, 2 * count_);  // float-float pairs
   parents_ = compute::Buffer<unsigned>(q, count_);
   estimate_ = compute::Buffer<float>(q, DT_EST_SIZE);
-  if (config.renderer == Renderer::Kernel && renders_inside_weigh(pixels_, q.info().local_memory)) {
-    auto program = device_->programs.program("render_weigh.cl",
-                                             {defines[0], defines[1], "DT_TILE_PIXELS=" + std::to_string(pixels_)});
-    auto kernel = program->kernel("render_weigh");
-    // Registers may not allow a group of kGroupSize on some device: then the atlas goes through memory.
-    if (kernel->max_group_size() == 0 || kernel->max_group_size() >= kGroupSize) {
-      render_weigh_ = std::move(kernel);
-      render_weigh_mesh_ = std::make_unique<MeshBuffers>(q, mesh);
-    }
-  }
-  if (!render_weigh_) {  // the atlas drawn by its source, then weighed
+  if (renders_inside_weigh(config.renderer, pixels_, q.info().local_memory) && atlas_source_->device_mesh()) {
+    render_weigh_ = device_->programs
+                        .program("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=" + std::to_string(pixels_)})
+                        ->kernel("render_weigh");
+    render_weigh_mesh_ = atlas_source_->device_mesh();
+  } else {  // the atlas drawn by its source, then weighed
     k.weigh_program = device_->programs.program("weigh.cl", defines);
     k.weigh = k.weigh_program->kernel("weigh");
   }
@@ -146,7 +141,7 @@ size_t DeviceFilter::checked_particle_count() const {
   // GL's pages sit on the same GPU; the kernel renderer's atlas stays in work-group memory where it fits.
   const double per_particle = device_filter_bytes_per_particle(
       pixels_, config_.occlusion_storage, config_.renderer == Renderer::Gl && queue_->info().is_gpu,
-      !(config_.renderer == Renderer::Kernel && renders_inside_weigh(pixels_, queue_->info().local_memory)));
+      !renders_inside_weigh(config_.renderer, pixels_, queue_->info().local_memory));
   const double needed = per_particle * static_cast<double>(count);
   const auto& info = queue_->info();
   if (info.global_memory > 0 && needed > 0.9 * static_cast<double>(info.global_memory)) {

@@ -23,10 +23,11 @@ namespace depthtrack {
 // refuses by and `depthtrack bench` reports.
 double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bool gl_pages, bool atlas = true);
 
-// Whether the kernel renderer draws each particle's tile inside weigh (cl/render_weigh.cl), the tile in
-// work-group memory: where pixels' depths fit in the device's local memory per group, within the
-// 48 KiB a CUDA block may declare statically (80x60 does; 160x120 does not).
-bool renders_inside_weigh(size_t pixels, size_t local_memory);
+// Whether the filter draws each particle's tile inside weigh (cl/render_weigh.cl), the tile in
+// work-group memory: with the kernel renderer, where pixels' depths fit in the device's local memory
+// per group, within the 48 KiB a CUDA block may declare statically (80x60 does; 160x120 does not).
+// The one rule for the filter, its memory check and `depthtrack bench`.
+bool renders_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory);
 
 class DevicePoseScorer;
 class WideSummary;
@@ -117,9 +118,10 @@ class DeviceFilter final : public FilterBackend {
   compute::Buffer<float> state_, scratch_state_, log_weight_, log_likelihood_, weights_, cumulative_, estimate_;
   compute::Buffer<unsigned> parents_;
   compute::Buffer<float> atlas_, observed_;
-  // The kernel renderer's rasterization inside weigh (renders_inside_weigh): its kernel and the mesh.
+  // The kernel renderer's rasterization inside weigh (renders_inside_weigh), drawing the kernel atlas
+  // source's mesh.
   std::unique_ptr<compute::Kernel> render_weigh_;
-  std::unique_ptr<MeshBuffers> render_weigh_mesh_;
+  const MeshBuffers* render_weigh_mesh_ = nullptr;
   bool keep_atlas_ = false;
   // Per-pixel occlusion state, double-buffered: weigh reads particle i's row parents_[i] of one and
   // writes row i of the other (cl/weigh.cl), so resampling copies no rows; parents_ is the identity

@@ -17,7 +17,6 @@ class CudaKernel final : public Kernel {
   CudaKernel(std::shared_ptr<const Module> module, CUfunction function, std::string name);
 
   const std::string& name() const override { return name_; }
-  size_t max_group_size() const override { return max_threads_; }
   using Kernel::set_arg;
   void set_arg(unsigned index, const DeviceMemory& memory) override;
   void set_arg_bytes(unsigned index, const void* value, size_t size) override;

@@ -15,15 +15,6 @@ std::string ClKernel::describe_arg(unsigned index) const {
   return text;
 }
 
-// The program is built for one device, so the device may be left out of the query.
-size_t ClKernel::max_group_size() const {
-  size_t size = 0;
-  if (clGetKernelWorkGroupInfo(kernel_.get(), nullptr, CL_KERNEL_WORK_GROUP_SIZE, sizeof size, &size, nullptr) !=
-      CL_SUCCESS)
-    return 0;
-  return size;
-}
-
 void ClKernel::set_arg(unsigned index, const DeviceMemory& memory) {
   const auto* cl = dynamic_cast<const ClMemory*>(&memory);
   if (!cl) throw InputError(describe_arg(index) + ": the device memory was not allocated by an OpenCL queue");

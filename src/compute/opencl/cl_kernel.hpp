@@ -13,7 +13,6 @@ class ClKernel final : public Kernel {
       : kernel_(std::move(kernel)), name_(std::move(name)), device_(std::move(device)) {}
   using Kernel::set_arg;
   const std::string& name() const override { return name_; }
-  size_t max_group_size() const override;  // CL_KERNEL_WORK_GROUP_SIZE
   void set_arg(unsigned index, const DeviceMemory& memory) override;
   void set_arg_bytes(unsigned index, const void* value, size_t size) override;
   cl_kernel get() const { return kernel_.get(); }
