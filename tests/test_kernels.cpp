@@ -280,7 +280,7 @@ TEST_CASE("summarize kernel equals the reference normalization and mean pose", "
   ll.upload(std::vector<float>(log_likelihoods.begin(), log_likelihoods.end()));
   const float kl_threshold = 2.0f;
   if (wide) {
-    WideSummary summary(*q, programs, {"DT_GROUP_SIZE=" + std::to_string(kGroup), "DT_OCCLUSION=0"}, kGroup, count);
+    WideSummary summary(*q, programs, "DT_OCCLUSION=0", count);
     CHECK(summary.groups() > 1);
     summary.summarize(state, lw, ll, w, est, 0.0f, 0.0f, 0.02f, kl_threshold);
     q->finish();
@@ -339,7 +339,7 @@ TEST_CASE("prefix-sum and find-parents kernels resample as the reference does", 
     weights.upload(w_float);
     w.assign(w_float.begin(), w_float.end());
     if (wide) {
-      WideSummary summary(*q, programs, {"DT_GROUP_SIZE=" + std::to_string(kGroup), "DT_OCCLUSION=0"}, kGroup, count);
+      WideSummary summary(*q, programs, "DT_OCCLUSION=0", count);
       CHECK(summary.groups() > 1);
       summary.prefix_sum(weights, cumulative, decision);
     } else {

@@ -74,7 +74,8 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   k.propagate = k.propagate_program->kernel("propagate");
   // The summary and prefix sum: one group for a few thousand particles, many for large clouds.
   if (count_ >= kWideSummaryParticles) {
-    wide_ = std::make_unique<WideSummary>(*queue_, device_->programs, defines, kGroupSize, count_);
+    wide_ = std::make_unique<WideSummary>(*queue_, device_->programs,
+                                          model::occlusion_definition(config.occlusion_storage), count_);
   } else {
     k.summarize_program = device_->programs.program("summarize.cl", defines);
     k.summarize = k.summarize_program->kernel("summarize");
@@ -103,9 +104,10 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   parents_ = compute::Buffer<unsigned>(q, count_);
   estimate_ = compute::Buffer<float>(q, DT_EST_SIZE);
   if (renders_inside_weigh(config.renderer, pixels_, q.info().local_memory) && atlas_source_->device_mesh()) {
-    render_weigh_ = device_->programs
-                        .program("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=" + std::to_string(pixels_)})
-                        ->kernel("render_weigh");
+    render_weigh_ =
+        device_->programs
+            .program("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=" + std::to_string(pixels_)})
+            ->kernel("render_weigh");
     render_weigh_mesh_ = atlas_source_->device_mesh();
   } else {  // the atlas drawn by its source, then weighed
     k.weigh_program = device_->programs.program("weigh.cl", defines);

@@ -6,19 +6,24 @@
 
 namespace depthtrack {
 
-size_t WideSummary::groups_for(size_t particles, size_t group_size) {
+size_t WideSummary::groups_for(size_t particles) {
   constexpr size_t kPerWorkItem = 8, kMaxGroups = 1024;
-  return std::clamp<size_t>((particles + group_size * kPerWorkItem - 1) / (group_size * kPerWorkItem), 1, kMaxGroups);
+  return std::clamp<size_t>((particles + kGroupSize * kPerWorkItem - 1) / (kGroupSize * kPerWorkItem), 1, kMaxGroups);
 }
 
+namespace {
+std::vector<std::string> definitions(const std::string& occlusion_definition) {
+  return {"DT_GROUP_SIZE=" + std::to_string(WideSummary::kGroupSize), occlusion_definition};
+}
+}  // namespace
+
 WideSummary::WideSummary(compute::Queue& queue, compute::ProgramCache& programs,
-                         const std::vector<std::string>& definitions, size_t group_size, size_t particles)
+                         const std::string& occlusion_definition, size_t particles)
     : queue_(queue),
-      group_size_(group_size),
       particles_(particles),
-      groups_(groups_for(particles, group_size)),
-      summarize_program_(programs.program("summarize_wide.cl", definitions)),
-      resample_program_(programs.program("resample.cl", definitions)),
+      groups_(groups_for(particles)),
+      summarize_program_(programs.program("summarize_wide.cl", definitions(occlusion_definition))),
+      resample_program_(programs.program("resample.cl", definitions(occlusion_definition))),
       max_(summarize_program_->kernel("summarize_max")),
       sum_(summarize_program_->kernel("summarize_sum")),
       weights_(summarize_program_->kernel("summarize_weights")),
@@ -35,7 +40,7 @@ std::vector<compute::EventPtr> WideSummary::summarize(const compute::Buffer<floa
                                                       compute::Buffer<float>& weights, compute::Buffer<float>& estimate,
                                                       float centre_x, float centre_y, float centre_z,
                                                       float kl_threshold) {
-  const auto grid = compute::NdRange::linear(groups_ * group_size_, group_size_);
+  const auto grid = compute::NdRange::linear(groups_ * kGroupSize, kGroupSize);
   const unsigned count = static_cast<unsigned>(particles_);
   std::vector<compute::EventPtr> events;
   events.push_back(queue_.launch(*max_, grid, log_weight, log_likelihood, count, partials_));
@@ -44,7 +49,7 @@ std::vector<compute::EventPtr> WideSummary::summarize(const compute::Buffer<floa
                                  centre_y, centre_z, partials_));
   for (unsigned step = 0; step < DT_KARCHER_STEPS; ++step)
     events.push_back(queue_.launch(*karcher_, grid, states, weights, count, step, partials_));
-  events.push_back(queue_.launch(*finish_, compute::NdRange::linear(group_size_, group_size_), states, estimate, count,
+  events.push_back(queue_.launch(*finish_, compute::NdRange::linear(kGroupSize, kGroupSize), states, estimate, count,
                                  static_cast<unsigned>(groups_), centre_x, centre_y, centre_z, kl_threshold,
                                  partials_));
   return events;
@@ -53,7 +58,7 @@ std::vector<compute::EventPtr> WideSummary::summarize(const compute::Buffer<floa
 std::vector<compute::EventPtr> WideSummary::prefix_sum(const compute::Buffer<float>& weights,
                                                        compute::Buffer<float>& cumulative,
                                                        const compute::Buffer<float>& estimate) {
-  const auto grid = compute::NdRange::linear(groups_ * group_size_, group_size_);
+  const auto grid = compute::NdRange::linear(groups_ * kGroupSize, kGroupSize);
   const unsigned count = static_cast<unsigned>(particles_);
   return {queue_.launch(*totals_, grid, weights, count, range_totals_, estimate),
           queue_.launch(*ranges_, grid, weights, cumulative, count, range_totals_, estimate)};

@@ -19,13 +19,15 @@ constexpr size_t kWideSummaryParticles = 16384;
 
 class WideSummary {
  public:
-  // definitions: the filter kernels' (DT_GROUP_SIZE, DT_OCCLUSION); particles: the cloud's size.
-  WideSummary(compute::Queue& queue, compute::ProgramCache& programs, const std::vector<std::string>& definitions,
-              size_t group_size, size_t particles);
+  // occlusion_definition: the filter kernels' DT_OCCLUSION (model::occlusion_definition); particles:
+  // the cloud's size. Its programs are built as the filter's, with kGroupSize work-items a group.
+  WideSummary(compute::Queue& queue, compute::ProgramCache& programs, const std::string& occlusion_definition,
+              size_t particles);
 
+  static constexpr size_t kGroupSize = 128;
   // Groups for a cloud: about 8 particles a work-item, at most 1,024 groups (the partial rows each later
   // pass combines).
-  static size_t groups_for(size_t particles, size_t group_size);
+  static size_t groups_for(size_t particles);
 
   // summarize.cl's outputs (weights, estimate) from the states and log weights; the launches' events.
   std::vector<compute::EventPtr> summarize(const compute::Buffer<float>& states,
@@ -41,7 +43,7 @@ class WideSummary {
 
  private:
   compute::Queue& queue_;
-  size_t group_size_, particles_, groups_;
+  size_t particles_, groups_;
   std::shared_ptr<compute::Program> summarize_program_, resample_program_;
   std::unique_ptr<compute::Kernel> max_, sum_, weights_, karcher_, finish_, totals_, ranges_;
   compute::Buffer<float> partials_, range_totals_;
