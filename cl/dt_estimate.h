@@ -3,8 +3,8 @@
  * written from the totals. Reference: summarize_log_weights and weighted_mean_pose. */
 #ifndef DT_ESTIMATE_H
 #define DT_ESTIMATE_H
-#include "dt_group.h"
 #include "dt_prelude.h"
+#include "dt_group.h"
 #include "dt_quaternion.h"
 #include "dt_state.h"
 

@@ -1,15 +1,36 @@
-/* One pixel of one particle's weigh (weigh.cl, render_weigh.cl): its log-ratio term, and its occlusion
- * state after the frame written to row `to` from the state before it in row `from` (its parent's:
- * the last frame's resampling, folded in). y_hat: the particle's rendered depth there (0: not covered);
- * y: the observed depth. An unused pixel (not covered, or no valid depth) adds 0 and carries its state
- * over (global time: aged by dt). Reference: ReferenceFilter::weigh_particle. */
+/* What weigh.cl and render_weigh.cl share: a particle's group begins and ends the same way, and between
+ * them weighs each pixel with dt_weigh_pixel. Reference: ReferenceFilter::weigh_particle. */
 #ifndef DT_WEIGH_H
 #define DT_WEIGH_H
+#include "dt_prelude.h"
+#include "dt_group.h"
 #include "dt_model.h"
 #include "dt_params.h" /* the DT_OCCLUSION codes */
-#include "dt_prelude.h"
 #include "dt_time_index.h"
 
+/* Per-pixel time: this frame's time into the table, by the first work-item (no pixel holds now_index
+ * while it is written: indices are retired long before they come round). */
+DT_DEVICE_FN void dt_weigh_begin(__global float* frame_times, float now, uint now_index) {
+#if DT_OCCLUSION == DT_PER_PIXEL_TIME
+  if (get_group_id(0) == 0 && get_local_id(0) == 0) frame_times[now_index] = now;
+#endif
+}
+
+/* The group's sum of its particle's pixel terms: the particle's log-likelihood, added to its weight. */
+DT_DEVICE_FN void dt_weigh_end(DT_LOCAL_PTR float* scratch, float sum, __global float* log_likelihood,
+                               __global float* log_weight) {
+  sum = dt_group_sum(scratch, sum);
+  if (get_local_id(0) == 0) {
+    log_likelihood[get_group_id(0)] = sum;
+    log_weight[get_group_id(0)] += sum;
+  }
+}
+
+/* One pixel of one particle's weigh: its log-ratio term, and its occlusion state after the frame
+ * written to row `to` from the state before it in row `from` (its parent's: the last frame's
+ * resampling, folded in). y_hat: the particle's rendered depth there (0: not covered); y: the observed
+ * depth. An unused pixel (not covered, or no valid depth) adds 0 and carries its state over (global
+ * time: aged by dt). */
 DT_DEVICE_FN float dt_weigh_pixel(float y_hat, float y, ulong from, ulong to, __global const float* occlusion_from,
                                   __global const dt_u16* time_from, __global float* occlusion_to,
                                   __global dt_u16* time_to, __global const float* frame_times, dt_model m, float now,

@@ -8,11 +8,11 @@
  * H100: 5 % faster for the handset, 7-16 % slower for the 69k-triangle bunny, as it lowers occupancy)
  * and fits only up to about 100x100 pixels. DT_GROUP_SIZE: work-items per group.
  * Reference: Rasterizer::render. */
-#include "dt_atlas.h"
-#include "dt_params.h" /* dt_camera */
 #include "dt_prelude.h"
+#include "dt_atlas.h"
 #include "dt_quaternion.h"
 #include "dt_state.h"
+#include "dt_params.h" /* dt_camera */
 
 #define DT_NO_SURFACE 0x7f800000u /* +inf's bits: above every depth until the end, then 0 */
 

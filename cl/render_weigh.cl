@@ -8,9 +8,8 @@
  * Compile-time choices: DT_GROUP_SIZE (power of two), DT_OCCLUSION as weigh.cl, DT_TILE_PIXELS the
  * image's pixels (the tile's size in work-group memory: the host uses this kernel only where it fits).
  * Reference: Rasterizer::render and ReferenceFilter::weigh_particle. */
-#include "dt_group.h"
-#include "dt_weigh.h"
 #include "rasterize.cl"
+#include "dt_weigh.h"
 
 __kernel void render_weigh(__global const float* states, __global const float* vertices, __global const uint* triangles,
                            __global const float* planes, uint triangle_count, dt_camera cam,
@@ -22,9 +21,7 @@ __kernel void render_weigh(__global const float* states, __global const float* v
   __local uint tile[DT_TILE_PIXELS];
   __local float scratch[DT_GROUP_SIZE];
   const uint particle = get_group_id(0), lid = get_local_id(0), pixels = cam.width * cam.height;
-#if DT_OCCLUSION == DT_PER_PIXEL_TIME
-  if (particle == 0 && lid == 0) frame_times[now_index] = now;
-#endif
+  dt_weigh_begin(frame_times, now, now_index);
   for (uint k = lid; k < pixels; k += DT_GROUP_SIZE) tile[k] = DT_NO_SURFACE;
   barrier(CLK_LOCAL_MEM_FENCE);
   const dt_rigid pose = dt_particle_pose(states + DT_CAST(ulong, particle) * DT_STATE_STRIDE);
@@ -40,9 +37,5 @@ __kernel void render_weigh(__global const float* states, __global const float* v
     sum += dt_weigh_pixel(dt_as_float(bits), observed[k], from + k, to + k, occlusion_from, time_from, occlusion_to,
                           time_to, frame_times, m, now, now_index, dt);
   }
-  sum = dt_group_sum(scratch, sum);
-  if (lid == 0) {
-    log_likelihood[particle] = sum;
-    log_weight[particle] += sum;
-  }
+  dt_weigh_end(scratch, sum, log_likelihood, log_weight);
 }

@@ -7,9 +7,9 @@
  * a read of the weights (one group strides over all particles: at a million particles each state read
  * was a wait on memory).
  * Reference: summarize_log_weights and weighted_mean_pose. */
+#include "dt_prelude.h"
 #include "dt_estimate.h"
 #include "dt_group.h"
-#include "dt_prelude.h"
 #include "dt_quaternion.h"
 #include "dt_state.h"
 #include "dt_summary.h" /* DT_KARCHER_STEPS */

@@ -15,9 +15,9 @@
  * The partial rows: dt_summary.h.
  * DT_GROUP_SIZE: work-items per group (power of two). Reference: summarize_log_weights and
  * weighted_mean_pose. */
+#include "dt_prelude.h"
 #include "dt_estimate.h"
 #include "dt_group.h"
-#include "dt_prelude.h"
 #include "dt_quaternion.h"
 #include "dt_state.h"
 #include "dt_summary.h"

@@ -12,10 +12,9 @@
  * frame is now_index, whose time (now) the first work-item writes into the table: no pixel holds that
  * index while it is written (indices are retired long before they come round).
  * Reference: ReferenceFilter::weigh_particle (and its resampling's gather). */
-#include "dt_atlas.h"
-#include "dt_group.h"
 #include "dt_prelude.h"
-#include "dt_weigh.h" /* the pixel's term and state: shared with render_weigh.cl */
+#include "dt_atlas.h"
+#include "dt_weigh.h" /* shared with render_weigh.cl */
 
 __kernel void weigh(__global const float* atlas, __global const float* observed, __global const uint* parents,
                     __global const float* occlusion_from, __global const dt_u16* time_from,
@@ -24,18 +23,12 @@ __kernel void weigh(__global const float* atlas, __global const float* observed,
                     uint now_index, float dt, dt_atlas_layout layout) {
   __local float scratch[DT_GROUP_SIZE];
   const uint particle = get_group_id(0);
-#if DT_OCCLUSION == DT_PER_PIXEL_TIME
-  if (particle == 0 && get_local_id(0) == 0) frame_times[now_index] = now;
-#endif
+  dt_weigh_begin(frame_times, now, now_index);
   const ulong from = DT_CAST(ulong, parents[particle]) * pixels, to = DT_CAST(ulong, particle) * pixels;
   const ulong tile = dt_atlas_tile_start(layout, particle);
   float sum = 0.0f;
   for (uint k = get_local_id(0); k < pixels; k += DT_GROUP_SIZE)
     sum += dt_weigh_pixel(atlas[dt_atlas_pixel(layout, tile, k)], observed[k], from + k, to + k, occlusion_from,
                           time_from, occlusion_to, time_to, frame_times, m, now, now_index, dt);
-  sum = dt_group_sum(scratch, sum);
-  if (get_local_id(0) == 0) {
-    log_likelihood[particle] = sum;
-    log_weight[particle] += sum;
-  }
+  dt_weigh_end(scratch, sum, log_likelihood, log_weight);
 }
