@@ -23,6 +23,16 @@ namespace {
 constexpr size_t kGroupSize = 128;   // work-items per group in weigh, summarize and the per-pixel fills
 constexpr size_t kLinearGroup = 64;  // work-items per group in the per-particle kernels
 
+// A run of launches' device time from its first event to its last, the gaps between them included
+// (the launches between are untimed); the events' own times added where the backend has no common clock.
+double device_span_ms(const std::vector<compute::EventPtr>& events) {
+  if (events.size() > 1)
+    if (const auto span = events.back()->elapsed_since_ms(*events.front())) return *span;
+  double ms = 0;
+  for (const auto& event : events) ms += event->elapsed_ms();
+  return ms;
+}
+
 size_t round_up(size_t n, size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
 }
@@ -391,16 +401,12 @@ Estimate DeviceFilter::collect() {
     e.timings.render_on_device = true;
   }
   e.timings.weigh_ms = p->weighed->elapsed_ms();
-  for (const auto& event : p->summarized) e.timings.resample_ms += event->elapsed_ms();
+  e.timings.resample_ms += device_span_ms(p->summarized);
   for (const auto& event : p->resampling) e.timings.resample_ms += event->elapsed_ms();
   if (p->shifted) {
-    // The fit's launches as one span on the device, with the gaps between them (the spread layout
-    // enqueues dozens), then the shift (enqueued after the resampling).
-    e.timings.refine_ms = p->shifted->elapsed_ms();
-    if (const auto span = p->refined.back()->elapsed_since_ms(*p->refined.front()))
-      e.timings.refine_ms += *span;
-    else
-      for (const auto& event : p->refined) e.timings.refine_ms += event->elapsed_ms();
+    // The fit's launches as one span on the device (the spread layout enqueues dozens), then the shift
+    // (enqueued after the resampling).
+    e.timings.refine_ms = p->shifted->elapsed_ms() + device_span_ms(p->refined);
   }
   e.timings.total_ms = p->clock.elapsed_ms();
   ++frame_;

@@ -29,7 +29,8 @@ class WideSummary {
   // pass combines).
   static size_t groups_for(size_t particles);
 
-  // summarize.cl's outputs (weights, estimate) from the states and log weights; the launches' events.
+  // summarize.cl's outputs (weights, estimate) from the states and log weights; the first and the last
+  // launch's events (the ones between are untimed: device_span_ms).
   std::vector<compute::EventPtr> summarize(const compute::Buffer<float>& states,
                                            const compute::Buffer<float>& log_weight,
                                            const compute::Buffer<float>& log_likelihood,
