@@ -243,8 +243,7 @@ void DeviceFilter::set_state(const std::vector<model::ParticleState>& particles,
   if (!occlusion.empty()) occlusion_.upload(occlusion);
   if (!occlusion_time.empty()) occlusion_time_.upload(frame_times_->indices(occlusion_time));
   queue_->launch(*kernels_->identity_parents, compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup),
-                 parents_, static_cast<unsigned>(count_));
-  queue_->finish();
+                 parents_, static_cast<unsigned>(count_));  // in queue order before the next frame's weigh
 }
 
 // Particle i's row is parents_[i] of the buffer (cl/weigh.cl folds the gather into the next frame).
