@@ -44,7 +44,7 @@ bool host_backend(const std::string& backend) {
 
 // Prints the case's rows; returns its median frame time (ms).
 double run(const Mesh& mesh, const std::string& mesh_name, const std::string& backend, const std::string& renderer,
-           const Refinement& refine, const Case& c, int frames) {
+           const Refinement& refine, const Case& c, int frames, const OcclusionWindow& window) {
   SynthConfig synth;
   synth.frames = frames;
   synth.occluder_fraction = 0.3;
@@ -56,6 +56,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
   config.height = c.height;
   config.particles = c.particles;
   config.refine = refine;
+  config.occlusion_window = window;
   // Start-up: construction (device buffers, kernels built or read from the driver's cache) and the
   // initial particle and occlusion state, with the host memory it peaks at.
   const bool peak_known = bench::reset_peak_resident();
@@ -85,7 +86,10 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
       std::to_string(c.height) + "_" + std::to_string(c.particles) + "p" +
       (refine.enabled ? "_refine" + std::to_string(refine.iterations) : "_norefine") +
       (refine.enabled && refine.layout != RefineLayout::Auto ? std::string("_") + to_string(refine.layout)
-                                                             : std::string());
+                                                             : std::string()) +
+      (window.width > 0 || window.height > 0
+           ? "_window" + std::to_string(window.width) + "x" + std::to_string(window.height)
+           : std::string());
   const std::string platform = host_backend(backend) ? "cpu" : backend;
   const std::string name = host_backend(backend) ? bench::cpu_name() : device;
   for (const auto& [metric, samples] : {std::pair{"propagate", &propagate},
@@ -113,7 +117,8 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
 const char* const kUsage =
     "usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] "
     "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N] [--refine-converged M]\n"
-    "       [--refine-layout auto|one-group|spread] [--mesh FILE] [--no-global] [--multi-objects]\n"
+    "       [--refine-layout auto|one-group|spread] [--occlusion-window WxH] [--mesh FILE] [--no-global]\n"
+    "       [--multi-objects]\n"
     "Times tracker frames on a synthetic occluded handset sequence, split into propagate / render / hand-off /\n"
     "weigh / resample, start-up (construction + initialize) with its peak host memory, and the off-screen start\n"
     "(one particle 10,000 km to the side, 5 frames); prints CSV rows\n"
@@ -129,7 +134,10 @@ const char* const kUsage =
     "  --refine-converged M   the refinement stops when a step would move the mesh less than M metres\n"
     "                         (default: TrackerConfig's; 0 takes every step)\n"
     "  --refine-layout NAME   device backends' refinement: auto (default: spread on CUDA GPUs and for meshes\n"
-    "                         of 4,096 triangles or more), one-group or spread; a given one is named in the test column\n"
+    "                         of 4,096 triangles or more), one-group or spread; a given one is named in the test "
+    "column\n"
+    "  --occlusion-window WxH particles keep occlusion state in a WxH window around the estimate (default: the\n"
+    "                         whole image; TrackerConfig::occlusion_window), named in the test column\n"
     "  --mesh FILE            track this mesh instead of the handset (e.g. a 16k-triangle YCB mesh)\n"
     "  --no-global            leave out the global initialization rows (box hint and no hint, 80x60)\n"
     "  --multi-objects        instead: one object against three in one process at 80x60 (ycbv-0000's, else\n"
@@ -216,6 +224,7 @@ int main(int argc, char** argv) {
   std::vector<std::pair<int, int>> sizes;
   int frames = 20;
   Refinement refine;
+  OcclusionWindow window;
   bool global = true, multi_objects = false;
   std::string mesh_file;
   const auto option = [&](const std::string& arg, bench::ArgReader& args) {
@@ -243,6 +252,8 @@ int main(int argc, char** argv) {
       } catch (const InputError& e) {
         throw bench::UsageError{e.what()};
       }
+    else if (arg == "--occlusion-window")
+      std::tie(window.width, window.height) = bench::parse_size(args.value(), arg);
     else if (arg == "--mesh")
       mesh_file = args.value();
     else if (arg == "--no-global")
@@ -284,11 +295,11 @@ int main(int argc, char** argv) {
       // A case the device cannot run (too many particles for its memory) gets a status row, and
       // the others still run.
       try {
-        const double ms = run(mesh, name, backend, renderer, refine, c, std::max(frames, 4));
+        const double ms = run(mesh, name, backend, renderer, refine, c, std::max(frames, 4), window);
         // The threaded CPU path is worth its name only against the sequential reference, measured
         // here in the same run on the same case: the speedup row.
         if (backend != "reference" && host_backend(backend)) {
-          const double reference_ms = run(mesh, name, "reference", renderer, refine, c, std::max(frames, 4));
+          const double reference_ms = run(mesh, name, "reference", renderer, refine, c, std::max(frames, 4), window);
           const std::string test = name + "_" + std::to_string(c.width) + "x" + std::to_string(c.height) + "_" +
                                    std::to_string(c.particles) + "p";
           bench::print_row(

@@ -52,6 +52,15 @@ typedef struct {
   dt_u32 vertex_count;
 } dt_refine_args;
 
+/* The occlusion state window (model::StateWindow, TrackerConfig::occlusion_window): each particle's
+ * row of occlusion state holds width x height pixels from (u0, v0) this frame; the rows read (the
+ * parents', from the last frame) lie at (last_u0, last_v0). A pixel outside this frame's window, or
+ * new to it, is fresh: `initial` at time 0. image_width: the working image's, to place pixel k. */
+typedef struct {
+  dt_u32 u0, v0, last_u0, last_v0, width, height, image_width;
+  float initial;
+} dt_window;
+
 /* How occlusion is stored, the value of the DT_OCCLUSION compile-time definition. */
 #define DT_PER_PIXEL_TIME 0
 #define DT_GLOBAL_TIME 1

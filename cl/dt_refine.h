@@ -11,6 +11,8 @@
 #include "dt_model.h"
 #include "dt_params.h" /* the DT_OCCLUSION codes, dt_refine_args */
 #include "dt_refine_state.h"
+#include "dt_time_index.h"
+#include "dt_window.h"
 #include "rasterize.cl"
 
 /* Pose as translation and unit quaternion, in a work-item's registers. */
@@ -106,15 +108,18 @@ DT_DEVICE_FN dt_vec3 dt_vertex_at(dt_rigid m, float x, float y, float z) {
 }
 
 /* Where the heaviest particle's occlusion state from before this frame's weigh starts in each map
- * (its row: weigh's parents[heaviest], weigh.cl), for its pixel k at offset + k (the modes without
- * per-particle maps pass one element, read at 0 or not at all). */
+ * (its row: weigh's parents[heaviest], weigh.cl; rows of the state window's pixels, dt_window.h), and
+ * the window, which places pixel k in the row or makes it fresh (the modes without per-particle maps
+ * pass one element, read at 0 or not at all). */
 typedef struct {
   ulong occlusion, time;
+  dt_window win;
 } dt_refine_offsets;
 
-DT_DEVICE_FN dt_refine_offsets dt_refine_map_offsets(uint row, uint pixels) {
-  const ulong base = DT_CAST(ulong, row) * pixels;
+DT_DEVICE_FN dt_refine_offsets dt_refine_map_offsets(uint row, dt_window win) {
+  const ulong base = DT_CAST(ulong, row) * win.width * win.height;
   dt_refine_offsets o;
+  o.win = win;
 #if DT_OCCLUSION == DT_OCCLUSION_OFF
   o.occlusion = 0;
   o.time = 0;
@@ -141,10 +146,17 @@ DT_DEVICE_FN void dt_refine_pixel(float* acc, uint k, uint bits, uint id, dt_rig
   if (bits == DT_NO_SURFACE || !(y > 0.0f) || !isfinite(y)) return;
   const float y_hat = dt_as_float(bits);
   float p = 0.0f;
+#if DT_OCCLUSION != DT_OCCLUSION_OFF
+  const dt_u32 u = k % cam.width, v = k / cam.width;
+  const int from = dt_window_from(at.win, dt_window_index(at.win, at.win.u0, at.win.v0, u, v), u, v);
+#endif
 #if DT_OCCLUSION == DT_PER_PIXEL_TIME
-  p = dt_propagate_occlusion(m, occlusion[at.occlusion + k], args.now - frame_times[occlusion_time[at.time + k]]);
+  p = from >= 0 ? dt_propagate_occlusion(m, occlusion[at.occlusion + from],
+                                         args.now - frame_times[occlusion_time[at.time + from]])
+                : dt_propagate_occlusion(m, at.win.initial, args.now - frame_times[DT_TIME_NEVER]);
 #elif DT_OCCLUSION == DT_GLOBAL_TIME
-  p = dt_propagate_occlusion(m, occlusion[at.occlusion + k], args.dt);
+  p = from >= 0 ? dt_propagate_occlusion(m, occlusion[at.occlusion + from], args.dt)
+                : dt_propagate_occlusion(m, at.win.initial, args.now);
 #endif
   float posterior;
   acc[DT_REFINE_OBJECTIVE] += dt_pixel_log_ratio(m, y, y_hat, p, &posterior);

@@ -115,13 +115,13 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
  * (dt_state.h); states: the particles; occlusion, occlusion_time: the per-pixel state from before this
  * frame's weigh, particle i's in row parents[i] (the heaviest particle's prior is its row aged to now);
  * pose_state, tile and ids: scratch for one pose; correction: the twist from the heaviest particle to
- * the refined pose. */
+ * the refined pose; win: the state window, which places each pixel's state in those rows. */
 __kernel void refine(__global float* estimate, __global const float* states, __global const float* observed,
                      __global const float* occlusion, __global const dt_u16* occlusion_time,
                      __global const float* frame_times, __global const uint* parents, __global const float* vertices,
                      __global const uint* triangles, __global const float* planes, uint triangle_count, dt_camera cam,
                      dt_model m, dt_refine_args args, __global float* pose_state, __global uint* tile,
-                     __global uint* ids, __global float* correction) {
+                     __global uint* ids, __global float* correction, dt_window win) {
   __local float sums[DT_REFINE_SUMS * DT_GROUP_SIZE];
   __local int proceed;
   int tried = 0; /* work-item 0's count of steps evaluated */
@@ -130,7 +130,7 @@ __kernel void refine(__global float* estimate, __global const float* states, __g
 
   /* summarize found it (the first of equal maximal log weights, as the reference): not searched again. */
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
-  const dt_refine_offsets at = dt_refine_map_offsets(parents[heaviest], cam.width * cam.height);
+  const dt_refine_offsets at = dt_refine_map_offsets(parents[heaviest], win);
 
   const dt_pose start = dt_load_pose(states + DT_CAST(ulong, heaviest) * DT_STATE_STRIDE);
   if (lid == 0) dt_store_pose(pose_state, start);

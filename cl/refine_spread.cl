@@ -106,13 +106,13 @@ __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate,
                           __global const dt_u16* occlusion_time, __global const float* frame_times,
                           __global const uint* parents, __global const float* planes, uint triangle_count,
                           dt_camera cam, dt_model m, dt_refine_args args, __global dt_u64* nearest,
-                          __global dt_u64* partials, __global float* correction) {
+                          __global dt_u64* partials, __global float* correction, dt_window win) {
   __local float sums[DT_REFINE_SUMS * DT_GROUP_SIZE];
   if (!s->active) return; /* the same for every work-item, before any barrier */
   const uint stamp = s->stamp;
   const uint pixels = cam.width * cam.height;
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
-  const dt_refine_offsets at = dt_refine_map_offsets(parents[heaviest], pixels);
+  const dt_refine_offsets at = dt_refine_map_offsets(parents[heaviest], win);
   const dt_rigid pose = dt_particle_pose(s->candidate);
   const dt_vec3 centre = dt_vertex_at(pose, args.centre_x, args.centre_y, args.centre_z);
   float acc[DT_REFINE_SUMS];

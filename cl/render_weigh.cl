@@ -17,7 +17,7 @@ __kernel void render_weigh(__global const float* states, __global const float* v
                            __global const float* occlusion_from, __global const dt_u16* time_from,
                            __global float* occlusion_to, __global dt_u16* time_to, __global float* frame_times,
                            __global float* log_likelihood, __global float* log_weight, dt_model m, float now,
-                           uint now_index, float dt, __global uint* atlas, uint keep_atlas) {
+                           uint now_index, float dt, __global uint* atlas, uint keep_atlas, dt_window win) {
   __local uint tile[DT_TILE_PIXELS];
   __local float scratch[DT_GROUP_SIZE];
   const uint particle = get_group_id(0), lid = get_local_id(0), pixels = cam.width * cam.height;
@@ -29,13 +29,16 @@ __kernel void render_weigh(__global const float* states, __global const float* v
     dt_draw_triangle(pose, vertices, triangles, planes, t, cam, 0, 0, 0, tile);
   barrier(CLK_LOCAL_MEM_FENCE);
 
-  const ulong from = DT_CAST(ulong, parents[particle]) * pixels, to = DT_CAST(ulong, particle) * pixels;
+  const ulong row = DT_CAST(ulong, win.width) * win.height;
+  const ulong from = DT_CAST(ulong, parents[particle]) * row, to = DT_CAST(ulong, particle) * row;
   float sum = 0.0f;
-  for (uint k = lid; k < pixels; k += DT_GROUP_SIZE) {
+  dt_u32 u, v;
+  dt_pixel_place(lid, win.image_width, &u, &v);
+  for (uint k = lid; k < pixels; k += DT_GROUP_SIZE, dt_pixel_step(DT_GROUP_SIZE, win.image_width, &u, &v)) {
     const uint bits = tile[k] == DT_NO_SURFACE ? 0u : tile[k]; /* 0.0f's bits where nothing was drawn */
     if (keep_atlas) atlas[DT_CAST(ulong, particle) * pixels + k] = bits;
-    sum += dt_weigh_pixel(dt_as_float(bits), observed[k], from + k, to + k, occlusion_from, time_from, occlusion_to,
-                          time_to, frame_times, m, now, now_index, dt);
+    sum += dt_weigh_image_pixel(k, u, v, dt_as_float(bits), observed, win, from, to, occlusion_from, time_from,
+                                occlusion_to, time_to, frame_times, m, now, now_index, dt);
   }
   dt_weigh_end(scratch, sum, log_likelihood, log_weight);
 }

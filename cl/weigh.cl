@@ -11,6 +11,7 @@
  * Per-pixel time keeps each pixel's last frame as an index into frame_times (dt_time_index.h); this
  * frame is now_index, whose time (now) the first work-item writes into the table: no pixel holds that
  * index while it is written (indices are retired long before they come round).
+ * The rows hold the state window's pixels (dt_window.h; the whole image by default).
  * Reference: ReferenceFilter::weigh_particle (and its resampling's gather). */
 #include "dt_prelude.h"
 #include "dt_atlas.h"
@@ -20,15 +21,18 @@ __kernel void weigh(__global const float* atlas, __global const float* observed,
                     __global const float* occlusion_from, __global const dt_u16* time_from,
                     __global float* occlusion_to, __global dt_u16* time_to, __global float* frame_times,
                     __global float* log_likelihood, __global float* log_weight, uint pixels, dt_model m, float now,
-                    uint now_index, float dt, dt_atlas_layout layout) {
+                    uint now_index, float dt, dt_atlas_layout layout, dt_window win) {
   __local float scratch[DT_GROUP_SIZE];
   const uint particle = get_group_id(0);
   dt_weigh_begin(frame_times, now, now_index);
-  const ulong from = DT_CAST(ulong, parents[particle]) * pixels, to = DT_CAST(ulong, particle) * pixels;
+  const ulong row = DT_CAST(ulong, win.width) * win.height;
+  const ulong from = DT_CAST(ulong, parents[particle]) * row, to = DT_CAST(ulong, particle) * row;
   const ulong tile = dt_atlas_tile_start(layout, particle);
   float sum = 0.0f;
-  for (uint k = get_local_id(0); k < pixels; k += DT_GROUP_SIZE)
-    sum += dt_weigh_pixel(atlas[dt_atlas_pixel(layout, tile, k)], observed[k], from + k, to + k, occlusion_from,
-                          time_from, occlusion_to, time_to, frame_times, m, now, now_index, dt);
+  dt_u32 u, v;
+  dt_pixel_place(get_local_id(0), win.image_width, &u, &v);
+  for (uint k = get_local_id(0); k < pixels; k += DT_GROUP_SIZE, dt_pixel_step(DT_GROUP_SIZE, win.image_width, &u, &v))
+    sum += dt_weigh_image_pixel(k, u, v, atlas[dt_atlas_pixel(layout, tile, k)], observed, win, from, to,
+                                occlusion_from, time_from, occlusion_to, time_to, frame_times, m, now, now_index, dt);
   dt_weigh_end(scratch, sum, log_likelihood, log_weight);
 }

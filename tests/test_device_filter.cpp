@@ -10,6 +10,7 @@
 #include "filter/device_refiner.hpp"
 #include "filter/wide_summary.hpp"
 #include "model/occlusion_chain.hpp"
+#include "model/state_window.hpp"
 #include "philox.h"
 #include "reference/observation_model.hpp"
 #include "reference/reference_filter.hpp"
@@ -52,16 +53,26 @@ Scene make_scene(int frames, int decimation = 8) {
 
 // The reference's log-likelihood of one particle from a given rendering (its atlas tile) and a
 // snapshot of its occlusion state before the frame.
+// The snapshot's rows lie in the state window `before`; this frame's is `window` (a pixel outside it,
+// or new to it, is fresh: occlusion.initial aged from time 0).
 double reference_log_likelihood(const TrackerConfig& config, std::span<const float> rendered, const DepthImage& depth,
                                 const std::vector<float>& occlusion, const std::vector<float>& times, size_t particle,
-                                double now, double dt) {
+                                double now, double dt, const model::StateWindow& before,
+                                const model::StateWindow& window) {
   const size_t pixels = rendered.size();
+  const int width = depth.width();
   double sum = 0;
   for (size_t k = 0; k < pixels; ++k) {
     const float y = depth.data()[k];
     if (rendered[k] <= 0 || !DepthImage::is_valid(y)) continue;
-    const size_t at = particle * pixels + k;
-    double p = 0;
+    const int u = static_cast<int>(k) % width, v = static_cast<int>(k) / width;
+    double p = model::propagate_occlusion(config.occlusion, config.occlusion.initial, now);
+    if (config.occlusion_storage == OcclusionStorage::Off) p = 0;
+    if (!window.contains(u, v) || !before.contains(u, v)) {
+      sum += reference::pixel_log_ratio(reference::pixel_densities(config.observation, y, rendered[k]), p);
+      continue;
+    }
+    const size_t at = particle * before.pixels() + before.index(u, v);
     if (config.occlusion_storage == OcclusionStorage::PerPixelTime)
       p = model::propagate_occlusion(config.occlusion, occlusion[at], now - times[at]);
     if (config.occlusion_storage == OcclusionStorage::GlobalTime)
@@ -84,7 +95,8 @@ int coverage_differences(const Scene& scene, const TrackerConfig& config, const 
 
 // The whole comparison, for one atlas renderer ("cpu": the reference rasterizer; "gl": OpenGL) and
 // refinement layout (one group or spread over many: the same fit).
-void compare_with_reference(const std::string& renderer, RefineLayout layout = RefineLayout::Auto) {
+void compare_with_reference(const std::string& renderer, RefineLayout layout = RefineLayout::Auto,
+                            OcclusionWindow window = {}) {
   const Scene scene = make_scene(20);
   const compute::DeviceInfo info = compute::open_device(test::device_selector())->info();
   for (auto mode : {OcclusionStorage::PerPixelTime, OcclusionStorage::GlobalTime, OcclusionStorage::Off}) {
@@ -95,6 +107,7 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
     config.seed = 9;
     config.backend = test::device_selector();
     config.refine.layout = layout;
+    config.occlusion_window = window;
     reference::ReferenceFilter reference(scene.mesh, scene.working, config);
     DeviceFilter device(compute::open_device(config.backend), scene.mesh, scene.working, config);
     device.keep_atlas(true);  // a flipped pixel is checked against the tile the device weighed
@@ -102,14 +115,18 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
     reference.initialize(scene.frames[0].ground_truth, spread);
     device.initialize(scene.frames[0].ground_truth, spread);
     double worst_ll = 0, worst_t = 0, worst_r = 0, worst_ess = 0, worst_sd = 0;
-    int resamplings = 0, ties = 0, coverage_flips = 0, compared_frames = 0;
+    int resamplings = 0, ties = 0, coverage_flips = 0, compared_frames = 0, window_moves = 0;
     for (size_t f = 0; f < scene.frames.size(); ++f) {
       const double dt = f == 0 ? 0.0 : scene.frames[f].timestamp - scene.frames[f - 1].timestamp;
       const std::vector<float> occlusion_before = reference.occlusion_state(),
                                times_before = reference.occlusion_times();
+      const model::StateWindow window_before = reference.state_window();
       const Estimate a = reference.update(scene.frames[f].depth, dt);
       const Estimate b = device.update(scene.frames[f].depth, dt);
       INFO(scene.name << ", " << to_string(mode) << ", frame " << f);
+      // Both place the state window from their own estimates, the same pixel.
+      REQUIRE(device.state_window() == reference.state_window());
+      window_moves += !(reference.state_window() == window_before);
       const auto& ll_ref = reference.last_log_likelihoods();
       const auto& scale = reference.last_log_likelihood_magnitudes();
       const auto ll_dev = device.last_log_likelihoods();
@@ -129,9 +146,9 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
           // value must equal the reference formula applied to that tile.
           const std::span<const float> tile(atlas.data() + i * pixels, pixels);
           REQUIRE(coverage_differences(scene, config, weighed[i].pose, tile) <= 3);
-          const double from_tile =
-              reference_log_likelihood(config, tile, scene.frames[f].depth, occlusion_before, times_before, i,
-                                       scene.frames[f].timestamp - scene.frames[0].timestamp, dt);
+          const double from_tile = reference_log_likelihood(
+              config, tile, scene.frames[f].depth, occlusion_before, times_before, i,
+              scene.frames[f].timestamp - scene.frames[0].timestamp, dt, window_before, reference.state_window());
           REQUIRE(std::abs(from_tile - ll_dev[i]) / std::max(1.0, scale[i]) <= 1e-4);
           ++coverage_flips;
           // Only a particle with weight can change ancestry or the estimate. The filters started the
@@ -219,12 +236,13 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
         "%.2g m / %.2g rad, "
         "ESS within %.2g, refined standard deviations within %.2g (relative), "
         "%d resamplings, ancestry identical but for %d numerical ties; %d silhouette coverage flips; "
-        "ancestry and estimates compared in %d of %zu frames\n",
+        "ancestry and estimates compared in %d of %zu frames; state window %dx%d moved %d times\n",
         scene.name.c_str(), to_string(mode), renderer.c_str(),
         to_string(resolved_refine_layout(layout, info, scene.mesh.triangles.size())), device.description().c_str(),
         worst_ll, worst_t, worst_r, worst_ess, worst_sd, resamplings, ties, coverage_flips, compared_frames,
-        scene.frames.size());
+        scene.frames.size(), reference.state_window().width, reference.state_window().height, window_moves);
     CHECK(resamplings > 0);
+    if (window.width > 0) CHECK(window_moves > 0);  // the rows followed the estimate
     CHECK(ties <= (renderer == "gl" ? 4 : 2));
     // GL rasterizes in fixed point (llvmpipe: 1/256 px), so its silhouettes differ from the double
     // reference at about one pixel in 500 particle tiles; each is checked above. With the refinement
@@ -264,6 +282,14 @@ TEST_CASE("with the compute-kernel atlas in the loop the device filter still equ
           "[device][kernel]") {
   if (!test::device_available()) return;
   compare_with_reference("kernel");
+}
+
+// A state window smaller than the handset's silhouette (about 18x12 pixels at 80x60), following the
+// estimate: pixels outside it weighed with the fresh prior, rows moved, on the device as in the reference.
+TEST_CASE("with a state window cutting the object the device filter still equals the reference",
+          "[device][kernel][window]") {
+  if (!test::device_available()) return;
+  compare_with_reference("kernel", RefineLayout::Auto, OcclusionWindow{14, 10});
 }
 
 // Auto picks one layout per device and mesh (the test's handset: spread on CUDA GPUs, one group on

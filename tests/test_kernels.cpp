@@ -144,29 +144,37 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
   using Layout = dt_atlas_layout;
   const std::pair<std::vector<float>*, Layout> layouts[] = {{&atlas, {80, 60, 1, static_cast<dt_u32>(count)}},
                                                             {&paged, {80, 60, 3, 6}}};
-  for (int run = 0; run < 6; ++run) {
+  // The state window (dt_window.h): the whole image, or rows of 16x12 pixels that were at (31, 24) and
+  // are at (34, 26) this frame: a pixel outside this frame's window keeps no state, one new to it
+  // starts fresh (0.1 at time 0), and both still add their terms.
+  const float fresh = 0.1f;
+  const dt_window whole{0, 0, 0, 0, 80, 60, 80, fresh}, moved{34, 26, 31, 24, 16, 12, 80, fresh};
+  for (int run = 0; run < 9; ++run) {
     const int mode = run % 3;
-    const auto& [laid_out, layout] = layouts[run / 3];
-    INFO("atlas with " << layout.tiles_per_row << " tiles per row");
+    const auto& [laid_out, layout] = layouts[run < 6 ? run / 3 : 0];
+    const dt_window win = run < 6 ? whole : moved;
+    const size_t row = static_cast<size_t>(win.width) * win.height;
+    INFO("atlas with " << layout.tiles_per_row << " tiles per row, state window " << win.width << "x" << win.height);
     auto program = build(*q, "weigh.cl", mode);
     auto kernel = program->kernel("weigh");
-    compute::Buffer<float> a(*q, laid_out->size()), o(*q, pixels), occ(*q, occlusion.size()),
-        occ_to(*q, occlusion.size()), table(*q, DT_TIME_TABLE), ll(*q, count), lw(*q, count);
-    compute::Buffer<uint16_t> tim(*q, time_index.size()), tim_to(*q, time_index.size());
+    compute::Buffer<float> a(*q, laid_out->size()), o(*q, pixels), occ(*q, count * row), occ_to(*q, count * row),
+        table(*q, DT_TIME_TABLE), ll(*q, count), lw(*q, count);
+    compute::Buffer<uint16_t> tim(*q, count * row), tim_to(*q, count * row);
     compute::Buffer<unsigned> parent_buffer(*q, count);
     a.upload(*laid_out);
     o.upload(observed);
-    occ.upload(occlusion);
-    tim.upload(time_index);
+    occ.upload(std::vector<float>(occlusion.begin(), occlusion.begin() + static_cast<std::ptrdiff_t>(count * row)));
+    tim.upload(
+        std::vector<uint16_t>(time_index.begin(), time_index.begin() + static_cast<std::ptrdiff_t>(count * row)));
     // Written where the mode keeps state: the off mode must leave these as they are.
-    occ_to.upload(std::vector<float>(occlusion.size(), -1.0f));
-    tim_to.upload(std::vector<uint16_t>(time_index.size(), 7));
+    occ_to.upload(std::vector<float>(count * row, -1.0f));
+    tim_to.upload(std::vector<uint16_t>(count * row, 7));
     parent_buffer.upload(parents);
     table.upload(frame_times);
     lw.upload(std::vector<float>(count, 1.0f));
     q->launch(*kernel, compute::NdRange::linear(count * kGroup, kGroup), a, o, parent_buffer, occ, tim, occ_to, tim_to,
               table, ll, lw, static_cast<unsigned>(pixels), model_args(), static_cast<float>(now), now_index,
-              static_cast<float>(dt), layout)
+              static_cast<float>(dt), layout, win)
         ->wait();
     const auto got_ll = ll.download(), got_lw = lw.download(), got_occ = occ_to.download();
     const auto got_index = tim_to.download();
@@ -174,17 +182,26 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
     // Per-pixel time writes this frame's time into the table; the other modes leave it.
     CHECK(got_table[now_index] == (mode == 0 ? static_cast<float>(now) : 0.0f));
     const OcclusionModel chain;
+    size_t outside = 0, fresh_inside = 0;  // used pixels outside the window, and new to it
     for (size_t i = 0; i < count; ++i) {
       double expected = 0;
       for (size_t k = 0; k < pixels; ++k) {
-        // Particle i's own row (its rendering, and where its state goes), its parent's state.
-        const size_t at = i * pixels + k, from = parents[i] * pixels + k;
-        double p = occlusion[from];
-        if (mode == 1) p = model::propagate_occlusion(chain, p, dt);
-        const double y = observed[k], y_hat = atlas[at];
+        // Particle i's rendering, where its state goes in its own row (if its window holds the pixel),
+        // and its parent's state (if the pixel was in the window before and still is; else fresh).
+        const size_t u = k % width, v = k / width;
+        const bool kept = u >= win.u0 && u < win.u0 + win.width && v >= win.v0 && v < win.v0 + win.height;
+        const bool before =
+            kept && u >= win.last_u0 && u < win.last_u0 + win.width && v >= win.last_v0 && v < win.last_v0 + win.height;
+        const size_t at = i * row + (v - win.v0) * win.width + (u - win.u0);
+        const size_t from = parents[i] * row + (v - win.last_v0) * win.width + (u - win.last_u0);
+        const double kept_p = before ? occlusion[from] : fresh;
+        const unsigned seen = before ? time_index[from] : DT_TIME_NEVER;
+        double p = mode == 1 ? (before ? model::propagate_occlusion(chain, kept_p, dt)
+                                       : model::propagate_occlusion(chain, fresh, now))
+                             : kept_p;
+        const double y = observed[k], y_hat = atlas[i * pixels + k];
         const bool used = y_hat > 0 && DepthImage::is_valid(static_cast<float>(y));
-        if (used && mode == 0) p = model::propagate_occlusion(chain, p, now - frame_times[time_index[from]]);
-        REQUIRE(got_index[at] == (mode == 0 ? (used ? now_index : time_index[from]) : 7));
+        if (used && mode == 0) p = model::propagate_occlusion(chain, kept_p, now - frame_times[seen]);
         if (mode == 2) p = 0;
         double updated = mode == 2 ? -1.0 : p;
         if (used) {
@@ -192,12 +209,20 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
           expected += reference::pixel_log_ratio(d, p);
           if (mode != 2) updated = reference::occlusion_posterior(d, p);
         }
+        outside += used && !kept;
+        fresh_inside += used && kept && !before;
+        if (!kept) continue;
+        REQUIRE(got_index[at] == (mode == 0 ? (used ? now_index : seen) : 7));
         // Every pixel's state written: the parent's carried over where the particle's update left it.
         REQUIRE(got_occ[at] == Approx(updated).epsilon(1e-4).margin(1e-6));
       }
       INFO("mode " << mode << " particle " << i);
       REQUIRE(got_ll[i] == Approx(expected).epsilon(1e-4).margin(1e-3));
       REQUIRE(got_lw[i] == Approx(expected + 1.0).epsilon(1e-4).margin(1e-3));
+    }
+    if (run >= 6) {  // the moved window cuts the object and takes in pixels it did not hold
+      CHECK(outside > 20);
+      CHECK(fresh_inside > 20);
     }
   }
 }
@@ -226,7 +251,8 @@ TEST_CASE("weigh kernel stays finite and equal to the reference for observations
   lw.upload(std::vector<float>(1, 0.0f));
   q->launch(*kernel, compute::NdRange::linear(kGroup, kGroup), a, o, parents, occ, tim, occ_to, tim_to, table, ll, lw,
             static_cast<unsigned>(pixels), model_args(), 0.0f, 0u, 0.0f,
-            dt_atlas_layout{static_cast<dt_u32>(pixels), 1, 1, 1})
+            dt_atlas_layout{static_cast<dt_u32>(pixels), 1, 1, 1},
+            dt_window{0, 0, 0, 0, static_cast<dt_u32>(pixels), 1, static_cast<dt_u32>(pixels), 0.1f})
       ->wait();
   double expected = 0;
   for (size_t k = 0; k < pixels; ++k) {

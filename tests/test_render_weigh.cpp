@@ -76,18 +76,18 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
       std::vector<float> atlas, ll, lw, occlusion, table;
       std::vector<uint16_t> times;
     };
-    auto run = [&](bool inside, unsigned keep_atlas) {
-      compute::Buffer<float> states(*q, count * DT_STATE_STRIDE), obs(*q, pixels), occ_from(*q, occlusion.size()),
-          occ_to(*q, occlusion.size()), table(*q, DT_TIME_TABLE), ll(*q, count), lw(*q, count),
-          atlas(*q, layout.floats());
-      compute::Buffer<uint16_t> t_from(*q, times.size()), t_to(*q, times.size());
+    auto run = [&](bool inside, unsigned keep_atlas, const dt_window& win) {
+      const size_t rows = count * win.width * win.height;
+      compute::Buffer<float> states(*q, count * DT_STATE_STRIDE), obs(*q, pixels), occ_from(*q, rows), occ_to(*q, rows),
+          table(*q, DT_TIME_TABLE), ll(*q, count), lw(*q, count), atlas(*q, layout.floats());
+      compute::Buffer<uint16_t> t_from(*q, rows), t_to(*q, rows);
       compute::Buffer<unsigned> parent_buffer(*q, count);
       states.upload(pack_particles(particles));
       obs.upload(observed);
-      occ_from.upload(occlusion);
-      occ_to.upload(std::vector<float>(occlusion.size(), -1.0f));
-      t_from.upload(times);
-      t_to.upload(std::vector<uint16_t>(times.size(), 7));
+      occ_from.upload(std::vector<float>(occlusion.begin(), occlusion.begin() + static_cast<std::ptrdiff_t>(rows)));
+      occ_to.upload(std::vector<float>(rows, -1.0f));
+      t_from.upload(std::vector<uint16_t>(times.begin(), times.begin() + static_cast<std::ptrdiff_t>(rows)));
+      t_to.upload(std::vector<uint16_t>(rows, 7));
       table.upload(frame_times);
       lw.upload(std::vector<float>(count, 2.0f));
       atlas.upload(std::vector<float>(layout.floats(), -3.0f));
@@ -95,30 +95,35 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
       if (inside) {
         q->launch(*fused, range, states, mesh_buffers.vertices, mesh_buffers.triangles, mesh_buffers.planes,
                   mesh_buffers.triangle_count(), cam, obs, parent_buffer, occ_from, t_from, occ_to, t_to, table, ll, lw,
-                  m, now, now_index, dt, atlas, keep_atlas);
+                  m, now, now_index, dt, atlas, keep_atlas, win);
       } else {
         q->launch(*rasterize, range, states, mesh_buffers.vertices, mesh_buffers.triangles, mesh_buffers.planes,
                   mesh_buffers.triangle_count(), cam, layout.kernel_args(), atlas);
         q->launch(*weigh, range, atlas, obs, parent_buffer, occ_from, t_from, occ_to, t_to, table, ll, lw,
-                  static_cast<unsigned>(pixels), m, now, now_index, dt, layout.kernel_args());
+                  static_cast<unsigned>(pixels), m, now, now_index, dt, layout.kernel_args(), win);
       }
       q->finish();
       return Run{atlas.download(), ll.download(), lw.download(), occ_to.download(), table.download(), t_to.download()};
     };
-    const Run apart = run(false, 0), inside = run(true, 1), unkept = run(true, 0);
-    for (size_t i = 0; i < count; ++i) {  // every particle is in view
-      size_t covered = 0;
-      for (size_t k = 0; k < pixels; ++k) covered += apart.atlas[i * pixels + k] > 0;
-      CHECK(covered >= 20);
-    }
-    CHECK(inside.atlas == apart.atlas);
-    CHECK(unkept.atlas == std::vector<float>(layout.floats(), -3.0f));  // not stored unless asked
-    for (const Run* r : {&inside, &unkept}) {
-      CHECK(r->ll == apart.ll);
-      CHECK(r->lw == apart.lw);
-      CHECK(r->occlusion == apart.occlusion);
-      CHECK(r->times == apart.times);
-      CHECK(r->table == apart.table);
+    // The whole image's state, and a 16x12 state window (cutting the object) moved by (3, 2) since the rows were written.
+    for (const dt_window& win :
+         {dt_window{0, 0, 0, 0, 80, 60, 80, 0.1f}, dt_window{34, 26, 31, 24, 16, 12, 80, 0.1f}}) {
+      INFO("state window " << win.width << "x" << win.height);
+      const Run apart = run(false, 0, win), inside = run(true, 1, win), unkept = run(true, 0, win);
+      for (size_t i = 0; i < count; ++i) {  // every particle is in view
+        size_t covered = 0;
+        for (size_t k = 0; k < pixels; ++k) covered += apart.atlas[i * pixels + k] > 0;
+        CHECK(covered >= 20);
+      }
+      CHECK(inside.atlas == apart.atlas);
+      CHECK(unkept.atlas == std::vector<float>(layout.floats(), -3.0f));  // not stored unless asked
+      for (const Run* r : {&inside, &unkept}) {
+        CHECK(r->ll == apart.ll);
+        CHECK(r->lw == apart.lw);
+        CHECK(r->occlusion == apart.occlusion);
+        CHECK(r->times == apart.times);
+        CHECK(r->table == apart.table);
+      }
     }
   }
 }

@@ -82,6 +82,18 @@ struct LossModel {
   double found_outline = 0.5;  // and this share of its outline sees past its edge (TrackSupervisor::found)
 };
 
+// Where each particle keeps its per-pixel occlusion state (docs/design-notes.md, "The occlusion state
+// window"): a window of width x height pixels of the working image, centred each frame on the previous
+// estimate's projected mesh centre and clamped inside the image. Its pixels keep the model's state from
+// frame to frame; every other pixel is taken as fresh (occlusion.initial at time 0, aged to now) and
+// still adds its likelihood term, so only the memory of occlusion outside the window is given up, for
+// memory and traffic proportional to the window instead of the image. 0 (the default): the whole width
+// or height, the model as MODEL.md writes it.
+struct OcclusionWindow {
+  int width = 0;
+  int height = 0;
+};
+
 // Global search while lost.
 struct RecoveryModel {
   bool enabled = true;
@@ -94,6 +106,7 @@ struct TrackerConfig {
   MotionModel motion;
   Refinement refine;
   OcclusionStorage occlusion_storage = OcclusionStorage::PerPixelTime;
+  OcclusionWindow occlusion_window;
   int particles = 200;
   int width = 80;  // working resolution: the sensor image is decimated to it
   int height = 60;

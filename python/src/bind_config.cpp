@@ -44,6 +44,7 @@ py::class_<S> bind_fields(py::module_& m, const char* name, const char* doc) {
 void bind_config(py::module_& m) {
   bind_fields<ObservationModel>(m, "ObservationModel", "Per-pixel observation model");
   bind_fields<OcclusionModel>(m, "OcclusionModel", "Two-state Markov chain of each pixel's occlusion, per second");
+  bind_fields<OcclusionWindow>(m, "OcclusionWindow", "Where particles keep occlusion state (0 x 0: the whole image)");
   bind_fields<MotionModel>(m, "MotionModel", "Damped random walk on the velocity");
   bind_fields<Refinement>(m, "Refinement", "Pose refinement after weighting");
   bind_fields<LossModel>(m, "LossModel", "When an estimate counts as lost");

@@ -46,6 +46,13 @@ void TrackerOptions::add_to(CLI::App& command) {
                                      "Occlusion model storage: per-pixel-time (p and last update time per pixel), "
                                      "global-time (p only, every pixel propagated each frame) or off")
                          ->capture_default_str();
+  occlusion_window_option =
+      command
+          .add_option("--occlusion-window", occlusion_window,
+                      "Where each particle keeps its occlusion state: full (the whole image, the model as written) or "
+                      "WxH pixels of the working image around the last estimate (less memory and traffic; pixels "
+                      "outside it are taken as fresh)")
+          ->capture_default_str();
   refine_option =
       command
           .add_option("--refine", refine,
@@ -72,6 +79,16 @@ TrackerConfig TrackerOptions::resolve() const {
   if (given(particles_option)) c.particles = flags.particles;
   if (given(resolution_option)) std::tie(c.width, c.height) = parse_resolution(resolution);
   if (given(occlusion_option)) c.occlusion_storage = occlusion_storage_from_string(occlusion);
+  if (given(occlusion_window_option)) {
+    if (occlusion_window == "full")
+      c.occlusion_window = OcclusionWindow{};
+    else
+      try {
+        std::tie(c.occlusion_window.width, c.occlusion_window.height) = parse_resolution(occlusion_window);
+      } catch (const InputError&) {
+        throw InputError("--occlusion-window '" + occlusion_window + "' is not full or WxH with positive integers");
+      }
+  }
   if (given(refine_option)) {
     if (refine != "on" && refine != "off") throw InputError("--refine '" + refine + "' is not on or off");
     c.refine.enabled = refine == "on";

@@ -12,11 +12,12 @@ struct TrackerOptions {
   std::string config_file;  // --config: TrackerConfig as JSON (depthtrack/config_file.hpp)
   std::string resolution = "80x60";
   std::string occlusion = "per-pixel-time";
+  std::string occlusion_window = "full";
   std::string renderer = "kernel";  // parsed by resolve() (renderer_from_string)
   std::string refine = "on";
   CLI::Option *backend_option = nullptr, *renderer_option = nullptr, *gl_option = nullptr, *particles_option = nullptr,
-              *resolution_option = nullptr, *occlusion_option = nullptr, *refine_option = nullptr,
-              *refine_iterations_option = nullptr, *seed_option = nullptr;
+              *resolution_option = nullptr, *occlusion_option = nullptr, *occlusion_window_option = nullptr,
+              *refine_option = nullptr, *refine_iterations_option = nullptr, *seed_option = nullptr;
 
   void add_to(CLI::App& command);
   // The --config file's configuration (the defaults without one) with the flags given on the command

@@ -79,6 +79,9 @@ std::string TrackerConfig::resolved_backend() const {
 void TrackerConfig::validate() const {
   require(particles > 0, "particle count " + std::to_string(particles) + " must be at least 1");
   require(width > 0 && height > 0, "working resolution must be positive");
+  require(occlusion_window.width >= 0 && occlusion_window.height >= 0,
+          "occlusion window " + std::to_string(occlusion_window.width) + "x" + std::to_string(occlusion_window.height) +
+              " must not be negative (0: the whole image)");
   require(positive(observation.sigma_constant) && std::isfinite(observation.sigma_quadratic) &&
               observation.sigma_quadratic >= 0,
           "depth noise sigma must be positive");

@@ -112,6 +112,14 @@ inline auto fields_of(const RecoveryModel*) {
   };
 }
 
+inline auto fields_of(const OcclusionWindow*) {
+  using S = OcclusionWindow;
+  return std::tuple{
+      field("width", &S::width, "pixels of the working image; 0: the whole width"),
+      field("height", &S::height, "pixels of the working image; 0: the whole height"),
+  };
+}
+
 inline auto fields_of(const TrackerConfig*) {
   using S = TrackerConfig;
   return std::tuple{
@@ -120,6 +128,8 @@ inline auto fields_of(const TrackerConfig*) {
       field("motion", &S::motion, "damped random walk on the velocity"),
       field("refine", &S::refine, "pose refinement after weighting"),
       field("occlusion_storage", &S::occlusion_storage, "per-pixel-time, global-time or off"),
+      field("occlusion_window", &S::occlusion_window,
+            "where particles keep occlusion state: a window around the estimate; 0 x 0: the whole image"),
       field("particles", &S::particles, "number of particles"),
       field("width", &S::width, "working resolution: the sensor image is decimated to it"),
       field("height", &S::height, "working resolution height"),

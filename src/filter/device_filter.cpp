@@ -38,11 +38,14 @@ size_t round_up(size_t n, size_t multiple) {
 }
 }  // namespace
 
-double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bool gl_pages, bool atlas) {
+double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bool gl_pages, bool atlas,
+                                        size_t state_pixels) {
   const bool occlusion = mode != OcclusionStorage::Off, times = mode == OcclusionStorage::PerPixelTime;
-  const double floats_per_pixel =
-      (atlas ? 1 : 0) + (occlusion ? 2 : 0) + (times ? 1 : 0) + (gl_pages ? 2 : 0);  // times: 2 x 16 bits
-  return 4.0 * (static_cast<double>(pixels) * floats_per_pixel + (2 + (gl_pages ? 1 : 0)) * DT_STATE_STRIDE + 6);
+  const double image_floats = (atlas ? 1 : 0) + (gl_pages ? 2 : 0);
+  const double state_floats = (occlusion ? 2 : 0) + (times ? 1 : 0);  // times: 2 x 16 bits
+  const double kept = static_cast<double>(state_pixels == 0 ? pixels : state_pixels);
+  return 4.0 * (static_cast<double>(pixels) * image_floats + kept * state_floats +
+                (2 + (gl_pages ? 1 : 0)) * DT_STATE_STRIDE + 6);
 }
 
 bool renders_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory) {
@@ -72,6 +75,8 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       pixels_(static_cast<size_t>(camera.pixel_count())),
+      window_(model::state_window_size(config, camera)),
+      next_window_(window_),
       count_(checked_particle_count()),
       atlas_source_(make_atlas_source(*queue_, device_->programs, mesh, camera, config, gl)),
       mesh_(mesh) {
@@ -129,10 +134,11 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   // Kernels always take the occlusion buffers; modes that do not use one get a single element.
   const bool occlusion = config.occlusion_storage != OcclusionStorage::Off;
   const bool times = config.occlusion_storage == OcclusionStorage::PerPixelTime;
-  occlusion_ = compute::Buffer<float>(q, occlusion ? count_ * pixels_ : 1);
-  scratch_occlusion_ = compute::Buffer<float>(q, occlusion ? count_ * pixels_ : 1);
-  occlusion_time_ = compute::Buffer<uint16_t>(q, times ? count_ * pixels_ : 2);
-  scratch_occlusion_time_ = compute::Buffer<uint16_t>(q, times ? count_ * pixels_ : 2);
+  const size_t kept = count_ * window_.pixels();
+  occlusion_ = compute::Buffer<float>(q, occlusion ? kept : 1);
+  scratch_occlusion_ = compute::Buffer<float>(q, occlusion ? kept : 1);
+  occlusion_time_ = compute::Buffer<uint16_t>(q, times ? kept : 2);
+  scratch_occlusion_time_ = compute::Buffer<uint16_t>(q, times ? kept : 2);
   frame_times_ = std::make_unique<FrameTimeTable>(q);
   if (config.refine.enabled)
     refiner_ = std::make_unique<DeviceRefiner>(q, device_->programs, mesh, camera, config,
@@ -153,7 +159,7 @@ size_t DeviceFilter::checked_particle_count() const {
   // GL's pages sit on the same GPU; the kernel renderer's atlas stays in work-group memory where it fits.
   const double per_particle = device_filter_bytes_per_particle(
       pixels_, config_.occlusion_storage, config_.renderer == Renderer::Gl && queue_->info().is_gpu,
-      !renders_inside_weigh(config_.renderer, pixels_, queue_->info().local_memory));
+      !renders_inside_weigh(config_.renderer, pixels_, queue_->info().local_memory), window_.pixels());
   const double needed = per_particle * static_cast<double>(count);
   const auto& info = queue_->info();
   if (info.global_memory > 0 && needed > 0.9 * static_cast<double>(info.global_memory)) {
@@ -218,16 +224,17 @@ void DeviceFilter::initialize_modes(std::span<const Pose> modes, const InitialSp
   queue_->launch(*k.identity_parents, linear, parents_, count);
   auto fill_pixels = [&](compute::Buffer<float>& values, float value) {
     queue_->launch(*k.fill_per_particle, compute::NdRange::linear(count_ * kGroupSize, kGroupSize), values,
-                   static_cast<unsigned>(pixels_), value);
+                   static_cast<unsigned>(window_.pixels()), value);
   };
   if (config_.occlusion_storage != OcclusionStorage::Off)
     fill_pixels(occlusion_, static_cast<float>(config_.occlusion.initial));
   if (config_.occlusion_storage == OcclusionStorage::PerPixelTime) {
     queue_->launch(*k.fill_time_indices, compute::NdRange::linear(count_ * kGroupSize, kGroupSize), occlusion_time_,
-                   static_cast<unsigned>(pixels_), static_cast<unsigned>(DT_TIME_NEVER));
+                   static_cast<unsigned>(window_.pixels()), static_cast<unsigned>(DT_TIME_NEVER));
     frame_times_->reset();
   }
   queue_->finish();
+  window_ = next_window_ = model::state_window_at(window_, modes.front(), centre_, camera_);
   frame_ = 0;
   time_ = 0;
   last_resampled_ = false;
@@ -238,6 +245,9 @@ void DeviceFilter::set_state(const std::vector<model::ParticleState>& particles,
                              const std::vector<float>& occlusion_time, const std::vector<double>& log_weights) {
   if (particles.size() != count_ || log_weights.size() != count_)
     throw InputError("set_state: expected " + std::to_string(count_) + " particles");
+  const size_t rows = count_ * window_.pixels();
+  if ((!occlusion.empty() && occlusion.size() != rows) || (!occlusion_time.empty() && occlusion_time.size() != rows))
+    throw InputError("set_state: expected " + std::to_string(rows) + " occlusion values (particles x state window)");
   upload_particles(particles);
   log_weight_.upload(std::vector<float>(log_weights.begin(), log_weights.end()));
   if (!occlusion.empty()) occlusion_.upload(occlusion);
@@ -251,10 +261,11 @@ template <typename T>
 std::vector<T> DeviceFilter::rows_by_parent(const compute::Buffer<T>& rows) const {
   const std::vector<T> all = rows.download();
   const std::vector<unsigned> parents = parents_.download();
-  std::vector<T> gathered(count_ * pixels_);
+  const size_t row = window_.pixels();
+  std::vector<T> gathered(count_ * row);
   for (size_t i = 0; i < count_; ++i)
-    std::copy_n(all.begin() + static_cast<std::ptrdiff_t>(parents[i] * pixels_), pixels_,
-                gathered.begin() + static_cast<std::ptrdiff_t>(i * pixels_));
+    std::copy_n(all.begin() + static_cast<std::ptrdiff_t>(parents[i] * row), row,
+                gathered.begin() + static_cast<std::ptrdiff_t>(i * row));
   return gathered;
 }
 
@@ -330,12 +341,15 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
     if (frame_times_->retire_due()) {
       // Before this frame's index is written anywhere; rare (cl/dt_time_index.h), so untimed.
       queue_->launch_untimed(*k.retire_time_indices, compute::NdRange::linear(256 * kGroupSize, kGroupSize),
-                             occlusion_time_, static_cast<uint64_t>(count_ * pixels_), now_index);
+                             occlusion_time_, static_cast<uint64_t>(count_ * window_.pixels()), now_index);
       frame_times_->retired();
     }
   }
   // Each particle's state from its parent's row (the last frame's resampling) into its own row of the
-  // other buffer, which then becomes the state; the rows before stay for the refinement's prior.
+  // other buffer, which then becomes the state; the rows before stay for the refinement's prior. The
+  // rows move with the state window (centred on the last estimate).
+  const dt_window window = model::window_params(next_window_, window_, camera_, config_);
+  window_ = next_window_;
   const auto per_particle_group = compute::NdRange::linear(count_ * kGroupSize, kGroupSize);
   if (render_weigh_)
     p->weighed = queue_->launch(
@@ -343,13 +357,13 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
         render_weigh_mesh_->planes, render_weigh_mesh_->triangle_count(), model::camera_params(camera_, config_),
         observed_, parents_, occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_,
         frame_times_->device(), log_likelihood_, log_weight_, model::model_params(config_), static_cast<float>(time_),
-        now_index, static_cast<float>(dt), atlas_, static_cast<unsigned>(keep_atlas_));
+        now_index, static_cast<float>(dt), atlas_, static_cast<unsigned>(keep_atlas_), window);
   else
     p->weighed = queue_->launch(*k.weigh, per_particle_group, atlas_, observed_, parents_, occlusion_, occlusion_time_,
                                 scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(), log_likelihood_,
                                 log_weight_, static_cast<unsigned>(pixels_), model::model_params(config_),
                                 static_cast<float>(time_), now_index, static_cast<float>(dt),
-                                atlas_source_->layout().kernel_args());
+                                atlas_source_->layout().kernel_args(), window);
   std::swap(occlusion_, scratch_occlusion_);
   std::swap(occlusion_time_, scratch_occlusion_time_);
   const float kl_threshold = model::float_threshold(config_.resample_kl_threshold);
@@ -365,7 +379,7 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   if (refiner_)
     p->refined =
         refiner_->refine(estimate_, RefineInputs{state_, observed_, scratch_occlusion_, scratch_occlusion_time_,
-                                                 frame_times_->device(), parents_, time_, dt});
+                                                 frame_times_->device(), parents_, window, time_, dt});
   p->resampling = resample();
   if (refiner_) p->shifted = shift_particles();
   pending_ = std::move(p);
@@ -393,6 +407,7 @@ Estimate DeviceFilter::collect() {
   }
   last_resampled_ = e.resampled;
   weighed_in_scratch_ = true;
+  next_window_ = model::state_window_at(window_, e.pose, centre_, camera_);
 
   if (p->propagated) e.timings.propagate_ms = p->propagated->elapsed_ms();
   if (p->rendered) {

@@ -14,14 +14,16 @@
 #include "filter/frame_time_table.hpp"
 #include "model/filter_backend.hpp"
 #include "model/particle.hpp"
+#include "model/state_window.hpp"
 
 namespace depthtrack {
 
 // Device memory one particle's buffers take (the atlas unless it is drawn inside weigh, occlusion
-// probabilities and 16-bit time indices twice (weigh reads one and writes the other), the state twice,
-// weights; with GL pages, GL's colour and depth pages and its pose buffer): what the memory check
-// refuses by and `depthtrack bench` reports.
-double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bool gl_pages, bool atlas = true);
+// probabilities and 16-bit time indices twice for the state window's state_pixels (weigh reads one and
+// writes the other; 0: the image's pixels), the state twice, weights; with GL pages, GL's colour and
+// depth pages and its pose buffer): what the memory check refuses by and `depthtrack bench` reports.
+double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bool gl_pages, bool atlas = true,
+                                        size_t state_pixels = 0);
 
 // Whether the filter draws each particle's tile inside weigh (cl/render_weigh.cl), the tile in
 // work-group memory: with the kernel renderer, where pixels' depths fit in the device's local memory
@@ -65,7 +67,10 @@ class DeviceFilter final : public FilterBackend {
   std::vector<double> last_log_likelihoods() const;
   std::vector<int> last_parents() const;
   std::vector<model::ParticleState> particles() const;
-  // The occlusion probabilities and times, particles x pixels (empty where the mode keeps none):
+  // Where the occlusion rows lie: the state window of the last frame (or of the start).
+  const model::StateWindow& state_window() const { return window_; }
+  // The occlusion probabilities and times, particles x the state window's pixels, row-major from its
+  // top-left corner (empty where the mode keeps none):
   // downloaded only when asked, for tests. A time is its frame's (0 for the start, and for a pixel
   // unseen for DT_TIME_RETIRE_AGE frames: cl/dt_time_index.h).
   std::vector<float> occlusion_state() const;
@@ -78,8 +83,8 @@ class DeviceFilter final : public FilterBackend {
   // The particles as the last update weighed them (before it resampled).
   std::vector<model::ParticleState> weighed_particles() const;
   // Replaces the whole filter state (for comparing backends from a common state). occlusion and
-  // occlusion_time hold particles x pixels values, or are empty where the mode keeps none; each time
-  // must be 0 or the time of a frame this filter has weighed since it was initialized.
+  // occlusion_time hold particles x state window pixels values (at state_window()), or are empty where the mode keeps
+  // none; each time must be 0 or the time of a frame this filter has weighed since it was initialized.
   void set_state(const std::vector<model::ParticleState>& particles, const std::vector<float>& occlusion,
                  const std::vector<float>& occlusion_time, const std::vector<double>& log_weights);
 
@@ -109,7 +114,11 @@ class DeviceFilter final : public FilterBackend {
   TrackerConfig config_;
   Camera camera_;
   Eigen::Vector3d centre_;
-  size_t pixels_, count_;
+  size_t pixels_;
+  // The state window (TrackerConfig::occlusion_window): where the occlusion rows lie (window_), and
+  // where the next frame keeps them (next_window_: centred on the last estimate).
+  model::StateWindow window_, next_window_;
+  size_t count_;
   std::unique_ptr<AtlasSource> atlas_source_;
   std::unique_ptr<Kernels> kernels_;
   std::unique_ptr<PoseScorer> scorer_;

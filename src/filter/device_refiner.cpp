@@ -90,7 +90,7 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
   return {queue_.launch(*refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup), estimate, in.states,
                         in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.parents, mesh_.vertices,
                         mesh_.triangles, mesh_.planes, mesh_.triangle_count(), model::camera_params(camera_, config_),
-                        model::model_params(config_), args, pose_, tile_, ids_, correction_)};
+                        model::model_params(config_), args, pose_, tile_, ids_, correction_, in.window)};
 }
 
 // begin, then iterations + 1 evaluations (draw, sums) with no wait: the sums kernel's last group
@@ -113,7 +113,7 @@ std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<floa
   compute::set_launch_args(*draw_, fit_state_, mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam, nearest_);
   compute::set_launch_args(*sums_, fit_state_, estimate, in.states, in.observed, in.occlusion, in.occlusion_time,
                            in.frame_times, in.parents, mesh_.planes, triangles, cam, model, args, nearest_, partials_,
-                           correction_);
+                           correction_, in.window);
   for (int evaluation = 0; evaluation <= config_.refine.iterations; ++evaluation) {
     queue_.launch_untimed(*draw_, per_triangle);
     if (evaluation < config_.refine.iterations)

@@ -18,6 +18,7 @@
 #include "compute/buffer.hpp"
 #include "compute/device_info.hpp"
 #include "compute/program_cache.hpp"
+#include "dt_params.h"
 
 namespace depthtrack {
 
@@ -31,8 +32,9 @@ struct RefineInputs {
   const compute::Buffer<uint16_t>& occlusion_time;  // frame indices (cl/dt_time_index.h)
   const compute::Buffer<float>& frame_times;
   const compute::Buffer<unsigned>& parents;
-  double time;  // seconds since the first frame
-  double dt;    // seconds since the frame before
+  dt_window window;  // the state window this frame and the rows' (model::window_params)
+  double time;       // seconds since the first frame
+  double dt;         // seconds since the frame before
 };
 
 // The layout Auto picks: Spread for meshes of kSpreadTriangles triangles or more on every device, and

@@ -31,6 +31,14 @@ dt_initial initial_params(const InitialSpread& spread, const Eigen::Vector3d& ce
                     static_cast<float>(centre.z()),    static_cast<dt_u32>(mode_count)};
 }
 
+dt_window window_params(const StateWindow& now, const StateWindow& last, const Camera& camera,
+                        const TrackerConfig& config) {
+  return dt_window{static_cast<dt_u32>(now.u0),       static_cast<dt_u32>(now.v0),
+                   static_cast<dt_u32>(last.u0),      static_cast<dt_u32>(last.v0),
+                   static_cast<dt_u32>(now.width),    static_cast<dt_u32>(now.height),
+                   static_cast<dt_u32>(camera.width), static_cast<float>(fresh_occlusion(config))};
+}
+
 dt_camera camera_params(const Camera& camera, const TrackerConfig& config) {
   return dt_camera{static_cast<float>(camera.fx),         static_cast<float>(camera.fy),
                    static_cast<float>(camera.cx),         static_cast<float>(camera.cy),

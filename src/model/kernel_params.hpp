@@ -9,6 +9,7 @@
 
 #include "dt_params.h"
 #include "model/particle.hpp"
+#include "model/state_window.hpp"
 
 namespace depthtrack::model {
 
@@ -21,6 +22,7 @@ static_assert(sizeof(dt_initial) == 24 && offsetof(dt_initial, centre_x) == 8 &&
 static_assert(sizeof(dt_camera) == 32 && offsetof(dt_camera, far) == 20 && offsetof(dt_camera, height) == 28);
 static_assert(sizeof(dt_refine_args) == 44 && offsetof(dt_refine_args, dt) == 24 &&
               offsetof(dt_refine_args, iterations) == 28 && offsetof(dt_refine_args, vertex_count) == 40);
+static_assert(sizeof(dt_window) == 32 && offsetof(dt_window, image_width) == 24 && offsetof(dt_window, initial) == 28);
 
 // Observation model and occlusion chain of config.
 dt_model model_params(const TrackerConfig& config);
@@ -28,6 +30,9 @@ dt_model model_params(const TrackerConfig& config);
 dt_motion motion_params(const MotionStep& step, const Eigen::Vector3d& centre);
 // The initial draw around mode_count poses.
 dt_initial initial_params(const InitialSpread& spread, const Eigen::Vector3d& centre, size_t mode_count);
+// The state window this frame (now) and the rows read (last), with the fresh occlusion probability.
+dt_window window_params(const StateWindow& now, const StateWindow& last, const Camera& camera,
+                        const TrackerConfig& config);
 // The working camera with the configuration's near plane and the model's far limit.
 dt_camera camera_params(const Camera& camera, const TrackerConfig& config);
 // The kernels' DT_OCCLUSION definition for the storage mode, "DT_OCCLUSION=<DT_PER_PIXEL_TIME...>".

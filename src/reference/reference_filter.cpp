@@ -22,14 +22,13 @@ namespace {
 
 // Checked before allocating, like the device filter's memory check: 2e9 particles used to end in
 // std::bad_alloc, or in the system's out-of-memory killer.
-void check_host_memory(const TrackerConfig& config, const Camera& camera) {
+void check_host_memory(const TrackerConfig& config, const Camera& camera, size_t state_pixels) {
   const bool occlusion = config.occlusion_storage != OcclusionStorage::Off;
   const bool times = config.occlusion_storage == OcclusionStorage::PerPixelTime;
   // Occlusion probabilities and times, each with a resampling twin, plus the particle, its twin,
   // and the per-particle weights and likelihoods.
-  const double per_particle =
-      4.0 * static_cast<double>(camera.pixel_count()) * ((occlusion ? 2 : 0) + (times ? 2 : 0)) +
-      2.0 * sizeof(ParticleState) + 6 * sizeof(double) + sizeof(int) + sizeof(Pose);
+  const double per_particle = 4.0 * static_cast<double>(state_pixels) * ((occlusion ? 2 : 0) + (times ? 2 : 0)) +
+                              2.0 * sizeof(ParticleState) + 6 * sizeof(double) + sizeof(int) + sizeof(Pose);
   const double needed = per_particle * config.particles;
   const double available =
       static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
@@ -50,8 +49,10 @@ ReferenceFilter::ReferenceFilter(const Mesh& mesh, const Camera& camera, const T
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       refiner_(mesh, camera, config),
-      scorer_(mesh, camera, config) {
-  check_host_memory(config, camera);
+      scorer_(mesh, camera, config),
+      window_(model::state_window_size(config, camera)),
+      next_window_(window_) {
+  check_host_memory(config, camera, window_.pixels());
   const size_t n = static_cast<size_t>(config.particles), pixels = static_cast<size_t>(camera.pixel_count());
   pool_ = std::make_unique<ThreadPool>(threads);
   for (int t = 0; t < threads; ++t)
@@ -59,8 +60,8 @@ ReferenceFilter::ReferenceFilter(const Mesh& mesh, const Camera& camera, const T
         Rasterizer(mesh, camera, config.near_plane, config.observation.max_depth), std::vector<float>(pixels), {}, {}});
   particles_.resize(n);
   log_weights_.assign(n, 0.0);
-  if (config.occlusion_storage != OcclusionStorage::Off) occlusion_.resize(n * pixels);
-  if (config.occlusion_storage == OcclusionStorage::PerPixelTime) occlusion_time_.resize(n * pixels);
+  if (config.occlusion_storage != OcclusionStorage::Off) occlusion_.resize(n * window_.pixels());
+  if (config.occlusion_storage == OcclusionStorage::PerPixelTime) occlusion_time_.resize(n * window_.pixels());
 }
 
 std::string ReferenceFilter::description() const {
@@ -95,6 +96,7 @@ void ReferenceFilter::initialize_modes(std::span<const Pose> modes, const Initia
   std::fill(log_weights_.begin(), log_weights_.end(), 0.0);
   std::fill(occlusion_.begin(), occlusion_.end(), static_cast<float>(config_.occlusion.initial));
   std::fill(occlusion_time_.begin(), occlusion_time_.end(), 0.0f);
+  window_ = next_window_ = model::state_window_at(window_, modes.front(), centre_, camera_);
   frame_ = 0;
   time_ = 0;
 }
@@ -119,17 +121,24 @@ void ReferenceFilter::propagate(double dt) {
   });
 }
 
+double ReferenceFilter::fresh_occlusion_now() const {
+  return config_.occlusion_storage == OcclusionStorage::Off
+             ? 0.0
+             : model::propagate_occlusion(config_.occlusion, config_.occlusion.initial, time_);
+}
+
 double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double dt, Lane& lane, double& magnitude) {
   const Stopwatch render_clock;
   const PixelBox box = lane.rasterizer.render(particles_[i].pose, lane.rendered);
   lane.render_ms += render_clock.elapsed_ms();
 
-  const size_t pixels = static_cast<size_t>(camera_.pixel_count());
-  float* occlusion = occlusion_.empty() ? nullptr : occlusion_.data() + i * pixels;
-  float* occlusion_time = occlusion_time_.empty() ? nullptr : occlusion_time_.data() + i * pixels;
+  const size_t row = window_.pixels();
+  float* occlusion = occlusion_.empty() ? nullptr : occlusion_.data() + i * row;
+  float* occlusion_time = occlusion_time_.empty() ? nullptr : occlusion_time_.data() + i * row;
   if (config_.occlusion_storage == OcclusionStorage::GlobalTime && dt > 0)
-    for (size_t k = 0; k < pixels; ++k)
+    for (size_t k = 0; k < row; ++k)
       occlusion[k] = static_cast<float>(model::propagate_occlusion(config_.occlusion, occlusion[k], dt));
+  const double fresh = fresh_occlusion_now();  // pixels outside the state window
 
   double log_likelihood = 0;
   magnitude = 0;
@@ -139,27 +148,61 @@ double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double
       const size_t k = static_cast<size_t>(v) * static_cast<size_t>(camera_.width) + static_cast<size_t>(u);
       const double y_hat = lane.rendered[k], y = depth.data()[k];
       if (y_hat <= 0 || !DepthImage::is_valid(static_cast<float>(y))) continue;  // adds 0
+      const bool kept = window_.contains(u, v);
+      const size_t j = kept ? window_.index(u, v) : 0;
       double p = 0;
-      if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
-        p = model::propagate_occlusion(config_.occlusion, occlusion[k], time_ - occlusion_time[k]);
+      if (!kept)
+        p = fresh;
+      else if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
+        p = model::propagate_occlusion(config_.occlusion, occlusion[j], time_ - occlusion_time[j]);
       else if (config_.occlusion_storage == OcclusionStorage::GlobalTime)
-        p = occlusion[k];
+        p = occlusion[j];
       const PixelDensities d = pixel_densities(config_.observation, y, y_hat);
       const double term = pixel_log_ratio(d, p);
       if (config_.refine.enabled) lane.weighing.push_back({k, p});
       log_likelihood += term;
       magnitude += std::abs(term);
-      if (occlusion) occlusion[k] = static_cast<float>(occlusion_posterior(d, p));
-      if (occlusion_time) occlusion_time[k] = static_cast<float>(time_);
+      if (!kept) continue;
+      if (occlusion) occlusion[j] = static_cast<float>(occlusion_posterior(d, p));
+      if (occlusion_time) occlusion_time[j] = static_cast<float>(time_);
     }
   }
   return log_likelihood;
 }
 
+// Before time_ moves on: a pixel new to the window holds what a fresh pixel holds at the last frame's
+// time (global time ages it by dt with the rest; per-pixel time keeps its time 0).
+void ReferenceFilter::move_state_window() {
+  if (next_window_ == window_ || occlusion_.empty()) {
+    window_ = next_window_;
+    return;
+  }
+  const model::StateWindow from = window_, to = next_window_;
+  const float fresh_p =
+      static_cast<float>(config_.occlusion_storage == OcclusionStorage::GlobalTime
+                             ? model::propagate_occlusion(config_.occlusion, config_.occlusion.initial, time_)
+                             : config_.occlusion.initial);
+  auto move = [&](std::vector<float>& rows, std::vector<float>& scratch, float fresh) {
+    if (rows.empty()) return;
+    scratch.resize(rows.size());
+    for_chunks(particles_.size(), [&](Lane&, size_t, size_t first, size_t last) {
+      for (size_t i = first; i < last; ++i)
+        for (int v = to.v0; v < to.v0 + to.height; ++v)
+          for (int u = to.u0; u < to.u0 + to.width; ++u)
+            scratch[i * to.pixels() + to.index(u, v)] =
+                from.contains(u, v) ? rows[i * from.pixels() + from.index(u, v)] : fresh;
+    });
+    rows.swap(scratch);
+  };
+  move(occlusion_, scratch_occlusion_, fresh_p);
+  move(occlusion_time_, scratch_occlusion_time_, 0.0f);
+  window_ = next_window_;
+}
+
 void ReferenceFilter::resample(const std::vector<double>& normalized) {
   const dt_philox4 words = dt_random_words(config_.seed, 0u, frame_, DT_STREAM_RESAMPLE, 0u);
   last_parents_ = systematic_resample(normalized, dt_uniform01(words.v[0]));
-  const size_t pixels = static_cast<size_t>(camera_.pixel_count());
+  const size_t pixels = window_.pixels();
   // Children are gathered into the scratch copies, which then become the state (one copy, no allocation).
   auto gather = [&](std::vector<float>& state, std::vector<float>& scratch) {
     if (state.empty()) return;
@@ -185,12 +228,16 @@ void ReferenceFilter::resample(const std::vector<double>& normalized) {
 // very residuals that correct it (measured: ycbv-0000 mug, mean rotation error 4.2 -> 2.1 degrees).
 std::vector<double> ReferenceFilter::occlusion_map(size_t i) const {
   if (config_.occlusion_storage == OcclusionStorage::Off) return {};
-  const size_t pixels = static_cast<size_t>(camera_.pixel_count());
-  std::vector<double> p(occlusion_.begin() + static_cast<std::ptrdiff_t>(i * pixels),
-                        occlusion_.begin() + static_cast<std::ptrdiff_t>((i + 1) * pixels));
-  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
-    for (size_t k = 0; k < pixels; ++k)
-      p[k] = model::propagate_occlusion(config_.occlusion, p[k], time_ - occlusion_time_[i * pixels + k]);
+  std::vector<double> p(static_cast<size_t>(camera_.pixel_count()), fresh_occlusion_now());
+  const size_t row = window_.pixels();
+  for (int v = window_.v0; v < window_.v0 + window_.height; ++v)
+    for (int u = window_.u0; u < window_.u0 + window_.width; ++u) {
+      const size_t j = i * row + window_.index(u, v);
+      const size_t k = static_cast<size_t>(v) * static_cast<size_t>(camera_.width) + static_cast<size_t>(u);
+      p[k] = occlusion_[j];
+      if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
+        p[k] = model::propagate_occlusion(config_.occlusion, p[k], time_ - occlusion_time_[j]);
+    }
   for (const PixelPrior& prior : priors_) p[prior.pixel] = prior.p;  // the pixels its update changed
   return p;
 }
@@ -249,6 +296,7 @@ size_t ReferenceFilter::weigh_all(const DepthImage& depth, double dt, Estimate& 
 Estimate ReferenceFilter::update(const DepthImage& depth, double dt) {
   const Stopwatch frame_clock;
   Estimate e;
+  move_state_window();
   time_ += dt;
   if (dt > 0) {
     const Stopwatch clock;
@@ -291,6 +339,7 @@ Estimate ReferenceFilter::update(const DepthImage& depth, double dt) {
     std::iota(last_parents_.begin(), last_parents_.end(), 0);
   }
   e.timings.resample_ms += gather_clock.elapsed_ms();
+  next_window_ = model::state_window_at(window_, e.pose, centre_, camera_);
   e.timings.total_ms = frame_clock.elapsed_ms();
   ++frame_;
   return e;

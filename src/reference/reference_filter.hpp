@@ -12,6 +12,7 @@
 #include "core/thread_pool.hpp"
 #include "model/filter_backend.hpp"
 #include "model/particle.hpp"
+#include "model/state_window.hpp"
 #include "reference/pose_refiner.hpp"
 #include "reference/pose_score.hpp"
 #include "reference/rasterizer.hpp"
@@ -42,7 +43,9 @@ class ReferenceFilter final : public FilterBackend {
   const std::vector<ParticleState>& particles() const { return particles_; }
   // The normalized weights the last resampling drew from, and the particles' stored state.
   const std::vector<double>& last_normalized_weights() const { return last_normalized_; }
+  // Rows of the state window's pixels (TrackerConfig::occlusion_window), at state_window().
   const std::vector<float>& occlusion_state() const { return occlusion_; }
+  const model::StateWindow& state_window() const { return window_; }
   const std::vector<float>& occlusion_times() const { return occlusion_time_; }
   const std::vector<double>& log_weights() const { return log_weights_; }
   // Per pose of the last score_poses, the sum of the absolute per-pixel terms.
@@ -85,6 +88,10 @@ class ReferenceFilter final : public FilterBackend {
   // as a sequential scan does), whose priors end in priors_; returns it.
   size_t weigh_all(const DepthImage& depth, double dt, Estimate& e);
   void resample(const std::vector<double>& normalized);
+  // Moves every particle's occlusion rows to next_window_: pixels new to the window start fresh.
+  void move_state_window();
+  // A fresh pixel's occlusion probability now: occlusion.initial at time 0, aged to time_.
+  double fresh_occlusion_now() const;
   // Each pixel's occlusion probability for this frame as particle i held it before this frame's
   // Bayes update (its prior, aged to now); priors_ must hold i's covered pixels.
   std::vector<double> occlusion_map(size_t i) const;
@@ -105,6 +112,8 @@ class ReferenceFilter final : public FilterBackend {
   // last update in seconds since the first frame. Stored as float, as a device stores it.
   std::vector<float> occlusion_;
   std::vector<float> occlusion_time_;
+  // Where the rows lie (window_), and where the next frame keeps them (centred on the last estimate).
+  model::StateWindow window_, next_window_;
   std::vector<float> scratch_occlusion_, scratch_occlusion_time_;  // resampling's gather targets
   std::vector<PixelPrior> priors_;                                 // the heaviest particle's
   std::vector<ChunkHeaviest> chunk_heaviest_;                      // weigh_all's, per chunk

@@ -1,0 +1,35 @@
+/* Where a pixel's occlusion state lies in a particle's row under the state window (dt_params.h's
+ * dt_window): weigh's reads and writes and the refinement's prior. Reference: ReferenceFilter's
+ * window handling (model::StateWindow). */
+#ifndef DT_WINDOW_H
+#define DT_WINDOW_H
+#include "dt_prelude.h"
+#include "dt_params.h"
+
+/* Index of image pixel (u, v) in a row of the window at (u0, v0), or -1 where the window does not
+ * hold it (unsigned differences: left of or above the window wraps to a large value). */
+DT_DEVICE_FN int dt_window_index(dt_window w, dt_u32 u0, dt_u32 v0, dt_u32 u, dt_u32 v) {
+  const dt_u32 x = u - u0, y = v - v0;
+  return x < w.width && y < w.height ? DT_CAST(int, y * w.width + x) : -1;
+}
+
+/* Image pixel (u, v)'s index in the rows read (the last frame's window), given its index `to` in this
+ * frame's (-1: outside), or -1 where it is fresh: outside this frame's window or new to it. */
+DT_DEVICE_FN int dt_window_from(dt_window w, int to, dt_u32 u, dt_u32 v) {
+  return to < 0 ? -1 : dt_window_index(w, w.last_u0, w.last_v0, u, v);
+}
+
+/* (u, v) of image pixel k, for a loop that then steps k by `step` with dt_pixel_step (no division
+ * per pixel: at 80x60 one in each of weigh's inner iterations cost more than the pixel's term). */
+DT_DEVICE_FN void dt_pixel_place(dt_u32 k, dt_u32 width, dt_u32* u, dt_u32* v) {
+  *u = k % width;
+  *v = k / width;
+}
+DT_DEVICE_FN void dt_pixel_step(dt_u32 step, dt_u32 width, dt_u32* u, dt_u32* v) {
+  *u += step;
+  while (*u >= width) {
+    *u -= width;
+    *v += 1;
+  }
+}
+#endif
