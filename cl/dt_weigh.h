@@ -6,6 +6,7 @@
 #include "dt_group.h"
 #include "dt_model.h"
 #include "dt_params.h" /* the DT_OCCLUSION codes */
+#include "dt_pixel_box.h"
 #include "dt_time_index.h"
 #include "dt_window.h"
 
@@ -14,6 +15,21 @@
 DT_DEVICE_FN void dt_weigh_begin(__global float* frame_times, float now, uint now_index) {
 #if DT_OCCLUSION == DT_PER_PIXEL_TIME
   if (get_group_id(0) == 0 && get_local_id(0) == 0) frame_times[now_index] = now;
+#endif
+}
+
+/* The pixels a particle's weigh visits: those its pose can cover (its box) and its state window's
+ * (whose state it carries over), in one rectangle; off keeps no state. */
+DT_DEVICE_FN dt_pixel_box dt_weigh_box(dt_pixel_box box, dt_window win) {
+#if DT_OCCLUSION == DT_OCCLUSION_OFF
+  return box;
+#else
+  dt_pixel_box w;
+  w.u0 = win.u0;
+  w.v0 = win.v0;
+  w.width = win.width;
+  w.height = win.height;
+  return dt_box_union(box, w);
 #endif
 }
 

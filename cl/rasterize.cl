@@ -13,6 +13,7 @@
 #include "dt_quaternion.h"
 #include "dt_state.h"
 #include "dt_params.h" /* dt_camera */
+#include "dt_pixel_box.h"
 
 #define DT_NO_SURFACE 0x7f800000u /* +inf's bits: above every depth until the end, then 0 */
 
@@ -209,23 +210,96 @@ DT_DEVICE_FN void dt_draw_triangle(dt_rigid pose, __global const float* vertices
     dt_draw_cut_triangle(a, b, c, plane, cam, tile, ids, nearest, local_tile, t);
 }
 
+/* The pixels a pose can cover: its projected vertices' bounding box, a pixel wider on each side (the
+ * triangle passes project the same vertices, maybe contracted into FMAs differently), clamped to
+ * the image; the whole image when a vertex lies before the near plane (cut triangles). */
+DT_DEVICE_FN dt_pixel_box dt_pose_box(dt_rigid pose, __global const float* vertices, uint vertex_count, dt_camera cam,
+                                      DT_LOCAL_PTR float* scratch) {
+  const uint lid = get_local_id(0);
+  /* minima of u, v, -u, -v and of "every vertex in front" as 0/-1 */
+  float low[5] = {-DT_LOWEST, -DT_LOWEST, -DT_LOWEST, -DT_LOWEST, 0.0f};
+  for (uint i = lid; i < vertex_count; i += DT_GROUP_SIZE) {
+    const dt_vec3 p = dt_vertex(pose, vertices, i);
+    if (!(p.z >= cam.near)) {
+      low[4] = -1.0f;
+      continue;
+    }
+    const dt_point s = dt_project(p, cam);
+    low[0] = fmin(low[0], s.u);
+    low[1] = fmin(low[1], s.v);
+    low[2] = fmin(low[2], -s.u);
+    low[3] = fmin(low[3], -s.v);
+  }
+  barrier(CLK_LOCAL_MEM_FENCE); /* the previous use of scratch is over */
+  for (int k = 0; k < 5; ++k) scratch[k * DT_GROUP_SIZE + lid] = low[k];
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (uint stride = DT_GROUP_SIZE / 2; stride > 0; stride >>= 1) {
+    if (lid < stride)
+      for (int k = 0; k < 5; ++k)
+        scratch[k * DT_GROUP_SIZE + lid] =
+            fmin(scratch[k * DT_GROUP_SIZE + lid], scratch[k * DT_GROUP_SIZE + lid + stride]);
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  dt_pixel_box box;
+  box.u0 = 0;
+  box.v0 = 0;
+  box.width = cam.width;
+  box.height = cam.height;
+  if (scratch[4 * DT_GROUP_SIZE] == 0.0f) {
+    /* clamped in float before the conversion to int, as dt_raster_triangle does */
+    const float last_u = DT_CAST(float, cam.width - 1), last_v = DT_CAST(float, cam.height - 1);
+    const float u0 = fmin(fmax(0.0f, floor(scratch[0]) - 1.0f), last_u + 1.0f);
+    const float v0 = fmin(fmax(0.0f, floor(scratch[DT_GROUP_SIZE]) - 1.0f), last_v + 1.0f);
+    const float u1 = fmax(fmin(last_u, ceil(-scratch[2 * DT_GROUP_SIZE]) + 1.0f), -1.0f);
+    const float v1 = fmax(fmin(last_v, ceil(-scratch[3 * DT_GROUP_SIZE]) + 1.0f), -1.0f);
+    box.u0 = DT_CAST(uint, u0);
+    box.v0 = DT_CAST(uint, v0);
+    box.width = u1 >= u0 ? DT_CAST(uint, u1 - u0) + 1 : 0;
+    box.height = v1 >= v0 ? DT_CAST(uint, v1 - v0) + 1 : 0;
+  }
+  return box;
+}
+
+/* The image index of the box's k-th pixel (row by row). */
+DT_DEVICE_FN uint dt_box_pixel(dt_pixel_box box, uint k, dt_camera cam) {
+  return (box.v0 + k / box.width) * cam.width + box.u0 + k % box.width;
+}
+
 /* vertices: 3 floats each, object frame; triangles: 3 vertex indices each; planes: object-frame
- * unit normal and offset (n . x = d) of each triangle. The atlas is written as the floats' bits. */
+ * unit normal and offset (n . x = d) of each triangle. The atlas is written as the floats' bits. With
+ * boxed, only the pose's box (dt_pose_box) of each tile is cleared and written, and the box goes to
+ * boxes (4 per particle: u0, v0, width, height): the rest of the tile is left as it was, and whoever
+ * reads the tile takes pixels outside the box as empty (weigh.cl, DeviceFilter::last_atlas). At 640x480
+ * the object's box is a few percent of the tile, which every frame was cleared, finished and read. */
 __kernel void rasterize(__global const float* states, __global const float* vertices, __global const uint* triangles,
-                        __global const float* planes, uint triangle_count, dt_camera cam, dt_atlas_layout layout,
-                        __global uint* atlas) {
-  const uint particle = get_group_id(0), lid = get_local_id(0), pixels = cam.width * cam.height;
+                        __global const float* planes, uint triangle_count, uint vertex_count, dt_camera cam,
+                        dt_atlas_layout layout, __global uint* atlas, __global uint* boxes, uint boxed) {
+  __local float scratch[5 * DT_GROUP_SIZE];
+  const uint particle = get_group_id(0), lid = get_local_id(0);
+  const dt_rigid pose = dt_particle_pose(states + DT_CAST(ulong, particle) * DT_STATE_STRIDE);
+  /* dt_pose_box's barriers are met by every work-item whatever `boxed` says (PoCL faults on barriers
+   * under a branch, even a uniform one). */
+  dt_pixel_box box = dt_pose_box(pose, vertices, vertex_count, cam, scratch);
+  if (boxed && lid < 4)
+    boxes[4 * DT_CAST(ulong, particle) + lid] = lid == 0 ? box.u0 : lid == 1 ? box.v0 : lid == 2 ? box.width : box.height;
+  if (!boxed) {
+    box.u0 = box.v0 = 0;
+    box.width = cam.width;
+    box.height = cam.height;
+  }
   /* One tile per atlas row (particle-major, dt_atlas.h): the tile's pixels are contiguous, so plain
    * loops clear and finish it (stepping by rows of the page took 1.8 times as long on PoCL). */
   __global uint* tile = atlas + dt_atlas_tile_start(layout, particle);
-  for (uint k = lid; k < pixels; k += DT_GROUP_SIZE) tile[k] = DT_NO_SURFACE;
+  const uint boxed_pixels = box.width * box.height;
+  for (uint b = lid; b < boxed_pixels; b += DT_GROUP_SIZE) tile[dt_box_pixel(box, b, cam)] = DT_NO_SURFACE;
   barrier(CLK_GLOBAL_MEM_FENCE);
 
-  const dt_rigid pose = dt_particle_pose(states + DT_CAST(ulong, particle) * DT_STATE_STRIDE);
   for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
     dt_draw_triangle(pose, vertices, triangles, planes, t, cam, tile, 0, 0, 0);
   barrier(CLK_GLOBAL_MEM_FENCE);
 
-  for (uint k = lid; k < pixels; k += DT_GROUP_SIZE)
+  for (uint b = lid; b < boxed_pixels; b += DT_GROUP_SIZE) {
+    const uint k = dt_box_pixel(box, b, cam);
     if (tile[k] == DT_NO_SURFACE) tile[k] = 0u; /* 0.0f's bits */
+  }
 }

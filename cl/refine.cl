@@ -13,65 +13,6 @@
 #include "dt_refine.h"
 #include "shift_particles.cl"
 
-typedef struct {
-  uint u0, v0, width, height; /* empty: width or height 0 */
-} dt_pixel_box;
-
-/* The pixels a pose can cover: its projected vertices' bounding box, a pixel wider on each side (the
- * triangle passes project the same vertices, maybe contracted into FMAs differently), clamped to
- * the image; the whole image when a vertex lies before the near plane (cut triangles). */
-DT_DEVICE_FN dt_pixel_box dt_pose_box(dt_rigid pose, __global const float* vertices, uint vertex_count, dt_camera cam,
-                                      DT_LOCAL_PTR float* scratch) {
-  const uint lid = get_local_id(0);
-  /* minima of u, v, -u, -v and of "every vertex in front" as 0/-1 */
-  float low[5] = {-DT_LOWEST, -DT_LOWEST, -DT_LOWEST, -DT_LOWEST, 0.0f};
-  for (uint i = lid; i < vertex_count; i += DT_GROUP_SIZE) {
-    const dt_vec3 p = dt_vertex(pose, vertices, i);
-    if (!(p.z >= cam.near)) {
-      low[4] = -1.0f;
-      continue;
-    }
-    const dt_point s = dt_project(p, cam);
-    low[0] = fmin(low[0], s.u);
-    low[1] = fmin(low[1], s.v);
-    low[2] = fmin(low[2], -s.u);
-    low[3] = fmin(low[3], -s.v);
-  }
-  barrier(CLK_LOCAL_MEM_FENCE); /* the previous use of scratch is over */
-  for (int k = 0; k < 5; ++k) scratch[k * DT_GROUP_SIZE + lid] = low[k];
-  barrier(CLK_LOCAL_MEM_FENCE);
-  for (uint stride = DT_GROUP_SIZE / 2; stride > 0; stride >>= 1) {
-    if (lid < stride)
-      for (int k = 0; k < 5; ++k)
-        scratch[k * DT_GROUP_SIZE + lid] =
-            fmin(scratch[k * DT_GROUP_SIZE + lid], scratch[k * DT_GROUP_SIZE + lid + stride]);
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
-  dt_pixel_box box;
-  box.u0 = 0;
-  box.v0 = 0;
-  box.width = cam.width;
-  box.height = cam.height;
-  if (scratch[4 * DT_GROUP_SIZE] == 0.0f) {
-    /* clamped in float before the conversion to int, as dt_raster_triangle does */
-    const float last_u = DT_CAST(float, cam.width - 1), last_v = DT_CAST(float, cam.height - 1);
-    const float u0 = fmin(fmax(0.0f, floor(scratch[0]) - 1.0f), last_u + 1.0f);
-    const float v0 = fmin(fmax(0.0f, floor(scratch[DT_GROUP_SIZE]) - 1.0f), last_v + 1.0f);
-    const float u1 = fmax(fmin(last_u, ceil(-scratch[2 * DT_GROUP_SIZE]) + 1.0f), -1.0f);
-    const float v1 = fmax(fmin(last_v, ceil(-scratch[3 * DT_GROUP_SIZE]) + 1.0f), -1.0f);
-    box.u0 = DT_CAST(uint, u0);
-    box.v0 = DT_CAST(uint, v0);
-    box.width = u1 >= u0 ? DT_CAST(uint, u1 - u0) + 1 : 0;
-    box.height = v1 >= v0 ? DT_CAST(uint, v1 - v0) + 1 : 0;
-  }
-  return box;
-}
-
-/* The image index of the box's k-th pixel (row by row). */
-DT_DEVICE_FN uint dt_box_pixel(dt_pixel_box box, uint k, dt_camera cam) {
-  return (box.v0 + k / box.width) * cam.width + box.u0 + k % box.width;
-}
-
 /* Draws the pose in pose_state into tile (depth bits, DT_NO_SURFACE where empty) and each covered
  * pixel's triangle into ids, then sums the normal equations over the group into sums[k * G]. */
 DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global const float* observed,

@@ -12,31 +12,42 @@
 #include "dt_weigh.h"
 
 __kernel void render_weigh(__global const float* states, __global const float* vertices, __global const uint* triangles,
-                           __global const float* planes, uint triangle_count, dt_camera cam,
+                           __global const float* planes, uint triangle_count, uint vertex_count, dt_camera cam,
                            __global const float* observed, __global const uint* parents,
                            __global const float* occlusion_from, __global const dt_u16* time_from,
                            __global float* occlusion_to, __global dt_u16* time_to, __global float* frame_times,
                            __global float* log_likelihood, __global float* log_weight, dt_model m, float now,
                            uint now_index, float dt, __global uint* atlas, uint keep_atlas, dt_window win) {
   __local uint tile[DT_TILE_PIXELS];
-  __local float scratch[DT_GROUP_SIZE];
+  __local float scratch[5 * DT_GROUP_SIZE]; /* dt_pose_box's reduction, then the group sum */
   const uint particle = get_group_id(0), lid = get_local_id(0), pixels = cam.width * cam.height;
   dt_weigh_begin(frame_times, now, now_index);
-  for (uint k = lid; k < pixels; k += DT_GROUP_SIZE) tile[k] = DT_NO_SURFACE;
-  barrier(CLK_LOCAL_MEM_FENCE);
+  /* Only the pose's box is cleared, drawn and weighed (no triangle draws outside it), with the state
+   * window's pixels, whose state moves from the parent's row to the particle's own. */
   const dt_rigid pose = dt_particle_pose(states + DT_CAST(ulong, particle) * DT_STATE_STRIDE);
+  const dt_pixel_box box = dt_pose_box(pose, vertices, vertex_count, cam, scratch);
+  for (uint b = lid; b < box.width * box.height; b += DT_GROUP_SIZE) tile[dt_box_pixel(box, b, cam)] = DT_NO_SURFACE;
+  barrier(CLK_LOCAL_MEM_FENCE);
   for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
     dt_draw_triangle(pose, vertices, triangles, planes, t, cam, 0, 0, 0, tile);
   barrier(CLK_LOCAL_MEM_FENCE);
 
+  if (keep_atlas) /* tests: the whole tile, 0.0f's bits where nothing was drawn */
+    for (uint k = lid; k < pixels; k += DT_GROUP_SIZE)
+      atlas[DT_CAST(ulong, particle) * pixels + k] =
+          dt_box_holds(box, k % cam.width, k / cam.width) && tile[k] != DT_NO_SURFACE ? tile[k] : 0u;
   const ulong row = DT_CAST(ulong, win.width) * win.height;
   const ulong from = DT_CAST(ulong, parents[particle]) * row, to = DT_CAST(ulong, particle) * row;
+  const dt_pixel_box visited = dt_weigh_box(box, win);
   float sum = 0.0f;
+  const uint first = visited.v0 * cam.width + visited.u0;
+  const uint end = (visited.v0 + visited.height - 1) * cam.width + visited.u0 + visited.width;
   dt_u32 u, v;
-  dt_pixel_place(lid, win.image_width, &u, &v);
-  for (uint k = lid; k < pixels; k += DT_GROUP_SIZE, dt_pixel_step(DT_GROUP_SIZE, win.image_width, &u, &v)) {
-    const uint bits = tile[k] == DT_NO_SURFACE ? 0u : tile[k]; /* 0.0f's bits where nothing was drawn */
-    if (keep_atlas) atlas[DT_CAST(ulong, particle) * pixels + k] = bits;
+  uint k = dt_lane_first(first, lid);
+  dt_pixel_place(k, cam.width, &u, &v);
+  for (; visited.height > 0 && k < end; k += DT_GROUP_SIZE, dt_pixel_step(cam.width, &u, &v)) {
+    if (k < first || u - visited.u0 >= visited.width) continue;
+    const uint bits = dt_box_holds(box, u, v) && tile[k] != DT_NO_SURFACE ? tile[k] : 0u; /* 0.0f where undrawn */
     sum += dt_weigh_image_pixel(k, u, v, dt_as_float(bits), observed, win, from, to, occlusion_from, time_from,
                                 occlusion_to, time_to, frame_times, m, now, now_index, dt);
   }

@@ -11,7 +11,9 @@
  * Per-pixel time keeps each pixel's last frame as an index into frame_times (dt_time_index.h); this
  * frame is now_index, whose time (now) the first work-item writes into the table: no pixel holds that
  * index while it is written (indices are retired long before they come round).
- * The rows hold the state window's pixels (dt_window.h; the whole image by default).
+ * The rows hold the state window's pixels (dt_window.h; the whole image by default); a group visits
+ * only its tile's box (rasterize.cl's boxes, where it wrote them) and the window's pixels, each
+ * work-item the pixels a loop over the whole image would give it, in the same order.
  * Reference: ReferenceFilter::weigh_particle (and its resampling's gather). */
 #include "dt_prelude.h"
 #include "dt_atlas.h"
@@ -21,18 +23,33 @@ __kernel void weigh(__global const float* atlas, __global const float* observed,
                     __global const float* occlusion_from, __global const dt_u16* time_from,
                     __global float* occlusion_to, __global dt_u16* time_to, __global float* frame_times,
                     __global float* log_likelihood, __global float* log_weight, uint pixels, dt_model m, float now,
-                    uint now_index, float dt, dt_atlas_layout layout, dt_window win) {
+                    uint now_index, float dt, dt_atlas_layout layout, dt_window win, __global const uint* boxes,
+                    uint boxed) {
   __local float scratch[DT_GROUP_SIZE];
-  const uint particle = get_group_id(0);
+  const uint particle = get_group_id(0), lid = get_local_id(0), width = win.image_width;
   dt_weigh_begin(frame_times, now, now_index);
+  /* The tile's box (rasterize.cl with boxed: nothing is drawn outside it, and it is not cleared there)
+   * and the state window's pixels; the whole image without boxes. */
+  dt_pixel_box box;
+  box.u0 = boxed ? boxes[4 * DT_CAST(ulong, particle)] : 0;
+  box.v0 = boxed ? boxes[4 * DT_CAST(ulong, particle) + 1] : 0;
+  box.width = boxed ? boxes[4 * DT_CAST(ulong, particle) + 2] : width;
+  box.height = boxed ? boxes[4 * DT_CAST(ulong, particle) + 3] : pixels / width;
   const ulong row = DT_CAST(ulong, win.width) * win.height;
   const ulong from = DT_CAST(ulong, parents[particle]) * row, to = DT_CAST(ulong, particle) * row;
   const ulong tile = dt_atlas_tile_start(layout, particle);
+  const dt_pixel_box visited = dt_weigh_box(box, win);
+  const uint first = visited.v0 * width + visited.u0;
+  const uint end = (visited.v0 + visited.height - 1) * width + visited.u0 + visited.width;
   float sum = 0.0f;
   dt_u32 u, v;
-  dt_pixel_place(get_local_id(0), win.image_width, &u, &v);
-  for (uint k = get_local_id(0); k < pixels; k += DT_GROUP_SIZE, dt_pixel_step(DT_GROUP_SIZE, win.image_width, &u, &v))
-    sum += dt_weigh_image_pixel(k, u, v, atlas[dt_atlas_pixel(layout, tile, k)], observed, win, from, to,
-                                occlusion_from, time_from, occlusion_to, time_to, frame_times, m, now, now_index, dt);
+  uint k = dt_lane_first(first, lid);
+  dt_pixel_place(k, width, &u, &v);
+  for (; visited.height > 0 && k < end; k += DT_GROUP_SIZE, dt_pixel_step(width, &u, &v)) {
+    if (k < first || u - visited.u0 >= visited.width) continue;
+    const float y_hat = dt_box_holds(box, u, v) ? atlas[dt_atlas_pixel(layout, tile, k)] : 0.0f;
+    sum += dt_weigh_image_pixel(k, u, v, y_hat, observed, win, from, to, occlusion_from, time_from, occlusion_to,
+                                time_to, frame_times, m, now, now_index, dt);
+  }
   dt_weigh_end(scratch, sum, log_likelihood, log_weight);
 }

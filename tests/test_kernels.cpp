@@ -160,7 +160,7 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
     compute::Buffer<float> a(*q, laid_out->size()), o(*q, pixels), occ(*q, count * row), occ_to(*q, count * row),
         table(*q, DT_TIME_TABLE), ll(*q, count), lw(*q, count);
     compute::Buffer<uint16_t> tim(*q, count * row), tim_to(*q, count * row);
-    compute::Buffer<unsigned> parent_buffer(*q, count);
+    compute::Buffer<unsigned> parent_buffer(*q, count), no_boxes(*q, 4);  // whole tiles
     a.upload(*laid_out);
     o.upload(observed);
     occ.upload(std::vector<float>(occlusion.begin(), occlusion.begin() + static_cast<std::ptrdiff_t>(count * row)));
@@ -174,7 +174,7 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
     lw.upload(std::vector<float>(count, 1.0f));
     q->launch(*kernel, compute::NdRange::linear(count * kGroup, kGroup), a, o, parent_buffer, occ, tim, occ_to, tim_to,
               table, ll, lw, static_cast<unsigned>(pixels), model_args(), static_cast<float>(now), now_index,
-              static_cast<float>(dt), layout, win)
+              static_cast<float>(dt), layout, win, no_boxes, 0u)
         ->wait();
     const auto got_ll = ll.download(), got_lw = lw.download(), got_occ = occ_to.download();
     const auto got_index = tim_to.download();
@@ -241,7 +241,7 @@ TEST_CASE("weigh kernel stays finite and equal to the reference for observations
   compute::Buffer<float> a(*q, pixels), o(*q, pixels), occ(*q, pixels), occ_to(*q, pixels), table(*q, DT_TIME_TABLE),
       ll(*q, 1), lw(*q, 1);
   compute::Buffer<uint16_t> tim(*q, pixels), tim_to(*q, pixels);
-  compute::Buffer<unsigned> parents(*q, 1);
+  compute::Buffer<unsigned> parents(*q, 1), no_boxes(*q, 4);  // whole tiles
   parents.upload(std::vector<unsigned>{0});
   a.upload(atlas);
   o.upload(observed);
@@ -252,7 +252,7 @@ TEST_CASE("weigh kernel stays finite and equal to the reference for observations
   q->launch(*kernel, compute::NdRange::linear(kGroup, kGroup), a, o, parents, occ, tim, occ_to, tim_to, table, ll, lw,
             static_cast<unsigned>(pixels), model_args(), 0.0f, 0u, 0.0f,
             dt_atlas_layout{static_cast<dt_u32>(pixels), 1, 1, 1},
-            dt_window{0, 0, 0, 0, static_cast<dt_u32>(pixels), 1, static_cast<dt_u32>(pixels), 0.1f})
+            dt_window{0, 0, 0, 0, static_cast<dt_u32>(pixels), 1, static_cast<dt_u32>(pixels), 0.1f}, no_boxes, 0u)
       ->wait();
   double expected = 0;
   for (size_t k = 0; k < pixels; ++k) {

@@ -76,12 +76,13 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
       std::vector<float> atlas, ll, lw, occlusion, table;
       std::vector<uint16_t> times;
     };
-    auto run = [&](bool inside, unsigned keep_atlas, const dt_window& win) {
+    // inside: render_weigh; else rasterize, boxed or not, then weigh.
+    auto run = [&](bool inside, unsigned keep_atlas, const dt_window& win, unsigned boxed = 0) {
       const size_t rows = count * win.width * win.height;
       compute::Buffer<float> states(*q, count * DT_STATE_STRIDE), obs(*q, pixels), occ_from(*q, rows), occ_to(*q, rows),
           table(*q, DT_TIME_TABLE), ll(*q, count), lw(*q, count), atlas(*q, layout.floats());
       compute::Buffer<uint16_t> t_from(*q, rows), t_to(*q, rows);
-      compute::Buffer<unsigned> parent_buffer(*q, count);
+      compute::Buffer<unsigned> parent_buffer(*q, count), boxes(*q, 4 * count);
       states.upload(pack_particles(particles));
       obs.upload(observed);
       occ_from.upload(std::vector<float>(occlusion.begin(), occlusion.begin() + static_cast<std::ptrdiff_t>(rows)));
@@ -94,22 +95,25 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
       parent_buffer.upload(parents);
       if (inside) {
         q->launch(*fused, range, states, mesh_buffers.vertices, mesh_buffers.triangles, mesh_buffers.planes,
-                  mesh_buffers.triangle_count(), cam, obs, parent_buffer, occ_from, t_from, occ_to, t_to, table, ll, lw,
-                  m, now, now_index, dt, atlas, keep_atlas, win);
+                  mesh_buffers.triangle_count(), mesh_buffers.vertex_count(), cam, obs, parent_buffer, occ_from, t_from,
+                  occ_to, t_to, table, ll, lw, m, now, now_index, dt, atlas, keep_atlas, win);
       } else {
         q->launch(*rasterize, range, states, mesh_buffers.vertices, mesh_buffers.triangles, mesh_buffers.planes,
-                  mesh_buffers.triangle_count(), cam, layout.kernel_args(), atlas);
+                  mesh_buffers.triangle_count(), mesh_buffers.vertex_count(), cam, layout.kernel_args(), atlas, boxes,
+                  boxed);
         q->launch(*weigh, range, atlas, obs, parent_buffer, occ_from, t_from, occ_to, t_to, table, ll, lw,
-                  static_cast<unsigned>(pixels), m, now, now_index, dt, layout.kernel_args(), win);
+                  static_cast<unsigned>(pixels), m, now, now_index, dt, layout.kernel_args(), win, boxes, boxed);
       }
       q->finish();
       return Run{atlas.download(), ll.download(), lw.download(), occ_to.download(), table.download(), t_to.download()};
     };
-    // The whole image's state, and a 16x12 state window (cutting the object) moved by (3, 2) since the rows were written.
+    // The whole image's state, and a 16x12 state window (cutting the object) moved by (3, 2) since the rows were
+    // written.
     for (const dt_window& win :
          {dt_window{0, 0, 0, 0, 80, 60, 80, 0.1f}, dt_window{34, 26, 31, 24, 16, 12, 80, 0.1f}}) {
       INFO("state window " << win.width << "x" << win.height);
-      const Run apart = run(false, 0, win), inside = run(true, 1, win), unkept = run(true, 0, win);
+      const Run apart = run(false, 0, win), inside = run(true, 1, win), unkept = run(true, 0, win),
+                boxed = run(false, 0, win, 1);
       for (size_t i = 0; i < count; ++i) {  // every particle is in view
         size_t covered = 0;
         for (size_t k = 0; k < pixels; ++k) covered += apart.atlas[i * pixels + k] > 0;
@@ -117,7 +121,16 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
       }
       CHECK(inside.atlas == apart.atlas);
       CHECK(unkept.atlas == std::vector<float>(layout.floats(), -3.0f));  // not stored unless asked
-      for (const Run* r : {&inside, &unkept}) {
+      // Rasterized only in each pose's box (the rest of the tile left as it was): the same tiles inside
+      // the boxes, and weigh takes the rest as empty.
+      size_t stale = 0;
+      for (size_t k = 0; k < boxed.atlas.size(); ++k) {
+        stale += boxed.atlas[k] == -3.0f;
+        if (boxed.atlas[k] != -3.0f) REQUIRE(boxed.atlas[k] == apart.atlas[k]);
+        if (boxed.atlas[k] == -3.0f) REQUIRE(apart.atlas[k] == 0.0f);
+      }
+      CHECK(stale > boxed.atlas.size() / 2);  // most of each tile lies outside the pose's box
+      for (const Run* r : {&inside, &unkept, &boxed}) {
         CHECK(r->ll == apart.ll);
         CHECK(r->lw == apart.lw);
         CHECK(r->occlusion == apart.occlusion);

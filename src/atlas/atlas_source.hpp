@@ -33,6 +33,11 @@ class AtlasSource {
   // The mesh as the compute kernels draw it, where this source keeps it on the filter's device (the
   // kernel source: the filter's render_weigh draws from it too), else null.
   virtual const MeshBuffers* device_mesh() const { return nullptr; }
+  // Asks the source to draw only each pose's box of its tile from now on, leaving the rest of the tile
+  // as it was, and to keep the boxes (4 per particle: u0, v0, width, height) for the weigh kernel:
+  // true where it does (the kernel source), after which tile_boxes() holds them; false elsewhere.
+  virtual bool draw_boxed() { return false; }
+  virtual const compute::Buffer<unsigned>* tile_boxes() const { return nullptr; }
 };
 
 struct GlAtlasDevice;  // atlas/gl_atlas_device.hpp

@@ -39,10 +39,18 @@ class KernelAtlasSource final : public AtlasSource {
                        " particles need");
     // The atlas is written as the depths' bits.
     return queue_.launch(*kernel_, compute::NdRange::linear(particles * kGroupSize, kGroupSize), states, mesh_.vertices,
-                         mesh_.triangles, mesh_.planes, mesh_.triangle_count(), camera_, layout_.kernel_args(), atlas);
+                         mesh_.triangles, mesh_.planes, mesh_.triangle_count(), mesh_.vertex_count(), camera_,
+                         layout_.kernel_args(), atlas, boxes_, static_cast<unsigned>(boxed_));
   }
 
   const MeshBuffers* device_mesh() const override { return &mesh_; }
+
+  bool draw_boxed() override {
+    boxed_ = true;
+    boxes_ = compute::Buffer<unsigned>(queue_, 4 * static_cast<size_t>(layout_.tiles_per_page));
+    return true;
+  }
+  const compute::Buffer<unsigned>* tile_boxes() const override { return boxed_ ? &boxes_ : nullptr; }
 
   std::string description() const override {
     return "compute-kernel rasterizer on " + queue_.info().name + "; hand-off: none (rendered in device memory)";
@@ -55,6 +63,8 @@ class KernelAtlasSource final : public AtlasSource {
   std::shared_ptr<compute::Program> program_;
   std::unique_ptr<compute::Kernel> kernel_;
   MeshBuffers mesh_;
+  bool boxed_ = false;
+  compute::Buffer<unsigned> boxes_{queue_, 4};  // one box's worth until draw_boxed()
 };
 }  // namespace
 

@@ -11,6 +11,7 @@ namespace depthtrack {
 struct MeshBuffers {
   MeshBuffers(compute::Queue& queue, const Mesh& mesh);  // uploads the mesh and its planes
   unsigned triangle_count() const { return static_cast<unsigned>(planes.size() / 4); }
+  unsigned vertex_count() const { return static_cast<unsigned>(vertices.size() / 3); }
 
   compute::Buffer<float> vertices;      // 3 per vertex, object frame
   compute::Buffer<unsigned> triangles;  // 3 vertex indices each

@@ -50,7 +50,8 @@ double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bo
 
 bool renders_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory) {
   constexpr size_t kStaticLocalLimit = 48 * 1024;  // CUDA's for a block's static shared memory
-  const size_t needed = pixels * sizeof(float) + kGroupSize * sizeof(float);  // the tile, the group sum's scratch
+  // The tile, and the pose box's reduction (5 floats a work-item), which the group sum reuses.
+  const size_t needed = pixels * sizeof(float) + 5 * kGroupSize * sizeof(float);
   return renderer == Renderer::Kernel && needed <= std::min(local_memory, kStaticLocalLimit);
 }
 
@@ -124,10 +125,12 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
             .program("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=" + std::to_string(pixels_)})
             ->kernel("render_weigh");
     render_weigh_mesh_ = atlas_source_->device_mesh();
-  } else {  // the atlas drawn by its source, then weighed
+  } else {  // the atlas drawn by its source (only each pose's box where it can), then weighed
     k.weigh_program = device_->programs.program("weigh.cl", defines);
     k.weigh = k.weigh_program->kernel("weigh");
+    atlas_source_->draw_boxed();
   }
+  unused_boxes_ = compute::Buffer<unsigned>(q, 4);
   // Drawn inside weigh, the atlas is stored only when asked for (keep_atlas).
   atlas_ = compute::Buffer<float>(q, render_weigh_ ? 1 : atlas_source_->layout().floats());
   observed_ = compute::Buffer<float>(q, pixels_);
@@ -300,7 +303,18 @@ compute::EventPtr DeviceFilter::render_atlas(StepTimings& timings) {
 std::vector<float> DeviceFilter::last_atlas() const {
   if (render_weigh_ && !keep_atlas_)
     throw InputError("device filter: the atlas is drawn inside weigh and not kept (keep_atlas(true) keeps it)");
-  return atlas_source_->layout().tiles_in_order(atlas_.download(), count_);
+  std::vector<float> tiles = atlas_source_->layout().tiles_in_order(atlas_.download(), count_);
+  if (const compute::Buffer<unsigned>* boxes = atlas_source_->tile_boxes()) {
+    // Drawn only inside each pose's box: the rest of its tile is stale, and empty to weigh.
+    const std::vector<unsigned> b = boxes->download();
+    for (size_t i = 0; i < count_; ++i)
+      for (size_t k = 0; k < pixels_; ++k) {
+        const unsigned u = static_cast<unsigned>(k % static_cast<size_t>(camera_.width)),
+                       v = static_cast<unsigned>(k / static_cast<size_t>(camera_.width));
+        if (u - b[4 * i] >= b[4 * i + 2] || v - b[4 * i + 1] >= b[4 * i + 3]) tiles[i * pixels_ + k] = 0.0f;
+      }
+  }
+  return tiles;
 }
 
 void DeviceFilter::keep_atlas(bool keep) {
@@ -352,18 +366,21 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   window_ = next_window_;
   const auto per_particle_group = compute::NdRange::linear(count_ * kGroupSize, kGroupSize);
   if (render_weigh_)
-    p->weighed = queue_->launch(
-        *render_weigh_, per_particle_group, state_, render_weigh_mesh_->vertices, render_weigh_mesh_->triangles,
-        render_weigh_mesh_->planes, render_weigh_mesh_->triangle_count(), model::camera_params(camera_, config_),
-        observed_, parents_, occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_,
-        frame_times_->device(), log_likelihood_, log_weight_, model::model_params(config_), static_cast<float>(time_),
-        now_index, static_cast<float>(dt), atlas_, static_cast<unsigned>(keep_atlas_), window);
+    p->weighed =
+        queue_->launch(*render_weigh_, per_particle_group, state_, render_weigh_mesh_->vertices,
+                       render_weigh_mesh_->triangles, render_weigh_mesh_->planes, render_weigh_mesh_->triangle_count(),
+                       render_weigh_mesh_->vertex_count(), model::camera_params(camera_, config_), observed_, parents_,
+                       occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(),
+                       log_likelihood_, log_weight_, model::model_params(config_), static_cast<float>(time_), now_index,
+                       static_cast<float>(dt), atlas_, static_cast<unsigned>(keep_atlas_), window);
   else
     p->weighed = queue_->launch(*k.weigh, per_particle_group, atlas_, observed_, parents_, occlusion_, occlusion_time_,
                                 scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(), log_likelihood_,
                                 log_weight_, static_cast<unsigned>(pixels_), model::model_params(config_),
                                 static_cast<float>(time_), now_index, static_cast<float>(dt),
-                                atlas_source_->layout().kernel_args(), window);
+                                atlas_source_->layout().kernel_args(), window,
+                                atlas_source_->tile_boxes() ? *atlas_source_->tile_boxes() : unused_boxes_,
+                                static_cast<unsigned>(atlas_source_->tile_boxes() != nullptr));
   std::swap(occlusion_, scratch_occlusion_);
   std::swap(occlusion_time_, scratch_occlusion_time_);
   const float kl_threshold = model::float_threshold(config_.resample_kl_threshold);

@@ -127,6 +127,7 @@ class DeviceFilter final : public FilterBackend {
   compute::Buffer<float> state_, scratch_state_, log_weight_, log_likelihood_, weights_, cumulative_, estimate_;
   compute::Buffer<unsigned> parents_;
   compute::Buffer<float> atlas_, observed_;
+  compute::Buffer<unsigned> unused_boxes_;  // weigh's boxes argument where the atlas source keeps none
   // The kernel renderer's rasterization inside weigh (renders_inside_weigh), drawing the kernel atlas
   // source's mesh.
   std::unique_ptr<compute::Kernel> render_weigh_;

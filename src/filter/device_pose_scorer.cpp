@@ -56,6 +56,7 @@ std::vector<double> DevicePoseScorer::score(std::span<const Pose> poses, const D
     atlas_ = compute::Buffer<float>(queue_, layout_.floats());
     observed_ = compute::Buffer<float>(queue_, pixels_);
     scores_ = compute::Buffer<float>(queue_, batch_);
+    unused_boxes_ = compute::Buffer<unsigned>(queue_, 4);  // whole tiles: score.cl reads every pixel
   }
   observed_.upload(depth.data());
   TrackerConfig config = config_;
@@ -70,7 +71,8 @@ std::vector<double> DevicePoseScorer::score(std::span<const Pose> poses, const D
     for (size_t i = 0; i < n; ++i) write_pose(poses[first + i], packed.data() + i * DT_STATE_STRIDE);
     states_.upload(std::span<const float>(packed.data(), n * DT_STATE_STRIDE));
     queue_.launch(*rasterize_, compute::NdRange::linear(n * kRasterizeGroup, kRasterizeGroup), states_, mesh_.vertices,
-                  mesh_.triangles, mesh_.planes, mesh_.triangle_count(), camera_, layout_.kernel_args(), atlas_);
+                  mesh_.triangles, mesh_.planes, mesh_.triangle_count(), mesh_.vertex_count(), camera_,
+                  layout_.kernel_args(), atlas_, unused_boxes_, 0u);
     queue_.launch(*score_, compute::NdRange::linear(n * kScoreGroup, kScoreGroup), atlas_, observed_, scores_,
                   static_cast<unsigned>(pixels_), model, p, layout_.kernel_args());
     scores_.download(std::span<float>(scores.data(), n));

@@ -46,6 +46,7 @@ class DevicePoseScorer final : public PoseScorer {
   MeshBuffers mesh_;
   std::unique_ptr<compute::Kernel> rasterize_, score_;
   compute::Buffer<float> states_, atlas_, observed_, scores_;  // allocated by the first score()
+  compute::Buffer<unsigned> unused_boxes_;                     // rasterize.cl's boxes, not written (whole tiles)
 };
 
 }  // namespace depthtrack
