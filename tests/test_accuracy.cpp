@@ -137,6 +137,19 @@ TEST_CASE("synthetic handset with a 30% moving occluder: 200 particles at 80x60"
       std::printf("    lowest confidence %.2f, lost in %d frames\n", e.min_confidence, e.lost_frames);
       CHECK(e.lost_frames == 0);  // no false loss: the object is tracked throughout
     }
+    // The same with the occlusion state kept in a 32x24 window around the estimate (the handset covers
+    // about 18x12 pixels): the same bars.
+    for (uint64_t seed : {1, 2, 3}) {
+      TrackerConfig windowed = operating_point(backend, seed, true);
+      windowed.occlusion_window = {32, 24};
+      const RunErrors e = track_frames(mesh, synth, frames, windowed, frames.front().ground_truth);
+      const std::string label = "refine on, state window 32x24, seed " + std::to_string(seed);
+      print_row(label.c_str(), e);
+      CHECK(e.mean_t <= 0.0012);
+      CHECK(e.max_t <= 0.006);
+      CHECK(kDegrees * e.mean_r <= 1.2);
+      CHECK(e.lost_frames == 0);
+    }
     TrackerConfig no_occlusion = operating_point(backend, 1, true);
     no_occlusion.occlusion_storage = OcclusionStorage::Off;
     const RunErrors without_occlusion = track_frames(mesh, synth, frames, no_occlusion, frames.front().ground_truth);
