@@ -57,95 +57,6 @@ typedef struct {
   float nx, ny, nz, d;
 } dt_plane;
 
-/* Keeps, at every pixel of the tile whose centre lies inside triangle abc, the nearer of its depth
- * and the tile's. With ids (a second pass over a finished tile, for the pose refinement), it instead
- * writes triangle where its depth is the tile's (to 1e-6 relative): the lowest such index wins, as
- * atomic min. With nearest (the refinement's one pass, where 64-bit atomics exist: programs defining
- * DT_NEAREST_PACKED), it keeps depth bits and triangle together, (bits << 32) | triangle, by a 64-bit
- * atomic min: the nearest depth and, on a tie, the lowest index, as the reference's strict `<` in
- * triangle order. With local_tile (render_weigh.cl's tile in work-group memory) it keeps the nearer
- * depth there, as tile does in global memory. */
-DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_plane plane, dt_camera cam,
-                                     __global uint* tile, __global uint* ids, __global dt_u64* nearest,
-                                     DT_LOCAL_PTR uint* local_tile, uint triangle) {
-  const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
-  if (area == 0.0f || !isfinite(area)) return;
-  /* Pixel centres in the bounding box, clamped in float to [-1, size] before the conversion to int,
-   * which is undefined beyond int's range (PoCL then looped over 2^31 columns); a box off the image
-   * comes out empty. Most triangles of a fine mesh hold no centre. */
-  const float last_u = DT_CAST(float, cam.width - 1), last_v = DT_CAST(float, cam.height - 1);
-  const int u0 = DT_CAST(int, fmin(fmax(0.0f, ceil(fmin(a.u, fmin(b.u, c.u)))), last_u + 1.0f));
-  const int u1 = DT_CAST(int, fmax(fmin(last_u, floor(fmax(a.u, fmax(b.u, c.u)))), -1.0f));
-  const int v0 = DT_CAST(int, fmin(fmax(0.0f, ceil(fmin(a.v, fmin(b.v, c.v)))), last_v + 1.0f));
-  const int v1 = DT_CAST(int, fmax(fmin(last_v, floor(fmax(a.v, fmax(b.v, c.v)))), -1.0f));
-  if (u0 > u1 || v0 > v1) return;
-  if (area < 0.0f) { /* no culling: give every triangle the same orientation */
-    const dt_point t = b;
-    b = c;
-    c = t;
-  }
-  const dt_edge bc = dt_make_edge(b, c), ca = dt_make_edge(c, a), ab = dt_make_edge(a, b);
-  const float inverse_fx = 1.0f / cam.fx, inverse_fy = 1.0f / cam.fy;
-  for (int v = v0; v <= v1; ++v) {
-    const float pv = DT_CAST(float, v), ray_y = (pv - cam.cy) * inverse_fy;
-    for (int u = u0; u <= u1; ++u) {
-      const float pu = DT_CAST(float, u);
-      if (!dt_edge_admits(bc, pu, pv) || !dt_edge_admits(ca, pu, pv) || !dt_edge_admits(ab, pu, pv)) continue;
-      const float z = dt_divide(plane.d, plane.nx * ((pu - cam.cx) * inverse_fx) + plane.ny * ray_y + plane.nz);
-      if (!(z >= cam.near && z <= cam.far)) continue;
-      const uint k = DT_CAST(uint, v) * cam.width + DT_CAST(uint, u);
-      if (local_tile) {
-        dt_atomic_min_u32(local_tile + k, dt_as_uint(z));
-      } else if (nearest) {
-#ifdef DT_NEAREST_PACKED
-        dt_atomic_min_u64(nearest + k, (DT_CAST(dt_u64, dt_as_uint(z)) << 32) | triangle);
-#endif
-      } else if (ids) {
-        /* Within a few ulps, not bit for bit: NVRTC contracts this pass's arithmetic into FMAs
-         * differently from the depth pass's, and a pixel left without its triangle has no normal. */
-        if (fabs(dt_as_float(tile[k]) - z) <= 1e-6f * z) dt_atomic_min_u32(ids + k, triangle);
-      } else {
-        dt_atomic_min_u32(tile + k, dt_as_uint(z));
-      }
-    }
-  }
-}
-
-DT_DEVICE_FN dt_point dt_project(dt_vec3 p, dt_camera cam) {
-  const float inverse_z = 1.0f / p.z;
-  dt_point s;
-  s.u = cam.fx * p.x * inverse_z + cam.cx;
-  s.v = cam.fy * p.y * inverse_z + cam.cy;
-  return s;
-}
-
-/* Where edge (inside, outside) crosses z = near; computed from its inside end whichever way the
- * triangle runs, so that the triangles sharing a cut edge share the new vertex exactly. */
-DT_DEVICE_FN dt_vec3 dt_cut(dt_vec3 inside, dt_vec3 outside, float near) {
-  const float t = (near - inside.z) / (outside.z - inside.z);
-  return dt_vec3_make(inside.x + (outside.x - inside.x) * t, inside.y + (outside.y - inside.y) * t, near);
-}
-
-/* Triangle abc (camera frame) that crosses z = near: cut there (Sutherland-Hodgman against one
- * plane, 3 or 4 vertices remain), then drawn as a fan. */
-DT_DEVICE_FN void dt_draw_cut_triangle(dt_vec3 a, dt_vec3 b, dt_vec3 c, dt_plane plane, dt_camera cam,
-                                       __global uint* tile, __global uint* ids, __global dt_u64* nearest,
-                                       DT_LOCAL_PTR uint* local_tile, uint triangle) {
-  const dt_vec3 p[3] = {a, b, c};
-  dt_vec3 kept[4];
-  int n = 0;
-  for (int i = 0; i < 3; ++i) {
-    const dt_vec3 from = p[i], to = p[i == 2 ? 0 : i + 1];
-    const int from_in = from.z >= cam.near, to_in = to.z >= cam.near;
-    if (from_in) kept[n++] = from;
-    if (from_in != to_in) kept[n++] = from_in ? dt_cut(from, to, cam.near) : dt_cut(to, from, cam.near);
-  }
-  const dt_point first = dt_project(kept[0], cam);
-  for (int i = 1; i + 1 < n; ++i)
-    dt_raster_triangle(first, dt_project(kept[i], cam), dt_project(kept[i + 1], cam), plane, cam, tile, ids, nearest,
-                       local_tile, triangle);
-}
-
 /* camera_from_object as the rows of [R | t]. */
 typedef struct {
   dt_vec3 r0, r1, r2, t;
@@ -192,6 +103,100 @@ DT_DEVICE_FN dt_plane dt_triangle_plane(dt_rigid m, __global const float* planes
   return p;
 }
 
+/* Keeps, at every pixel of the tile whose centre lies inside triangle abc, the nearer of its depth
+ * and the tile's. With ids (a second pass over a finished tile, for the pose refinement), it instead
+ * writes triangle where its depth is the tile's (to 1e-6 relative): the lowest such index wins, as
+ * atomic min. With nearest (the refinement's one pass, where 64-bit atomics exist: programs defining
+ * DT_NEAREST_PACKED), it keeps depth bits and triangle together, (bits << 32) | triangle, by a 64-bit
+ * atomic min: the nearest depth and, on a tie, the lowest index, as the reference's strict `<` in
+ * triangle order. With local_tile (render_weigh.cl's tile in work-group memory) it keeps the nearer
+ * depth there, as tile does in global memory. */
+DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_rigid pose, __global const float* planes,
+                                     dt_camera cam,
+                                     __global uint* tile, __global uint* ids, __global dt_u64* nearest,
+                                     DT_LOCAL_PTR uint* local_tile, uint triangle) {
+  const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
+  if (area == 0.0f || !isfinite(area)) return;
+  /* Pixel centres in the bounding box, clamped in float to [-1, size] before the conversion to int,
+   * which is undefined beyond int's range (PoCL then looped over 2^31 columns); a box off the image
+   * comes out empty. Most triangles of a fine mesh hold no centre. */
+  const float last_u = DT_CAST(float, cam.width - 1), last_v = DT_CAST(float, cam.height - 1);
+  const int u0 = DT_CAST(int, fmin(fmax(0.0f, ceil(fmin(a.u, fmin(b.u, c.u)))), last_u + 1.0f));
+  const int u1 = DT_CAST(int, fmax(fmin(last_u, floor(fmax(a.u, fmax(b.u, c.u)))), -1.0f));
+  const int v0 = DT_CAST(int, fmin(fmax(0.0f, ceil(fmin(a.v, fmin(b.v, c.v)))), last_v + 1.0f));
+  const int v1 = DT_CAST(int, fmax(fmin(last_v, floor(fmax(a.v, fmax(b.v, c.v)))), -1.0f));
+  if (u0 > u1 || v0 > v1) return;
+  if (area < 0.0f) { /* no culling: give every triangle the same orientation */
+    const dt_point t = b;
+    b = c;
+    c = t;
+  }
+  const dt_edge bc = dt_make_edge(b, c), ca = dt_make_edge(c, a), ab = dt_make_edge(a, b);
+  /* Only now the plane: most triangles of a fine mesh hold no pixel centre and never need it. */
+  const dt_plane plane = dt_triangle_plane(pose, planes, triangle);
+  const float inverse_fx = 1.0f / cam.fx, inverse_fy = 1.0f / cam.fy;
+  for (int v = v0; v <= v1; ++v) {
+    const float pv = DT_CAST(float, v), ray_y = (pv - cam.cy) * inverse_fy;
+    for (int u = u0; u <= u1; ++u) {
+      const float pu = DT_CAST(float, u);
+      if (!dt_edge_admits(bc, pu, pv) || !dt_edge_admits(ca, pu, pv) || !dt_edge_admits(ab, pu, pv)) continue;
+      const float z = dt_divide(plane.d, plane.nx * ((pu - cam.cx) * inverse_fx) + plane.ny * ray_y + plane.nz);
+      if (!(z >= cam.near && z <= cam.far)) continue;
+      const uint k = DT_CAST(uint, v) * cam.width + DT_CAST(uint, u);
+      if (local_tile) {
+        dt_atomic_min_u32(local_tile + k, dt_as_uint(z));
+      } else if (nearest) {
+#ifdef DT_NEAREST_PACKED
+        dt_atomic_min_u64(nearest + k, (DT_CAST(dt_u64, dt_as_uint(z)) << 32) | triangle);
+#endif
+      } else if (ids) {
+        /* Within a few ulps, not bit for bit: NVRTC contracts this pass's arithmetic into FMAs
+         * differently from the depth pass's, and a pixel left without its triangle has no normal. */
+        if (fabs(dt_as_float(tile[k]) - z) <= 1e-6f * z) dt_atomic_min_u32(ids + k, triangle);
+      } else {
+        dt_atomic_min_u32(tile + k, dt_as_uint(z));
+      }
+    }
+  }
+}
+
+DT_DEVICE_FN dt_point dt_project(dt_vec3 p, dt_camera cam) {
+  const float inverse_z = 1.0f / p.z;
+  dt_point s;
+  s.u = cam.fx * p.x * inverse_z + cam.cx;
+  s.v = cam.fy * p.y * inverse_z + cam.cy;
+  return s;
+}
+
+/* Where edge (inside, outside) crosses z = near; computed from its inside end whichever way the
+ * triangle runs, so that the triangles sharing a cut edge share the new vertex exactly. */
+DT_DEVICE_FN dt_vec3 dt_cut(dt_vec3 inside, dt_vec3 outside, float near) {
+  const float t = (near - inside.z) / (outside.z - inside.z);
+  return dt_vec3_make(inside.x + (outside.x - inside.x) * t, inside.y + (outside.y - inside.y) * t, near);
+}
+
+/* Triangle abc (camera frame) that crosses z = near: cut there (Sutherland-Hodgman against one
+ * plane, 3 or 4 vertices remain), then drawn as a fan. */
+DT_DEVICE_FN void dt_draw_cut_triangle(dt_vec3 a, dt_vec3 b, dt_vec3 c, dt_rigid pose, __global const float* planes,
+                                       dt_camera cam,
+                                       __global uint* tile, __global uint* ids, __global dt_u64* nearest,
+                                       DT_LOCAL_PTR uint* local_tile, uint triangle) {
+  const dt_vec3 p[3] = {a, b, c};
+  dt_vec3 kept[4];
+  int n = 0;
+  for (int i = 0; i < 3; ++i) {
+    const dt_vec3 from = p[i], to = p[i == 2 ? 0 : i + 1];
+    const int from_in = from.z >= cam.near, to_in = to.z >= cam.near;
+    if (from_in) kept[n++] = from;
+    if (from_in != to_in) kept[n++] = from_in ? dt_cut(from, to, cam.near) : dt_cut(to, from, cam.near);
+  }
+  const dt_point first = dt_project(kept[0], cam);
+  for (int i = 1; i + 1 < n; ++i)
+    dt_raster_triangle(first, dt_project(kept[i], cam), dt_project(kept[i + 1], cam), pose, planes, cam, tile, ids,
+                       nearest,
+                       local_tile, triangle);
+}
+
 /* Triangle t of the mesh placed by pose, cut at the near plane where it crosses it (tile, ids,
  * nearest and local_tile as for dt_raster_triangle, t its triangle index). */
 DT_DEVICE_FN void dt_draw_triangle(dt_rigid pose, __global const float* vertices, __global const uint* triangles,
@@ -202,12 +207,11 @@ DT_DEVICE_FN void dt_draw_triangle(dt_rigid pose, __global const float* vertices
                 c = dt_vertex(pose, vertices, corners[2]);
   const int in_front = (a.z >= cam.near) + (b.z >= cam.near) + (c.z >= cam.near);
   if (in_front == 0) return;
-  const dt_plane plane = dt_triangle_plane(pose, planes, t);
   if (in_front == 3)
-    dt_raster_triangle(dt_project(a, cam), dt_project(b, cam), dt_project(c, cam), plane, cam, tile, ids, nearest,
-                       local_tile, t);
+    dt_raster_triangle(dt_project(a, cam), dt_project(b, cam), dt_project(c, cam), pose, planes, cam, tile, ids,
+                       nearest, local_tile, t);
   else
-    dt_draw_cut_triangle(a, b, c, plane, cam, tile, ids, nearest, local_tile, t);
+    dt_draw_cut_triangle(a, b, c, pose, planes, cam, tile, ids, nearest, local_tile, t);
 }
 
 /* The pixels a pose can cover: its projected vertices' bounding box, a pixel wider on each side (the
