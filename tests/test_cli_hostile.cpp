@@ -113,6 +113,21 @@ TEST_CASE("track refuses an absurd initial spread and a zero quaternion instead 
   CHECK_FALSE(fs::exists(dir / "out.csv.partial"));
 }
 
+TEST_CASE("track refuses a malformed occlusion window by name, and tracks with a good one", "[cli][robustness]") {
+  const auto dir = test::write_cli_sequence("cli_window", 3);
+  for (const char* bad : {"32", "32x-4", "wide"}) {
+    const auto [status, output] = track(dir, std::string("--init-from-gt --occlusion-window ") + bad);
+    INFO(bad << ": " << output);
+    CHECK(status == 1);
+    CHECK_THAT(output, Contains(std::string("--occlusion-window '") + bad + "' is not full or WxH"));
+  }
+  CHECK_FALSE(fs::exists(dir / "out.csv"));
+  const auto [status, output] = track(dir, "--init-from-gt --occlusion-window 24x16");
+  INFO(output);
+  CHECK(status == 0);
+  CHECK(test::lines_of(dir / "out.csv").size() == 4);  // the header and three frames
+}
+
 TEST_CASE("the off-screen start (an object 10,000 km to the side) ends at once on the device, lost, exit 0",
           "[cli][robustness]") {
   // The device rasterizer looped over 2^31 columns per triangle (> 7 minutes for one particle). Its
