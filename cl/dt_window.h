@@ -19,8 +19,9 @@ DT_DEVICE_FN int dt_window_from(dt_window w, int to, dt_u32 u, dt_u32 v) {
   return to < 0 ? -1 : dt_window_index(w, w.last_u0, w.last_v0, u, v);
 }
 
-/* (u, v) of image pixel k, for a loop that then steps k by DT_GROUP_SIZE with dt_pixel_step (no division
- * per pixel: at 80x60 one in each of weigh's inner iterations cost more than the pixel's term). */
+/* (x, y) of pixel k of a rectangle `width` wide, for a loop that then steps k by DT_GROUP_SIZE with
+ * dt_pixel_step (no division per pixel: at 80x60 one in each of weigh's iterations cost more than the
+ * pixel's term). */
 DT_DEVICE_FN void dt_pixel_place(dt_u32 k, dt_u32 width, dt_u32* u, dt_u32* v) {
   *u = k % width;
   *v = k / width;
@@ -34,11 +35,4 @@ DT_DEVICE_FN void dt_pixel_step(dt_u32 width, dt_u32* u, dt_u32* v) {
   }
 }
 
-/* The first pixel index a work-item takes in a loop over pixels first .. of the image that hands out
- * k = lid + j * DT_GROUP_SIZE, as the loop over the whole image does: each work-item then meets the
- * pixels it shares with that loop in the same order, so its sum (the others add exactly 0) is the same
- * float. It may lie before `first`: the loop skips those. */
-DT_DEVICE_FN dt_u32 dt_lane_first(dt_u32 first, dt_u32 lid) {
-  return first - first % DT_GROUP_SIZE + lid;
-}
 #endif

@@ -2,7 +2,8 @@
  * tile into work-group memory (rasterize.cl's drawing, its atomic min on local memory) and weighs it
  * from there (dt_weigh.h, as weigh.cl), so the atlas never goes through device memory: per pixel and
  * particle that saves the tile's clear, its atomics in global memory, its finishing pass and weigh's
- * read of it. The same depths and the same sums in the same order as rasterize.cl + weigh.cl (the
+ * read of it. The same depths and, over the same rectangle (the pose's box, which boxed rasterize.cl
+ * keeps, and the state window), the same sums in the same order as rasterize.cl + weigh.cl (the
  * atomic minimum does not depend on the order the triangles come in). With keep_atlas the tile is also
  * stored in the atlas (particle-major, as rasterize.cl writes it), for tests that compare it.
  * Compile-time choices: DT_GROUP_SIZE (power of two), DT_OCCLUSION as weigh.cl, DT_TILE_PIXELS the
@@ -40,13 +41,13 @@ __kernel void render_weigh(__global const float* states, __global const float* v
   const ulong from = DT_CAST(ulong, parents[particle]) * row, to = DT_CAST(ulong, particle) * row;
   const dt_pixel_box visited = dt_weigh_box(box, win);
   float sum = 0.0f;
-  const uint first = visited.v0 * cam.width + visited.u0;
-  const uint end = (visited.v0 + visited.height - 1) * cam.width + visited.u0 + visited.width;
-  dt_u32 u, v;
-  uint k = dt_lane_first(first, lid);
-  dt_pixel_place(k, cam.width, &u, &v);
-  for (; visited.height > 0 && k < end; k += DT_GROUP_SIZE, dt_pixel_step(cam.width, &u, &v)) {
-    if (k < first || u - visited.u0 >= visited.width) continue;
+  /* The rectangle's pixels to the work-items in turn, as the whole image's in a plain loop. */
+  const uint visits = visited.width * visited.height;
+  dt_u32 x = 0, y = 0;
+  if (visits > 0) dt_pixel_place(lid, visited.width, &x, &y);
+  for (uint b = lid; b < visits; b += DT_GROUP_SIZE, dt_pixel_step(visited.width, &x, &y)) {
+    const dt_u32 u = visited.u0 + x, v = visited.v0 + y;
+    const uint k = v * cam.width + u;
     const uint bits = dt_box_holds(box, u, v) && tile[k] != DT_NO_SURFACE ? tile[k] : 0u; /* 0.0f where undrawn */
     sum += dt_weigh_image_pixel(k, u, v, dt_as_float(bits), observed, win, from, to, occlusion_from, time_from,
                                 occlusion_to, time_to, frame_times, m, now, now_index, dt);

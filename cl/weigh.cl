@@ -12,8 +12,8 @@
  * frame is now_index, whose time (now) the first work-item writes into the table: no pixel holds that
  * index while it is written (indices are retired long before they come round).
  * The rows hold the state window's pixels (dt_window.h; the whole image by default); a group visits
- * only its tile's box (rasterize.cl's boxes, where it wrote them) and the window's pixels, each
- * work-item the pixels a loop over the whole image would give it, in the same order.
+ * only the rectangle around its tile's box (rasterize.cl's boxes, where it wrote them) and the
+ * window, its pixels handed to the work-items in turn (as render_weigh.cl: the same sums).
  * Reference: ReferenceFilter::weigh_particle (and its resampling's gather). */
 #include "dt_prelude.h"
 #include "dt_atlas.h"
@@ -39,14 +39,14 @@ __kernel void weigh(__global const float* atlas, __global const float* observed,
   const ulong from = DT_CAST(ulong, parents[particle]) * row, to = DT_CAST(ulong, particle) * row;
   const ulong tile = dt_atlas_tile_start(layout, particle);
   const dt_pixel_box visited = dt_weigh_box(box, win);
-  const uint first = visited.v0 * width + visited.u0;
-  const uint end = (visited.v0 + visited.height - 1) * width + visited.u0 + visited.width;
   float sum = 0.0f;
-  dt_u32 u, v;
-  uint k = dt_lane_first(first, lid);
-  dt_pixel_place(k, width, &u, &v);
-  for (; visited.height > 0 && k < end; k += DT_GROUP_SIZE, dt_pixel_step(width, &u, &v)) {
-    if (k < first || u - visited.u0 >= visited.width) continue;
+  /* The rectangle's pixels to the work-items in turn, as the whole image's in a plain loop. */
+  const uint visits = visited.width * visited.height;
+  dt_u32 x = 0, y = 0;
+  if (visits > 0) dt_pixel_place(lid, visited.width, &x, &y);
+  for (uint b = lid; b < visits; b += DT_GROUP_SIZE, dt_pixel_step(visited.width, &x, &y)) {
+    const dt_u32 u = visited.u0 + x, v = visited.v0 + y;
+    const uint k = v * width + u;
     const float y_hat = dt_box_holds(box, u, v) ? atlas[dt_atlas_pixel(layout, tile, k)] : 0.0f;
     sum += dt_weigh_image_pixel(k, u, v, y_hat, observed, win, from, to, occlusion_from, time_from, occlusion_to,
                                 time_to, frame_times, m, now, now_index, dt);
