@@ -103,20 +103,6 @@ DT_DEVICE_FN dt_plane dt_triangle_plane(dt_rigid m, __global const float* planes
   return p;
 }
 
-/* The pixel centres in projected triangle abc's bounding box, [u0, u1] x [v0, v1], clamped in float to
- * [-1, size] before the conversion to int, which is undefined beyond int's range (PoCL then looped over
- * 2^31 columns); a box off the image comes out empty. Whether it holds any: most triangles of a fine
- * mesh hold no centre. */
-DT_DEVICE_FN int dt_centre_range(dt_point a, dt_point b, dt_point c, dt_camera cam, int* u0, int* u1, int* v0,
-                                 int* v1) {
-  const float last_u = DT_CAST(float, cam.width - 1), last_v = DT_CAST(float, cam.height - 1);
-  *u0 = DT_CAST(int, fmin(fmax(0.0f, ceil(fmin(a.u, fmin(b.u, c.u)))), last_u + 1.0f));
-  *u1 = DT_CAST(int, fmax(fmin(last_u, floor(fmax(a.u, fmax(b.u, c.u)))), -1.0f));
-  *v0 = DT_CAST(int, fmin(fmax(0.0f, ceil(fmin(a.v, fmin(b.v, c.v)))), last_v + 1.0f));
-  *v1 = DT_CAST(int, fmax(fmin(last_v, floor(fmax(a.v, fmax(b.v, c.v)))), -1.0f));
-  return *u0 <= *u1 && *v0 <= *v1;
-}
-
 /* Keeps, at every pixel of the tile whose centre lies inside triangle abc, the nearer of its depth
  * and the tile's. With ids (a second pass over a finished tile, for the pose refinement), it instead
  * writes triangle where its depth is the tile's (to 1e-6 relative): the lowest such index wins, as
@@ -131,8 +117,15 @@ DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_rigi
                                      DT_LOCAL_PTR uint* local_tile, uint triangle) {
   const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
   if (area == 0.0f || !isfinite(area)) return;
-  int u0, u1, v0, v1;
-  if (!dt_centre_range(a, b, c, cam, &u0, &u1, &v0, &v1)) return;
+  /* Pixel centres in the bounding box, clamped in float to [-1, size] before the conversion to int,
+   * which is undefined beyond int's range (PoCL then looped over 2^31 columns); a box off the image
+   * comes out empty. Most triangles of a fine mesh hold no centre. */
+  const float last_u = DT_CAST(float, cam.width - 1), last_v = DT_CAST(float, cam.height - 1);
+  const int u0 = DT_CAST(int, fmin(fmax(0.0f, ceil(fmin(a.u, fmin(b.u, c.u)))), last_u + 1.0f));
+  const int u1 = DT_CAST(int, fmax(fmin(last_u, floor(fmax(a.u, fmax(b.u, c.u)))), -1.0f));
+  const int v0 = DT_CAST(int, fmin(fmax(0.0f, ceil(fmin(a.v, fmin(b.v, c.v)))), last_v + 1.0f));
+  const int v1 = DT_CAST(int, fmax(fmin(last_v, floor(fmax(a.v, fmax(b.v, c.v)))), -1.0f));
+  if (u0 > u1 || v0 > v1) return;
   if (area < 0.0f) { /* no culling: give every triangle the same orientation */
     const dt_point t = b;
     b = c;
@@ -219,23 +212,6 @@ DT_DEVICE_FN void dt_draw_triangle(dt_rigid pose, __global const float* vertices
                        nearest, local_tile, t);
   else
     dt_draw_cut_triangle(a, b, c, pose, planes, cam, tile, ids, nearest, local_tile, t);
-}
-
-/* Whether dt_draw_triangle could draw triangle t at all: in front of the near plane, and (uncut) not
- * degenerate with a pixel centre in its box; the same floats and tests as the drawing, so no triangle
- * that draws is passed over (render_weigh.cl lists these before drawing them). */
-DT_DEVICE_FN int dt_triangle_may_draw(dt_rigid pose, __global const float* vertices, __global const uint* triangles,
-                                      uint t, dt_camera cam) {
-  __global const uint* corners = triangles + 3 * DT_CAST(ulong, t);
-  const dt_vec3 a = dt_vertex(pose, vertices, corners[0]), b = dt_vertex(pose, vertices, corners[1]),
-                c = dt_vertex(pose, vertices, corners[2]);
-  const int in_front = (a.z >= cam.near) + (b.z >= cam.near) + (c.z >= cam.near);
-  if (in_front != 3) return in_front > 0; /* cut triangles are drawn piecewise: listed */
-  const dt_point pa = dt_project(a, cam), pb = dt_project(b, cam), pc = dt_project(c, cam);
-  const float area = dt_edge_at(dt_make_edge(pa, pb), pc.u, pc.v);
-  if (area == 0.0f || !isfinite(area)) return 0;
-  int u0, u1, v0, v1;
-  return dt_centre_range(pa, pb, pc, cam, &u0, &u1, &v0, &v1);
 }
 
 /* The pixels a pose can cover: its projected vertices' bounding box, a pixel wider on each side (the

@@ -12,8 +12,6 @@
 #include "rasterize.cl"
 #include "dt_weigh.h"
 
-#define DT_DRAW_LIST 1024u /* triangles listed per chunk (4 KB of work-group memory) */
-
 __kernel void render_weigh(__global const float* states, __global const float* vertices, __global const uint* triangles,
                            __global const float* planes, uint triangle_count, uint vertex_count, dt_camera cam,
                            __global const float* observed, __global const uint* parents,
@@ -23,8 +21,6 @@ __kernel void render_weigh(__global const float* states, __global const float* v
                            uint now_index, float dt, __global uint* atlas, uint keep_atlas, dt_window win) {
   __local uint tile[DT_TILE_PIXELS];
   __local float scratch[5 * DT_GROUP_SIZE]; /* dt_pose_box's reduction, then the group sum */
-  __local uint listed[DT_DRAW_LIST];         /* triangles to draw, a chunk at a time */
-  __local uint listed_count;
   const uint particle = get_group_id(0), lid = get_local_id(0), pixels = cam.width * cam.height;
   dt_weigh_begin(frame_times, now, now_index);
   /* Only the pose's box is cleared, drawn and weighed (no triangle draws outside it), with the state
@@ -33,21 +29,9 @@ __kernel void render_weigh(__global const float* states, __global const float* v
   const dt_pixel_box box = dt_pose_box(pose, vertices, vertex_count, cam, scratch);
   for (uint b = lid; b < box.width * box.height; b += DT_GROUP_SIZE) tile[dt_box_pixel(box, b, cam)] = DT_NO_SURFACE;
   barrier(CLK_LOCAL_MEM_FENCE);
-  /* The triangles that hold a pixel centre (a few of a fine mesh's: which ones, and how many for each
-   * work-item, vary) are listed first, then drawn by the work-items in turn: a group no longer waits
-   * at the barrier for the work-item that drew the most (measured on the H200: most of the stalls). */
-  for (uint first = 0; first < triangle_count; first += DT_DRAW_LIST) {
-    if (lid == 0) listed_count = 0;
-    barrier(CLK_LOCAL_MEM_FENCE);
-    const uint last = triangle_count - first < DT_DRAW_LIST ? triangle_count : first + DT_DRAW_LIST;
-    for (uint t = first + lid; t < last; t += DT_GROUP_SIZE)
-      if (dt_triangle_may_draw(pose, vertices, triangles, t, cam)) listed[dt_atomic_add_local_u32(&listed_count, 1u)] = t;
-    barrier(CLK_LOCAL_MEM_FENCE);
-    const uint count = listed_count;
-    for (uint i = lid; i < count; i += DT_GROUP_SIZE)
-      dt_draw_triangle(pose, vertices, triangles, planes, listed[i], cam, 0, 0, 0, tile);
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
+  for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
+    dt_draw_triangle(pose, vertices, triangles, planes, t, cam, 0, 0, 0, tile);
+  barrier(CLK_LOCAL_MEM_FENCE);
 
   if (keep_atlas) /* tests: the whole tile, 0.0f's bits where nothing was drawn */
     for (uint k = lid; k < pixels; k += DT_GROUP_SIZE)

@@ -50,9 +50,8 @@ double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bo
 
 bool renders_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory) {
   constexpr size_t kStaticLocalLimit = 48 * 1024;  // CUDA's for a block's static shared memory
-  // The tile, the pose box's reduction (5 floats a work-item), which the group sum reuses, and the list
-  // of triangles to draw (cl/render_weigh.cl's DT_DRAW_LIST).
-  const size_t needed = pixels * sizeof(float) + 5 * kGroupSize * sizeof(float) + 1024 * sizeof(unsigned) + 16;
+  // The tile, and the pose box's reduction (5 floats a work-item), which the group sum reuses.
+  const size_t needed = pixels * sizeof(float) + 5 * kGroupSize * sizeof(float);
   return renderer == Renderer::Kernel && needed <= std::min(local_memory, kStaticLocalLimit);
 }
 
