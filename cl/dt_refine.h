@@ -148,7 +148,7 @@ DT_DEVICE_FN void dt_refine_pixel(float* acc, uint k, uint bits, uint id, dt_rig
   float p = 0.0f;
 #if DT_OCCLUSION != DT_OCCLUSION_OFF
   const dt_u32 u = k % cam.width, v = k / cam.width;
-  const int from = dt_window_from(at.win, dt_window_index(at.win, at.win.u0, at.win.v0, u, v), u, v);
+  const int from = dt_window_from(at.win, dt_window_to(at.win, u, v), u, v);
 #endif
 #if DT_OCCLUSION == DT_PER_PIXEL_TIME
   p = from >= 0 ? dt_propagate_occlusion(m, occlusion[at.occlusion + from],

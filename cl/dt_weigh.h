@@ -24,12 +24,7 @@ DT_DEVICE_FN dt_pixel_box dt_weigh_box(dt_pixel_box box, dt_window win) {
 #if DT_OCCLUSION == DT_OCCLUSION_OFF
   return box;
 #else
-  dt_pixel_box w;
-  w.u0 = win.u0;
-  w.v0 = win.v0;
-  w.width = win.width;
-  w.height = win.height;
-  return dt_box_union(box, w);
+  return dt_box_union(box, dt_box_make(win.u0, win.v0, win.width, win.height));
 #endif
 }
 
@@ -96,7 +91,7 @@ DT_DEVICE_FN float dt_weigh_image_pixel(uint k, dt_u32 u, dt_u32 v, float y_hat,
                                         __global const dt_u16* time_from, __global float* occlusion_to,
                                         __global dt_u16* time_to, __global const float* frame_times, dt_model m,
                                         float now, uint now_index, float dt) {
-  const int to = dt_window_index(win, win.u0, win.v0, u, v);
+  const int to = dt_window_to(win, u, v);
 #if DT_OCCLUSION == DT_OCCLUSION_OFF
   if (!(y_hat > 0.0f)) return 0.0f;
 #else

@@ -13,26 +13,15 @@ DT_DEVICE_FN int dt_window_index(dt_window w, dt_u32 u0, dt_u32 v0, dt_u32 u, dt
   return x < w.width && y < w.height ? DT_CAST(int, y * w.width + x) : -1;
 }
 
-/* Image pixel (u, v)'s index in the rows read (the last frame's window), given its index `to` in this
- * frame's (-1: outside), or -1 where it is fresh: outside this frame's window or new to it. */
-DT_DEVICE_FN int dt_window_from(dt_window w, int to, dt_u32 u, dt_u32 v) {
-  return to < 0 ? -1 : dt_window_index(w, w.last_u0, w.last_v0, u, v);
+/* Image pixel (u, v)'s index in this frame's rows (written), or -1 outside the window. */
+DT_DEVICE_FN int dt_window_to(dt_window w, dt_u32 u, dt_u32 v) {
+  return dt_window_index(w, w.u0, w.v0, u, v);
 }
 
-/* (x, y) of pixel k of a rectangle `width` wide, for a loop that then steps k by DT_GROUP_SIZE with
- * dt_pixel_step (no division per pixel: at 80x60 one in each of weigh's iterations cost more than the
- * pixel's term). */
-DT_DEVICE_FN void dt_pixel_place(dt_u32 k, dt_u32 width, dt_u32* u, dt_u32* v) {
-  *u = k % width;
-  *v = k / width;
-}
-DT_DEVICE_FN void dt_pixel_step(dt_u32 width, dt_u32* u, dt_u32* v) {
-  *u += DT_GROUP_SIZE % width;
-  *v += DT_GROUP_SIZE / width;
-  if (*u >= width) {
-    *u -= width;
-    *v += 1;
-  }
+/* Image pixel (u, v)'s index in the rows read (the last frame's window), given its index `to` in this
+ * frame's (dt_window_to), or -1 where it is fresh: outside this frame's window or new to it. */
+DT_DEVICE_FN int dt_window_from(dt_window w, int to, dt_u32 u, dt_u32 v) {
+  return to < 0 ? -1 : dt_window_index(w, w.last_u0, w.last_v0, u, v);
 }
 
 #endif

@@ -112,8 +112,7 @@ DT_DEVICE_FN dt_plane dt_triangle_plane(dt_rigid m, __global const float* planes
  * triangle order. With local_tile (render_weigh.cl's tile in work-group memory) it keeps the nearer
  * depth there, as tile does in global memory. */
 DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_rigid pose, __global const float* planes,
-                                     dt_camera cam,
-                                     __global uint* tile, __global uint* ids, __global dt_u64* nearest,
+                                     dt_camera cam, __global uint* tile, __global uint* ids, __global dt_u64* nearest,
                                      DT_LOCAL_PTR uint* local_tile, uint triangle) {
   const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
   if (area == 0.0f || !isfinite(area)) return;
@@ -178,9 +177,8 @@ DT_DEVICE_FN dt_vec3 dt_cut(dt_vec3 inside, dt_vec3 outside, float near) {
 /* Triangle abc (camera frame) that crosses z = near: cut there (Sutherland-Hodgman against one
  * plane, 3 or 4 vertices remain), then drawn as a fan. */
 DT_DEVICE_FN void dt_draw_cut_triangle(dt_vec3 a, dt_vec3 b, dt_vec3 c, dt_rigid pose, __global const float* planes,
-                                       dt_camera cam,
-                                       __global uint* tile, __global uint* ids, __global dt_u64* nearest,
-                                       DT_LOCAL_PTR uint* local_tile, uint triangle) {
+                                       dt_camera cam, __global uint* tile, __global uint* ids,
+                                       __global dt_u64* nearest, DT_LOCAL_PTR uint* local_tile, uint triangle) {
   const dt_vec3 p[3] = {a, b, c};
   dt_vec3 kept[4];
   int n = 0;
@@ -193,8 +191,7 @@ DT_DEVICE_FN void dt_draw_cut_triangle(dt_vec3 a, dt_vec3 b, dt_vec3 c, dt_rigid
   const dt_point first = dt_project(kept[0], cam);
   for (int i = 1; i + 1 < n; ++i)
     dt_raster_triangle(first, dt_project(kept[i], cam), dt_project(kept[i + 1], cam), pose, planes, cam, tile, ids,
-                       nearest,
-                       local_tile, triangle);
+                       nearest, local_tile, triangle);
 }
 
 /* Triangle t of the mesh placed by pose, cut at the near plane where it crosses it (tile, ids,
@@ -244,11 +241,7 @@ DT_DEVICE_FN dt_pixel_box dt_pose_box(dt_rigid pose, __global const float* verti
             fmin(scratch[k * DT_GROUP_SIZE + lid], scratch[k * DT_GROUP_SIZE + lid + stride]);
     barrier(CLK_LOCAL_MEM_FENCE);
   }
-  dt_pixel_box box;
-  box.u0 = 0;
-  box.v0 = 0;
-  box.width = cam.width;
-  box.height = cam.height;
+  dt_pixel_box box = dt_box_make(0, 0, cam.width, cam.height);
   if (scratch[4 * DT_GROUP_SIZE] == 0.0f) {
     /* clamped in float before the conversion to int, as dt_raster_triangle does */
     const float last_u = DT_CAST(float, cam.width - 1), last_v = DT_CAST(float, cam.height - 1);
@@ -283,14 +276,9 @@ __kernel void rasterize(__global const float* states, __global const float* vert
   const dt_rigid pose = dt_particle_pose(states + DT_CAST(ulong, particle) * DT_STATE_STRIDE);
   /* dt_pose_box's barriers are met by every work-item whatever `boxed` says (PoCL faults on barriers
    * under a branch, even a uniform one). */
-  dt_pixel_box box = dt_pose_box(pose, vertices, vertex_count, cam, scratch);
-  if (boxed && lid < 4)
-    boxes[4 * DT_CAST(ulong, particle) + lid] = lid == 0 ? box.u0 : lid == 1 ? box.v0 : lid == 2 ? box.width : box.height;
-  if (!boxed) {
-    box.u0 = box.v0 = 0;
-    box.width = cam.width;
-    box.height = cam.height;
-  }
+  const dt_pixel_box pose_box = dt_pose_box(pose, vertices, vertex_count, cam, scratch);
+  if (boxed && lid == 0) dt_box_store(boxes, particle, pose_box);
+  const dt_pixel_box box = boxed ? pose_box : dt_box_make(0, 0, cam.width, cam.height);
   /* One tile per atlas row (particle-major, dt_atlas.h): the tile's pixels are contiguous, so plain
    * loops clear and finish it (stepping by rows of the page took 1.8 times as long on PoCL). */
   __global uint* tile = atlas + dt_atlas_tile_start(layout, particle);

@@ -30,11 +30,7 @@ __kernel void weigh(__global const float* atlas, __global const float* observed,
   dt_weigh_begin(frame_times, now, now_index);
   /* The tile's box (rasterize.cl with boxed: nothing is drawn outside it, and it is not cleared there)
    * and the state window's pixels; the whole image without boxes. */
-  dt_pixel_box box;
-  box.u0 = boxed ? boxes[4 * DT_CAST(ulong, particle)] : 0;
-  box.v0 = boxed ? boxes[4 * DT_CAST(ulong, particle) + 1] : 0;
-  box.width = boxed ? boxes[4 * DT_CAST(ulong, particle) + 2] : width;
-  box.height = boxed ? boxes[4 * DT_CAST(ulong, particle) + 3] : pixels / width;
+  const dt_pixel_box box = boxed ? dt_box_load(boxes, particle) : dt_box_make(0, 0, width, pixels / width);
   const ulong row = DT_CAST(ulong, win.width) * win.height;
   const ulong from = DT_CAST(ulong, parents[particle]) * row, to = DT_CAST(ulong, particle) * row;
   const ulong tile = dt_atlas_tile_start(layout, particle);

@@ -34,9 +34,9 @@ class AtlasSource {
   // kernel source: the filter's render_weigh draws from it too), else null.
   virtual const MeshBuffers* device_mesh() const { return nullptr; }
   // Asks the source to draw only each pose's box of its tile from now on, leaving the rest of the tile
-  // as it was, and to keep the boxes (4 per particle: u0, v0, width, height) for the weigh kernel:
-  // true where it does (the kernel source), after which tile_boxes() holds them; false elsewhere.
-  virtual bool draw_boxed() { return false; }
+  // as it was, and to keep the boxes (4 per particle: u0, v0, width, height) for the weigh kernel.
+  // Where it can (the kernel source), tile_boxes() then holds them; elsewhere it stays null.
+  virtual void draw_boxed() {}
   virtual const compute::Buffer<unsigned>* tile_boxes() const { return nullptr; }
 };
 

@@ -45,10 +45,9 @@ class KernelAtlasSource final : public AtlasSource {
 
   const MeshBuffers* device_mesh() const override { return &mesh_; }
 
-  bool draw_boxed() override {
+  void draw_boxed() override {
     boxed_ = true;
     boxes_ = compute::Buffer<unsigned>(queue_, 4 * static_cast<size_t>(layout_.tiles_per_page));
-    return true;
   }
   const compute::Buffer<unsigned>* tile_boxes() const override { return boxed_ ? &boxes_ : nullptr; }
 

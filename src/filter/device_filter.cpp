@@ -129,8 +129,8 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
     k.weigh_program = device_->programs.program("weigh.cl", defines);
     k.weigh = k.weigh_program->kernel("weigh");
     atlas_source_->draw_boxed();
+    if (!atlas_source_->tile_boxes()) unused_boxes_ = compute::Buffer<unsigned>(q, 4);  // whole tiles
   }
-  unused_boxes_ = compute::Buffer<unsigned>(q, 4);
   // Drawn inside weigh, the atlas is stored only when asked for (keep_atlas).
   atlas_ = compute::Buffer<float>(q, render_weigh_ ? 1 : atlas_source_->layout().floats());
   observed_ = compute::Buffer<float>(q, pixels_);

@@ -20,7 +20,6 @@ struct StateWindow {
   size_t index(int u, int v) const {
     return static_cast<size_t>(v - v0) * static_cast<size_t>(width) + static_cast<size_t>(u - u0);
   }
-  bool covers_image(const Camera& camera) const { return width == camera.width && height == camera.height; }
   bool operator==(const StateWindow&) const = default;
 };
 
