@@ -13,15 +13,29 @@ DT_DEVICE_FN int dt_window_index(dt_window w, dt_u32 u0, dt_u32 v0, dt_u32 u, dt
   return x < w.width && y < w.height ? DT_CAST(int, y * w.width + x) : -1;
 }
 
+/* DT_WHOLE_IMAGE_STATE 1: the host's promise that the window is the whole image (the default
+ * configuration), so that a pixel's index is its own and weigh's per-pixel tests go. */
+#ifndef DT_WHOLE_IMAGE_STATE
+#define DT_WHOLE_IMAGE_STATE 0
+#endif
+
 /* Image pixel (u, v)'s index in this frame's rows (written), or -1 outside the window. */
 DT_DEVICE_FN int dt_window_to(dt_window w, dt_u32 u, dt_u32 v) {
+#if DT_WHOLE_IMAGE_STATE
+  return DT_CAST(int, v * w.width + u);
+#else
   return dt_window_index(w, w.u0, w.v0, u, v);
+#endif
 }
 
 /* Image pixel (u, v)'s index in the rows read (the last frame's window), given its index `to` in this
  * frame's (dt_window_to), or -1 where it is fresh: outside this frame's window or new to it. */
 DT_DEVICE_FN int dt_window_from(dt_window w, int to, dt_u32 u, dt_u32 v) {
+#if DT_WHOLE_IMAGE_STATE
+  return to;
+#else
   return to < 0 ? -1 : dt_window_index(w, w.last_u0, w.last_v0, u, v);
+#endif
 }
 
 #endif

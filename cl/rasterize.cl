@@ -103,6 +103,20 @@ DT_DEVICE_FN dt_plane dt_triangle_plane(dt_rigid m, __global const float* planes
   return p;
 }
 
+/* The pixel centres in projected triangle abc's bounding box, [u0, u1] x [v0, v1], clamped in float to
+ * [-1, size] before the conversion to int, which is undefined beyond int's range (PoCL then looped over
+ * 2^31 columns); a box off the image comes out empty. Whether it holds any: most triangles of a fine
+ * mesh hold no centre. */
+DT_DEVICE_FN int dt_centre_range(dt_point a, dt_point b, dt_point c, dt_camera cam, int* u0, int* u1, int* v0,
+                                 int* v1) {
+  const float last_u = DT_CAST(float, cam.width - 1), last_v = DT_CAST(float, cam.height - 1);
+  *u0 = DT_CAST(int, fmin(fmax(0.0f, ceil(fmin(a.u, fmin(b.u, c.u)))), last_u + 1.0f));
+  *u1 = DT_CAST(int, fmax(fmin(last_u, floor(fmax(a.u, fmax(b.u, c.u)))), -1.0f));
+  *v0 = DT_CAST(int, fmin(fmax(0.0f, ceil(fmin(a.v, fmin(b.v, c.v)))), last_v + 1.0f));
+  *v1 = DT_CAST(int, fmax(fmin(last_v, floor(fmax(a.v, fmax(b.v, c.v)))), -1.0f));
+  return *u0 <= *u1 && *v0 <= *v1;
+}
+
 /* Keeps, at every pixel of the tile whose centre lies inside triangle abc, the nearer of its depth
  * and the tile's. With ids (a second pass over a finished tile, for the pose refinement), it instead
  * writes triangle where its depth is the tile's (to 1e-6 relative): the lowest such index wins, as
@@ -116,15 +130,8 @@ DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_rigi
                                      DT_LOCAL_PTR uint* local_tile, uint triangle) {
   const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
   if (area == 0.0f || !isfinite(area)) return;
-  /* Pixel centres in the bounding box, clamped in float to [-1, size] before the conversion to int,
-   * which is undefined beyond int's range (PoCL then looped over 2^31 columns); a box off the image
-   * comes out empty. Most triangles of a fine mesh hold no centre. */
-  const float last_u = DT_CAST(float, cam.width - 1), last_v = DT_CAST(float, cam.height - 1);
-  const int u0 = DT_CAST(int, fmin(fmax(0.0f, ceil(fmin(a.u, fmin(b.u, c.u)))), last_u + 1.0f));
-  const int u1 = DT_CAST(int, fmax(fmin(last_u, floor(fmax(a.u, fmax(b.u, c.u)))), -1.0f));
-  const int v0 = DT_CAST(int, fmin(fmax(0.0f, ceil(fmin(a.v, fmin(b.v, c.v)))), last_v + 1.0f));
-  const int v1 = DT_CAST(int, fmax(fmin(last_v, floor(fmax(a.v, fmax(b.v, c.v)))), -1.0f));
-  if (u0 > u1 || v0 > v1) return;
+  int u0, u1, v0, v1;
+  if (!dt_centre_range(a, b, c, cam, &u0, &u1, &v0, &v1)) return;
   if (area < 0.0f) { /* no culling: give every triangle the same orientation */
     const dt_point t = b;
     b = c;
@@ -211,11 +218,46 @@ DT_DEVICE_FN void dt_draw_triangle(dt_rigid pose, __global const float* vertices
     dt_draw_cut_triangle(a, b, c, pose, planes, cam, tile, ids, nearest, local_tile, t);
 }
 
+/* The group's projected vertices (u, v of vertex i at 2i), kept by dt_pose_box where the mesh's
+ * vertices fit in work-group memory: each vertex is a corner of about six triangles, and projecting it
+ * once instead of once per corner is the same floats (the same dt_vertex and dt_project). */
+DT_DEVICE_FN dt_point dt_point_at(DT_LOCAL_PTR const float* points, uint i) {
+  dt_point p;
+  p.u = points[2 * i];
+  p.v = points[2 * i + 1];
+  return p;
+}
+
+/* Triangle t from the projected points, when every vertex lies in front of the near plane (nothing is
+ * cut): as dt_draw_triangle draws it. */
+DT_DEVICE_FN void dt_draw_projected_triangle(DT_LOCAL_PTR const float* points, __global const uint* triangles, uint t,
+                                             dt_rigid pose, __global const float* planes, dt_camera cam,
+                                             DT_LOCAL_PTR uint* local_tile) {
+  __global const uint* corners = triangles + 3 * DT_CAST(ulong, t);
+  dt_raster_triangle(dt_point_at(points, corners[0]), dt_point_at(points, corners[1]), dt_point_at(points, corners[2]),
+                     pose, planes, cam, 0, 0, 0, local_tile, t);
+}
+
+/* Whether triangle t, from the projected points, draws anything: dt_raster_triangle's first tests (not
+ * degenerate, a pixel centre in its box) on the same floats, so no triangle that draws is passed over. */
+DT_DEVICE_FN int dt_projected_triangle_draws(DT_LOCAL_PTR const float* points, __global const uint* triangles, uint t,
+                                             dt_camera cam) {
+  __global const uint* corners = triangles + 3 * DT_CAST(ulong, t);
+  const dt_point a = dt_point_at(points, corners[0]), b = dt_point_at(points, corners[1]),
+                 c = dt_point_at(points, corners[2]);
+  const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
+  if (area == 0.0f || !isfinite(area)) return 0;
+  int u0, u1, v0, v1;
+  return dt_centre_range(a, b, c, cam, &u0, &u1, &v0, &v1);
+}
+
 /* The pixels a pose can cover: its projected vertices' bounding box, a pixel wider on each side (the
  * triangle passes project the same vertices, maybe contracted into FMAs differently), clamped to
- * the image; the whole image when a vertex lies before the near plane (cut triangles). */
+ * the image; the whole image when a vertex lies before the near plane (cut triangles). With points
+ * (room for vertex_count), the projections are kept there; *in_front says whether every vertex lies in
+ * front of the near plane (only then are the points whole). */
 DT_DEVICE_FN dt_pixel_box dt_pose_box(dt_rigid pose, __global const float* vertices, uint vertex_count, dt_camera cam,
-                                      DT_LOCAL_PTR float* scratch) {
+                                      DT_LOCAL_PTR float* scratch, DT_LOCAL_PTR float* points, int* in_front) {
   const uint lid = get_local_id(0);
   /* minima of u, v, -u, -v and of "every vertex in front" as 0/-1 */
   float low[5] = {-DT_LOWEST, -DT_LOWEST, -DT_LOWEST, -DT_LOWEST, 0.0f};
@@ -226,6 +268,10 @@ DT_DEVICE_FN dt_pixel_box dt_pose_box(dt_rigid pose, __global const float* verti
       continue;
     }
     const dt_point s = dt_project(p, cam);
+    if (points) {
+      points[2 * i] = s.u;
+      points[2 * i + 1] = s.v;
+    }
     low[0] = fmin(low[0], s.u);
     low[1] = fmin(low[1], s.v);
     low[2] = fmin(low[2], -s.u);
@@ -242,7 +288,8 @@ DT_DEVICE_FN dt_pixel_box dt_pose_box(dt_rigid pose, __global const float* verti
     barrier(CLK_LOCAL_MEM_FENCE);
   }
   dt_pixel_box box = dt_box_make(0, 0, cam.width, cam.height);
-  if (scratch[4 * DT_GROUP_SIZE] == 0.0f) {
+  *in_front = scratch[4 * DT_GROUP_SIZE] == 0.0f;
+  if (*in_front) {
     /* clamped in float before the conversion to int, as dt_raster_triangle does */
     const float last_u = DT_CAST(float, cam.width - 1), last_v = DT_CAST(float, cam.height - 1);
     const float u0 = fmin(fmax(0.0f, floor(scratch[0]) - 1.0f), last_u + 1.0f);
@@ -276,7 +323,8 @@ __kernel void rasterize(__global const float* states, __global const float* vert
   const dt_rigid pose = dt_particle_pose(states + DT_CAST(ulong, particle) * DT_STATE_STRIDE);
   /* dt_pose_box's barriers are met by every work-item whatever `boxed` says (PoCL faults on barriers
    * under a branch, even a uniform one). */
-  const dt_pixel_box pose_box = dt_pose_box(pose, vertices, vertex_count, cam, scratch);
+  int in_front;
+  const dt_pixel_box pose_box = dt_pose_box(pose, vertices, vertex_count, cam, scratch, 0, &in_front);
   if (boxed && lid == 0) dt_box_store(boxes, particle, pose_box);
   const dt_pixel_box box = boxed ? pose_box : dt_box_make(0, 0, cam.width, cam.height);
   /* One tile per atlas row (particle-major, dt_atlas.h): the tile's pixels are contiguous, so plain

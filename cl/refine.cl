@@ -26,7 +26,8 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
   const dt_rigid pose = dt_particle_pose(pose_state);
   /* Only the pose's box is cleared and summed: the silhouette is a small part of the image, and no
    * triangle draws outside the box. */
-  const dt_pixel_box box = dt_pose_box(pose, vertices, args.vertex_count, cam, sums);
+  int in_front;
+  const dt_pixel_box box = dt_pose_box(pose, vertices, args.vertex_count, cam, sums, 0, &in_front);
   const uint pixels = box.width * box.height;
   for (uint b = lid; b < pixels; b += DT_GROUP_SIZE) {
     const uint k = dt_box_pixel(box, b, cam);

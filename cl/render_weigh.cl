@@ -7,10 +7,14 @@
  * atomic minimum does not depend on the order the triangles come in). With keep_atlas the tile is also
  * stored in the atlas (particle-major, as rasterize.cl writes it), for tests that compare it.
  * Compile-time choices: DT_GROUP_SIZE (power of two), DT_OCCLUSION as weigh.cl, DT_TILE_PIXELS the
- * image's pixels (the tile's size in work-group memory: the host uses this kernel only where it fits).
+ * image's pixels (the tile's size in work-group memory: the host uses this kernel only where it fits),
+ * DT_SHARED_POINTS the vertices whose projections the group keeps in work-group memory (the mesh's
+ * vertex count where they fit, else 0: each triangle then projects its own corners).
  * Reference: Rasterizer::render and ReferenceFilter::weigh_particle. */
 #include "rasterize.cl"
 #include "dt_weigh.h"
+
+#define DT_DRAW_LIST 512u /* triangles listed per chunk (2 KB of work-group memory) */
 
 __kernel void render_weigh(__global const float* states, __global const float* vertices, __global const uint* triangles,
                            __global const float* planes, uint triangle_count, uint vertex_count, dt_camera cam,
@@ -21,16 +25,51 @@ __kernel void render_weigh(__global const float* states, __global const float* v
                            uint now_index, float dt, __global uint* atlas, uint keep_atlas, dt_window win) {
   __local uint tile[DT_TILE_PIXELS];
   __local float scratch[5 * DT_GROUP_SIZE]; /* dt_pose_box's reduction, then the group sum */
+#if DT_SHARED_POINTS > 0
+  __local float points[2 * DT_SHARED_POINTS]; /* the pose's projected vertices */
+  __local uint listed[DT_DRAW_LIST];          /* triangles to draw, a chunk at a time */
+  __local uint listed_count;
+#endif
   const uint particle = get_group_id(0), lid = get_local_id(0), pixels = cam.width * cam.height;
   dt_weigh_begin(frame_times, now, now_index);
   /* Only the pose's box is cleared, drawn and weighed (no triangle draws outside it), with the state
    * window's pixels, whose state moves from the parent's row to the particle's own. */
   const dt_rigid pose = dt_particle_pose(states + DT_CAST(ulong, particle) * DT_STATE_STRIDE);
-  const dt_pixel_box box = dt_pose_box(pose, vertices, vertex_count, cam, scratch);
+  int in_front;
+#if DT_SHARED_POINTS > 0
+  const int points_fit = vertex_count <= DT_SHARED_POINTS; /* the host sizes it so; another mesh draws as below */
+  const dt_pixel_box box = dt_pose_box(pose, vertices, vertex_count, cam, scratch, points_fit ? points : 0, &in_front);
+  const int projected = points_fit && in_front;
+#else
+  const dt_pixel_box box = dt_pose_box(pose, vertices, vertex_count, cam, scratch, 0, &in_front);
+  const int projected = 0;
+#endif
   for (uint b = lid; b < box.width * box.height; b += DT_GROUP_SIZE) tile[dt_box_pixel(box, b, cam)] = DT_NO_SURFACE;
   barrier(CLK_LOCAL_MEM_FENCE);
-  for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
-    dt_draw_triangle(pose, vertices, triangles, planes, t, cam, 0, 0, 0, tile);
+#if DT_SHARED_POINTS > 0
+  /* Every vertex in front (the usual case): the triangles that hold a pixel centre (few of a fine mesh's;
+   * which, and how many for each work-item, vary) are listed from the projected points, then drawn by
+   * the work-items in turn, so a group does not wait at the barrier for the work-item that drew the most
+   * (on the H200 most of the kernel's stalls). The chunk loop's bounds are kernel arguments, so every
+   * work-item meets every barrier (PoCL faults on barriers that a value from memory decides on). */
+  for (uint first = 0; first < triangle_count; first += DT_DRAW_LIST) {
+    if (lid == 0) listed_count = 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    const uint end = triangle_count - first < DT_DRAW_LIST ? triangle_count : first + DT_DRAW_LIST;
+    if (projected)
+      for (uint t = first + lid; t < end; t += DT_GROUP_SIZE)
+        if (dt_projected_triangle_draws(points, triangles, t, cam))
+          listed[dt_atomic_add_local_u32(&listed_count, 1u)] = t;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    const uint count = listed_count;
+    for (uint i = lid; i < count; i += DT_GROUP_SIZE)
+      dt_draw_projected_triangle(points, triangles, listed[i], pose, planes, cam, tile);
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+#endif
+  if (!projected) /* each triangle projects its own corners, and is cut where it crosses the near plane */
+    for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
+      dt_draw_triangle(pose, vertices, triangles, planes, t, cam, 0, 0, 0, tile);
   barrier(CLK_LOCAL_MEM_FENCE);
 
   if (keep_atlas) /* tests: the whole tile, 0.0f's bits where nothing was drawn */

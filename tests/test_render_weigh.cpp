@@ -44,6 +44,9 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
         model::move_about_centre(truth, Eigen::Vector3d::Zero(),
                                  Eigen::Vector3d(0.02 * unit(rng) - 0.01, 0.02 * unit(rng) - 0.01, 0.3 * unit(rng)),
                                  Eigen::Vector3d(0.2 * unit(rng), 0.2 * unit(rng), 0.2 * unit(rng)));
+  // One pose crosses the near plane (0.05 m): its triangles are cut, and a group keeping projected
+  // vertices (DT_SHARED_POINTS) draws it as one that does not.
+  particles[count - 1].pose = Pose({0.0, 0.0, 0.07}, rotation_exp(Eigen::Vector3d(0.0, 0.5, 0.0)));
   std::vector<float> occlusion(count * pixels);
   std::vector<uint16_t> times(count * pixels);
   std::vector<unsigned> parents(count);
@@ -68,10 +71,22 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
     };
     auto raster_program = build("rasterize.cl", {"DT_GROUP_SIZE=128"});
     auto weigh_program = build("weigh.cl", defines);
+    // Each triangle projecting its corners, and the group projecting each vertex once and listing the
+    // triangles that draw (the mesh's vertices in work-group memory).
+    const size_t points = render_weigh_shared_points(pixels, mesh_buffers.vertex_count(), 48 * 1024);
+    REQUIRE(points == mesh_buffers.vertex_count());
     auto fused_program = build("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=4800"});
+    auto listed_program = build("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=4800",
+                                                     "DT_SHARED_POINTS=" + std::to_string(points)});
     auto rasterize = raster_program->kernel("rasterize");
     auto weigh = weigh_program->kernel("weigh");
-    auto fused = fused_program->kernel("render_weigh");
+    // And with the host's promise that the state window is the whole image (DT_WHOLE_IMAGE_STATE).
+    auto whole_program = build("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=4800",
+                                                    "DT_SHARED_POINTS=" + std::to_string(points),
+                                                    "DT_WHOLE_IMAGE_STATE=1"});
+    auto corners = fused_program->kernel("render_weigh"), listed = listed_program->kernel("render_weigh"),
+         whole = whole_program->kernel("render_weigh");
+    compute::Kernel* fused = corners.get();
 
     struct Run {
       std::vector<float> atlas, ll, lw, occlusion, table;
@@ -113,14 +128,25 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
     for (const dt_window& win :
          {dt_window{0, 0, 0, 0, 80, 60, 80, 0.1f}, dt_window{34, 26, 31, 24, 16, 12, 80, 0.1f}}) {
       INFO("state window " << win.width << "x" << win.height);
+      fused = corners.get();
       const Run apart = run(false, 0, win), inside = run(true, 1, win), unkept = run(true, 0, win),
                 boxed = run(false, 0, win, 1);
+      fused = listed.get();
+      const Run listed_inside = run(true, 1, win), listed_unkept = run(true, 0, win);
+      std::vector<const Run*> drawn_inside = {&inside, &unkept, &listed_inside, &listed_unkept};
+      Run whole_image;
+      if (win.width == 80 && win.height == 60) {  // the promise holds only for the whole image's window
+        fused = whole.get();
+        whole_image = run(true, 0, win);
+        drawn_inside.push_back(&whole_image);
+      }
       for (size_t i = 0; i < count; ++i) {  // every particle is in view
         size_t covered = 0;
         for (size_t k = 0; k < pixels; ++k) covered += apart.atlas[i * pixels + k] > 0;
         CHECK(covered >= 20);
       }
       CHECK(inside.atlas == apart.atlas);
+      CHECK(listed_inside.atlas == apart.atlas);
       CHECK(unkept.atlas == std::vector<float>(layout.floats(), -3.0f));  // not stored unless asked
       // Rasterized only in each pose's box (the rest of the tile left as it was): the same tiles inside
       // the boxes, and weigh takes the rest as empty.
@@ -133,7 +159,7 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
       CHECK(stale > boxed.atlas.size() / 2);  // most of each tile lies outside the pose's box
       // Drawn inside weigh, and kept or not: bit for bit what boxed rasterize + weigh give (both visit the
       // rectangle around the pose's box and the window, in the same order).
-      for (const Run* r : {&inside, &unkept}) {
+      for (const Run* r : drawn_inside) {
         CHECK(r->ll == boxed.ll);
         CHECK(r->lw == boxed.lw);
         CHECK(r->occlusion == boxed.occlusion);

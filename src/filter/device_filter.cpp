@@ -48,11 +48,22 @@ double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bo
                 (2 + (gl_pages ? 1 : 0)) * DT_STATE_STRIDE + 6);
 }
 
+namespace {
+constexpr size_t kStaticLocalLimit = 48 * 1024;  // CUDA's for a block's static shared memory
+
+// The tile, and the pose box's reduction (5 floats a work-item), which the group sum reuses.
+size_t render_weigh_local_bytes(size_t pixels) { return pixels * sizeof(float) + 5 * kGroupSize * sizeof(float); }
+}  // namespace
+
 bool renders_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory) {
-  constexpr size_t kStaticLocalLimit = 48 * 1024;  // CUDA's for a block's static shared memory
-  // The tile, and the pose box's reduction (5 floats a work-item), which the group sum reuses.
-  const size_t needed = pixels * sizeof(float) + 5 * kGroupSize * sizeof(float);
-  return renderer == Renderer::Kernel && needed <= std::min(local_memory, kStaticLocalLimit);
+  return renderer == Renderer::Kernel && render_weigh_local_bytes(pixels) <= std::min(local_memory, kStaticLocalLimit);
+}
+
+size_t render_weigh_shared_points(size_t pixels, size_t vertex_count, size_t local_memory) {
+  constexpr size_t kDrawList = 512;  // cl/render_weigh.cl's DT_DRAW_LIST, and its count
+  const size_t needed =
+      render_weigh_local_bytes(pixels) + vertex_count * 2 * sizeof(float) + (kDrawList + 1) * sizeof(unsigned);
+  return vertex_count > 0 && needed <= std::min(local_memory, kStaticLocalLimit) ? vertex_count : 0;
 }
 
 struct DeviceFilter::Kernels {
@@ -81,8 +92,10 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
       count_(checked_particle_count()),
       atlas_source_(make_atlas_source(*queue_, device_->programs, mesh, camera, config, gl)),
       mesh_(mesh) {
+  // The window is the whole image by default: weigh then indexes the state by pixel (cl/dt_window.h).
   const std::vector<std::string> defines = {"DT_GROUP_SIZE=" + std::to_string(kGroupSize),
-                                            model::occlusion_definition(config.occlusion_storage)};
+                                            model::occlusion_definition(config.occlusion_storage),
+                                            window_.pixels() == pixels_ ? "DT_WHOLE_IMAGE_STATE=1" : "DT_WHOLE_IMAGE_STATE=0"};
   kernels_ = std::make_unique<Kernels>();
   Kernels& k = *kernels_;
   k.propagate_program = device_->programs.program("propagate.cl", defines);
@@ -122,7 +135,11 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   if (renders_inside_weigh(config.renderer, pixels_, q.info().local_memory) && atlas_source_->device_mesh()) {
     render_weigh_ =
         device_->programs
-            .program("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=" + std::to_string(pixels_)})
+            .program("render_weigh.cl",
+                     {defines[0], defines[1], defines[2], "DT_TILE_PIXELS=" + std::to_string(pixels_),
+                      "DT_SHARED_POINTS=" +
+                          std::to_string(render_weigh_shared_points(
+                              pixels_, atlas_source_->device_mesh()->vertex_count(), q.info().local_memory))})
             ->kernel("render_weigh");
     render_weigh_mesh_ = atlas_source_->device_mesh();
   } else {  // the atlas drawn by its source (only each pose's box where it can), then weighed

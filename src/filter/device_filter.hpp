@@ -31,6 +31,11 @@ double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bo
 // The one rule for the filter, its memory check and `depthtrack bench`.
 bool renders_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory);
 
+// How many vertices' projections render_weigh keeps in work-group memory beside the tile (its
+// DT_SHARED_POINTS): the mesh's vertex_count where they and the triangle list fit in what
+// renders_inside_weigh leaves, else 0 (each triangle then projects its own corners).
+size_t render_weigh_shared_points(size_t pixels, size_t vertex_count, size_t local_memory);
+
 class DevicePoseScorer;
 class WideSummary;
 class DeviceRefiner;

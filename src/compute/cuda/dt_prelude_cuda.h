@@ -40,3 +40,4 @@ __device__ inline uint dt_dim3(dim3 v, uint d) {
 #define dt_atomic_min_u32(p, v) atomicMin((p), (v))
 #define dt_atomic_min_u64(p, v) atomicMin((p), (v)) /* unsigned long long, sm_35 on */
 #define dt_atomic_add_u32(p, v) atomicAdd((p), (v))
+#define dt_atomic_add_local_u32(p, v) atomicAdd((p), (v))

@@ -20,3 +20,4 @@ typedef ulong dt_u64;
 /* cl_khr_int64_extended_atomics: a program using it enables the extension (cl/refine_spread.cl) */
 #define dt_atomic_min_u64(p, v) atom_min((volatile __global ulong*)(p), (v))
 #define dt_atomic_add_u32(p, v) atomic_add((volatile __global uint*)(p), (v))
+#define dt_atomic_add_local_u32(p, v) atomic_add((volatile __local uint*)(p), (v))
