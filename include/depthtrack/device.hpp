@@ -8,8 +8,7 @@
 // against that GL context, with programs of its own, and its GL trackers run there, so that the atlas reaches
 // OpenCL without a copy (the hand-off's description says which path a tracker got, and why).
 //
-// Threads: update a Device's trackers from one thread at a time (a MultiTracker runs its own trackers' frames
-// on threads of their own where each has a compute queue of its own and none draws with GL). A GL context is current on one thread at a
+// Threads: update a Device's trackers from one thread at a time. A GL context is current on one thread at a
 // time, so the Device keeps one GL context per thread that makes GL trackers on it: the trackers made on one
 // thread (a MultiTracker's, made and driven on the calling thread) share it, and a GL tracker is updated on
 // the thread that made it, as before.

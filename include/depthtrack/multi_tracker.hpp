@@ -22,8 +22,6 @@ struct MultiStageTimings {
   double working_ms = 0;     // the frame checked and decimated to the working resolution, once
   double occluders_ms = 0;   // mutual occlusion: the objects' previous estimates drawn (or reused)
   double masks_ms = 0;       // mutual occlusion: each object's masked working frame
-  // Side by side (a pool of two or more threads, no GL renderer), each object's frame runs start to end on
-  // a thread of its own, and the next three stages end when the last object's ends.
   double enqueue_ms = 0;     // every object's start_frame: upload, enqueue (a host filter: its whole update)
   double collect_ms = 0;     // waiting for every object's estimate, one after another (confidences meanwhile)
   double confidence_ms = 0;  // the confidences and statuses still running after the last collection (a pool)
@@ -33,8 +31,8 @@ struct MultiStageTimings {
 class MultiTracker {
  public:
   // InputError for no mesh or a null device; each tracker as Tracker(device, mesh, sensor, config).
-  // host_threads: the threads the objects' frames share, the caller's included; 0: one per object, at most
-  // the hardware's. Any count gives the same estimates.
+  // host_threads: the threads the objects' host steps (confidence, occluder layers) share, the caller's
+  // included; 0: one per object, at most the hardware's. Any count gives the same estimates.
   MultiTracker(std::shared_ptr<Device> device, const std::vector<Mesh>& meshes, const Camera& sensor,
                const TrackerConfig& config, bool mutual_occlusion = true, int host_threads = 0);
   ~MultiTracker();
@@ -57,14 +55,6 @@ class MultiTracker {
   // One frame, already at the working resolution, for every object; sensor_frame() as Tracker's.
   std::vector<Estimate> run(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame,
                             double timestamp);
-  // run's two ways: every object's frame on a thread of its own, start to end; or every frame enqueued on
-  // the calling thread, then collected there (GL's context and timer events belong to one thread) while the
-  // pool assesses. frame_of(j): object j's working frame.
-  std::vector<Estimate> run_side_by_side(const std::function<const DepthImage&(size_t)>& frame_of,
-                                         const std::function<const DepthImage&()>& sensor_frame, double timestamp);
-  std::vector<Estimate> run_from_this_thread(const std::function<const DepthImage&(size_t)>& frame_of,
-                                             const std::function<const DepthImage&()>& sensor_frame,
-                                             double timestamp);
 
   std::shared_ptr<Device> device_;
   std::vector<Tracker> trackers_;
@@ -72,10 +62,9 @@ class MultiTracker {
   std::vector<std::vector<float>> occluder_layers();
 
   std::unique_ptr<MutualOcclusion> occlusion_;  // null when off or with one object
-  // The objects' frames (or, with GL, their host steps: confidence, occluder layers) side by side: a
-  // thread per object, at most the hardware's.
+  // The objects' host steps (confidence, occluder layers) side by side: a thread per object, at most
+  // the hardware's; the device's results are collected on the calling thread.
   std::unique_ptr<ThreadPool> pool_;
-  bool side_by_side_ = false;  // run_side_by_side: a pool of two or more threads and no GL renderer
   MultiStageTimings timings_;
   std::vector<Pose> poses_;  // each object's previous estimate (or start)
   std::vector<bool> initialized_;

@@ -1,12 +1,9 @@
 #include <algorithm>
-#include <depthtrack/device.hpp>
 #include <depthtrack/error.hpp>
 #include <depthtrack/multi_tracker.hpp>
 #include <exception>
-#include <mutex>
 #include <optional>
 
-#include "compute/program_cache.hpp"
 #include "core/stopwatch.hpp"
 #include "core/thread_pool.hpp"
 #include "tracker/mutual_occlusion.hpp"
@@ -28,10 +25,6 @@ MultiTracker::MultiTracker(std::shared_ptr<Device> device, const std::vector<Mes
   if (mutual_occlusion && meshes.size() > 1) occlusion_ = std::make_unique<MutualOcclusion>(meshes, working);
   const int objects = static_cast<int>(std::min<size_t>(meshes.size(), 1024));
   pool_ = std::make_unique<ThreadPool>(host_threads > 0 ? host_threads : std::min(objects, hardware_threads()));
-  // Side by side only where every tracker has a compute queue of its own (the compute layer's calls on
-  // different queues may come from different threads; a backend with one queue has them share it).
-  const bool own_queues = device_->is_host() || device_->context()->make_queue() != nullptr;
-  side_by_side_ = pool_->size() > 1 && config.renderer != Renderer::Gl && own_queues;
 }
 
 MultiTracker::~MultiTracker() = default;
@@ -97,69 +90,28 @@ std::vector<std::vector<float>> MultiTracker::occluder_layers() {
   return layers;
 }
 
-// With mutual occlusion each object's working frame hides what the others' previous estimates cover,
-// so none waits for another's estimate. Each tracker has a compute queue and kernels of its own.
+// Every object's frame is enqueued (each tracker has a compute queue of its own), then every estimate
+// is collected: the device runs the objects' work side by side. With mutual occlusion each object's
+// working frame hides what the others' previous estimates cover, so none waits for another's estimate.
+// The estimates are collected on this thread (a GL renderer's timer events are read on its thread), their
+// confidences assessed on the pool as each arrives: each tracker's assessment touches its own state only.
+// collect_ms ends with the last collection, confidence_ms is what the assessments take after it.
 std::vector<Estimate> MultiTracker::run(const DepthImage& working,
                                         const std::function<const DepthImage&()>& sensor_frame, double timestamp) {
   const size_t n = trackers_.size();
   std::vector<DepthImage> masked(occlusion_ ? n : 0);
-  if (occlusion_) {
-    Stopwatch clock;
-    // Every mask is made before any object starts: a lost object's search redraws its silhouette.
-    const std::vector<std::vector<float>> layers = occluder_layers();
-    timings_.occluders_ms = clock.lap_ms();
-    for (size_t j = 0; j < n; ++j) masked[j] = occlusion_->frame_for(j, working, poses_, layers);
-    timings_.masks_ms = clock.lap_ms();
-  }
   const auto frame_of = [&](size_t j) -> const DepthImage& { return occlusion_ ? masked[j] : working; };
-  std::vector<Estimate> estimates = side_by_side_ ? run_side_by_side(frame_of, sensor_frame, timestamp)
-                                                  : run_from_this_thread(frame_of, sensor_frame, timestamp);
-  for (size_t j = 0; j < n; ++j) poses_[j] = estimates[j].pose;
-  return estimates;
-}
-
-// Each object's frame start to end on a thread of its own: the enqueues (a host filter: whole updates)
-// run side by side, and no object's assessment waits for another's collection. A lost object's search
-// asks for the sensor frame, which is made once, under a lock.
-std::vector<Estimate> MultiTracker::run_side_by_side(const std::function<const DepthImage&(size_t)>& frame_of,
-                                                     const std::function<const DepthImage&()>& sensor_frame,
-                                                     double timestamp) {
-  const size_t n = trackers_.size();
-  std::mutex sensor_mutex;
-  const std::function<const DepthImage&()> shared_sensor_frame = [&]() -> const DepthImage& {
-    const std::lock_guard lock(sensor_mutex);
-    return sensor_frame();
-  };
-  std::vector<Estimate> estimates(n);
-  std::vector<double> started_ms(n, 0.0), collected_ms(n, 0.0);
-  const Stopwatch clock;
-  // A failed object's exception is rethrown once every object's frame is over (none is left mid-frame).
-  pool_->run(n, [&](size_t j, int) {
-    trackers_[j].start_frame(frame_of(j), shared_sensor_frame, timestamp);
-    started_ms[j] = clock.elapsed_ms();
-    estimates[j] = trackers_[j].collect_frame();
-    collected_ms[j] = clock.elapsed_ms();
-    trackers_[j].assess_frame(estimates[j], frame_of(j));
-  });
-  const double started = *std::max_element(started_ms.begin(), started_ms.end());
-  const double collected = *std::max_element(collected_ms.begin(), collected_ms.end());
-  timings_.enqueue_ms = started;
-  timings_.collect_ms = collected - started;
-  timings_.confidence_ms = clock.elapsed_ms() - collected;
-  return estimates;
-}
-
-// Every object's frame is enqueued, then every estimate is collected on this thread (a GL renderer's
-// timer events are read on the thread that made them): the device runs the objects' work side by side.
-// Their confidences are assessed on the pool as each arrives: each tracker's assessment touches its own
-// state only. collect_ms ends with the last collection, confidence_ms is what the assessments take after it.
-std::vector<Estimate> MultiTracker::run_from_this_thread(const std::function<const DepthImage&(size_t)>& frame_of,
-                                                         const std::function<const DepthImage&()>& sensor_frame,
-                                                         double timestamp) {
-  const size_t n = trackers_.size();
   size_t started = 0;
   std::exception_ptr failure;
   try {
+    if (occlusion_) {
+      Stopwatch clock;
+      // Every mask is made before any object starts: a lost object's search redraws its silhouette.
+      const std::vector<std::vector<float>> layers = occluder_layers();
+      timings_.occluders_ms = clock.lap_ms();
+      for (size_t j = 0; j < n; ++j) masked[j] = occlusion_->frame_for(j, working, poses_, layers);
+      timings_.masks_ms = clock.lap_ms();
+    }
     const Stopwatch clock;
     for (; started < n; ++started) trackers_[started].start_frame(frame_of(started), sensor_frame, timestamp);
     timings_.enqueue_ms = clock.elapsed_ms();
@@ -196,6 +148,7 @@ std::vector<Estimate> MultiTracker::run_from_this_thread(const std::function<con
   }
   timings_.confidence_ms = clock.lap_ms();
   if (failure) std::rethrow_exception(failure);
+  for (size_t j = 0; j < n; ++j) poses_[j] = estimates[j].pose;
   return estimates;
 }
 
