@@ -6,6 +6,7 @@
 #             (its whole cl/, by git archive), or "embedded" (the build's own); default "embedded".
 #   CASES     semicolon-separated depthtrack_bench argument lists, each run for every variant and backend
 #             (default: 100,000 / 1,000,000 / 1,500,000 particles, handset, 80x60, a 32x24 state window).
+#   ROWS      the rows printed (an extended regex; all go to variants.csv).
 #   BACKENDS  default "cuda opencl:nvidia". TESTS: a Catch test spec run per backend on the embedded
 #             kernels afterwards (default: none). MULTI=1 adds `--multi-objects` with every row.
 # Carry .devdeps, .device and .devdata (as scripts/gpu-run.sh), and any variant folders. Logs into $OUT.
@@ -36,7 +37,7 @@ for b in ${BACKENDS:-cuda opencl:nvidia}; do
       echo "== $b $name: $c"
       # shellcheck disable=SC2086
       DEPTHTRACK_KERNEL_DIR=$dir "$build/depthtrack_bench" --backend "$b" $c |
-        tee -a "$out/variants.csv" | grep -E ',(total_ms|weigh_ms|refine_ms|refine_share|status),' | cut -d, -f1,5-
+        tee -a "$out/variants.csv" | grep -E "${ROWS:-,(total_ms|weigh_ms|refine_ms|refine_share|status),}" | cut -d, -f1,5-
     done
   done
   if [[ ${MULTI:-0} == 1 ]]; then
