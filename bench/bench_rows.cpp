@@ -65,4 +65,10 @@ std::vector<std::string> split(const std::string& text) {
   return parts;
 }
 
+std::string compact_number(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
 }  // namespace depthtrack::bench

@@ -21,6 +21,8 @@ void print_status(const std::string& backend, const std::string& test, const std
 double median(std::vector<double> samples);
 // The host CPU's model name, from /proc/cpuinfo.
 std::string cpu_name();
+// A number as a test name carries it: 0.5 -> "0.5", 2 -> "2" (six significant digits at most).
+std::string compact_number(double value);
 // The third-party data folder: DEPTHTRACK_DATA_DIR from the environment, else the configured one.
 std::filesystem::path data_dir();
 // The thesis' handset from the data folder (DEPTHTRACK_DATA_DIR), else the built-in mesh; its name.

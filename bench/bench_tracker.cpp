@@ -44,7 +44,7 @@ bool host_backend(const std::string& backend) {
 
 // Prints the case's rows; returns its median frame time (ms).
 double run(const Mesh& mesh, const std::string& mesh_name, const std::string& backend, const std::string& renderer,
-           const Refinement& refine, const Case& c, int frames, const OcclusionWindow& window) {
+           const Refinement& refine, const Case& c, int frames, const OcclusionWindow& window, double simplify_error) {
   SynthConfig synth;
   synth.frames = frames;
   synth.occluder_fraction = 0.3;
@@ -57,6 +57,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
   config.particles = c.particles;
   config.refine = refine;
   config.occlusion_window = window;
+  config.simplify_error = simplify_error;
   // Start-up: construction (device buffers, kernels built or read from the driver's cache) and the
   // initial particle and occlusion state, with the host memory it peaks at.
   const bool peak_known = bench::reset_peak_resident();
@@ -89,7 +90,8 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
                                                              : std::string()) +
       (window.width > 0 || window.height > 0
            ? "_window" + std::to_string(window.width) + "x" + std::to_string(window.height)
-           : std::string());
+           : std::string()) +
+      (simplify_error > 0 ? "_simplify" + bench::compact_number(simplify_error * 1e3) + "mm" : std::string());
   const std::string platform = host_backend(backend) ? "cpu" : backend;
   const std::string name = host_backend(backend) ? bench::cpu_name() : device;
   for (const auto& [metric, samples] : {std::pair{"propagate", &propagate},
@@ -108,6 +110,8 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
   bench::print_row(
       {backend, platform, name, "-", test, "refine_share", "%", 100.0 * bench::median(refined) / bench::median(total)});
   bench::print_row({backend, platform, name, "-", test, "refine_iterations", "steps", bench::median(refine_steps)});
+  bench::print_row({backend, platform, name, "-", test, "drawn_triangles", "triangles",
+                    static_cast<double>(tracker.drawn_triangles())});
   bench::print_row({backend, platform, name, "-", test, "frames_per_second", "Hz", 1000.0 / bench::median(total)});
   bench::print_row({backend, platform, name, "-", test, "startup_ms", "ms", startup_ms});
   bench::print_row({backend, platform, name, "-", test, "startup_host_peak", "MiB", startup_peak_mib});
@@ -117,8 +121,8 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
 const char* const kUsage =
     "usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] "
     "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N] [--refine-converged M]\n"
-    "       [--refine-layout auto|one-group|spread] [--occlusion-window WxH] [--mesh FILE] [--no-global]\n"
-    "       [--multi-objects]\n"
+    "       [--refine-layout auto|one-group|spread] [--occlusion-window WxH] [--simplify-error M]\n"
+    "       [--mesh FILE] [--no-global] [--multi-objects]\n"
     "Times tracker frames on a synthetic occluded handset sequence, split into propagate / render / hand-off /\n"
     "weigh / resample, start-up (construction + initialize) with its peak host memory, and the off-screen start\n"
     "(one particle 10,000 km to the side, 5 frames); prints CSV rows\n"
@@ -138,6 +142,8 @@ const char* const kUsage =
     "column\n"
     "  --occlusion-window WxH particles keep occlusion state in a WxH window around the estimate (default: the\n"
     "                         whole image; TrackerConfig::occlusion_window), named in the test column\n"
+    "  --simplify-error M     draw the mesh simplified to within M metres of its surface (default 0: as given;\n"
+    "                         TrackerConfig::simplify_error), named in the test column; also --multi-objects'\n"
     "  --mesh FILE            track this mesh instead of the handset (e.g. a 16k-triangle YCB mesh)\n"
     "  --no-global            leave out the global initialization rows (box hint and no hint, 80x60)\n"
     "  --multi-objects        instead: one object against three in one process at 80x60 (ycbv-0000's, else\n"
@@ -225,6 +231,7 @@ int main(int argc, char** argv) {
   int frames = 20;
   Refinement refine;
   OcclusionWindow window;
+  double simplify_error = 0;  // TrackerConfig's default: the mesh as given
   bool global = true, multi_objects = false;
   std::string mesh_file;
   const auto option = [&](const std::string& arg, bench::ArgReader& args) {
@@ -254,6 +261,8 @@ int main(int argc, char** argv) {
       }
     else if (arg == "--occlusion-window")
       std::tie(window.width, window.height) = bench::parse_size(args.value(), arg);
+    else if (arg == "--simplify-error")
+      simplify_error = bench::parse_nonnegative_double(args.value(), arg);
     else if (arg == "--mesh")
       mesh_file = args.value();
     else if (arg == "--no-global")
@@ -269,7 +278,7 @@ int main(int argc, char** argv) {
     try {
       bench::print_header();
       for (const int p : particle_counts.empty() ? std::vector<int>{2000} : particle_counts)
-        bench::run_multi_object_ratio(backend, renderer, p, std::max(frames, 4));
+        bench::run_multi_object_ratio(backend, renderer, p, std::max(frames, 4), simplify_error);
       return 0;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "depthtrack_bench: %s\n", e.what());
@@ -295,11 +304,12 @@ int main(int argc, char** argv) {
       // A case the device cannot run (too many particles for its memory) gets a status row, and
       // the others still run.
       try {
-        const double ms = run(mesh, name, backend, renderer, refine, c, std::max(frames, 4), window);
+        const double ms = run(mesh, name, backend, renderer, refine, c, std::max(frames, 4), window, simplify_error);
         // The threaded CPU path is worth its name only against the sequential reference, measured
         // here in the same run on the same case: the speedup row.
         if (backend != "reference" && host_backend(backend)) {
-          const double reference_ms = run(mesh, name, "reference", renderer, refine, c, std::max(frames, 4), window);
+          const double reference_ms = run(mesh, name, "reference", renderer, refine, c, std::max(frames, 4), window,
+                                          simplify_error);
           const std::string test = name + "_" + std::to_string(c.width) + "x" + std::to_string(c.height) + "_" +
                                    std::to_string(c.particles) + "p";
           bench::print_row(

@@ -131,7 +131,8 @@ StageMedians median_frame(const Scene& scene, size_t objects, bool mutual_occlus
 
 }  // namespace
 
-void run_multi_object_ratio(const std::string& backend, const std::string& renderer, int particles, int frames) {
+void run_multi_object_ratio(const std::string& backend, const std::string& renderer, int particles, int frames,
+                            double simplify_error) {
   Scene scene;
   if (!load_ycbv(scene)) synthetic(scene, frames);
   TrackerConfig config;
@@ -140,6 +141,7 @@ void run_multi_object_ratio(const std::string& backend, const std::string& rende
   config.particles = particles;
   config.width = 80;
   config.height = 60;
+  config.simplify_error = simplify_error;
   const bool host = backend == "reference" || backend == "cpu" || backend.rfind("cpu:", 0) == 0;
   std::string device;
   const StageMedians one = median_frame(scene, 1, false, config, device);
@@ -148,7 +150,9 @@ void run_multi_object_ratio(const std::string& backend, const std::string& rende
   for (const bool occlusion : {false, true}) {
     const StageMedians three = median_frame(scene, 3, occlusion, config, device);
     const std::string test = (host ? "" : renderer + "_") + "multi_object_" + scene.name + "_80x60_" +
-                             std::to_string(particles) + "p_occlusion_" + (occlusion ? "on" : "off");
+                             std::to_string(particles) + "p" +
+                             (simplify_error > 0 ? "_simplify" + compact_number(simplify_error * 1e3) + "mm" : "") +
+                             "_occlusion_" + (occlusion ? "on" : "off");
     print_row({backend, platform, name, "-", test, "one_object_ms", "ms", one.frame});
     print_row({backend, platform, name, "-", test, "three_objects_ms", "ms", three.frame});
     print_row({backend, platform, name, "-", test, "multi_object_ratio", "x", three.frame / one.frame});

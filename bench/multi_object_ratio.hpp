@@ -13,6 +13,7 @@ namespace depthtrack::bench {
 // the three objects' median again with their host steps on the calling thread alone (host_threads 1), then
 // the median of each of MultiTracker::update's stages (MultiStageTimings) for one object and three:
 // <one_object|three_objects>_<stage>_ms.
-void run_multi_object_ratio(const std::string& backend, const std::string& renderer, int particles, int frames);
+void run_multi_object_ratio(const std::string& backend, const std::string& renderer, int particles, int frames,
+                            double simplify_error = 0);
 
 }  // namespace depthtrack::bench

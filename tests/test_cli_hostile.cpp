@@ -128,6 +128,21 @@ TEST_CASE("track refuses a malformed occlusion window by name, and tracks with a
   CHECK(test::lines_of(dir / "out.csv").size() == 4);  // the header and three frames
 }
 
+TEST_CASE("track refuses a bad mesh simplification error by name, and tracks with a good one", "[cli][robustness]") {
+  const auto dir = test::write_cli_sequence("cli_simplify", 3);
+  for (const char* bad : {"-0.001", "nan", "2"}) {
+    const auto [status, output] = track(dir, std::string("--init-from-gt --simplify-error ") + bad);
+    INFO(bad << ": " << output);
+    CHECK(status != 0);
+    CHECK_THAT(output, Contains("simplif"));
+  }
+  CHECK_FALSE(fs::exists(dir / "out.csv"));
+  const auto [status, output] = track(dir, "--init-from-gt --simplify-error 0.0005");
+  INFO(output);
+  CHECK(status == 0);
+  CHECK(test::lines_of(dir / "out.csv").size() == 4);  // the header and three frames
+}
+
 TEST_CASE("the off-screen start (an object 10,000 km to the side) ends at once on the device, lost, exit 0",
           "[cli][robustness]") {
   // The device rasterizer looped over 2^31 columns per triangle (> 7 minutes for one particle). Its

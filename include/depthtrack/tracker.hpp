@@ -114,6 +114,11 @@ class Tracker {
   const Camera& working_camera() const;
   const TrackerConfig& config() const;
   std::string backend_description() const;
+  // Triangles of the mesh given (after validation dropped degenerate ones) and of the mesh drawn
+  // (TrackerConfig::simplify_error simplified it: every particle, the refinement and the confidence
+  // draw this one).
+  size_t mesh_triangles() const { return mesh_triangles_; }
+  size_t drawn_triangles() const { return drawn_triangles_; }
 
  private:
   // The working-resolution frame (decimated only when needed); InputError for a wrong size.
@@ -164,6 +169,7 @@ class Tracker {
   double previous_timestamp_ = 0;
   size_t frames_since_initialize_ = 0;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();  // the mesh's, where initialize() checks the start
+  size_t mesh_triangles_ = 0, drawn_triangles_ = 0;
   unsigned search_round_ = 0;                         // varies each recovery search's perturbations
   PendingFrame pending_;                              // between start_frame and finish_frame
   bool frame_pending_ = false;

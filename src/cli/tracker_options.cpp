@@ -53,6 +53,11 @@ void TrackerOptions::add_to(CLI::App& command) {
                       "WxH pixels of the working image around the last estimate (less memory and traffic; pixels "
                       "outside it are taken as fresh)")
           ->capture_default_str();
+  simplify_option = command
+                        .add_option("--simplify-error", flags.simplify_error,
+                                    "Draw the mesh simplified so that its surface moves at most this many metres (e.g. "
+                                    "0.0005: a 16k-triangle scan keeps 250-3,200 triangles at 80x60); 0: as given")
+                        ->capture_default_str();
   refine_option =
       command
           .add_option("--refine", refine,
@@ -95,6 +100,7 @@ TrackerConfig TrackerOptions::resolve() const {
   }
   if (given(refine_iterations_option)) c.refine.iterations = flags.refine.iterations;
   if (given(seed_option)) c.seed = flags.seed;
+  if (given(simplify_option)) c.simplify_error = flags.simplify_error;
   c.validate();
   // The reference filter (cpu: on threads) always draws with its own rasterizer: say so rather than ignore it.
   const std::string backend = c.resolved_backend();

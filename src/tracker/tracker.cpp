@@ -5,6 +5,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "core/mesh_simplify.hpp"
 #include "core/stopwatch.hpp"
 #include "tracker/make_filter_backend.hpp"
 #include "tracker/track_supervisor.hpp"
@@ -62,8 +63,12 @@ void Tracker::construct(const Device& device, const Mesh& checked, const Tracker
   working_ = sensor_.decimated(decimation_);
   config_ = config;
   centre_ = checked.centre().cast<double>();
-  backend_ = make_filter_backend(device, checked, working_, config);
-  supervisor_ = std::make_unique<TrackSupervisor>(*backend_, checked, sensor_, working_, decimation_, config);
+  // Every rendering draws the simplified mesh (the given one when simplify_error is 0).
+  const MeshSimplification drawn = simplify_within(checked, config.simplify_error);
+  mesh_triangles_ = checked.triangles.size();
+  drawn_triangles_ = drawn.mesh.triangles.size();
+  backend_ = make_filter_backend(device, drawn.mesh, working_, config);
+  supervisor_ = std::make_unique<TrackSupervisor>(*backend_, drawn.mesh, sensor_, working_, decimation_, config);
 }
 
 Tracker::~Tracker() = default;

@@ -1,0 +1,24 @@
+#pragma once
+// The mesh the tracker draws: a scanned object's 16k triangles are far finer than the pixels of an
+// 80x60 working image, and every particle draws every triangle each frame, so the tracker may draw a
+// simplified copy whose surface stays within a given distance of the original (TrackerConfig::
+// simplify_error), by meshoptimizer's quadric edge collapse.
+#include <depthtrack/mesh.hpp>
+
+namespace depthtrack {
+
+struct MeshSimplification {
+  Mesh mesh;                  // the vertices it still uses (in their order) and its triangles
+  double error = 0;           // meshoptimizer's estimate of the largest distance moved (metres)
+  size_t triangles_before = 0;
+};
+
+// `mesh` (validated: indices in range) simplified by collapsing edges onto their ends while
+// meshoptimizer's estimate of the distance from the original surface stays within max_error metres
+// (a quadric estimate: the kept vertices lie on the original surface, and the original vertices were
+// measured up to 1.6-2 times max_error from the faces between them, tests/test_mesh_simplify.cpp);
+// max_error 0 returns the mesh as given.
+// Throws InputError for a negative or non-finite max_error.
+MeshSimplification simplify_within(const Mesh& mesh, double max_error);
+
+}  // namespace depthtrack
