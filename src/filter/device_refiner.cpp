@@ -22,6 +22,9 @@ constexpr size_t kLinearGroup = 64;  // shift, and the spread layout's draws: a 
 // most this many rows of partials for its last group to add (beyond 256 x 256 pixels a work-item
 // sums several).
 constexpr size_t kMaxSumGroups = 256;
+// Pixels each work-item of the spread sums kernel adds: fewer groups leave fewer rows of partials for
+// the last group's one work-item to add (19 rows at 80x60 with a pixel each, 5 with 4).
+constexpr size_t kSumPixelsPerItem = 4;
 static_assert(kRefineGroup >= DT_REFINE_SUMS);  // a group writes its row of partials a sum per work-item
 
 size_t round_up(size_t n, size_t multiple) {
@@ -71,7 +74,8 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
   draw_ = program_->kernel("refine_draw");
   sums_ = program_->kernel("refine_sums");
   const size_t pixels = static_cast<size_t>(camera.pixel_count());
-  sum_groups_ = std::clamp<size_t>((pixels + kRefineGroup - 1) / kRefineGroup, 1, kMaxSumGroups);
+  const size_t per_group = kRefineGroup * kSumPixelsPerItem;
+  sum_groups_ = std::clamp<size_t>((pixels + per_group - 1) / per_group, 1, kMaxSumGroups);
   // Stamp 0 in the state and rows unwritten: no row counts as written before its group writes it
   // (refine_spread.cl's refine_sums).
   fit_state_ = compute::Buffer<float>(queue, sizeof(dt_refine_state) / sizeof(float));
