@@ -137,7 +137,7 @@ const char* const kUsage =
     "  --refine-iterations N  refinement steps per frame at most (default: TrackerConfig's)\n"
     "  --refine-converged M   the refinement stops when a step would move the mesh less than M metres\n"
     "                         (default: TrackerConfig's; 0 takes every step)\n"
-    "  --refine-layout NAME   device backends' refinement: auto (default: spread on CUDA GPUs and for meshes\n"
+    "  --refine-layout NAME   device backends' refinement: auto (default: spread on GPUs and for meshes\n"
     "                         of 4,096 triangles or more), one-group or spread; a given one is named in the test "
     "column\n"
     "  --occlusion-window WxH particles keep occlusion state in a WxH window around the estimate (default: the\n"

@@ -292,13 +292,13 @@ TEST_CASE("with a state window cutting the object the device filter still equals
   compare_with_reference("kernel", RefineLayout::Auto, OcclusionWindow{14, 10});
 }
 
-// Auto picks one layout per device and mesh (the test's handset: spread on CUDA GPUs, one group on
-// other devices); the other one, forced, must equal the reference just as well (the kernel atlas, as
+// Auto picks one layout per device and mesh (the test's handset: spread on GPUs, one group on
+// CPUs); the other one, forced, must equal the reference just as well (the kernel atlas, as
 // CI's default renderer).
 // The rule behind Auto, from the measured costs in device_refiner.cpp: large meshes spread everywhere,
-// small ones only on CUDA GPUs (NVIDIA OpenCL's and PoCL's launches cost more than one group's loops).
+// small ones only on GPUs (PoCL's launches cost more than one group's loops).
 TEST_CASE(
-    "the refinement layout auto spreads large meshes everywhere and small ones on CUDA GPUs, given 64-bit atomics",
+    "the refinement layout auto spreads large meshes everywhere and small ones on GPUs, given 64-bit atomics",
     "[refine]") {
   compute::DeviceInfo cuda_gpu, opencl_gpu, opencl_cpu;
   cuda_gpu.backend = "cuda";
@@ -309,7 +309,7 @@ TEST_CASE(
   for (compute::DeviceInfo* d : {&cuda_gpu, &opencl_gpu, &opencl_cpu}) d->int64_atomics = true;
   const size_t handset = 842, mug = 16384;
   CHECK(resolved_refine_layout(RefineLayout::Auto, cuda_gpu, handset) == RefineLayout::Spread);
-  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, handset) == RefineLayout::OneGroup);
+  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, handset) == RefineLayout::Spread);
   CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_cpu, handset) == RefineLayout::OneGroup);
   CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, mug) == RefineLayout::Spread);
   CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_cpu, mug) == RefineLayout::Spread);

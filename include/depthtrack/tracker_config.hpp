@@ -41,7 +41,7 @@ Renderer renderer_from_string(const std::string& name);  // throws InputError na
 
 // How the device backends lay out the refinement (Refinement::layout); the reference has one way.
 enum class RefineLayout {
-  Auto,      // Spread for meshes of 4,096 triangles or more and on CUDA GPUs, given 64-bit atomics; else OneGroup
+  Auto,      // Spread for meshes of 4,096 triangles or more and on GPUs, given 64-bit atomics; else OneGroup
   OneGroup,  // the whole fit in one work-group, one launch (cl/refine.cl)
   Spread,    // each step a draw and a sums launch over many work-groups, the last one solving (cl/refine_spread.cl)
 };

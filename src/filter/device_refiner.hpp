@@ -38,7 +38,7 @@ struct RefineInputs {
 };
 
 // The layout Auto picks: Spread for meshes of kSpreadTriangles triangles or more on every device, and
-// for smaller ones on CUDA GPUs; OneGroup for smaller meshes elsewhere (measured on PoCL and the H200:
+// for smaller ones on GPUs; OneGroup for smaller meshes on CPUs (measured on PoCL and the H200:
 // docs/design-notes.md), and on devices without 64-bit atomic min (DeviceInfo::int64_atomics), where
 // Spread asked for is an InputError.
 constexpr size_t kSpreadTriangles = 4096;
