@@ -215,9 +215,13 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
       // on llvmpipe once the refinement stops at convergence (0.1 % for the host and kernel atlases).
       // CUDA's kernel atlas: up to 3.1 % on the handset (H200, 1 December 2026; the same with and without
       // --prec-div/--prec-sqrt), where the poses still agree within 1e-5 m: as with GL, a pixel more or
-      // less in the fit's H; PoCL and NVIDIA OpenCL stay within 0.1 %, and are held to it.
+      // less in the fit's H. NVIDIA OpenCL stayed within 0.1 % in one group, and left it once Auto spread
+      // its fit too (session 8): the spread sums' float order on a GPU, as on CUDA. PoCL, either layout,
+      // stays within 0.1 %, and is held to it.
       const bool cuda = config.backend.rfind("cuda", 0) == 0;
-      const double sd_tolerance = renderer == "gl" || cuda ? 5e-2 : 1e-3;
+      const bool gpu_spread =
+          info.is_gpu && resolved_refine_layout(layout, info, scene.mesh.triangles.size()) == RefineLayout::Spread;
+      const double sd_tolerance = renderer == "gl" || cuda || gpu_spread ? 5e-2 : 1e-3;
       // The built-in box (the scene without ../shared/data) is seen nearly face-on: its faces' depth
       // leaves sliding along them undetermined, the normal equations are singular to rounding, and
       // double (reference) and float (device) then disagree on which axes blow up or turn NaN
