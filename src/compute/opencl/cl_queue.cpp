@@ -156,24 +156,27 @@ void ClQueue::launch_untimed(Kernel& kernel, const NdRange& range) {
 EventPtr ClQueue::enqueue(Kernel& kernel, const NdRange& range, bool timed) {
   auto* cl = dynamic_cast<ClKernel*>(&kernel);
   if (!cl) throw InputError("launch of kernel '" + kernel.name() + "': it was not built by an OpenCL queue");
-  const std::string what = "kernel '" + kernel.name() + "' over global " + sizes(range.global, range.dimensions) +
-                           ", local " + sizes(range.local, range.dimensions);
+  // Described only for an error: a frame launches some 30 kernels, and the text is a few allocations each.
+  const auto what = [&] {
+    return "kernel '" + kernel.name() + "' over global " + sizes(range.global, range.dimensions) + ", local " +
+           sizes(range.local, range.dimensions);
+  };
   if (range.dimensions < 1 || range.dimensions > 3)
     throw InputError("launch of kernel '" + kernel.name() + "' in " + std::to_string(range.dimensions) +
                      " dimensions: give 1, 2 or 3");
   size_t group = 1;
   for (unsigned d = 0; d < range.dimensions; ++d) {
     if (range.global[d] == 0 || range.local[d] == 0 || range.global[d] % range.local[d] != 0)
-      throw InputError("launch of " + what + ": every global size must be a positive multiple of the local size");
+      throw InputError("launch of " + what() + ": every global size must be a positive multiple of the local size");
     group *= range.local[d];
   }
   if (group > info_.max_work_group_size)
-    throw InputError("launch of " + what + ": a work-group of " + std::to_string(group) +
+    throw InputError("launch of " + what() + ": a work-group of " + std::to_string(group) +
                      " work-items is more than the device's " + std::to_string(info_.max_work_group_size));
   cl_event event = nullptr;
-  check(clEnqueueNDRangeKernel(queue_.get(), cl->get(), range.dimensions, nullptr, range.global, range.local, 0,
-                               nullptr, timed ? &event : nullptr),
-        "clEnqueueNDRangeKernel", info_.name, what);
+  const cl_int status = clEnqueueNDRangeKernel(queue_.get(), cl->get(), range.dimensions, nullptr, range.global,
+                                               range.local, 0, nullptr, timed ? &event : nullptr);
+  if (status != CL_SUCCESS) check(status, "clEnqueueNDRangeKernel", info_.name, what());
   return timed ? std::make_shared<ClEvent>(EventHandle(event), info_.name) : nullptr;
 }
 
