@@ -70,6 +70,8 @@ class PyTracker {
   Camera working_camera() const { return tracker_.working_camera(); }
   TrackerConfig config() const { return tracker_.config(); }
   std::string backend_description() const { return tracker_.backend_description(); }
+  size_t mesh_triangles() const { return tracker_.mesh_triangles(); }
+  size_t drawn_triangles() const { return tracker_.drawn_triangles(); }
 
  private:
   Tracker tracker_;
@@ -101,7 +103,10 @@ void bind_tracker(py::module_& m) {
            "or near point (camera frame, metres) when given, and runs the frame")
       .def_property_readonly("working_camera", &PyTracker::working_camera)
       .def_property_readonly("config", &PyTracker::config, "a copy of the configuration")
-      .def_property_readonly("backend_description", &PyTracker::backend_description);
+      .def_property_readonly("backend_description", &PyTracker::backend_description)
+      .def_property_readonly("mesh_triangles", &PyTracker::mesh_triangles, "triangles of the mesh given")
+      .def_property_readonly("drawn_triangles", &PyTracker::drawn_triangles,
+                             "triangles of the mesh drawn (config.simplify_error simplified it)");
 }
 
 }  // namespace depthtrack::python

@@ -148,3 +148,42 @@ def test_version_and_devices():
     for d in devices:
         assert d["backend"] in ("opencl", "cuda") and d["selector"].startswith(d["backend"])
         assert d["global_memory_bytes"] > 0 and isinstance(d["extensions"], list)
+
+
+def write_sphere(path, radius=0.05, rings=24, segments=48):
+    """A closed UV sphere (poles fanned) as OBJ: finely tessellated, so simplification has work to do."""
+    lines = [f"v 0 0 {radius}"]
+    for r in range(1, rings):
+        theta = math.pi * r / rings
+        for s in range(segments):
+            phi = 2 * math.pi * s / segments
+            lines.append(f"v {radius * math.sin(theta) * math.cos(phi)} {radius * math.sin(theta) * math.sin(phi)} "
+                         f"{radius * math.cos(theta)}")
+    lines.append(f"v 0 0 {-radius}")
+    at = lambda r, s: 2 + (r - 1) * segments + s % segments  # OBJ indices start at 1
+    south = 1 + 1 + (rings - 1) * segments
+    for s in range(segments):
+        lines.append(f"f 1 {at(1, s)} {at(1, s + 1)}")
+        lines.append(f"f {south} {at(rings - 1, s + 1)} {at(rings - 1, s)}")
+        for r in range(1, rings - 1):
+            lines.append(f"f {at(r, s)} {at(r + 1, s)} {at(r + 1, s + 1)}")
+            lines.append(f"f {at(r, s)} {at(r + 1, s + 1)} {at(r, s + 1)}")
+    path.write_text("\n".join(lines) + "\n")
+    return 2 * segments * (rings - 1)
+
+
+def test_simplify_error_draws_fewer_triangles_of_a_fine_mesh(tmp_path):
+    triangles = write_sphere(tmp_path / "sphere.obj")
+    camera = depthtrack.Camera(640, 480, 525, 525, 319.5, 239.5)
+    mesh = depthtrack.Mesh.load(str(tmp_path / "sphere.obj"))
+    config = depthtrack.TrackerConfig()
+    assert config.simplify_error == 0
+    as_given = depthtrack.Tracker(mesh, camera, config)
+    assert as_given.mesh_triangles == as_given.drawn_triangles == triangles
+    config.simplify_error = 0.002
+    simplified = depthtrack.Tracker(mesh, camera, config)
+    assert simplified.mesh_triangles == triangles
+    assert 0 < simplified.drawn_triangles < triangles // 4
+    config.simplify_error = -1.0
+    with pytest.raises(depthtrack.InputError, match="simplification error"):
+        depthtrack.Tracker(mesh, camera, config)
