@@ -35,15 +35,15 @@ __kernel void render_weigh(__global const float* states, __global const float* v
   /* Only the pose's box is cleared, drawn and weighed (no triangle draws outside it), with the state
    * window's pixels, whose state moves from the parent's row to the particle's own. */
   const dt_rigid pose = dt_particle_pose(states + DT_CAST(ulong, particle) * DT_STATE_STRIDE);
-  int in_front;
 #if DT_SHARED_POINTS > 0
-  const int points_fit = vertex_count <= DT_SHARED_POINTS; /* the host sizes it so; another mesh draws as below */
-  const dt_pixel_box box = dt_pose_box(pose, vertices, vertex_count, cam, scratch, points_fit ? points : 0, &in_front);
-  const int projected = points_fit && in_front;
+  /* The host sizes it to the mesh; another mesh draws as below. */
+  DT_LOCAL_PTR float* const kept = vertex_count <= DT_SHARED_POINTS ? points : 0;
 #else
-  const dt_pixel_box box = dt_pose_box(pose, vertices, vertex_count, cam, scratch, 0, &in_front);
-  const int projected = 0;
+  DT_LOCAL_PTR float* const kept = 0;
 #endif
+  int in_front;
+  const dt_pixel_box box = dt_pose_box(pose, vertices, vertex_count, cam, scratch, kept, &in_front);
+  const int projected = kept != 0 && in_front;
   for (uint b = lid; b < box.width * box.height; b += DT_GROUP_SIZE) tile[dt_box_pixel(box, b, cam)] = DT_NO_SURFACE;
   barrier(CLK_LOCAL_MEM_FENCE);
 #if DT_SHARED_POINTS > 0
