@@ -12,6 +12,7 @@
 
 #include "compute/buffer.hpp"
 #include "compute/cuda/cuda_backend.hpp"
+#include "compute/cuda/cuda_queue.hpp"
 #include "compute/kernel_sources.hpp"
 #include "philox.h"
 
@@ -140,6 +141,53 @@ TEST_CASE("A CUDA allocation beyond free memory names both sizes", "[cuda]") {
   CHECK(message.find("free") != std::string::npos);
   CHECK(message.find(queue->info().name) != std::string::npos);
   CHECK_THROWS_AS(queue->allocate(0), BackendError);
+}
+
+// The general [compute] test checks a batch's results; this one that the graph is built once and
+// replayed: the same kernels over the same ranges build nothing new, only changed arguments are set
+// again, and another range is a graph of its own.
+TEST_CASE("CUDA batches replay one graph, setting only the arguments that changed", "[cuda]") {
+  auto queue = cuda_queue();
+  if (!queue) return;
+  auto* cuda = dynamic_cast<compute::cuda::CudaQueue*>(queue.get());
+  REQUIRE(cuda);
+  if (!cuda->graphs()) {
+    std::cout << "SKIPPED: CUDA graphs are off (DEPTHTRACK_CUDA_GRAPHS) or the driver lacks them\n";
+    return;
+  }
+  const char* source = R"(
+__kernel void add(__global float* y, float value, uint count) {
+  const uint i = get_global_id(0);
+  if (i < count) y[i] += value;
+}
+)";
+  auto program = queue->build("add", compute::kernel_source("dt_prelude.h") + source, {});
+  auto kernel = program->kernel("add");
+  const unsigned count = 256;
+  compute::Buffer<float> ys(*queue, count);
+  ys.upload(std::vector<float>(count, 0.0f));
+  const auto range = compute::NdRange::linear(count, 64);
+  const auto frame = [&](float first, float second, const compute::NdRange& r) {
+    compute::LaunchBatch batch(*queue, true);
+    queue->launch(*kernel, r, ys, first, count);
+    queue->launch_untimed(*kernel, r, ys, second, count);
+    batch.submit();
+  };
+  const compute::cuda::LaunchGraphs& graphs = *cuda->graphs();
+  frame(1.0f, 2.0f, range);
+  CHECK(graphs.graphs_built() == 1);
+  CHECK(graphs.nodes_updated() == 0);
+  frame(1.0f, 2.0f, range);  // the same arguments: a replay as it is
+  CHECK(graphs.graphs_built() == 1);
+  CHECK(graphs.nodes_updated() == 0);
+  frame(1.0f, 5.0f, range);  // the second launch's value changed: one node set
+  CHECK(graphs.graphs_built() == 1);
+  CHECK(graphs.nodes_updated() == 1);
+  frame(1.0f, 1.0f, compute::NdRange::linear(count, 128));  // another block size: another graph
+  CHECK(graphs.graphs_built() == 2);
+  const std::vector<float> y = ys.download();
+  CHECK(y[0] == 3.0f + 3.0f + 6.0f + 2.0f);
+  CHECK(y[count - 1] == 14.0f);
 }
 
 #endif

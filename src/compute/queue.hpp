@@ -151,11 +151,45 @@ class Queue {
   // Waits for everything enqueued.
   virtual void finish() = 0;
 
+  // Launches from begin_batch() to end_batch() may be held back and handed to the device as one unit at
+  // end_batch(), in order. CUDA makes them a graph and replays it, setting only the arguments that changed,
+  // when the next batch launches the same kernels over the same ranges (a frame's ~27 launches become
+  // one). The events of a batch's launches are valid until the queue's next batch is ended. Any other
+  // queue operation inside a batch (a copy, finish) first hands over what was held. Backends without a
+  // cheaper way launch at once (the default).
+  virtual void begin_batch() {}
+  virtual void end_batch() {}
+
   // Another in-order queue on the same device and context: memory allocated and programs built through
   // either serve both, and work enqueued on the two may run at the same time (each tracker of several
   // gets one, so the objects' small kernels overlap). nullptr where a backend offers only one queue:
   // the caller then shares this one.
   virtual std::unique_ptr<Queue> another_queue() { return nullptr; }
+};
+
+// Queue::begin_batch() for a scope, ended by submit() or, on an exception, when the scope is left.
+class LaunchBatch {
+ public:
+  LaunchBatch(Queue& queue, bool enabled) : queue_(enabled ? &queue : nullptr) {
+    if (queue_) queue_->begin_batch();
+  }
+  ~LaunchBatch() {
+    if (!queue_) return;
+    try {
+      queue_->end_batch();
+    } catch (...) {  // already unwinding from the error that matters
+    }
+  }
+  LaunchBatch(const LaunchBatch&) = delete;
+  LaunchBatch& operator=(const LaunchBatch&) = delete;
+  void submit() {
+    Queue* queue = queue_;
+    queue_ = nullptr;
+    if (queue) queue->end_batch();
+  }
+
+ private:
+  Queue* queue_;
 };
 
 // Devices of every backend compiled in (a backend whose runtime is absent lists none).

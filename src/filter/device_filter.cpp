@@ -356,6 +356,9 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   const Stopwatch upload;
   observed_.upload(depth.data());
   p->timings.upload_ms = upload.elapsed_ms();
+  // The frame's launches as one batch (a CUDA graph, replayed frame after frame). Only where every
+  // launch goes through the queue: the GL renderer's hand-off enqueues work of its own.
+  compute::LaunchBatch batch(*queue_, atlas_source_->device_mesh() != nullptr);
   const unsigned count = static_cast<unsigned>(count_);
   const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
   if (dt > 0)
@@ -416,6 +419,7 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
                                                  frame_times_->device(), parents_, window, time_, dt});
   p->resampling = resample();
   if (refiner_) p->shifted = shift_particles();
+  batch.submit();
   pending_ = std::move(p);
 }
 

@@ -26,13 +26,16 @@ namespace depthtrack::compute::cuda {
 // clang-format on
 
 // Functions the backend uses when the driver has them (cuFuncGetParamInfo: CUDA 12.4+), and those
-// of graphics interop and exportable memory, which a driver may lack.
+// of graphics interop, exportable memory and graphs (cuGraphAddKernelNode_v2: CUDA 12.0+), which a driver
+// may lack.
 // clang-format off
 #define DT_CUDA_DRIVER_OPTIONAL_FUNCTIONS(X)                                                           \
   X(cuFuncGetParamInfo) X(cuDeviceGetUuid)                                                             \
   X(cuGraphicsMapResources) X(cuGraphicsUnmapResources) X(cuGraphicsUnregisterResource)                \
   X(cuGraphicsSubResourceGetMappedArray) X(cuGraphicsResourceGetMappedPointer) X(cuMemcpy2DAsync)          \
-  X(cuMemGetAllocationGranularity) X(cuMemCreate) X(cuMemExportToShareableHandle) X(cuMemRelease)
+  X(cuMemGetAllocationGranularity) X(cuMemCreate) X(cuMemExportToShareableHandle) X(cuMemRelease)          \
+  X(cuGraphCreate) X(cuGraphDestroy) X(cuGraphAddKernelNode) X(cuGraphAddEventRecordNode)              \
+  X(cuGraphInstantiate) X(cuGraphExecDestroy) X(cuGraphExecKernelNodeSetParams) X(cuGraphLaunch)
 // clang-format on
 
 struct DriverApi {

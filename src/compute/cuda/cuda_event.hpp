@@ -17,6 +17,9 @@ class CudaEvent final : public Event {
 
   void record_start(CUstream stream);
   void record_end(CUstream stream);
+  // The two CUDA events, for a graph's event-record nodes (compute/cuda/cuda_launch_graph.hpp).
+  CUevent start_handle() const { return start_; }
+  CUevent end_handle() const { return end_; }
   void wait() override;
   double elapsed_ms() override;
   std::optional<double> elapsed_since_ms(Event& earlier) override;

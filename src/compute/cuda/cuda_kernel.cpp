@@ -1,6 +1,7 @@
 #include "compute/cuda/cuda_kernel.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <depthtrack/error.hpp>
 
 #include "compute/cuda/cuda_memory.hpp"
@@ -70,6 +71,21 @@ std::vector<void*> CudaKernel::argument_pointers() {
     pointers.push_back(arguments_[index]->data());
   }
   return pointers;
+}
+
+void CudaKernel::copy_arguments(std::vector<unsigned char>& bytes, std::vector<size_t>& offsets) const {
+  constexpr size_t kAlign = alignof(std::max_align_t);
+  const size_t count = parameter_sizes_ ? parameter_sizes_->size() : arguments_.size();
+  for (size_t index = 0; index < count; ++index) {
+    if (index >= arguments_.size() || !arguments_[index])
+      throw InputError("launch of kernel '" + name_ + "': argument " + std::to_string(index) + " of " +
+                       std::to_string(count) + " was never set");
+    const std::vector<unsigned char>& value = *arguments_[index];
+    const size_t offset = (bytes.size() + kAlign - 1) / kAlign * kAlign;
+    bytes.resize(offset + value.size());
+    std::copy(value.begin(), value.end(), bytes.begin() + static_cast<std::ptrdiff_t>(offset));
+    offsets.push_back(offset);
+  }
 }
 
 }  // namespace depthtrack::compute::cuda

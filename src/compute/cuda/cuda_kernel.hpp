@@ -27,6 +27,9 @@ class CudaKernel final : public Kernel {
   LaunchLimits limits() const;
   // Pointers to every argument, 0 to the last; InputError naming the first one never set.
   std::vector<void*> argument_pointers();
+  // A copy of every argument's bytes, appended to `bytes`, each at an offset (pushed to `offsets`) aligned
+  // for any parameter type; InputError as argument_pointers() for one never set.
+  void copy_arguments(std::vector<unsigned char>& bytes, std::vector<size_t>& offsets) const;
 
  private:
   std::shared_ptr<const Module> module_;

@@ -1,5 +1,7 @@
 #include "compute/cuda/cuda_queue.hpp"
 
+#include <cstdlib>
+#include <cstring>
 #include <depthtrack/error.hpp>
 
 #include "compute/cuda/cuda_cached_build.hpp"
@@ -18,11 +20,30 @@ CudaQueue::CudaQueue(std::shared_ptr<const Context> context) : context_(std::mov
   // A blocking stream (not CU_STREAM_NON_BLOCKING) also orders against work that other code, such
   // as GL interop, puts on the legacy default stream.
   context_->check(context_->api().cuStreamCreate(&stream_, CU_STREAM_DEFAULT), "cuStreamCreate");
+  const char* graphs = std::getenv("DEPTHTRACK_CUDA_GRAPHS");
+  const bool turned_off = graphs && (std::strcmp(graphs, "0") == 0 || std::strcmp(graphs, "off") == 0);
+  if (!turned_off && LaunchGraphs::supported(context_->api())) graphs_ = std::make_unique<LaunchGraphs>(context_);
 }
 
 CudaQueue::~CudaQueue() {
+  graphs_.reset();
   // Pending work still completes; the driver frees the stream afterwards.
   if (context_->try_make_current()) context_->api().cuStreamDestroy(stream_);
+}
+
+void CudaQueue::begin_batch() {
+  if (batching_) throw InputError("begin_batch on " + context_->where() + ": a batch is already open");
+  batching_ = graphs_ != nullptr;
+}
+
+void CudaQueue::end_batch() {
+  if (!batching_) return;
+  batching_ = false;
+  graphs_->submit(stream_);
+}
+
+void CudaQueue::hand_over_batch() {
+  if (batching_) graphs_->submit(stream_);
 }
 
 std::unique_ptr<DeviceMemory> CudaQueue::allocate(size_t bytes) {
@@ -44,6 +65,7 @@ void CudaQueue::write(DeviceMemory& memory, size_t offset, const void* source, s
   const CudaMemory& cuda = checked(memory, offset, bytes, "write");
   if (bytes == 0) return;
   if (!source) throw InputError("write of " + std::to_string(bytes) + " bytes from a null host pointer");
+  hand_over_batch();
   context_->make_current();
   // On the queue's stream, then waited for: in order with enqueued work, and blocking.
   context_->check(context_->api().cuMemcpyHtoDAsync(cuda.pointer() + offset, source, bytes, stream_),
@@ -55,6 +77,7 @@ void CudaQueue::read(const DeviceMemory& memory, size_t offset, void* destinatio
   const CudaMemory& cuda = checked(memory, offset, bytes, "read");
   if (bytes == 0) return;
   if (!destination) throw InputError("read of " + std::to_string(bytes) + " bytes into a null host pointer");
+  hand_over_batch();
   context_->make_current();
   context_->check(context_->api().cuMemcpyDtoHAsync(destination, cuda.pointer() + offset, bytes, stream_),
                   "cuMemcpyDtoHAsync");
@@ -87,6 +110,7 @@ void CudaQueue::copy(const DeviceMemory& source, size_t source_offset, DeviceMem
   if (from_start < to_start + bytes && to_start < from_start + bytes)
     throw InputError("copy of " + std::to_string(bytes) + " bytes from offset " + std::to_string(source_offset) +
                      " to offset " + std::to_string(destination_offset) + " of one allocation: the ranges overlap");
+  hand_over_batch();
   context_->make_current();
   context_->check(context_->api().cuMemcpyDtoDAsync(to.pointer() + destination_offset, from.pointer() + source_offset,
                                                     bytes, stream_),
@@ -124,6 +148,7 @@ EventPtr CudaQueue::enqueue(Kernel& kernel, const NdRange& range, bool timed) {
     throw InputError("launch on " + context_->where() + ": kernel '" + kernel.name() + "' was built for " +
                      cuda->context().where());
   const LaunchShape shape = launch_shape(range, cuda->limits(), cuda->name(), context_->where());
+  if (batching_) return graphs_->record(*cuda, shape, timed);
   std::vector<void*> arguments = cuda->argument_pointers();
   context_->make_current();
   std::shared_ptr<CudaEvent> event = timed ? std::make_shared<CudaEvent>(context_) : nullptr;
@@ -149,6 +174,7 @@ std::unique_ptr<Queue> CudaQueue::another_queue() {
 }
 
 void CudaQueue::finish() {
+  hand_over_batch();
   context_->make_current();
   context_->check(context_->api().cuStreamSynchronize(stream_), "cuStreamSynchronize");
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "compute/cuda/cuda_context.hpp"
+#include "compute/cuda/cuda_launch_graph.hpp"
 #include "compute/queue.hpp"
 
 namespace depthtrack::compute::cuda {
@@ -32,6 +33,11 @@ class CudaQueue final : public Queue {
   EventPtr launch(Kernel& kernel, const NdRange& range) override;
   void launch_untimed(Kernel& kernel, const NdRange& range) override;
   void finish() override;
+  // A batch becomes a CUDA graph (compute/cuda/cuda_launch_graph.hpp) where the driver has graphs and
+  // DEPTHTRACK_CUDA_GRAPHS is not "0" or "off" (the environment is read when the queue is made).
+  void begin_batch() override;
+  void end_batch() override;
+  const LaunchGraphs* graphs() const { return graphs_.get(); }  // null without graphs; for tests
   // A stream of its own in this queue's context.
   std::unique_ptr<Queue> another_queue() override;
 
@@ -41,6 +47,8 @@ class CudaQueue final : public Queue {
 
  private:
   EventPtr enqueue(Kernel& kernel, const NdRange& range, bool timed);
+  // Launches what a batch holds so far, so that the operation that follows keeps its place in order.
+  void hand_over_batch();
   // A new stream in `context`.
   explicit CudaQueue(std::shared_ptr<const Context> context);
 
@@ -49,6 +57,8 @@ class CudaQueue final : public Queue {
 
   std::shared_ptr<const Context> context_;
   CUstream stream_ = nullptr;
+  std::unique_ptr<LaunchGraphs> graphs_;  // null where graphs are off
+  bool batching_ = false;
   // The one mapping map_for_overwrite hands out: host bytes written to the device at unmap.
   struct Mapping {
     DeviceMemory* memory = nullptr;
