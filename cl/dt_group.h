@@ -16,22 +16,6 @@ DT_DEVICE_FN float dt_group_sum(DT_LOCAL_PTR float* scratch, float value) {
   return scratch[0];
 }
 
-/* The sums of values[0..n) over the group, each into its values[k] on every work-item, with one tree
- * for all n (scratch holds n * DT_GROUP_SIZE floats): each sum adds what dt_group_sum's tree adds, in the
- * same order, so the results are those of n dt_group_sum calls, bit for bit, for one tree's barriers. */
-DT_DEVICE_FN void dt_group_sums(DT_LOCAL_PTR float* scratch, float* values, int n) {
-  const uint lid = get_local_id(0);
-  barrier(CLK_LOCAL_MEM_FENCE); /* the previous use of scratch is over */
-  for (int k = 0; k < n; ++k) scratch[k * DT_GROUP_SIZE + lid] = values[k];
-  barrier(CLK_LOCAL_MEM_FENCE);
-  for (uint stride = DT_GROUP_SIZE / 2; stride > 0; stride >>= 1) {
-    if (lid < stride)
-      for (int k = 0; k < n; ++k) scratch[k * DT_GROUP_SIZE + lid] += scratch[k * DT_GROUP_SIZE + lid + stride];
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
-  for (int k = 0; k < n; ++k) values[k] = scratch[k * DT_GROUP_SIZE];
-}
-
 /* Largest value over the group and the smallest index holding it, returned to every work-item. */
 DT_DEVICE_FN float dt_group_argmax(DT_LOCAL_PTR float* values, DT_LOCAL_PTR uint* indices, float value, uint index,
                                    uint* argmax) {

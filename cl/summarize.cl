@@ -17,7 +17,7 @@
 __kernel void summarize(__global const float* state, __global const float* log_weight,
                         __global const float* log_likelihood, __global float* weights, __global float* estimate,
                         uint count, float centre_x, float centre_y, float centre_z, float kl_threshold) {
-  __local float scratch[DT_WEIGHTED_SUMS * DT_GROUP_SIZE]; /* the weighted sums' one tree */
+  __local float scratch[DT_GROUP_SIZE];
   __local uint scratch_index[DT_GROUP_SIZE];
   const uint lid = get_local_id(0);
   const dt_vec3 centre = dt_vec3_make(centre_x, centre_y, centre_z);
@@ -39,14 +39,14 @@ __kernel void summarize(__global const float* state, __global const float* log_w
     weights[i] = w;
     if (w > 0.0f) dt_add_weighted(acc, state, log_likelihood, i, w, centre); /* 0 adds exactly 0 */
   }
-  dt_group_sums(scratch, acc, DT_WEIGHTED_SUMS);
+  for (int k = 0; k < DT_WEIGHTED_SUMS; ++k) acc[k] = dt_group_sum(scratch, acc[k]);
 
   dt_quat mean = dt_load_rotation(state, heaviest);
   for (int iteration = 0; iteration < DT_KARCHER_STEPS; ++iteration) {
     float step[3] = {0.0f, 0.0f, 0.0f};
     for (uint i = lid; i < count; i += DT_GROUP_SIZE)
       if (weights[i] > 0.0f) dt_add_karcher_step(step, state, i, weights[i], mean); /* 0 adds exactly 0 */
-    dt_group_sums(scratch, step, 3);
+    for (int k = 0; k < 3; ++k) step[k] = dt_group_sum(scratch, step[k]);
     mean = dt_quat_normalize(dt_quat_mul(mean, dt_quat_exp(dt_vec3_make(step[0], step[1], step[2]))));
   }
 

@@ -92,7 +92,6 @@ __kernel void summarize_weights(__global const float* state, __global const floa
                                 float centre_x, float centre_y, float centre_z, __global float* partials) {
   __local float scratch[DT_GROUP_SIZE];
   __local uint scratch_index[DT_GROUP_SIZE];
-  __local float sums[DT_WEIGHTED_SUMS * DT_GROUP_SIZE]; /* the weighted sums' one tree */
   const uint groups = get_num_groups(0);
   const dt_vec3 centre = dt_vec3_make(centre_x, centre_y, centre_z);
   uint heaviest;
@@ -105,16 +104,16 @@ __kernel void summarize_weights(__global const float* state, __global const floa
     weights[i] = w;
     if (w > 0.0f) dt_add_weighted(acc, state, log_likelihood, i, w, centre);
   }
-  dt_group_sums(sums, acc, DT_WEIGHTED_SUMS);
-  if (get_local_id(0) == 0)
-    for (int k = 0; k < DT_WEIGHTED_SUMS; ++k) partials[(DT_PARTIAL_ACC + k) * groups + get_group_id(0)] = acc[k];
+  for (int k = 0; k < DT_WEIGHTED_SUMS; ++k) {
+    const float sum = dt_group_sum(scratch, acc[k]);
+    if (get_local_id(0) == 0) partials[(DT_PARTIAL_ACC + k) * groups + get_group_id(0)] = sum;
+  }
 }
 
 __kernel void summarize_karcher(__global const float* state, __global const float* weights, uint count, uint iteration,
                                 __global float* partials) {
   __local float scratch[DT_GROUP_SIZE];
   __local uint scratch_index[DT_GROUP_SIZE];
-  __local float sums[3 * DT_GROUP_SIZE]; /* the step's one tree */
   const uint groups = get_num_groups(0);
   uint heaviest;
   dt_partials_max(scratch, scratch_index, partials, groups, &heaviest);
@@ -122,9 +121,10 @@ __kernel void summarize_karcher(__global const float* state, __global const floa
   float step[3] = {0.0f, 0.0f, 0.0f};
   for (uint i = get_global_id(0); i < count; i += get_global_size(0))
     if (weights[i] > 0.0f) dt_add_karcher_step(step, state, i, weights[i], mean);
-  dt_group_sums(sums, step, 3);
-  if (get_local_id(0) == 0)
-    for (uint k = 0; k < 3; ++k) partials[(DT_PARTIAL_STEP + 3 * iteration + k) * groups + get_group_id(0)] = step[k];
+  for (uint k = 0; k < 3; ++k) {
+    const float sum = dt_group_sum(scratch, step[k]);
+    if (get_local_id(0) == 0) partials[(DT_PARTIAL_STEP + 3 * iteration + k) * groups + get_group_id(0)] = sum;
+  }
 }
 
 /* One group; groups: how many the passes before ran with. */
