@@ -106,8 +106,8 @@ TEST_CASE("Batched launches equal the same launches made one by one, batch after
     // Buffers swap roles from batch to batch, as the filter's state and scratch do.
     compute::Buffer<float>& into = frame % 2 ? zs : ys;
     compute::LaunchBatch batch(*queue, true);
-    const compute::EventPtr first = queue->launch(*kernel, range, a, xs, into, count);    // a x + 1
-    queue->launch_untimed(*kernel, range, 2.0f, into, xs, count);                         // 2 (a x + 1) + 1
+    const compute::EventPtr first = queue->launch(*kernel, range, a, xs, into, count);     // a x + 1
+    queue->launch_untimed(*kernel, range, 2.0f, into, xs, count);                          // 2 (a x + 1) + 1
     const std::vector<float> middle = into.download();                                     // hands over
     const compute::EventPtr last = queue->launch(*kernel, range, 0.25f, xs, into, count);  // into = 0.25 xs + 1
     batch.submit();

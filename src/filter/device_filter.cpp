@@ -36,6 +36,17 @@ double device_span_ms(const std::vector<compute::EventPtr>& events) {
 size_t round_up(size_t n, size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
 }
+
+// The one-group summary's work-items. Its passes over the particles are chains of loads, one per
+// particle a work-item takes; on a GPU a bigger group makes each chain shorter. A CPU runs a group's
+// work-items in turn, so the filter's size stays there.
+constexpr size_t kGpuSummaryGroup = 512;
+size_t summary_group_size(const compute::DeviceInfo& device) {
+  if (!device.is_gpu) return kGroupSize;
+  size_t size = kGroupSize;
+  while (size * 2 <= std::min(kGpuSummaryGroup, device.max_work_group_size)) size *= 2;
+  return size;
+}
 }  // namespace
 
 double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bool gl_pages, bool atlas,
@@ -52,7 +63,9 @@ namespace {
 constexpr size_t kStaticLocalLimit = 48 * 1024;  // CUDA's for a block's static shared memory
 
 // The tile, and the pose box's reduction (5 floats a work-item), which the group sum reuses.
-size_t render_weigh_local_bytes(size_t pixels) { return pixels * sizeof(float) + 5 * kGroupSize * sizeof(float); }
+size_t render_weigh_local_bytes(size_t pixels) {
+  return pixels * sizeof(float) + 5 * kGroupSize * sizeof(float);
+}
 }  // namespace
 
 bool renders_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory) {
@@ -93,9 +106,9 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
       atlas_source_(make_atlas_source(*queue_, device_->programs, mesh, camera, config, gl)),
       mesh_(mesh) {
   // The window is the whole image by default: weigh then indexes the state by pixel (cl/dt_window.h).
-  const std::vector<std::string> defines = {"DT_GROUP_SIZE=" + std::to_string(kGroupSize),
-                                            model::occlusion_definition(config.occlusion_storage),
-                                            window_.pixels() == pixels_ ? "DT_WHOLE_IMAGE_STATE=1" : "DT_WHOLE_IMAGE_STATE=0"};
+  const std::vector<std::string> defines = {
+      "DT_GROUP_SIZE=" + std::to_string(kGroupSize), model::occlusion_definition(config.occlusion_storage),
+      window_.pixels() == pixels_ ? "DT_WHOLE_IMAGE_STATE=1" : "DT_WHOLE_IMAGE_STATE=0"};
   kernels_ = std::make_unique<Kernels>();
   Kernels& k = *kernels_;
   k.propagate_program = device_->programs.program("propagate.cl", defines);
@@ -106,7 +119,10 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
     wide_ = std::make_unique<WideSummary>(*queue_, device_->programs,
                                           model::occlusion_definition(config.occlusion_storage), count_);
   } else {
-    k.summarize_program = device_->programs.program("summarize.cl", defines);
+    summary_group_ = summary_group_size(queue_->info());
+    std::vector<std::string> summary_defines = defines;
+    summary_defines.front() = "DT_GROUP_SIZE=" + std::to_string(summary_group_);
+    k.summarize_program = device_->programs.program("summarize.cl", summary_defines);
     k.summarize = k.summarize_program->kernel("summarize");
     k.prefix_sum = k.resample_program->kernel("prefix_sum");
   }
@@ -133,14 +149,13 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   parents_ = compute::Buffer<unsigned>(q, count_);
   estimate_ = compute::Buffer<float>(q, DT_EST_SIZE);
   if (renders_inside_weigh(config.renderer, pixels_, q.info().local_memory) && atlas_source_->device_mesh()) {
-    render_weigh_ =
-        device_->programs
-            .program("render_weigh.cl",
-                     {defines[0], defines[1], defines[2], "DT_TILE_PIXELS=" + std::to_string(pixels_),
-                      "DT_SHARED_POINTS=" +
-                          std::to_string(render_weigh_shared_points(
-                              pixels_, atlas_source_->device_mesh()->vertex_count(), q.info().local_memory))})
-            ->kernel("render_weigh");
+    render_weigh_ = device_->programs
+                        .program("render_weigh.cl",
+                                 {defines[0], defines[1], defines[2], "DT_TILE_PIXELS=" + std::to_string(pixels_),
+                                  "DT_SHARED_POINTS=" + std::to_string(render_weigh_shared_points(
+                                                            pixels_, atlas_source_->device_mesh()->vertex_count(),
+                                                            q.info().local_memory))})
+                        ->kernel("render_weigh");
     render_weigh_mesh_ = atlas_source_->device_mesh();
   } else {  // the atlas drawn by its source (only each pose's box where it can), then weighed
     k.weigh_program = device_->programs.program("weigh.cl", defines);
@@ -410,8 +425,9 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
     p->summarized =
         wide_->summarize(state_, log_weight_, log_likelihood_, weights_, estimate_, cx, cy, cz, kl_threshold);
   else
-    p->summarized = {queue_->launch(*k.summarize, compute::NdRange::linear(kGroupSize, kGroupSize), state_, log_weight_,
-                                    log_likelihood_, weights_, estimate_, count, cx, cy, cz, kl_threshold)};
+    p->summarized = {queue_->launch(*k.summarize, compute::NdRange::linear(summary_group_, summary_group_), state_,
+                                    log_weight_, log_likelihood_, weights_, estimate_, count, cx, cy, cz,
+                                    kl_threshold)};
   // Before resample() overwrites parents_ with this frame's choice.
   if (refiner_)
     p->refined =

@@ -124,6 +124,7 @@ class DeviceFilter final : public FilterBackend {
   // where the next frame keeps them (next_window_: centred on the last estimate).
   model::StateWindow window_, next_window_;
   size_t count_;
+  size_t summary_group_ = 0;  // the one-group summary's work-items (none with the wide summary)
   std::unique_ptr<AtlasSource> atlas_source_;
   std::unique_ptr<Kernels> kernels_;
   std::unique_ptr<PoseScorer> scorer_;

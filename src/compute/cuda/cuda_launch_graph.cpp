@@ -160,8 +160,7 @@ void LaunchGraphs::update(Graph& graph) {
     if (launch.bytes == node.bytes) continue;
     const CUDA_KERNEL_NODE_PARAMS params =
         node_params(launch.function, launch.shape, pointers_into(launch.bytes, launch.offsets, pointers));
-    check(api.cuGraphExecKernelNodeSetParams(graph.exec, node.node, &params), "cuGraphExecKernelNodeSetParams",
-          launch);
+    check(api.cuGraphExecKernelNodeSetParams(graph.exec, node.node, &params), "cuGraphExecKernelNodeSetParams", launch);
     node.bytes = launch.bytes;
     ++nodes_updated_;
   }
