@@ -9,14 +9,15 @@
  * Compile-time choices: DT_GROUP_SIZE (power of two), DT_OCCLUSION as weigh.cl, DT_TILE_PIXELS the
  * image's pixels (the tile's size in work-group memory: the host uses this kernel only where it fits),
  * DT_SHARED_POINTS the vertices whose projections the group keeps in work-group memory (the mesh's
- * vertex count where they fit, else 0: each triangle then projects its own corners).
+ * vertex count where they fit, else 0: each triangle then projects its own corners), DT_RESIDENT_GROUPS the
+ * groups each compute unit should hold at once (CUDA's __launch_bounds__ through DT_RESIDENCY; 0: no hint).
  * Reference: Rasterizer::render and ReferenceFilter::weigh_particle. */
 #include "rasterize.cl"
 #include "dt_weigh.h"
 
 #define DT_DRAW_LIST 512u /* triangles listed per chunk (2 KB of work-group memory) */
 
-__kernel void render_weigh(__global const float* states, __global const float* vertices, __global const uint* triangles,
+__kernel DT_RESIDENCY void render_weigh(__global const float* states, __global const float* vertices, __global const uint* triangles,
                            __global const float* planes, uint triangle_count, uint vertex_count, dt_camera cam,
                            __global const float* observed, __global const uint* parents,
                            __global const float* occlusion_from, __global const dt_u16* time_from,

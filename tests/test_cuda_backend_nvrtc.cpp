@@ -73,13 +73,20 @@ TEST_CASE("The filter's kernels compile as CUDA for every occlusion variant", "[
   for (const std::string points : {"0", "423"})
     for (const std::string whole : {"0", "1"}) {
       CAPTURE(points, whole);
-      const std::string ptx = cuda::compile_to_ptx(
-          compute::kernel_source("render_weigh.cl"),
-          {"DT_GROUP_SIZE=128", "DT_OCCLUSION=0", "DT_TILE_PIXELS=4800", "DT_SHARED_POINTS=" + points,
-           "DT_WHOLE_IMAGE_STATE=" + whole},
-          90);
+      const std::string ptx = cuda::compile_to_ptx(compute::kernel_source("render_weigh.cl"),
+                                                   {"DT_GROUP_SIZE=128", "DT_OCCLUSION=0", "DT_TILE_PIXELS=4800",
+                                                    "DT_SHARED_POINTS=" + points, "DT_WHOLE_IMAGE_STATE=" + whole},
+                                                   90);
       CHECK(ptx.find(".entry render_weigh") != std::string::npos);
+      CHECK(ptx.find(".minnctapersm") == std::string::npos);  // no residency asked for
     }
+  // DT_RESIDENT_GROUPS becomes __launch_bounds__: PTX's minimum groups a multiprocessor, and the group size.
+  const std::string bounded = cuda::compile_to_ptx(
+      compute::kernel_source("render_weigh.cl"),
+      {"DT_GROUP_SIZE=128", "DT_OCCLUSION=0", "DT_TILE_PIXELS=4800", "DT_SHARED_POINTS=423", "DT_RESIDENT_GROUPS=8"},
+      90);
+  CHECK(bounded.find(".minnctapersm 8") != std::string::npos);
+  CHECK(bounded.find(".maxntid 128, 1, 1") != std::string::npos);
 }
 
 TEST_CASE("CUDA architecture choice falls back to the newest one NVRTC knows", "[cuda]") {

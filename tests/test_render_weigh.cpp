@@ -77,13 +77,13 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
     REQUIRE(points == mesh_buffers.vertex_count());
     auto fused_program = build("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=4800"});
     auto listed_program = build("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=4800",
-                                                     "DT_SHARED_POINTS=" + std::to_string(points)});
+                                                    "DT_SHARED_POINTS=" + std::to_string(points)});
     auto rasterize = raster_program->kernel("rasterize");
     auto weigh = weigh_program->kernel("weigh");
     // And with the host's promise that the state window is the whole image (DT_WHOLE_IMAGE_STATE).
-    auto whole_program = build("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=4800",
-                                                    "DT_SHARED_POINTS=" + std::to_string(points),
-                                                    "DT_WHOLE_IMAGE_STATE=1"});
+    auto whole_program =
+        build("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=4800",
+                                  "DT_SHARED_POINTS=" + std::to_string(points), "DT_WHOLE_IMAGE_STATE=1"});
     auto corners = fused_program->kernel("render_weigh"), listed = listed_program->kernel("render_weigh"),
          whole = whole_program->kernel("render_weigh");
     compute::Kernel* fused = corners.get();
@@ -177,4 +177,26 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
       CHECK(boxed.table == apart.table);
     }
   }
+}
+
+TEST_CASE("render_weigh asks for as many groups a unit as its memory holds, within 64 registers a work-item",
+          "[render]") {
+  compute::DeviceInfo h200;  // cuDeviceGetAttribute's values on an H200
+  h200.local_memory_per_unit = 233472;
+  h200.local_memory_reserved = 1024;
+  h200.registers_per_unit = 65536;
+  // 80x60 with the handset's 423 points: 19,200 (tile) + 2,560 (reduction) + 3,384 (points) + 2,052 (list
+  // and count) = 27,196 bytes, 28,220 with the reserve: 8 fit in 233,472; 65,536 / (128 x 64) = 8.
+  CHECK(render_weigh_resident_groups(4800, 423, h200) == 8);
+  // No points kept (a 16k-triangle mesh): 21,760 + 1,024 bytes, 10 fit; the registers' 8 decide.
+  CHECK(render_weigh_resident_groups(4800, 0, h200) == 8);
+  // A unit of 64 KiB holds 2 of the first.
+  compute::DeviceInfo small = h200;
+  small.local_memory_per_unit = 65536;
+  CHECK(render_weigh_resident_groups(4800, 423, small) == 2);
+  // A tile larger than the unit's memory still asks for one.
+  small.local_memory_per_unit = 16384;
+  CHECK(render_weigh_resident_groups(4800, 0, small) == 1);
+  // OpenCL says nothing of units: no hint.
+  CHECK(render_weigh_resident_groups(4800, 423, compute::DeviceInfo{}) == 0);
 }

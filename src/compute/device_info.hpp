@@ -20,6 +20,12 @@ struct DeviceInfo {
   size_t global_memory = 0;   // bytes
   size_t max_allocation = 0;  // bytes in one buffer
   size_t local_memory = 0;    // bytes per work-group
+  // What one compute unit holds for all the groups resident on it at once, where the API says (CUDA: a
+  // multiprocessor's shared memory, less nothing, and its registers; each group's share of shared memory
+  // is its own plus local_memory_reserved). 0 where it does not (OpenCL).
+  size_t local_memory_per_unit = 0;
+  size_t local_memory_reserved = 0;
+  size_t registers_per_unit = 0;
   size_t max_work_group_size = 0;
   int compute_units = 0;
   // Extensions that matter to depthtrack.

@@ -72,11 +72,28 @@ bool renders_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory)
   return renderer == Renderer::Kernel && render_weigh_local_bytes(pixels) <= std::min(local_memory, kStaticLocalLimit);
 }
 
+namespace {
+// render_weigh's work-group memory with shared_points' projections kept: the tile and reduction, the
+// points, the triangle list (cl/render_weigh.cl's DT_DRAW_LIST) and its count.
+size_t render_weigh_group_bytes(size_t pixels, size_t shared_points) {
+  constexpr size_t kDrawList = 512;
+  return render_weigh_local_bytes(pixels) +
+         (shared_points > 0 ? shared_points * 2 * sizeof(float) + (kDrawList + 1) * sizeof(unsigned) : 0);
+}
+}  // namespace
+
 size_t render_weigh_shared_points(size_t pixels, size_t vertex_count, size_t local_memory) {
-  constexpr size_t kDrawList = 512;  // cl/render_weigh.cl's DT_DRAW_LIST, and its count
-  const size_t needed =
-      render_weigh_local_bytes(pixels) + vertex_count * 2 * sizeof(float) + (kDrawList + 1) * sizeof(unsigned);
+  const size_t needed = render_weigh_group_bytes(pixels, vertex_count);
   return vertex_count > 0 && needed <= std::min(local_memory, kStaticLocalLimit) ? vertex_count : 0;
+}
+
+size_t render_weigh_resident_groups(size_t pixels, size_t shared_points, const compute::DeviceInfo& device) {
+  constexpr size_t kRegisterFloor = 64;  // NVRTC 13 fits render_weigh in 63 without spills; in 56 it spills
+  if (device.local_memory_per_unit == 0 || device.registers_per_unit == 0) return 0;
+  const size_t by_memory =
+      device.local_memory_per_unit / (render_weigh_group_bytes(pixels, shared_points) + device.local_memory_reserved);
+  const size_t by_registers = device.registers_per_unit / (kGroupSize * kRegisterFloor);
+  return std::max<size_t>(1, std::min(by_memory, by_registers));
 }
 
 struct DeviceFilter::Kernels {
@@ -149,12 +166,14 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   parents_ = compute::Buffer<unsigned>(q, count_);
   estimate_ = compute::Buffer<float>(q, DT_EST_SIZE);
   if (renders_inside_weigh(config.renderer, pixels_, q.info().local_memory) && atlas_source_->device_mesh()) {
+    const size_t shared_points =
+        render_weigh_shared_points(pixels_, atlas_source_->device_mesh()->vertex_count(), q.info().local_memory);
     render_weigh_ = device_->programs
                         .program("render_weigh.cl",
                                  {defines[0], defines[1], defines[2], "DT_TILE_PIXELS=" + std::to_string(pixels_),
-                                  "DT_SHARED_POINTS=" + std::to_string(render_weigh_shared_points(
-                                                            pixels_, atlas_source_->device_mesh()->vertex_count(),
-                                                            q.info().local_memory))})
+                                  "DT_SHARED_POINTS=" + std::to_string(shared_points),
+                                  "DT_RESIDENT_GROUPS=" +
+                                      std::to_string(render_weigh_resident_groups(pixels_, shared_points, q.info()))})
                         ->kernel("render_weigh");
     render_weigh_mesh_ = atlas_source_->device_mesh();
   } else {  // the atlas drawn by its source (only each pose's box where it can), then weighed

@@ -14,6 +14,15 @@ int device_attribute(const DriverApi& api, CUdevice device, CUdevice_attribute a
   return value;
 }
 
+namespace {
+// An attribute that older drivers may not know: 0 where the driver refuses it.
+size_t optional_attribute(const DriverApi& api, CUdevice device, CUdevice_attribute attribute) {
+  int value = 0;
+  return api.cuDeviceGetAttribute(&value, attribute, device) == CUDA_SUCCESS && value > 0 ? static_cast<size_t>(value)
+                                                                                          : 0;
+}
+}  // namespace
+
 int compute_capability(const DriverApi& api, CUdevice device) {
   return device_attribute(api, device, CU_DEVICE_ATTRIBUTE_COMPUTE_CAPABILITY_MAJOR) * 10 +
          device_attribute(api, device, CU_DEVICE_ATTRIBUTE_COMPUTE_CAPABILITY_MINOR);
@@ -43,6 +52,10 @@ DeviceInfo query_device(const DriverApi& api, int ordinal) {
   info.max_allocation = total;  // CUDA has no per-allocation limit below the memory itself
   info.local_memory =
       static_cast<size_t>(device_attribute(api, device, CU_DEVICE_ATTRIBUTE_MAX_SHARED_MEMORY_PER_BLOCK));
+  info.local_memory_per_unit =
+      optional_attribute(api, device, CU_DEVICE_ATTRIBUTE_MAX_SHARED_MEMORY_PER_MULTIPROCESSOR);
+  info.local_memory_reserved = optional_attribute(api, device, CU_DEVICE_ATTRIBUTE_RESERVED_SHARED_MEMORY_PER_BLOCK);
+  info.registers_per_unit = optional_attribute(api, device, CU_DEVICE_ATTRIBUTE_MAX_REGISTERS_PER_MULTIPROCESSOR);
   info.max_work_group_size =
       static_cast<size_t>(device_attribute(api, device, CU_DEVICE_ATTRIBUTE_MAX_THREADS_PER_BLOCK));
   info.compute_units = device_attribute(api, device, CU_DEVICE_ATTRIBUTE_MULTIPROCESSOR_COUNT);
@@ -50,7 +63,7 @@ DeviceInfo query_device(const DriverApi& api, int ordinal) {
   info.external_memory = true;  // cuImportExternalMemory (opaque fd)
   info.fp64 = true;
   info.int64_atomics = true;  // atomicMin on unsigned long long: sm_35 on, below what NVRTC targets
-  info.subgroups = true;  // warps
+  info.subgroups = true;      // warps
   CUuuid uuid{};
   if (api.cuDeviceGetUuid && api.cuDeviceGetUuid(&uuid, device) == CUDA_SUCCESS) {
     info.uuid.emplace();

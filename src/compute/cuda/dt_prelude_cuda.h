@@ -14,6 +14,13 @@ typedef unsigned long long dt_u64;
 #define __global
 #define __local __shared__
 #define restrict __restrict__
+/* A kernel's __launch_bounds__ where its program asks for DT_RESIDENT_GROUPS groups on each multiprocessor
+ * (cl/render_weigh.cl): NVRTC then keeps the registers within that share. */
+#if defined(DT_RESIDENT_GROUPS) && DT_RESIDENT_GROUPS > 0
+#define DT_RESIDENCY __launch_bounds__(DT_GROUP_SIZE, DT_RESIDENT_GROUPS)
+#else
+#define DT_RESIDENCY
+#endif
 #define CLK_LOCAL_MEM_FENCE 1
 #define CLK_GLOBAL_MEM_FENCE 2
 #define barrier(flags) __syncthreads()

@@ -8,6 +8,7 @@ typedef ulong dt_u64;
 #define DT_FN inline
 #define DT_DEVICE_FN inline
 #define DT_LOCAL_PTR __local /* a pointer parameter into work-group memory */
+#define DT_RESIDENCY          /* CUDA's __launch_bounds__ (DT_RESIDENT_GROUPS); OpenCL's compilers choose */
 #define dt_mulhi(a, b) mul_hi(DT_CAST(dt_u32, a), DT_CAST(dt_u32, b))
 #define dt_logf log
 #define dt_sqrtf sqrt
