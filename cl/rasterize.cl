@@ -315,9 +315,10 @@ DT_DEVICE_FN uint dt_box_pixel(dt_pixel_box box, uint k, dt_camera cam) {
  * boxes (4 per particle: u0, v0, width, height): the rest of the tile is left as it was, and whoever
  * reads the tile takes pixels outside the box as empty (weigh.cl, DeviceFilter::last_atlas). At 640x480
  * the object's box is a few percent of the tile, which every frame was cleared, finished and read. */
-__kernel void rasterize(__global const float* states, __global const float* vertices, __global const uint* triangles,
-                        __global const float* planes, uint triangle_count, uint vertex_count, dt_camera cam,
-                        dt_atlas_layout layout, __global uint* atlas, __global uint* boxes, uint boxed) {
+__kernel DT_RESIDENCY void rasterize(__global const float* states, __global const float* vertices,
+                                     __global const uint* triangles, __global const float* planes, uint triangle_count,
+                                     uint vertex_count, dt_camera cam, dt_atlas_layout layout, __global uint* atlas,
+                                     __global uint* boxes, uint boxed) {
   __local float scratch[5 * DT_GROUP_SIZE];
   const uint particle = get_group_id(0), lid = get_local_id(0);
   const dt_rigid pose = dt_particle_pose(states + DT_CAST(ulong, particle) * DT_STATE_STRIDE);

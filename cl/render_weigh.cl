@@ -17,13 +17,15 @@
 
 #define DT_DRAW_LIST 512u /* triangles listed per chunk (2 KB of work-group memory) */
 
-__kernel DT_RESIDENCY void render_weigh(__global const float* states, __global const float* vertices, __global const uint* triangles,
-                           __global const float* planes, uint triangle_count, uint vertex_count, dt_camera cam,
-                           __global const float* observed, __global const uint* parents,
-                           __global const float* occlusion_from, __global const dt_u16* time_from,
-                           __global float* occlusion_to, __global dt_u16* time_to, __global float* frame_times,
-                           __global float* log_likelihood, __global float* log_weight, dt_model m, float now,
-                           uint now_index, float dt, __global uint* atlas, uint keep_atlas, dt_window win) {
+__kernel DT_RESIDENCY void render_weigh(__global const float* states, __global const float* vertices,
+                                        __global const uint* triangles, __global const float* planes,
+                                        uint triangle_count, uint vertex_count, dt_camera cam,
+                                        __global const float* observed, __global const uint* parents,
+                                        __global const float* occlusion_from, __global const dt_u16* time_from,
+                                        __global float* occlusion_to, __global dt_u16* time_to,
+                                        __global float* frame_times, __global float* log_likelihood,
+                                        __global float* log_weight, dt_model m, float now, uint now_index, float dt,
+                                        __global uint* atlas, uint keep_atlas, dt_window win) {
   __local uint tile[DT_TILE_PIXELS];
   __local float scratch[5 * DT_GROUP_SIZE]; /* dt_pose_box's reduction, then the group sum */
 #if DT_SHARED_POINTS > 0

@@ -87,6 +87,9 @@ TEST_CASE("The filter's kernels compile as CUDA for every occlusion variant", "[
       90);
   CHECK(bounded.find(".minnctapersm 8") != std::string::npos);
   CHECK(bounded.find(".maxntid 128, 1, 1") != std::string::npos);
+  const std::string rasterize =
+      cuda::compile_to_ptx(compute::kernel_source("rasterize.cl"), {"DT_GROUP_SIZE=128", "DT_RESIDENT_GROUPS=8"}, 90);
+  CHECK(rasterize.find(".minnctapersm 8") != std::string::npos);
 }
 
 TEST_CASE("CUDA architecture choice falls back to the newest one NVRTC knows", "[cuda]") {

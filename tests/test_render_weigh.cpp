@@ -179,8 +179,10 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
   }
 }
 
-TEST_CASE("render_weigh asks for as many groups a unit as its memory holds, within 64 registers a work-item",
-          "[render]") {
+TEST_CASE(
+    "render_weigh and rasterize ask for as many groups a unit as its memory holds, within 64 registers a "
+    "work-item",
+    "[render]") {
   compute::DeviceInfo h200;  // cuDeviceGetAttribute's values on an H200
   h200.local_memory_per_unit = 233472;
   h200.local_memory_reserved = 1024;
@@ -199,4 +201,8 @@ TEST_CASE("render_weigh asks for as many groups a unit as its memory holds, with
   CHECK(render_weigh_resident_groups(4800, 0, small) == 1);
   // OpenCL says nothing of units: no hint.
   CHECK(render_weigh_resident_groups(4800, 423, compute::DeviceInfo{}) == 0);
+  // rasterize's 2,560 bytes (+ 1,024): 65 fit in memory, the registers allow 8; 256 work-items a group, 4.
+  CHECK(rasterize_definitions(128, h200) == std::vector<std::string>{"DT_GROUP_SIZE=128", "DT_RESIDENT_GROUPS=8"});
+  CHECK(rasterize_definitions(256, h200) == std::vector<std::string>{"DT_GROUP_SIZE=256", "DT_RESIDENT_GROUPS=4"});
+  CHECK(rasterize_definitions(128, compute::DeviceInfo{}).back() == "DT_RESIDENT_GROUPS=0");
 }

@@ -25,7 +25,7 @@ class KernelAtlasSource final : public AtlasSource {
         // Particle-major: cl/rasterize.cl writes each tile as one contiguous block.
         layout_(render::AtlasLayout::particle_major(config.particles, camera.width, camera.height)),
         camera_(model::camera_params(camera, config)),
-        program_(programs.program("rasterize.cl", {"DT_GROUP_SIZE=" + std::to_string(kGroupSize)})),
+        program_(programs.program("rasterize.cl", rasterize_definitions(kGroupSize, queue.info()))),
         kernel_(program_->kernel("rasterize")),
         mesh_(queue_, mesh) {}
 

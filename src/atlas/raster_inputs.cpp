@@ -1,6 +1,7 @@
 #include "atlas/raster_inputs.hpp"
 
 #include "atlas/triangle_planes.hpp"
+#include "compute/resident_groups.hpp"
 
 namespace depthtrack {
 
@@ -13,6 +14,12 @@ MeshBuffers::MeshBuffers(compute::Queue& queue, const Mesh& mesh)
   triangles.upload(
       std::span<const unsigned>(reinterpret_cast<const unsigned*>(mesh.triangles.front().data()), triangles.size()));
   planes.upload(render::triangle_planes(mesh));
+}
+
+std::vector<std::string> rasterize_definitions(size_t group_size, const compute::DeviceInfo& device) {
+  const size_t reduction_bytes = 5 * group_size * sizeof(float);  // rasterize.cl's scratch
+  return {"DT_GROUP_SIZE=" + std::to_string(group_size),
+          "DT_RESIDENT_GROUPS=" + std::to_string(compute::resident_groups(reduction_bytes, group_size, device))};
 }
 
 }  // namespace depthtrack

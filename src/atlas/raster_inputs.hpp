@@ -3,6 +3,8 @@
 // triangles' planes (the camera is model::camera_params). The atlas rasterizer and the pose
 // refinement both draw with them.
 #include <depthtrack/mesh.hpp>
+#include <string>
+#include <vector>
 
 #include "compute/buffer.hpp"
 
@@ -17,5 +19,10 @@ struct MeshBuffers {
   compute::Buffer<unsigned> triangles;  // 3 vertex indices each
   compute::Buffer<float> planes;        // render::triangle_planes
 };
+
+// cl/rasterize.cl's definitions for groups of group_size work-items on this device: the group size and
+// DT_RESIDENT_GROUPS for its pose-box reduction (5 floats a work-item). The kernel atlas source and the
+// pose scorer ask for the same, so they share one program.
+std::vector<std::string> rasterize_definitions(size_t group_size, const compute::DeviceInfo& device);
 
 }  // namespace depthtrack

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "compute/program_cache.hpp"
+#include "compute/resident_groups.hpp"
 #include "core/stopwatch.hpp"
 #include "dt_state.h"
 #include "dt_time_index.h"
@@ -88,12 +89,7 @@ size_t render_weigh_shared_points(size_t pixels, size_t vertex_count, size_t loc
 }
 
 size_t render_weigh_resident_groups(size_t pixels, size_t shared_points, const compute::DeviceInfo& device) {
-  constexpr size_t kRegisterFloor = 64;  // NVRTC 13 fits render_weigh in 63 without spills; in 56 it spills
-  if (device.local_memory_per_unit == 0 || device.registers_per_unit == 0) return 0;
-  const size_t by_memory =
-      device.local_memory_per_unit / (render_weigh_group_bytes(pixels, shared_points) + device.local_memory_reserved);
-  const size_t by_registers = device.registers_per_unit / (kGroupSize * kRegisterFloor);
-  return std::max<size_t>(1, std::min(by_memory, by_registers));
+  return compute::resident_groups(render_weigh_group_bytes(pixels, shared_points), kGroupSize, device);
 }
 
 struct DeviceFilter::Kernels {

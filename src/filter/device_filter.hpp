@@ -36,11 +36,8 @@ bool renders_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory)
 // renders_inside_weigh leaves, else 0 (each triangle then projects its own corners).
 size_t render_weigh_shared_points(size_t pixels, size_t vertex_count, size_t local_memory);
 
-// How many render_weigh groups each compute unit should hold at once (its DT_RESIDENT_GROUPS, CUDA's
-// __launch_bounds__ minimum), for its tile of pixels and shared_points: as many as the unit's work-group
-// memory holds, but no more than leave 64 registers a work-item. NVRTC otherwise takes 70 registers, so
-// one group fewer fits than memory allows (NVIDIA's OpenCL compiler takes 47). 0 where the device does not
-// say what a unit holds (OpenCL): the compiler's own choice.
+// How many render_weigh groups each compute unit should hold at once (its DT_RESIDENT_GROUPS), for its
+// tile of pixels and shared_points: compute::resident_groups of its work-group memory.
 size_t render_weigh_resident_groups(size_t pixels, size_t shared_points, const compute::DeviceInfo& device);
 
 class DevicePoseScorer;

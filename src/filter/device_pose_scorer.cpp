@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "atlas/raster_inputs.hpp"
 #include "compute/program_cache.hpp"
 #include "core/pose_state.hpp"
 #include "dt_state.h"
@@ -28,7 +29,7 @@ size_t batch_for(const compute::Queue& queue, size_t pixels) {
 }  // namespace
 
 DevicePoseScorerPrograms::DevicePoseScorerPrograms(compute::ProgramCache& programs)
-    : rasterize(programs.program("rasterize.cl", {"DT_GROUP_SIZE=" + std::to_string(kRasterizeGroup)})),
+    : rasterize(programs.program("rasterize.cl", rasterize_definitions(kRasterizeGroup, programs.queue().info()))),
       score(programs.program("score.cl", {"DT_GROUP_SIZE=" + std::to_string(kScoreGroup)})) {}
 
 DevicePoseScorer::DevicePoseScorer(compute::Queue& queue, std::shared_ptr<const DevicePoseScorerPrograms> programs,
