@@ -1,5 +1,7 @@
 // The reference rasterizer against analytic depth: planes and boxes intersected ray by ray.
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
 #include <depthtrack/error.hpp>
 #include <vector>
 
@@ -124,4 +126,53 @@ TEST_CASE("nothing behind the camera is drawn, and the output size is checked", 
   for (float z : depth) REQUIRE(z == 0.0f);
   std::vector<float> wrong(10);
   CHECK_THROWS_AS(r.render(Pose(), wrong), InputError);
+}
+
+namespace {
+// A bumpy closed sphere of rings x segments quads, with a second one inside poking through it: many
+// triangles per pixel, depths that cross, and ties where the surfaces meet.
+Mesh bumpy_spheres(int rings, int segments) {
+  Mesh mesh;
+  for (const float scale : {1.0f, 0.93f}) {
+    const int first = static_cast<int>(mesh.vertices.size());
+    for (int i = 0; i <= rings; ++i)
+      for (int j = 0; j < segments; ++j) {
+        const double theta = M_PI * i / rings, phi = 2 * M_PI * j / segments;
+        const double r = 0.05 * scale * (1.0 + 0.08 * std::sin(7 * phi) * std::sin(5 * theta));
+        mesh.vertices.emplace_back(static_cast<float>(r * std::sin(theta) * std::cos(phi)),
+                                   static_cast<float>(r * std::sin(theta) * std::sin(phi)),
+                                   static_cast<float>(r * std::cos(theta)));
+      }
+    for (int i = 0; i < rings; ++i)
+      for (int j = 0; j < segments; ++j) {
+        const int a = first + i * segments + j, b = first + i * segments + (j + 1) % segments;
+        mesh.triangles.emplace_back(a, b, a + segments);
+        mesh.triangles.emplace_back(b, b + segments, a + segments);
+      }
+  }
+  return mesh;
+}
+}  // namespace
+
+TEST_CASE("a render split over threads keeps the same depths and box, bit for bit", "[rasterizer]") {
+  const Mesh mesh = bumpy_spheres(40, 80);  // 12,800 triangles
+  const std::vector<Pose> poses = {
+      Pose({0.01, -0.005, 0.3}, Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 0.5).normalized()))),
+      Pose({0.0, 0.0, 0.12}, Eigen::Quaterniond::Identity()),  // the near plane cuts it
+      Pose({0.3, 0.2, 0.5}, Eigen::Quaterniond::Identity()),   // partly off the image
+      Pose({0, 0, -1}, Eigen::Quaterniond::Identity())};       // behind the camera: nothing
+  reference::Rasterizer plain(mesh, camera, 0.1, 10.0);
+  std::vector<float> expected(camera.pixel_count()), got(camera.pixel_count());
+  for (const int threads : {2, 3, 4}) {
+    reference::Rasterizer split(mesh, camera, 0.1, 10.0);
+    split.split_over(std::make_shared<ThreadPool>(threads));
+    for (size_t p = 0; p < poses.size(); ++p) {
+      CAPTURE(threads, p);
+      const reference::PixelBox a = plain.render(poses[p], expected);
+      const reference::PixelBox b = split.render(poses[p], got);
+      CHECK((a.u0 == b.u0 && a.v0 == b.v0 && a.u1 == b.u1 && a.v1 == b.v1));
+      CHECK(std::memcmp(expected.data(), got.data(), expected.size() * sizeof(float)) == 0);
+      CHECK((p == 3) == a.empty());
+    }
+  }
 }

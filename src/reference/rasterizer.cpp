@@ -30,24 +30,29 @@ inline bool owns_edge(double au, double av, double bu, double bv) {
 }
 }  // namespace
 
-PixelBox Rasterizer::render(const Pose& pose, std::span<float> depth, std::span<int> triangle_ids) const {
-  if (depth.size() != static_cast<size_t>(camera_.pixel_count()) ||
-      (!triangle_ids.empty() && triangle_ids.size() != depth.size()))
-    throw InputError("rasterizer output has the wrong size");
-  std::fill(depth.begin(), depth.end(), 0.0f);
-  std::fill(triangle_ids.begin(), triangle_ids.end(), -1);
-  const Eigen::Matrix3d r = pose.rotation.toRotationMatrix();
-  auto to_screen = [this](const Eigen::Vector3d& p) {
-    return ScreenVertex{camera_.fx * p.x() / p.z() + camera_.cx, camera_.fy * p.y() / p.z() + camera_.cy, 1.0 / p.z()};
-  };
-  // Each vertex projected once (a vertex is shared by about six triangles): the divisions were most of
-  // the time at 80x60, where the triangles of a YCB mesh cover a pixel or none.
-  for (size_t i = 0; i < vertices_.size(); ++i) {
-    transformed_[i] = r * vertices_[i] + pose.translation;
+void Rasterizer::split_over(std::shared_ptr<ThreadPool> pool) {
+  pool_ = pool && pool->size() > 1 ? std::move(pool) : nullptr;
+  parts_.assign(pool_ ? static_cast<size_t>(pool_->size() - 1) : 0,
+                std::vector<float>(static_cast<size_t>(camera_.pixel_count()), 0.0f));
+}
+
+Rasterizer::ScreenVertex Rasterizer::to_screen(const Eigen::Vector3d& p) const {
+  return ScreenVertex{camera_.fx * p.x() / p.z() + camera_.cx, camera_.fy * p.y() / p.z() + camera_.cy, 1.0 / p.z()};
+}
+
+// Each vertex projected once (a vertex is shared by about six triangles): the divisions were most of
+// the time at 80x60, where the triangles of a YCB mesh cover a pixel or none.
+void Rasterizer::project_vertices(size_t begin, size_t end, const Eigen::Matrix3d& rotation,
+                                  const Eigen::Vector3d& translation) const {
+  for (size_t i = begin; i < end; ++i) {
+    transformed_[i] = rotation * vertices_[i] + translation;
     if (transformed_[i].z() >= near_) screen_[i] = to_screen(transformed_[i]);
   }
-  PixelBox box{camera_.width, camera_.height, 0, 0};
-  for (size_t index = 0; index < triangles_.size(); ++index) {
+}
+
+void Rasterizer::draw_triangles(size_t begin, size_t end, std::span<float> depth, std::span<int> triangle_ids,
+                                PixelBox& box) const {
+  for (size_t index = begin; index < end; ++index) {
     const Eigen::Vector3i& t = triangles_[index];
     const int id = static_cast<int>(index);
     const std::array<Eigen::Vector3d, 3> p{transformed_[static_cast<size_t>(t[0])],
@@ -73,6 +78,54 @@ PixelBox Rasterizer::render(const Pose& pose, std::span<float> depth, std::span<
     for (int i = 1; i + 1 < n; ++i)
       rasterize_triangle(to_screen(clipped[0]), to_screen(clipped[static_cast<size_t>(i)]),
                          to_screen(clipped[static_cast<size_t>(i + 1)]), id, depth, triangle_ids, box);
+  }
+}
+
+PixelBox Rasterizer::render(const Pose& pose, std::span<float> depth, std::span<int> triangle_ids) const {
+  if (depth.size() != static_cast<size_t>(camera_.pixel_count()) ||
+      (!triangle_ids.empty() && triangle_ids.size() != depth.size()))
+    throw InputError("rasterizer output has the wrong size");
+  std::fill(depth.begin(), depth.end(), 0.0f);
+  std::fill(triangle_ids.begin(), triangle_ids.end(), -1);
+  const Eigen::Matrix3d r = pose.rotation.toRotationMatrix();
+  if (pool_ && triangle_ids.empty()) return render_split(r, pose.translation, depth);
+  project_vertices(0, vertices_.size(), r, pose.translation);
+  PixelBox box{camera_.width, camera_.height, 0, 0};
+  draw_triangles(0, triangles_.size(), depth, triangle_ids, box);
+  if (box.empty()) return PixelBox{};
+  return box;
+}
+
+// Part 0 draws into depth, part p > 0 into parts_[p - 1]; each part's nearest depths then go into depth
+// and its image back to 0 (only its box was written).
+PixelBox Rasterizer::render_split(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& translation,
+                                  std::span<float> depth) const {
+  const size_t parts = static_cast<size_t>(pool_->size());
+  const auto share = [parts](size_t count, size_t part) { return count * part / parts; };
+  pool_->run(parts, [&](size_t part, int) {
+    project_vertices(share(vertices_.size(), part), share(vertices_.size(), part + 1), rotation, translation);
+  });
+  std::vector<PixelBox> boxes(parts, PixelBox{camera_.width, camera_.height, 0, 0});
+  pool_->run(parts, [&](size_t part, int) {
+    const std::span<float> out = part == 0 ? depth : std::span<float>(parts_[part - 1]);
+    draw_triangles(share(triangles_.size(), part), share(triangles_.size(), part + 1), out, {}, boxes[part]);
+  });
+  PixelBox box = boxes[0];
+  const size_t width = static_cast<size_t>(camera_.width);
+  for (size_t part = 1; part < parts; ++part) {
+    const PixelBox& b = boxes[part];
+    std::vector<float>& drawn = parts_[part - 1];
+    for (int v = b.v0; v < b.v1; ++v)
+      for (int u = b.u0; u < b.u1; ++u) {
+        const size_t k = static_cast<size_t>(v) * width + static_cast<size_t>(u);
+        const float z = drawn[k];
+        if (z > 0.0f && (depth[k] == 0.0f || z < depth[k])) depth[k] = z;
+        drawn[k] = 0.0f;
+      }
+    box.u0 = std::min(box.u0, b.u0);
+    box.v0 = std::min(box.v0, b.v0);
+    box.u1 = std::max(box.u1, b.u1);
+    box.v1 = std::max(box.v1, b.v1);
   }
   if (box.empty()) return PixelBox{};
   return box;

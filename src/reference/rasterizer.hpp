@@ -10,8 +10,11 @@
 #include <depthtrack/camera.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/pose.hpp>
+#include <memory>
 #include <span>
 #include <vector>
+
+#include "core/thread_pool.hpp"
 
 namespace depthtrack::reference {
 
@@ -30,12 +33,25 @@ class Rasterizer {
   // depth each pixel kept, -1 where none: what a pose refinement needs for surface normals.
   PixelBox render(const Pose& camera_from_object, std::span<float> depth, std::span<int> triangle_ids = {}) const;
 
+  // Renders without triangle ids then split over pool's threads (each draws a share of the triangles into
+  // a depth image of its own; the nearest depth is kept): the same depths, bit for bit, since the nearest
+  // of the float depths does not depend on the order the triangles come in. A null pool, or one thread,
+  // draws on the caller's thread alone. The pool is shared by no concurrent render.
+  void split_over(std::shared_ptr<ThreadPool> pool);
+
   const Camera& camera() const { return camera_; }
 
  private:
   struct ScreenVertex {
     double u, v, inv_z;
   };
+  void project_vertices(size_t begin, size_t end, const Eigen::Matrix3d& rotation,
+                        const Eigen::Vector3d& translation) const;
+  void draw_triangles(size_t begin, size_t end, std::span<float> depth, std::span<int> triangle_ids,
+                      PixelBox& box) const;
+  PixelBox render_split(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& translation,
+                        std::span<float> depth) const;
+  ScreenVertex to_screen(const Eigen::Vector3d& p) const;
   void rasterize_triangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, int triangle,
                           std::span<float> depth, std::span<int> triangle_ids, PixelBox& box) const;
 
@@ -45,6 +61,8 @@ class Rasterizer {
   double near_, far_;
   mutable std::vector<Eigen::Vector3d> transformed_;  // scratch: vertices in the camera frame
   mutable std::vector<ScreenVertex> screen_;          // scratch: those in front of near, projected
+  std::shared_ptr<ThreadPool> pool_;                  // split_over's, or null
+  mutable std::vector<std::vector<float>> parts_;     // the pool's other threads' depths, kept all 0 between renders
 };
 
 }  // namespace depthtrack::reference
