@@ -23,7 +23,7 @@ TEST_CASE("A kernel source inlines each included file once", "[kernel_sources]")
   const std::string source = compute::kernel_source("rasterize.cl");
   CHECK(source.find("#include \"") == std::string::npos);
   CHECK(occurrences(source, "#define DT_PIXEL_BOX_H") == 1);
-  CHECK(occurrences(source, "__kernel void rasterize(") == 1);
+  CHECK(occurrences(source, "__kernel DT_RESIDENCY void rasterize(") == 1);
 }
 
 TEST_CASE("DEPTHTRACK_KERNEL_DIR replaces embedded kernel files by name", "[kernel_sources]") {
