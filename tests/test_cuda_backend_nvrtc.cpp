@@ -101,9 +101,10 @@ TEST_CASE("CUDA architecture choice falls back to the newest one NVRTC knows", "
 }
 
 TEST_CASE("Kernel names are read from the source text", "[cuda]") {
-  const auto names =
-      cuda::kernel_names("#define __kernel x\n__kernel void alpha(int a) {}\n__kernel  void beta (int b);");
-  CHECK(names == std::vector<std::string>{"alpha", "beta"});
+  const auto names = cuda::kernel_names(
+      "#define __kernel x\n__kernel void alpha(int a) {}\n__kernel  void beta (int b);\n"
+      "__kernel DT_RESIDENCY void gamma(int c) {}");
+  CHECK(names == std::vector<std::string>{"alpha", "beta", "gamma"});
 }
 
 #endif

@@ -11,8 +11,9 @@
 namespace depthtrack::compute::cuda {
 
 std::vector<std::string> kernel_names(const std::string& source) {
-  // The prelude turns `__kernel` into extern "C" __global__, so these are also the symbol names.
-  static const std::regex kernel(R"(__kernel\s+void\s+([A-Za-z_]\w*)\s*\()");
+  // The prelude turns `__kernel` into extern "C" __global__, so these are also the symbol names. An
+  // attribute macro may stand before `void` (DT_RESIDENCY).
+  static const std::regex kernel(R"(__kernel\s+(?:[A-Z_][A-Z0-9_]*\s+)?void\s+([A-Za-z_]\w*)\s*\()");
   std::vector<std::string> names;
   for (std::sregex_iterator it(source.begin(), source.end(), kernel), end; it != end; ++it)
     names.push_back((*it)[1].str());
