@@ -17,9 +17,8 @@ MeshBuffers::MeshBuffers(compute::Queue& queue, const Mesh& mesh)
 }
 
 std::vector<std::string> rasterize_definitions(size_t group_size, const compute::DeviceInfo& device) {
-  const size_t reduction_bytes = 5 * group_size * sizeof(float);  // rasterize.cl's scratch
-  return {"DT_GROUP_SIZE=" + std::to_string(group_size),
-          "DT_RESIDENT_GROUPS=" + std::to_string(compute::resident_groups(reduction_bytes, group_size, device))};
+  const size_t groups = compute::resident_groups(pose_box_scratch_bytes(group_size), group_size, device);
+  return {"DT_GROUP_SIZE=" + std::to_string(group_size), "DT_RESIDENT_GROUPS=" + std::to_string(groups)};
 }
 
 }  // namespace depthtrack

@@ -20,9 +20,15 @@ struct MeshBuffers {
   compute::Buffer<float> planes;        // render::triangle_planes
 };
 
+// Work-group memory of dt_pose_box's reduction (cl/rasterize.cl: 5 floats a work-item), which rasterize
+// and render_weigh declare.
+constexpr size_t pose_box_scratch_bytes(size_t group_size) {
+  return 5 * group_size * sizeof(float);
+}
+
 // cl/rasterize.cl's definitions for groups of group_size work-items on this device: the group size and
-// DT_RESIDENT_GROUPS for its pose-box reduction (5 floats a work-item). The kernel atlas source and the
-// pose scorer ask for the same, so they share one program.
+// DT_RESIDENT_GROUPS for its pose-box reduction, all the memory it declares. The kernel atlas source and
+// the pose scorer ask for the same, so they share one program.
 std::vector<std::string> rasterize_definitions(size_t group_size, const compute::DeviceInfo& device);
 
 }  // namespace depthtrack

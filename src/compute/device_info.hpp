@@ -21,8 +21,8 @@ struct DeviceInfo {
   size_t max_allocation = 0;  // bytes in one buffer
   size_t local_memory = 0;    // bytes per work-group
   // What one compute unit holds for all the groups resident on it at once, where the API says (CUDA: a
-  // multiprocessor's shared memory, less nothing, and its registers; each group's share of shared memory
-  // is its own plus local_memory_reserved). 0 where it does not (OpenCL).
+  // multiprocessor's shared memory and registers; each group takes its own shared memory plus
+  // local_memory_reserved). 0 where it does not (OpenCL).
   size_t local_memory_per_unit = 0;
   size_t local_memory_reserved = 0;
   size_t registers_per_unit = 0;

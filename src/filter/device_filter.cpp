@@ -63,9 +63,9 @@ double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bo
 namespace {
 constexpr size_t kStaticLocalLimit = 48 * 1024;  // CUDA's for a block's static shared memory
 
-// The tile, and the pose box's reduction (5 floats a work-item), which the group sum reuses.
+// The tile, and the pose box's reduction, which the group sum reuses.
 size_t render_weigh_local_bytes(size_t pixels) {
-  return pixels * sizeof(float) + 5 * kGroupSize * sizeof(float);
+  return pixels * sizeof(float) + pose_box_scratch_bytes(kGroupSize);
 }
 }  // namespace
 

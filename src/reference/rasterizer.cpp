@@ -34,6 +34,7 @@ void Rasterizer::split_over(std::shared_ptr<ThreadPool> pool) {
   pool_ = pool && pool->size() > 1 ? std::move(pool) : nullptr;
   parts_.assign(pool_ ? static_cast<size_t>(pool_->size() - 1) : 0,
                 std::vector<float>(static_cast<size_t>(camera_.pixel_count()), 0.0f));
+  part_boxes_.resize(pool_ ? static_cast<size_t>(pool_->size()) : 0);
 }
 
 Rasterizer::ScreenVertex Rasterizer::to_screen(const Eigen::Vector3d& p) const {
@@ -105,7 +106,8 @@ PixelBox Rasterizer::render_split(const Eigen::Matrix3d& rotation, const Eigen::
   pool_->run(parts, [&](size_t part, int) {
     project_vertices(share(vertices_.size(), part), share(vertices_.size(), part + 1), rotation, translation);
   });
-  std::vector<PixelBox> boxes(parts, PixelBox{camera_.width, camera_.height, 0, 0});
+  std::vector<PixelBox>& boxes = part_boxes_;
+  std::fill(boxes.begin(), boxes.end(), PixelBox{camera_.width, camera_.height, 0, 0});
   pool_->run(parts, [&](size_t part, int) {
     const std::span<float> out = part == 0 ? depth : std::span<float>(parts_[part - 1]);
     draw_triangles(share(triangles_.size(), part), share(triangles_.size(), part + 1), out, {}, boxes[part]);

@@ -63,6 +63,7 @@ class Rasterizer {
   mutable std::vector<ScreenVertex> screen_;          // scratch: those in front of near, projected
   std::shared_ptr<ThreadPool> pool_;                  // split_over's, or null
   mutable std::vector<std::vector<float>> parts_;     // the pool's other threads' depths, kept all 0 between renders
+  mutable std::vector<PixelBox> part_boxes_;          // each thread's share's box (render_split)
 };
 
 }  // namespace depthtrack::reference

@@ -15,7 +15,7 @@ typedef unsigned long long dt_u64;
 #define __local __shared__
 #define restrict __restrict__
 /* A kernel's __launch_bounds__ where its program asks for DT_RESIDENT_GROUPS groups on each multiprocessor
- * (cl/render_weigh.cl): NVRTC then keeps the registers within that share. */
+ * (render_weigh, rasterize: compute/resident_groups.hpp): NVRTC then keeps the registers within that share. */
 #if defined(DT_RESIDENT_GROUPS) && DT_RESIDENT_GROUPS > 0
 #define DT_RESIDENCY __launch_bounds__(DT_GROUP_SIZE, DT_RESIDENT_GROUPS)
 #else
