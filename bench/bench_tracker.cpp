@@ -88,9 +88,10 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
       (refine.enabled ? "_refine" + std::to_string(refine.iterations) : "_norefine") +
       (refine.enabled && refine.layout != RefineLayout::Auto ? std::string("_") + to_string(refine.layout)
                                                              : std::string()) +
-      (window.width > 0 || window.height > 0
+      (window.is_automatic() ? std::string()
+       : window.width > 0 || window.height > 0
            ? "_window" + std::to_string(window.width) + "x" + std::to_string(window.height)
-           : std::string()) +
+           : std::string("_windowfull")) +
       (simplify_error > 0 ? "_simplify" + bench::compact_number(simplify_error * 1e3) + "mm" : std::string());
   const std::string platform = host_backend(backend) ? "cpu" : backend;
   const std::string name = host_backend(backend) ? bench::cpu_name() : device;
@@ -121,7 +122,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
 const char* const kUsage =
     "usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] "
     "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N] [--refine-converged M]\n"
-    "       [--refine-layout auto|one-group|spread] [--occlusion-window WxH] [--simplify-error M]\n"
+    "       [--refine-layout auto|one-group|spread] [--occlusion-window auto|full|WxH] [--simplify-error M]\n"
     "       [--mesh FILE] [--no-global] [--multi-objects]\n"
     "Times tracker frames on a synthetic occluded handset sequence, split into propagate / render / hand-off /\n"
     "weigh / resample, start-up (construction + initialize) with its peak host memory, and the off-screen start\n"
@@ -140,8 +141,9 @@ const char* const kUsage =
     "  --refine-layout NAME   device backends' refinement: auto (default: spread on GPUs and for meshes\n"
     "                         of 4,096 triangles or more), one-group or spread; a given one is named in the test "
     "column\n"
-    "  --occlusion-window WxH particles keep occlusion state in a WxH window around the estimate (default: the\n"
-    "                         whole image; TrackerConfig::occlusion_window), named in the test column\n"
+    "  --occlusion-window W   particles keep occlusion state in a window around the estimate: auto (default:\n"
+    "                         sized to the object; TrackerConfig::occlusion_window), full (the whole image) or\n"
+    "                         WxH; full and WxH are named in the test column\n"
     "  --simplify-error M     draw the mesh simplified to within M metres of its surface (default 0: as given;\n"
     "                         TrackerConfig::simplify_error), named in the test column; also --multi-objects'\n"
     "  --mesh FILE            track this mesh instead of the handset (e.g. a 16k-triangle YCB mesh)\n"
@@ -259,8 +261,15 @@ int main(int argc, char** argv) {
       } catch (const InputError& e) {
         throw bench::UsageError{e.what()};
       }
-    else if (arg == "--occlusion-window")
-      std::tie(window.width, window.height) = bench::parse_size(args.value(), arg);
+    else if (arg == "--occlusion-window") {
+      const std::string value = args.value();
+      if (value == "full")
+        window = OcclusionWindow::whole_image();
+      else if (value != "auto") {
+        const auto [width, height] = bench::parse_size(value, arg);
+        window = OcclusionWindow::fixed(width, height);
+      }
+    }
     else if (arg == "--simplify-error")
       simplify_error = bench::parse_nonnegative_double(args.value(), arg);
     else if (arg == "--mesh")

@@ -86,6 +86,7 @@ StageMedians median_frame(const Scene& scene, size_t objects, bool mutual_occlus
   for (size_t j = 0; j < objects; ++j) tracker.initialize(j, scene.starts[j], {0.01, 0.05});
   std::vector<double> frame, working, occluders, masks, enqueue, upload, collect, confidence, confidence_sum,
       device_sum, render_sum;
+  std::vector<std::vector<double>> object_enqueue(objects);
   for (size_t i = 0; i < scene.frames.size(); ++i) {
     const Stopwatch clock;
     const std::vector<Estimate> estimates = tracker.update(scene.frames[i], scene.timestamps[i]);
@@ -97,6 +98,7 @@ StageMedians median_frame(const Scene& scene, size_t objects, bool mutual_occlus
     occluders.push_back(t.occluders_ms);
     masks.push_back(t.masks_ms);
     enqueue.push_back(t.enqueue_ms);
+    for (size_t j = 0; j < objects && j < t.object_enqueue_ms.size(); ++j) object_enqueue[j].push_back(t.object_enqueue_ms[j]);
     collect.push_back(t.collect_ms);
     confidence.push_back(t.confidence_ms);
     double uploads = 0, confidences = 0, steps = 0, renders = 0;
@@ -126,6 +128,9 @@ StageMedians median_frame(const Scene& scene, size_t objects, bool mutual_occlus
                                       {"steps_sum", &device_sum},
                                       {"render_sum", &render_sum}})
     m.stages.emplace_back(name, median(*samples));
+  // Each object's start: whether a later object's costs more while the earlier ones run on the device.
+  for (size_t j = 0; j < objects; ++j)
+    if (!object_enqueue[j].empty()) m.stages.emplace_back("enqueue_object" + std::to_string(j), median(object_enqueue[j]));
   return m;
 }
 

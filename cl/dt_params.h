@@ -54,10 +54,11 @@ typedef struct {
 
 /* The occlusion state window (model::StateWindow, TrackerConfig::occlusion_window): each particle's
  * row of occlusion state holds width x height pixels from (u0, v0) this frame; the rows read (the
- * parents', from the last frame) lie at (last_u0, last_v0). A pixel outside this frame's window, or
- * new to it, is fresh: `initial` at time 0. image_width: the working image's, to place pixel k. */
+ * parents', from the last frame) hold last_width x last_height from (last_u0, last_v0) (an automatic
+ * window grows between frames). A pixel outside this frame's window, or new to it, is fresh:
+ * `initial` at time 0. image_width: the working image's, to place pixel k. */
 typedef struct {
-  dt_u32 u0, v0, last_u0, last_v0, width, height, image_width;
+  dt_u32 u0, v0, last_u0, last_v0, width, height, last_width, last_height, image_width;
   float initial;
 } dt_window;
 

@@ -117,7 +117,7 @@ typedef struct {
 } dt_refine_offsets;
 
 DT_DEVICE_FN dt_refine_offsets dt_refine_map_offsets(uint row, dt_window win) {
-  const ulong base = DT_CAST(ulong, row) * win.width * win.height;
+  const ulong base = DT_CAST(ulong, row) * dt_window_last_row(win); /* the rows before this frame's weigh */
   dt_refine_offsets o;
   o.win = win;
 #if DT_OCCLUSION == DT_OCCLUSION_OFF

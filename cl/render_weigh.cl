@@ -79,8 +79,8 @@ __kernel DT_RESIDENCY void render_weigh(__global const float* states, __global c
     for (uint k = lid; k < pixels; k += DT_GROUP_SIZE)
       atlas[DT_CAST(ulong, particle) * pixels + k] =
           dt_box_holds(box, k % cam.width, k / cam.width) && tile[k] != DT_NO_SURFACE ? tile[k] : 0u;
-  const ulong row = DT_CAST(ulong, win.width) * win.height;
-  const ulong from = DT_CAST(ulong, parents[particle]) * row, to = DT_CAST(ulong, particle) * row;
+  const ulong from = DT_CAST(ulong, parents[particle]) * dt_window_last_row(win),
+              to = DT_CAST(ulong, particle) * dt_window_row(win);
   const dt_pixel_box visited = dt_weigh_box(box, win);
   float sum = 0.0f;
   /* The rectangle's pixels to the work-items in turn, as the whole image's in a plain loop. */

@@ -31,8 +31,8 @@ __kernel void weigh(__global const float* atlas, __global const float* observed,
   /* The tile's box (rasterize.cl with boxed: nothing is drawn outside it, and it is not cleared there)
    * and the state window's pixels; the whole image without boxes. */
   const dt_pixel_box box = boxed ? dt_box_load(boxes, particle) : dt_box_make(0, 0, width, pixels / width);
-  const ulong row = DT_CAST(ulong, win.width) * win.height;
-  const ulong from = DT_CAST(ulong, parents[particle]) * row, to = DT_CAST(ulong, particle) * row;
+  const ulong from = DT_CAST(ulong, parents[particle]) * dt_window_last_row(win),
+              to = DT_CAST(ulong, particle) * dt_window_row(win);
   const ulong tile = dt_atlas_tile_start(layout, particle);
   const dt_pixel_box visited = dt_weigh_box(box, win);
   float sum = 0.0f;

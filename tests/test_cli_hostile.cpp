@@ -119,7 +119,7 @@ TEST_CASE("track refuses a malformed occlusion window by name, and tracks with a
     const auto [status, output] = track(dir, std::string("--init-from-gt --occlusion-window ") + bad);
     INFO(bad << ": " << output);
     CHECK(status == 1);
-    CHECK_THAT(output, Contains(std::string("--occlusion-window '") + bad + "' is not full or WxH"));
+    CHECK_THAT(output, Contains(std::string("--occlusion-window '") + bad + "' is not auto, full or WxH"));
   }
   CHECK_FALSE(fs::exists(dir / "out.csv"));
   const auto [status, output] = track(dir, "--init-from-gt --occlusion-window 24x16");

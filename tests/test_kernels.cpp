@@ -148,7 +148,7 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
   // are at (34, 26) this frame: a pixel outside this frame's window keeps no state, one new to it
   // starts fresh (0.1 at time 0), and both still add their terms.
   const float fresh = 0.1f;
-  const dt_window whole{0, 0, 0, 0, 80, 60, 80, fresh}, moved{34, 26, 31, 24, 16, 12, 80, fresh};
+  const dt_window whole{0, 0, 0, 0, 80, 60, 80, 60, 80, fresh}, moved{34, 26, 31, 24, 16, 12, 16, 12, 80, fresh};
   for (int run = 0; run < 9; ++run) {
     const int mode = run % 3;
     const auto& [laid_out, layout] = layouts[run < 6 ? run / 3 : 0];
@@ -252,7 +252,7 @@ TEST_CASE("weigh kernel stays finite and equal to the reference for observations
   q->launch(*kernel, compute::NdRange::linear(kGroup, kGroup), a, o, parents, occ, tim, occ_to, tim_to, table, ll, lw,
             static_cast<unsigned>(pixels), model_args(), 0.0f, 0u, 0.0f,
             dt_atlas_layout{static_cast<dt_u32>(pixels), 1, 1, 1},
-            dt_window{0, 0, 0, 0, static_cast<dt_u32>(pixels), 1, static_cast<dt_u32>(pixels), 0.1f}, no_boxes, 0u)
+            dt_window{0, 0, 0, 0, static_cast<dt_u32>(pixels), 1, static_cast<dt_u32>(pixels), 1, static_cast<dt_u32>(pixels), 0.1f}, no_boxes, 0u)
       ->wait();
   double expected = 0;
   for (size_t k = 0; k < pixels; ++k) {

@@ -126,7 +126,7 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
     // The whole image's state, and a 16x12 state window (cutting the object) moved by (3, 2) since the rows were
     // written.
     for (const dt_window& win :
-         {dt_window{0, 0, 0, 0, 80, 60, 80, 0.1f}, dt_window{34, 26, 31, 24, 16, 12, 80, 0.1f}}) {
+         {dt_window{0, 0, 0, 0, 80, 60, 80, 60, 80, 0.1f}, dt_window{34, 26, 31, 24, 16, 12, 16, 12, 80, 0.1f}}) {
       INFO("state window " << win.width << "x" << win.height);
       fused = corners.get();
       const Run apart = run(false, 0, win), inside = run(true, 1, win), unkept = run(true, 0, win),

@@ -23,7 +23,7 @@ TrackerConfig window_config(OcclusionStorage mode, int width, int height) {
   c.particles = 40;
   c.occlusion_storage = mode;
   c.seed = 5;
-  c.occlusion_window = {width, height};
+  c.occlusion_window = width == 0 && height == 0 ? OcclusionWindow::whole_image() : OcclusionWindow{width, height};
   return c;
 }
 }  // namespace
@@ -158,4 +158,79 @@ TEST_CASE("pixels outside the state window are weighed with a fresh prior and ke
     CHECK(outside > 20 * static_cast<size_t>(config.particles));  // the window cuts every particle's silhouette
     CHECK(inside > 20 * static_cast<size_t>(config.particles));
   }
+}
+
+// The automatic window by hand: a 10 cm cube, axis-aligned, centred on the optical axis. At 0.8 m its
+// nearer corners (z = 0.75) project 65.625 * 0.05 / 0.75 = 4.375 pixels from the centre's projection;
+// with a fifth more, 2 pixels and the half pixel to the centre's nearest pixel that reaches 7.75, so 8
+// pixels each side: 17 x 17 from (40 - 8, 30 - 8).
+TEST_CASE("the automatic window holds the projected box with its margins and grows with it", "[window]") {
+  const Mesh cube = make_box({0.1f, 0.1f, 0.1f});
+  const model::ObjectExtent extent = model::object_extent(cube);
+  TrackerConfig automatic;
+  CHECK(automatic.occlusion_window.is_automatic());  // the default
+  CHECK(model::state_window_size(automatic, camera).pixels() == 0);  // sized at the start
+  const auto at = [](double z) { return Pose({0, 0, z}, Eigen::Quaterniond::Identity()); };
+  const model::StateWindow start = model::start_state_window(automatic, extent, at(0.8), camera);
+  CHECK(start == model::StateWindow{32, 22, 17, 17});
+  // Twice as near (0.4 m): 65.625 * 0.05 / 0.35 = 9.375 -> 9.375 * 1.2 + 2.5 = 13.75: 14 a side, 29 x 29.
+  const model::StateWindow near = model::next_state_window(start, automatic, extent, at(0.4), camera, 0);
+  CHECK(near == model::StateWindow{26, 16, 29, 29});
+  // Farther again: it does not shrink (until the next start).
+  CHECK(model::next_state_window(near, automatic, extent, at(1.6), camera, 0) == near);
+  // Growth beyond the memory's bound is refused: the window stays as it was, placed at the estimate.
+  CHECK(model::next_state_window(start, automatic, extent, at(0.4), camera, 400) == start);
+  // A corner behind the camera plane: the projection is unbounded, the whole image.
+  CHECK(model::start_state_window(automatic, extent, at(0.03), camera) == model::StateWindow{0, 0, 80, 60});
+  // The centre behind the camera, or a non-finite pose, says nothing: unchanged.
+  CHECK(model::next_state_window(start, automatic, extent, at(-1.0), camera, 0) == start);
+  CHECK(model::next_state_window(start, automatic, extent, at(NAN), camera, 0) == start);
+  // A fixed window never grows; a turned cube reaches farther (its diagonal).
+  const TrackerConfig fixed = window_config(OcclusionStorage::PerPixelTime, 17, 17);
+  CHECK(model::next_state_window(start, fixed, extent, at(0.4), camera, 0) == start);
+  const Pose turned({0, 0, 0.8}, Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitZ())));
+  CHECK(model::start_state_window(automatic, extent, turned, camera).width > 17);
+}
+
+// An object coming from 1.15 m to 0.55 m: the automatic window starts well inside the image and grows
+// with it, and holds every pixel the particles cover, so it keeps the whole-image filter's numbers bit
+// for bit (as the fixed window above).
+TEST_CASE("an automatic window follows an approaching object and gives the whole-image filter's results",
+          "[window][filter]") {
+  const Mesh mesh = builtin_demo_mesh();
+  SynthConfig synth = test::small_scene(72);
+  // z = 0.8 + 0.35 sin(2 pi 1.7 t / 8 + 3.9) (synth/trajectory.cpp): farthest, 1.15 m, at frame 18,
+  // then in to 0.55 m by frame 71 (at most 1.6 cm a frame).
+  synth.trajectory.amplitude = {0.02, 0.01, -0.35};
+  synth.trajectory.period = 8.0;
+  synth.occluder_fraction = 0;  // tracked closely, so that the window follows the object in
+  synth.sensor.kind = SensorKind::Ideal;
+  auto frames = test::synthesize(mesh, synth);
+  frames.erase(frames.begin(), frames.begin() + 18);
+  TrackerConfig whole_config = window_config(OcclusionStorage::PerPixelTime, 0, 0), auto_config = whole_config;
+  auto_config.occlusion_window = OcclusionWindow{};
+  reference::ReferenceFilter whole(mesh, synth.camera, whole_config), automatic(mesh, synth.camera, auto_config);
+  whole.initialize(frames[0].ground_truth, InitialSpread{0.01, 0.05});
+  automatic.initialize(frames[0].ground_truth, InitialSpread{0.01, 0.05});
+  const size_t first_size = automatic.state_window().pixels();
+  CHECK(first_size < static_cast<size_t>(synth.camera.pixel_count()) / 4);
+  std::set<size_t> sizes;
+  for (size_t f = 0; f < frames.size(); ++f) {
+    INFO("frame " << f);
+    const double dt = f == 0 ? 0.0 : frames[f].timestamp - frames[f - 1].timestamp;
+    const Estimate a = whole.update(frames[f].depth, dt), b = automatic.update(frames[f].depth, dt);
+    REQUIRE(whole.last_log_likelihoods() == automatic.last_log_likelihoods());
+    REQUIRE(a.pose.translation == b.pose.translation);
+    const model::StateWindow w = automatic.state_window();
+    sizes.insert(w.pixels());
+    const size_t image = static_cast<size_t>(synth.camera.pixel_count());
+    for (size_t i = 0; i < static_cast<size_t>(whole_config.particles); ++i)
+      for (int v = w.v0; v < w.v0 + w.height; ++v)
+        for (int u = w.u0; u < w.u0 + w.width; ++u) {
+          const size_t k = static_cast<size_t>(v * synth.camera.width + u);
+          REQUIRE(automatic.occlusion_state()[i * w.pixels() + w.index(u, v)] == whole.occlusion_state()[i * image + k]);
+        }
+  }
+  CHECK(sizes.size() >= 3);  // it grew, more than once (21x17 to 27x23 here)
+  CHECK(*sizes.rbegin() > 3 * first_size / 2);
 }

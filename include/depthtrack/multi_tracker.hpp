@@ -23,6 +23,7 @@ struct MultiStageTimings {
   double occluders_ms = 0;   // mutual occlusion: the objects' previous estimates drawn (or reused)
   double masks_ms = 0;       // mutual occlusion: each object's masked working frame
   double enqueue_ms = 0;     // every object's start_frame: upload, enqueue (a host filter: its whole update)
+  std::vector<double> object_enqueue_ms;  // each object's share of enqueue_ms, in order
   double collect_ms = 0;     // waiting for every object's estimate, one after another (confidences meanwhile)
   double confidence_ms = 0;  // the confidences and statuses still running after the last collection (a pool)
   double total_ms = 0;       // the whole update

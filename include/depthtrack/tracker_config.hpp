@@ -83,15 +83,25 @@ struct LossModel {
 };
 
 // Where each particle keeps its per-pixel occlusion state (docs/design-notes.md, "The occlusion state
-// window"): a window of width x height pixels of the working image, centred each frame on the previous
-// estimate's projected mesh centre and clamped inside the image. Its pixels keep the model's state from
-// frame to frame; every other pixel is taken as fresh (occlusion.initial at time 0, aged to now) and
-// still adds its likelihood term, so only the memory of occlusion outside the window is given up, for
-// memory and traffic proportional to the window instead of the image. 0 (the default): the whole width
-// or height, the model as MODEL.md writes it.
+// window"): a window of the working image, centred each frame on the previous estimate's projected mesh
+// centre and clamped inside the image. Its pixels keep the model's state from frame to frame; every other
+// pixel is taken as fresh (occlusion.initial at time 0, aged to now) and still adds its likelihood term,
+// so only the memory of occlusion outside the window is given up, for memory and traffic proportional to
+// the window instead of the image.
+//   automatic (the default, width and height 0): sized at each start to hold the projection of the
+//     mesh's bounding box at that pose with a margin, and grown whenever the estimate's would no longer
+//     fit (model::automatic_window_size); a window that holds every pixel the particles cover keeps the
+//     whole image's numbers exactly.
+//   width x height: a fixed window (0 in one of them: that whole dimension).
+//   automatic false, 0 x 0: the whole image, the model as MODEL.md writes it.
 struct OcclusionWindow {
   int width = 0;
   int height = 0;
+  bool automatic = true;  // only with width and height 0
+
+  static OcclusionWindow whole_image() { return {0, 0, false}; }
+  static OcclusionWindow fixed(int width, int height) { return {width, height, false}; }
+  bool is_automatic() const { return automatic && width == 0 && height == 0; }
 };
 
 // Global search while lost.

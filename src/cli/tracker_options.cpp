@@ -49,9 +49,10 @@ void TrackerOptions::add_to(CLI::App& command) {
   occlusion_window_option =
       command
           .add_option("--occlusion-window", occlusion_window,
-                      "Where each particle keeps its occlusion state: full (the whole image, the model as written) or "
-                      "WxH pixels of the working image around the last estimate (less memory and traffic; pixels "
-                      "outside it are taken as fresh)")
+                      "Where each particle keeps its occlusion state, a window around the last estimate (pixels "
+                      "outside it are taken as fresh): auto (sized to the object's projection with a margin at the "
+                      "start, grown as it grows), WxH pixels of the working image, or full (the whole image, the "
+                      "model as written; the most memory and traffic)")
           ->capture_default_str();
   simplify_option = command
                         .add_option("--simplify-error", flags.simplify_error,
@@ -86,12 +87,16 @@ TrackerConfig TrackerOptions::resolve() const {
   if (given(occlusion_option)) c.occlusion_storage = occlusion_storage_from_string(occlusion);
   if (given(occlusion_window_option)) {
     if (occlusion_window == "full")
+      c.occlusion_window = OcclusionWindow::whole_image();
+    else if (occlusion_window == "auto")
       c.occlusion_window = OcclusionWindow{};
     else
       try {
-        std::tie(c.occlusion_window.width, c.occlusion_window.height) = parse_resolution(occlusion_window);
+        const auto [width, height] = parse_resolution(occlusion_window);
+        c.occlusion_window = OcclusionWindow::fixed(width, height);
       } catch (const InputError&) {
-        throw InputError("--occlusion-window '" + occlusion_window + "' is not full or WxH with positive integers");
+        throw InputError("--occlusion-window '" + occlusion_window +
+                         "' is not auto, full or WxH with positive integers");
       }
   }
   if (given(refine_option)) {

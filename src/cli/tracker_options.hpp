@@ -12,7 +12,7 @@ struct TrackerOptions {
   std::string config_file;  // --config: TrackerConfig as JSON (depthtrack/config_file.hpp)
   std::string resolution = "80x60";
   std::string occlusion = "per-pixel-time";
-  std::string occlusion_window = "full";
+  std::string occlusion_window = "auto";
   std::string renderer = "kernel";  // parsed by resolve() (renderer_from_string)
   std::string refine = "on";
   CLI::Option *backend_option = nullptr, *renderer_option = nullptr, *gl_option = nullptr, *particles_option = nullptr,

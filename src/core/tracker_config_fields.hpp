@@ -115,8 +115,11 @@ inline auto fields_of(const RecoveryModel*) {
 inline auto fields_of(const OcclusionWindow*) {
   using S = OcclusionWindow;
   return std::tuple{
-      field("width", &S::width, "pixels of the working image; 0: the whole width"),
-      field("height", &S::height, "pixels of the working image; 0: the whole height"),
+      field("width", &S::width, "pixels of the working image; 0: the whole width (or automatic)"),
+      field("height", &S::height, "pixels of the working image; 0: the whole height (or automatic)"),
+      field("automatic", &S::automatic,
+            "with width and height 0: sized to the object's projection at the start and grown with it "
+            "(false: the whole image)"),
   };
 }
 
@@ -129,7 +132,7 @@ inline auto fields_of(const TrackerConfig*) {
       field("refine", &S::refine, "pose refinement after weighting"),
       field("occlusion_storage", &S::occlusion_storage, "per-pixel-time, global-time or off"),
       field("occlusion_window", &S::occlusion_window,
-            "where particles keep occlusion state: a window around the estimate; 0 x 0: the whole image"),
+            "where particles keep occlusion state: a window around the estimate, automatic by default"),
       field("simplify_error", &S::simplify_error,
             "the mesh is drawn simplified to within this distance of its surface (m); 0: as given"),
       field("particles", &S::particles, "number of particles"),

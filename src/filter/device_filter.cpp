@@ -51,11 +51,11 @@ size_t summary_group_size(const compute::DeviceInfo& device) {
 }  // namespace
 
 double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bool gl_pages, bool atlas,
-                                        size_t state_pixels) {
+                                        std::optional<size_t> state_pixels) {
   const bool occlusion = mode != OcclusionStorage::Off, times = mode == OcclusionStorage::PerPixelTime;
   const double image_floats = (atlas ? 1 : 0) + (gl_pages ? 2 : 0);
   const double state_floats = (occlusion ? 2 : 0) + (times ? 1 : 0);  // times: 2 x 16 bits
-  const double kept = static_cast<double>(state_pixels == 0 ? pixels : state_pixels);
+  const double kept = static_cast<double>(state_pixels.value_or(pixels));
   return 4.0 * (static_cast<double>(pixels) * image_floats + kept * state_floats +
                 (2 + (gl_pages ? 1 : 0)) * DT_STATE_STRIDE + 6);
 }
@@ -113,15 +113,17 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       pixels_(static_cast<size_t>(camera.pixel_count())),
+      extent_(model::object_extent(mesh)),
       window_(model::state_window_size(config, camera)),
       next_window_(window_),
       count_(checked_particle_count()),
       atlas_source_(make_atlas_source(*queue_, device_->programs, mesh, camera, config, gl)),
       mesh_(mesh) {
-  // The window is the whole image by default: weigh then indexes the state by pixel (cl/dt_window.h).
-  const std::vector<std::string> defines = {
-      "DT_GROUP_SIZE=" + std::to_string(kGroupSize), model::occlusion_definition(config.occlusion_storage),
-      window_.pixels() == pixels_ ? "DT_WHOLE_IMAGE_STATE=1" : "DT_WHOLE_IMAGE_STATE=0"};
+  // A fixed window of the whole image: weigh then indexes the state by pixel (cl/dt_window.h).
+  const bool whole_image = !config.occlusion_window.is_automatic() && window_.pixels() == pixels_;
+  const std::vector<std::string> defines = {"DT_GROUP_SIZE=" + std::to_string(kGroupSize),
+                                            model::occlusion_definition(config.occlusion_storage),
+                                            whole_image ? "DT_WHOLE_IMAGE_STATE=1" : "DT_WHOLE_IMAGE_STATE=0"};
   kernels_ = std::make_unique<Kernels>();
   Kernels& k = *kernels_;
   k.propagate_program = device_->programs.program("propagate.cl", defines);
@@ -181,14 +183,9 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   // Drawn inside weigh, the atlas is stored only when asked for (keep_atlas).
   atlas_ = compute::Buffer<float>(q, render_weigh_ ? 1 : atlas_source_->layout().floats());
   observed_ = compute::Buffer<float>(q, pixels_);
-  // Kernels always take the occlusion buffers; modes that do not use one get a single element.
-  const bool occlusion = config.occlusion_storage != OcclusionStorage::Off;
-  const bool times = config.occlusion_storage == OcclusionStorage::PerPixelTime;
-  const size_t kept = count_ * window_.pixels();
-  occlusion_ = compute::Buffer<float>(q, occlusion ? kept : 1);
-  scratch_occlusion_ = compute::Buffer<float>(q, occlusion ? kept : 1);
-  occlusion_time_ = compute::Buffer<uint16_t>(q, times ? kept : 2);
-  scratch_occlusion_time_ = compute::Buffer<uint16_t>(q, times ? kept : 2);
+  // An automatic window's rows are allocated once the start sizes it.
+  reserve_state_rows(occlusion_, occlusion_time_, window_);
+  reserve_state_rows(scratch_occlusion_, scratch_occlusion_time_, window_);
   frame_times_ = std::make_unique<FrameTimeTable>(q);
   if (config.refine.enabled)
     refiner_ = std::make_unique<DeviceRefiner>(q, device_->programs, mesh, camera, config,
@@ -204,24 +201,66 @@ struct DeviceFilter::Pending {
 
 DeviceFilter::~DeviceFilter() = default;
 
-size_t DeviceFilter::checked_particle_count() const {
-  const size_t count = static_cast<size_t>(config_.particles);
+double DeviceFilter::bytes_per_particle(size_t state_pixels) const {
   // GL's pages sit on the same GPU; the kernel renderer's atlas stays in work-group memory where it fits.
-  const double per_particle = device_filter_bytes_per_particle(
+  return device_filter_bytes_per_particle(
       pixels_, config_.occlusion_storage, config_.renderer == Renderer::Gl && queue_->info().is_gpu,
-      !renders_inside_weigh(config_.renderer, pixels_, queue_->info().local_memory), window_.pixels());
-  const double needed = per_particle * static_cast<double>(count);
+      !renders_inside_weigh(config_.renderer, pixels_, queue_->info().local_memory), state_pixels);
+}
+
+// An automatic window has no size before the start: checked without its rows here, and again by
+// check_state_memory once the start sizes it.
+size_t DeviceFilter::checked_particle_count() const {
+  check_state_memory(window_);
+  return static_cast<size_t>(config_.particles);
+}
+
+void DeviceFilter::check_state_memory(const model::StateWindow& window) const {
+  const double per_particle = bytes_per_particle(window.pixels());
+  const double needed = per_particle * static_cast<double>(config_.particles);
   const auto& info = queue_->info();
   if (info.global_memory > 0 && needed > 0.9 * static_cast<double>(info.global_memory)) {
     std::ostringstream m;
     m.precision(3);
-    m << config_.particles << " particles at " << camera_.width << "x" << camera_.height << " need "
-      << needed / (1 << 30) << " GiB of device memory but " << info.name << " has "
+    m << config_.particles << " particles at " << camera_.width << "x" << camera_.height;
+    if (config_.occlusion_window.is_automatic() && window.pixels() > 0)
+      m << " with a " << window.width << "x" << window.height
+        << " occlusion state window (sized for the object at its start)";
+    m << " need " << needed / (1 << 30) << " GiB of device memory but " << info.name << " has "
       << static_cast<double>(info.global_memory) / (1 << 30) << " GiB; at most about "
       << static_cast<long long>(0.9 * static_cast<double>(info.global_memory) / per_particle) << " particles fit";
     throw InputError(m.str());
   }
-  return count;
+}
+
+// The most state pixels a particle's rows may grow to in 90 % of the device's memory (0: unknown).
+size_t DeviceFilter::state_pixel_limit() const {
+  const double memory = static_cast<double>(queue_->info().global_memory);
+  const double per_pixel = bytes_per_particle(1) - bytes_per_particle(0);
+  if (!(memory > 0) || per_pixel == 0) return 0;
+  const double share = 0.9 * memory / static_cast<double>(count_) - bytes_per_particle(0);
+  return share < per_pixel ? 1 : static_cast<size_t>(share / per_pixel);
+}
+
+// Rows for `window` in a pair of state buffers (probabilities, times), reallocated only when they hold
+// fewer: an automatic window's rows are sized at the start and grow with it. A growing window grows by
+// a pixel or two a frame while the object nears, so a buffer outgrown takes half as much again (within
+// the memory's bound) rather than being reallocated every frame.
+void DeviceFilter::reserve_state_rows(compute::Buffer<float>& occlusion, compute::Buffer<uint16_t>& times,
+                                      const model::StateWindow& window) {
+  const size_t kept = count_ * window.pixels();
+  const size_t limit = state_pixel_limit() * count_;
+  const auto capacity = [&](size_t held) {
+    const size_t roomy = held > 2 ? kept + kept / 2 : kept;  // a start takes what it needs
+    return std::max(kept, limit > 0 ? std::min(roomy, limit) : roomy);
+  };
+  // Kernels always take both buffers: a mode that keeps no such state gets one element (two 16-bit ones).
+  const bool probabilities = config_.occlusion_storage != OcclusionStorage::Off;
+  const bool indices = config_.occlusion_storage == OcclusionStorage::PerPixelTime;
+  if (occlusion.size() < (probabilities ? std::max<size_t>(kept, 1) : 1))
+    occlusion = compute::Buffer<float>(*queue_, probabilities ? std::max<size_t>(capacity(occlusion.size()), 1) : 1);
+  if (times.size() < (indices ? std::max<size_t>(kept, 2) : 2))
+    times = compute::Buffer<uint16_t>(*queue_, indices ? std::max<size_t>(capacity(times.size()), 2) : 2);
 }
 
 std::string DeviceFilter::description() const {
@@ -263,6 +302,11 @@ void DeviceFilter::initialize_modes(std::span<const Pose> modes, const InitialSp
     for (double v : {m.translation.x(), m.translation.y(), m.translation.z(), q.w(), q.x(), q.y(), q.z()})
       mode_values.push_back(static_cast<float>(v));
   }
+  window_ = next_window_ = model::start_state_window(config_, extent_, modes.front(), camera_);
+  if (config_.occlusion_window.is_automatic()) {
+    check_state_memory(window_);
+    reserve_state_rows(occlusion_, occlusion_time_, window_);
+  }
   compute::Buffer<float> mode_buffer(*queue_, mode_values.size());
   mode_buffer.upload(mode_values);
   const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
@@ -284,7 +328,6 @@ void DeviceFilter::initialize_modes(std::span<const Pose> modes, const InitialSp
     frame_times_->reset();
   }
   queue_->finish();
-  window_ = next_window_ = model::state_window_at(window_, modes.front(), centre_, camera_);
   frame_ = 0;
   time_ = 0;
   last_resampled_ = false;
@@ -382,6 +425,8 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   if (pending_) throw InputError("device filter: enqueue_update() while the previous frame is not collected");
   auto p = std::make_unique<Pending>();
   Kernels& k = *kernels_;
+  // This frame's weigh writes its rows at next_window_ (an automatic window may have grown).
+  reserve_state_rows(scratch_occlusion_, scratch_occlusion_time_, next_window_);
   time_ += dt;
   const Stopwatch upload;
   observed_.upload(depth.data());
@@ -476,7 +521,7 @@ Estimate DeviceFilter::collect() {
   }
   last_resampled_ = e.resampled;
   weighed_in_scratch_ = true;
-  next_window_ = model::state_window_at(window_, e.pose, centre_, camera_);
+  next_window_ = model::next_state_window(window_, config_, extent_, e.pose, camera_, state_pixel_limit());
 
   if (p->propagated) e.timings.propagate_ms = p->propagated->elapsed_ms();
   if (p->rendered) {

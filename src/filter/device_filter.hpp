@@ -5,6 +5,7 @@
 // device memory, or the reference rasterizer on the host. Per frame only the depth image goes up
 // and the estimate comes back.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "atlas/atlas_source.hpp"
@@ -20,10 +21,10 @@ namespace depthtrack {
 
 // Device memory one particle's buffers take (the atlas unless it is drawn inside weigh, occlusion
 // probabilities and 16-bit time indices twice for the state window's state_pixels (weigh reads one and
-// writes the other; 0: the image's pixels), the state twice, weights; with GL pages, GL's colour and
+// writes the other; none given: the image's pixels), the state twice, weights; with GL pages, GL's colour and
 // depth pages and its pose buffer): what the memory check refuses by and `depthtrack bench` reports.
 double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bool gl_pages, bool atlas = true,
-                                        size_t state_pixels = 0);
+                                        std::optional<size_t> state_pixels = std::nullopt);
 
 // Whether the filter draws each particle's tile inside weigh (cl/render_weigh.cl), the tile in
 // work-group memory: with the kernel renderer, where pixels' depths fit in the device's local memory
@@ -100,8 +101,14 @@ class DeviceFilter final : public FilterBackend {
  private:
   struct Kernels;
   compute::EventPtr render_atlas(StepTimings& timings);
-  // The per-particle device memory, checked before anything is allocated.
+  // The per-particle device memory, checked before anything is allocated (an automatic window's
+  // rows again at the start, when it is sized), and what the rows of `state_pixels` a particle take.
   size_t checked_particle_count() const;
+  void check_state_memory(const model::StateWindow& window) const;
+  double bytes_per_particle(size_t state_pixels) const;
+  size_t state_pixel_limit() const;
+  void reserve_state_rows(compute::Buffer<float>& occlusion, compute::Buffer<uint16_t>& times,
+                          const model::StateWindow& window);
   void upload_particles(const std::vector<model::ParticleState>& particles);
   std::vector<model::ParticleState> unpack(const compute::Buffer<float>& state) const;
   // Per-pixel rows downloaded in particle order: particle i's is row parents_[i].
@@ -125,7 +132,9 @@ class DeviceFilter final : public FilterBackend {
   Eigen::Vector3d centre_;
   size_t pixels_;
   // The state window (TrackerConfig::occlusion_window): where the occlusion rows lie (window_), and
-  // where the next frame keeps them (next_window_: centred on the last estimate).
+  // where the next frame keeps them (next_window_: centred on the last estimate; an automatic window
+  // sized from the object's extent).
+  model::ObjectExtent extent_;
   model::StateWindow window_, next_window_;
   size_t count_;
   size_t summary_group_ = 0;  // the one-group summary's work-items (none with the wide summary)

@@ -33,10 +33,11 @@ dt_initial initial_params(const InitialSpread& spread, const Eigen::Vector3d& ce
 
 dt_window window_params(const StateWindow& now, const StateWindow& last, const Camera& camera,
                         const TrackerConfig& config) {
-  return dt_window{static_cast<dt_u32>(now.u0),       static_cast<dt_u32>(now.v0),
-                   static_cast<dt_u32>(last.u0),      static_cast<dt_u32>(last.v0),
-                   static_cast<dt_u32>(now.width),    static_cast<dt_u32>(now.height),
-                   static_cast<dt_u32>(camera.width), static_cast<float>(fresh_occlusion(config))};
+  return dt_window{static_cast<dt_u32>(now.u0),         static_cast<dt_u32>(now.v0),
+                   static_cast<dt_u32>(last.u0),        static_cast<dt_u32>(last.v0),
+                   static_cast<dt_u32>(now.width),      static_cast<dt_u32>(now.height),
+                   static_cast<dt_u32>(last.width),     static_cast<dt_u32>(last.height),
+                   static_cast<dt_u32>(camera.width),   static_cast<float>(fresh_occlusion(config))};
 }
 
 dt_camera camera_params(const Camera& camera, const TrackerConfig& config) {

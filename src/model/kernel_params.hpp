@@ -22,7 +22,7 @@ static_assert(sizeof(dt_initial) == 24 && offsetof(dt_initial, centre_x) == 8 &&
 static_assert(sizeof(dt_camera) == 32 && offsetof(dt_camera, far) == 20 && offsetof(dt_camera, height) == 28);
 static_assert(sizeof(dt_refine_args) == 44 && offsetof(dt_refine_args, dt) == 24 &&
               offsetof(dt_refine_args, iterations) == 28 && offsetof(dt_refine_args, vertex_count) == 40);
-static_assert(sizeof(dt_window) == 32 && offsetof(dt_window, image_width) == 24 && offsetof(dt_window, initial) == 28);
+static_assert(sizeof(dt_window) == 40 && offsetof(dt_window, image_width) == 32 && offsetof(dt_window, initial) == 36);
 
 // Observation model and occlusion chain of config.
 dt_model model_params(const TrackerConfig& config);

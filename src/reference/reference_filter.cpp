@@ -20,24 +20,46 @@ namespace depthtrack::reference {
 
 namespace {
 
+// Host memory for `state_pixels` of occlusion state a particle: occlusion probabilities and times, each
+// with a resampling twin, plus the particle, its twin, and the per-particle weights and likelihoods.
+struct HostMemory {
+  double available = 0, fixed_per_particle = 0, per_state_pixel = 0;
+
+  explicit HostMemory(const TrackerConfig& config) {
+    const bool occlusion = config.occlusion_storage != OcclusionStorage::Off;
+    const bool times = config.occlusion_storage == OcclusionStorage::PerPixelTime;
+    available = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+    per_state_pixel = 4.0 * ((occlusion ? 2 : 0) + (times ? 2 : 0));
+    fixed_per_particle = 2.0 * sizeof(ParticleState) + 6 * sizeof(double) + sizeof(int) + sizeof(Pose);
+  }
+  double per_particle(size_t state_pixels) const {
+    return per_state_pixel * static_cast<double>(state_pixels) + fixed_per_particle;
+  }
+  // The most state pixels a particle can have in 80 % of the memory (0: unknown, no bound).
+  size_t state_pixel_limit(int particles) const {
+    if (!(available > 0) || per_state_pixel == 0) return 0;
+    const double share = 0.8 * available / particles - fixed_per_particle;
+    return share < 1 ? 1 : static_cast<size_t>(share / per_state_pixel);
+  }
+};
+
 // Checked before allocating, like the device filter's memory check: 2e9 particles used to end in
-// std::bad_alloc, or in the system's out-of-memory killer.
-void check_host_memory(const TrackerConfig& config, const Camera& camera, size_t state_pixels) {
-  const bool occlusion = config.occlusion_storage != OcclusionStorage::Off;
-  const bool times = config.occlusion_storage == OcclusionStorage::PerPixelTime;
-  // Occlusion probabilities and times, each with a resampling twin, plus the particle, its twin,
-  // and the per-particle weights and likelihoods.
-  const double per_particle = 4.0 * static_cast<double>(state_pixels) * ((occlusion ? 2 : 0) + (times ? 2 : 0)) +
-                              2.0 * sizeof(ParticleState) + 6 * sizeof(double) + sizeof(int) + sizeof(Pose);
+// std::bad_alloc, or in the system's out-of-memory killer. An automatic state window is checked again
+// at the start, once it is sized.
+void check_host_memory(const TrackerConfig& config, const Camera& camera, const model::StateWindow& window) {
+  const HostMemory memory(config);
+  const double per_particle = memory.per_particle(window.pixels());
   const double needed = per_particle * config.particles;
-  const double available =
-      static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
-  if (available > 0 && needed > 0.8 * available) {
+  if (memory.available > 0 && needed > 0.8 * memory.available) {
     std::ostringstream m;
     m.precision(3);
-    m << config.particles << " particles at " << camera.width << "x" << camera.height << " need " << needed / (1 << 30)
-      << " GiB of memory for the reference filter but this machine has " << available / (1 << 30)
-      << " GiB; at most about " << static_cast<long long>(0.8 * available / per_particle) << " particles fit";
+    m << config.particles << " particles at " << camera.width << "x" << camera.height;
+    if (config.occlusion_window.is_automatic() && window.pixels() > 0)
+      m << " with a " << window.width << "x" << window.height
+        << " occlusion state window (sized for the object at its start)";
+    m << " need " << needed / (1 << 30) << " GiB of memory for the reference filter but this machine has "
+      << memory.available / (1 << 30) << " GiB; at most about "
+      << static_cast<long long>(0.8 * memory.available / per_particle) << " particles fit";
     throw InputError(m.str());
   }
 }
@@ -50,9 +72,10 @@ ReferenceFilter::ReferenceFilter(const Mesh& mesh, const Camera& camera, const T
       centre_(mesh.centre().cast<double>()),
       refiner_(mesh, camera, config),
       scorer_(mesh, camera, config),
+      extent_(model::object_extent(mesh)),
       window_(model::state_window_size(config, camera)),
       next_window_(window_) {
-  check_host_memory(config, camera, window_.pixels());
+  check_host_memory(config, camera, window_);
   const size_t n = static_cast<size_t>(config.particles), pixels = static_cast<size_t>(camera.pixel_count());
   pool_ = std::make_unique<ThreadPool>(threads);
   for (int t = 0; t < threads; ++t)
@@ -94,9 +117,11 @@ void ReferenceFilter::initialize_modes(std::span<const Pose> modes, const Initia
   for (size_t i = 0; i < particles_.size(); ++i)
     particles_[i] = model::draw_initial_particle(config_.seed, i, modes, spread, centre_);
   std::fill(log_weights_.begin(), log_weights_.end(), 0.0);
-  std::fill(occlusion_.begin(), occlusion_.end(), static_cast<float>(config_.occlusion.initial));
-  std::fill(occlusion_time_.begin(), occlusion_time_.end(), 0.0f);
-  window_ = next_window_ = model::state_window_at(window_, modes.front(), centre_, camera_);
+  window_ = next_window_ = model::start_state_window(config_, extent_, modes.front(), camera_);
+  check_host_memory(config_, camera_, window_);  // an automatic window's size is known now
+  const size_t kept = particles_.size() * window_.pixels();
+  if (config_.occlusion_storage != OcclusionStorage::Off) occlusion_.assign(kept, static_cast<float>(config_.occlusion.initial));
+  if (config_.occlusion_storage == OcclusionStorage::PerPixelTime) occlusion_time_.assign(kept, 0.0f);
   frame_ = 0;
   time_ = 0;
 }
@@ -184,7 +209,7 @@ void ReferenceFilter::move_state_window() {
                              : config_.occlusion.initial);
   auto move = [&](std::vector<float>& rows, std::vector<float>& scratch, float fresh) {
     if (rows.empty()) return;
-    scratch.resize(rows.size());
+    scratch.resize(particles_.size() * to.pixels());  // an automatic window grows
     for_chunks(particles_.size(), [&](Lane&, size_t, size_t first, size_t last) {
       for (size_t i = first; i < last; ++i)
         for (int v = to.v0; v < to.v0 + to.height; ++v)
@@ -339,7 +364,8 @@ Estimate ReferenceFilter::update(const DepthImage& depth, double dt) {
     std::iota(last_parents_.begin(), last_parents_.end(), 0);
   }
   e.timings.resample_ms += gather_clock.elapsed_ms();
-  next_window_ = model::state_window_at(window_, e.pose, centre_, camera_);
+  next_window_ = model::next_state_window(window_, config_, extent_, e.pose, camera_,
+                                         HostMemory(config_).state_pixel_limit(config_.particles));
   e.timings.total_ms = frame_clock.elapsed_ms();
   ++frame_;
   return e;

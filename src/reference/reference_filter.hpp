@@ -112,7 +112,9 @@ class ReferenceFilter final : public FilterBackend {
   // last update in seconds since the first frame. Stored as float, as a device stores it.
   std::vector<float> occlusion_;
   std::vector<float> occlusion_time_;
-  // Where the rows lie (window_), and where the next frame keeps them (centred on the last estimate).
+  // Where the rows lie (window_), and where the next frame keeps them (centred on the last estimate;
+  // an automatic window sized from the object's extent).
+  model::ObjectExtent extent_;
   model::StateWindow window_, next_window_;
   std::vector<float> scratch_occlusion_, scratch_occlusion_time_;  // resampling's gather targets
   std::vector<PixelPrior> priors_;                                 // the heaviest particle's

@@ -112,9 +112,12 @@ std::vector<Estimate> MultiTracker::run(const DepthImage& working,
       for (size_t j = 0; j < n; ++j) masked[j] = occlusion_->frame_for(j, working, poses_, layers);
       timings_.masks_ms = clock.lap_ms();
     }
-    const Stopwatch clock;
-    for (; started < n; ++started) trackers_[started].start_frame(frame_of(started), sensor_frame, timestamp);
-    timings_.enqueue_ms = clock.elapsed_ms();
+    Stopwatch clock;
+    for (; started < n; ++started) {
+      trackers_[started].start_frame(frame_of(started), sensor_frame, timestamp);
+      timings_.object_enqueue_ms.push_back(clock.lap_ms());
+      timings_.enqueue_ms += timings_.object_enqueue_ms.back();
+    }
   } catch (...) {
     failure = std::current_exception();
   }
