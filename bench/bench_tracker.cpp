@@ -113,6 +113,9 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
   bench::print_row({backend, platform, name, "-", test, "refine_iterations", "steps", bench::median(refine_steps)});
   bench::print_row({backend, platform, name, "-", test, "drawn_triangles", "triangles",
                     static_cast<double>(tracker.drawn_triangles())});
+  const auto [window_width, window_height] = tracker.occlusion_window_size();
+  bench::print_row({backend, platform, name, "-", test, "state_window_pixels", "pixels",
+                    static_cast<double>(window_width) * window_height});
   bench::print_row({backend, platform, name, "-", test, "frames_per_second", "Hz", 1000.0 / bench::median(total)});
   bench::print_row({backend, platform, name, "-", test, "startup_ms", "ms", startup_ms});
   bench::print_row({backend, platform, name, "-", test, "startup_host_peak", "MiB", startup_peak_mib});

@@ -234,3 +234,20 @@ TEST_CASE("an automatic window follows an approaching object and gives the whole
   CHECK(sizes.size() >= 3);  // it grew, more than once (21x17 to 27x23 here)
   CHECK(*sizes.rbegin() > 3 * first_size / 2);
 }
+
+// What a Tracker reports of its window: the automatic one sized at the start, the whole image with
+// `full`, a fixed one as given (the reference's and the device's: Tracker::occlusion_window_size).
+TEST_CASE("a tracker reports the occlusion state window it keeps", "[window][tracker]") {
+  const Mesh cube = make_box({0.1f, 0.1f, 0.1f});
+  const Pose at({0, 0, 0.8}, Eigen::Quaterniond::Identity());
+  for (const auto& [window, expected] : {std::pair{OcclusionWindow{}, std::pair{17, 17}},
+                                         std::pair{OcclusionWindow::whole_image(), std::pair{80, 60}},
+                                         std::pair{OcclusionWindow::fixed(20, 10), std::pair{20, 10}}}) {
+    TrackerConfig config;
+    config.particles = 10;
+    config.occlusion_window = window;
+    Tracker tracker(cube, camera, config);
+    tracker.initialize(at);
+    CHECK(tracker.occlusion_window_size() == expected);
+  }
+}

@@ -10,6 +10,7 @@
 #include <depthtrack/pose.hpp>
 #include <depthtrack/tracker_config.hpp>
 #include <functional>
+#include <utility>
 #include <memory>
 
 namespace depthtrack {
@@ -119,6 +120,9 @@ class Tracker {
   // draw this one).
   size_t mesh_triangles() const { return mesh_triangles_; }
   size_t drawn_triangles() const { return drawn_triangles_; }
+  // Width and height of the occlusion state window of the last frame (TrackerConfig::occlusion_window:
+  // the automatic one's size at the start and as it grew; the image's with `full`).
+  std::pair<int, int> occlusion_window_size() const;
 
  private:
   // The working-resolution frame (decimated only when needed); InputError for a wrong size.

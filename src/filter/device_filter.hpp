@@ -72,6 +72,7 @@ class DeviceFilter final : public FilterBackend {
   void enqueue_update(const DepthImage& depth, double dt) override;
   Estimate collect() override;
   std::string description() const override;
+  std::pair<int, int> occlusion_window_size() const override { return {window_.width, window_.height}; }
 
   // What the last update computed, downloaded for comparison with the reference filter.
   std::vector<double> last_log_likelihoods() const;

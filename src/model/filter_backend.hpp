@@ -12,6 +12,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "model/pose_scorer.hpp"
@@ -47,6 +48,9 @@ class FilterBackend {
     return e;
   }
   virtual std::string description() const = 0;
+  // Width and height of the occlusion state window the last frame kept (TrackerConfig::occlusion_window;
+  // 0 x 0 for a filter without one).
+  virtual std::pair<int, int> occlusion_window_size() const { return {0, 0}; }
 
  private:
   std::optional<Estimate> pending_;  // the host filters' estimate between the halves

@@ -272,6 +272,10 @@ const Camera& Tracker::working_camera() const {
 const TrackerConfig& Tracker::config() const {
   return config_;
 }
+std::pair<int, int> Tracker::occlusion_window_size() const {
+  return backend_->occlusion_window_size();
+}
+
 std::string Tracker::backend_description() const {
   return backend_->description();
 }
