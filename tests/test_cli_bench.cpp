@@ -58,6 +58,12 @@ TEST_CASE("median, p95 and the bytes each step moves", "[bench]") {
   CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::GlobalTime) == Approx(577520.0 / (1 << 20)));
   CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::Off) == Approx(193520.0 / (1 << 20)));
   CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::PerPixelTime, false) == Approx(577520.0 / (1 << 20)));
+  // A state window of 600 pixels: the rows (p and t, read and written; in memory p twice and t twice in
+  // 16 bits) shrink to it, the atlas stays the image's.
+  CHECK(cli::step_bytes(10, 4800, OcclusionStorage::PerPixelTime, false, 0, false, 600).weigh ==
+        10 * (4800 * 4 + 2 * 600 * 4 + 2 * 600 * 2 + 12));
+  CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::PerPixelTime, true, 600) ==
+        Approx(10 * 4 * (4800 + 3 * 600 + 38) / double(1 << 20)));
 }
 
 TEST_CASE("bench writes results.json with every column and the four figures", "[bench][cli]") {
@@ -111,9 +117,15 @@ TEST_CASE("bench writes results.json with every column and the four figures", "[
     REQUIRE(memory);
     CHECK((*speedup)["median"].get<double>() ==
           Approx(frame->at("median").get<double>() / device_frame->at("median").get<double>()));
-    // Without the atlas where the kernel renderer draws inside weigh (the tile fits in work-group memory).
+    // Without the atlas where the kernel renderer draws inside weigh (the tile fits in work-group memory);
+    // the occlusion rows (p twice, t twice in 16 bits: 3 floats a pixel) over the automatic window's pixels.
     const bool inside = renders_inside_weigh(Renderer::Kernel, 4800, compute::open_device(test::device_selector())->info().local_memory);
-    CHECK(memory->at("median").get<double>() == Approx((inside ? 577520.0 : 769520.0) / (1 << 20)));
+    const auto* window = find_row(rows, test::device_selector(), test, "state_window_pixels");
+    REQUIRE(window);
+    const double kept = window->at("median").get<double>();
+    CHECK(kept > 0);
+    CHECK(kept < 4800 / 4);  // the handset's window, a fraction of the image
+    CHECK(memory->at("median").get<double>() == Approx(10 * 4 * ((inside ? 0 : 4800) + 3 * kept + 38) / (1 << 20)));
   }
   for (const char* figure : {"particles.png", "resolution.png", "triangles.png", "occlusion.png"})
     CHECK(text_of(dir / "out" / figure).rfind("\x89PNG\r\n\x1a\n", 0) == 0);

@@ -99,8 +99,11 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
   const size_t pixels = static_cast<size_t>(c.width) * static_cast<size_t>(c.height);
   const bool inside_weigh =
       target.on_device && renders_inside_weigh(config.renderer, pixels, target.local_memory);
+  // The occlusion state the filter kept: its (automatic) window at the last frame.
+  const auto [window_width, window_height] = tracker.occlusion_window_size();
+  const size_t state_pixels = static_cast<size_t>(window_width) * static_cast<size_t>(window_height);
   const StepBytes b = step_bytes(static_cast<size_t>(c.particles), pixels, c.mode, target.on_device && renderer == "gl",
-                                 config.refine.enabled ? config.refine.iterations : 0, inside_weigh);
+                                 config.refine.enabled ? config.refine.iterations : 0, inside_weigh, state_pixels);
   const char* names[6] = {"propagate", "render", "handoff", "weigh", "resample", "refine"};
   const double bytes[6] = {b.propagate, b.render, b.handoff, b.weigh, b.resample, b.refine};
   for (int s = 0; s < 6; ++s) {
@@ -114,8 +117,9 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
   row("frames_per_second", "Hz", 1000 / frame_ms, 1000 / frame_p95, total.size());
   CaseResult result{c, target.backend, frame_ms, NAN};
   if (target.on_device) {
-    result.memory_mib = filter_memory_mib(static_cast<size_t>(c.particles), pixels, c.mode, !inside_weigh);
+    result.memory_mib = filter_memory_mib(static_cast<size_t>(c.particles), pixels, c.mode, !inside_weigh, state_pixels);
     row("device_memory", "MiB", result.memory_mib, result.memory_mib, 1);
+    row("state_window_pixels", "pixels", static_cast<double>(state_pixels), static_cast<double>(state_pixels), 1);
   }
   if (target.backend != "reference" && std::isfinite(reference_ms))
     row("speedup_vs_reference", "x", reference_ms / frame_ms, NAN, total.size());

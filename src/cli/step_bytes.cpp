@@ -6,11 +6,12 @@
 namespace depthtrack::cli {
 
 StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, bool gl_handoff, int refine_iterations,
-                     bool inside_weigh) {
+                     bool inside_weigh, std::optional<size_t> state_pixels) {
   const double n = static_cast<double>(particles), px = static_cast<double>(pixels), f = sizeof(float);
-  const double state = DT_STATE_STRIDE * f;                                    // per particle
-  const double occlusion = mode == OcclusionStorage::Off ? 0 : px * f;         // p per pixel
-  const double times = mode == OcclusionStorage::PerPixelTime ? px * 2 : 0.0;  // t_last's 16-bit frame index
+  const double kept = static_cast<double>(state_pixels.value_or(pixels));       // the state window's
+  const double state = DT_STATE_STRIDE * f;                                      // per particle
+  const double occlusion = mode == OcclusionStorage::Off ? 0 : kept * f;         // p per pixel
+  const double times = mode == OcclusionStorage::PerPixelTime ? kept * 2 : 0.0;  // t_last's 16-bit frame index
   StepBytes b;
   b.propagate = n * 2 * state;                                // read and write each state
   const double atlas = inside_weigh ? 0 : px * f;             // a tile's depths through memory
@@ -22,8 +23,10 @@ StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, boo
   return b;
 }
 
-double filter_memory_mib(size_t particles, size_t pixels, OcclusionStorage mode, bool atlas) {
-  return device_filter_bytes_per_particle(pixels, mode, false, atlas) * static_cast<double>(particles) / (1 << 20);
+double filter_memory_mib(size_t particles, size_t pixels, OcclusionStorage mode, bool atlas,
+                         std::optional<size_t> state_pixels) {
+  return device_filter_bytes_per_particle(pixels, mode, false, atlas, state_pixels) * static_cast<double>(particles) /
+         (1 << 20);
 }
 
 }  // namespace depthtrack::cli

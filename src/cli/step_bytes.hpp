@@ -6,6 +6,7 @@
 // writes its own: with an effective sample size near 1 most of those reads hit the cache, so the
 // figures are upper bounds.
 #include <cstddef>
+#include <optional>
 #include <depthtrack/tracker_config.hpp>
 
 namespace depthtrack::cli {
@@ -14,12 +15,14 @@ struct StepBytes {
   double propagate = 0, render = 0, handoff = 0, weigh = 0, resample = 0, refine = 0;
 };
 
-// One frame of `particles` particles at `pixels` pixels each; handoff only for the GL renderer; with
-// inside_weigh (renders_inside_weigh) the tiles stay in work-group memory: no atlas written or read.
+// One frame of `particles` particles at `pixels` pixels each, keeping occlusion state for state_pixels
+// of them (the state window's; none given: all); handoff only for the GL renderer; with inside_weigh
+// (renders_inside_weigh) the tiles stay in work-group memory: no atlas written or read.
 StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, bool gl_handoff, int refine_iterations,
-                     bool inside_weigh = false);
+                     bool inside_weigh = false, std::optional<size_t> state_pixels = std::nullopt);
 
 // Device memory the filter's buffers take without GL pages, MiB (device_filter_bytes_per_particle).
-double filter_memory_mib(size_t particles, size_t pixels, OcclusionStorage mode, bool atlas = true);
+double filter_memory_mib(size_t particles, size_t pixels, OcclusionStorage mode, bool atlas = true,
+                         std::optional<size_t> state_pixels = std::nullopt);
 
 }  // namespace depthtrack::cli
