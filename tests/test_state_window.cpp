@@ -26,6 +26,38 @@ TrackerConfig window_config(OcclusionStorage mode, int width, int height) {
   c.occlusion_window = width == 0 && height == 0 ? OcclusionWindow::whole_image() : OcclusionWindow{width, height};
   return c;
 }
+
+// Runs `windowed` and `whole` (the whole image's state) over the frames, both started at the first
+// frame's truth, and requires the same log-likelihoods and estimates and, inside each frame's window,
+// the same state bit for bit. Returns the windows `windowed` kept, frame by frame.
+std::vector<model::StateWindow> run_against_whole_image(reference::ReferenceFilter& windowed,
+                                                        reference::ReferenceFilter& whole,
+                                                        const std::vector<SynthFrame>& frames, const Camera& image,
+                                                        size_t particles) {
+  whole.initialize(frames[0].ground_truth, InitialSpread{0.01, 0.05});
+  windowed.initialize(frames[0].ground_truth, InitialSpread{0.01, 0.05});
+  std::vector<model::StateWindow> windows{windowed.state_window()};
+  for (size_t f = 0; f < frames.size(); ++f) {
+    INFO("frame " << f);
+    const double dt = f == 0 ? 0.0 : frames[f].timestamp - frames[f - 1].timestamp;
+    const Estimate a = whole.update(frames[f].depth, dt), b = windowed.update(frames[f].depth, dt);
+    REQUIRE(whole.last_log_likelihoods() == windowed.last_log_likelihoods());
+    REQUIRE(a.pose.translation == b.pose.translation);
+    REQUIRE(a.pose.rotation.coeffs() == b.pose.rotation.coeffs());
+    const model::StateWindow w = windowed.state_window();
+    windows.push_back(w);
+    const size_t pixels = static_cast<size_t>(image.pixel_count());
+    REQUIRE(windowed.occlusion_state().size() == particles * w.pixels());
+    for (size_t i = 0; i < particles; ++i)
+      for (int v = w.v0; v < w.v0 + w.height; ++v)
+        for (int u = w.u0; u < w.u0 + w.width; ++u) {
+          const size_t k = static_cast<size_t>(v * image.width + u), j = i * w.pixels() + w.index(u, v);
+          REQUIRE(windowed.occlusion_state()[j] == whole.occlusion_state()[i * pixels + k]);
+          REQUIRE(windowed.occlusion_times()[j] == whole.occlusion_times()[i * pixels + k]);
+        }
+  }
+  return windows;
+}
 }  // namespace
 
 TEST_CASE("the state window is the configured size, centred on the projected mesh centre, inside the image",
@@ -72,28 +104,10 @@ TEST_CASE("a state window that holds every covered pixel gives the whole-image f
   TrackerConfig whole_config = window_config(OcclusionStorage::PerPixelTime, 0, 0), cut_config = whole_config;
   cut_config.occlusion_window = {60, 44};
   reference::ReferenceFilter whole(mesh, synth.camera, whole_config), cut(mesh, synth.camera, cut_config);
-  whole.initialize(frames[0].ground_truth, InitialSpread{0.01, 0.05});
-  cut.initialize(frames[0].ground_truth, InitialSpread{0.01, 0.05});
   std::set<std::pair<int, int>> origins;
-  for (size_t f = 0; f < frames.size(); ++f) {
-    INFO("frame " << f);
-    const double dt = f == 0 ? 0.0 : frames[f].timestamp - frames[f - 1].timestamp;
-    const Estimate a = whole.update(frames[f].depth, dt), b = cut.update(frames[f].depth, dt);
-    REQUIRE(whole.last_log_likelihoods() == cut.last_log_likelihoods());
-    REQUIRE(a.pose.translation == b.pose.translation);
-    REQUIRE(a.pose.rotation.coeffs() == b.pose.rotation.coeffs());
-    const model::StateWindow w = cut.state_window();
+  for (const model::StateWindow& w :
+       run_against_whole_image(cut, whole, frames, synth.camera, static_cast<size_t>(whole_config.particles)))
     origins.insert({w.u0, w.v0});
-    const size_t image = static_cast<size_t>(synth.camera.pixel_count());
-    REQUIRE(cut.occlusion_state().size() == whole_config.particles * w.pixels());
-    for (size_t i = 0; i < static_cast<size_t>(whole_config.particles); ++i)
-      for (int v = w.v0; v < w.v0 + w.height; ++v)
-        for (int u = w.u0; u < w.u0 + w.width; ++u) {
-          const size_t k = static_cast<size_t>(v * synth.camera.width + u);
-          REQUIRE(cut.occlusion_state()[i * w.pixels() + w.index(u, v)] == whole.occlusion_state()[i * image + k]);
-          REQUIRE(cut.occlusion_times()[i * w.pixels() + w.index(u, v)] == whole.occlusion_times()[i * image + k]);
-        }
-  }
   CHECK(origins.size() >= 2);  // the window followed the estimate
 }
 
@@ -210,27 +224,12 @@ TEST_CASE("an automatic window follows an approaching object and gives the whole
   TrackerConfig whole_config = window_config(OcclusionStorage::PerPixelTime, 0, 0), auto_config = whole_config;
   auto_config.occlusion_window = OcclusionWindow{};
   reference::ReferenceFilter whole(mesh, synth.camera, whole_config), automatic(mesh, synth.camera, auto_config);
-  whole.initialize(frames[0].ground_truth, InitialSpread{0.01, 0.05});
-  automatic.initialize(frames[0].ground_truth, InitialSpread{0.01, 0.05});
-  const size_t first_size = automatic.state_window().pixels();
+  const std::vector<model::StateWindow> windows =
+      run_against_whole_image(automatic, whole, frames, synth.camera, static_cast<size_t>(whole_config.particles));
+  const size_t first_size = windows.front().pixels();
   CHECK(first_size < static_cast<size_t>(synth.camera.pixel_count()) / 4);
   std::set<size_t> sizes;
-  for (size_t f = 0; f < frames.size(); ++f) {
-    INFO("frame " << f);
-    const double dt = f == 0 ? 0.0 : frames[f].timestamp - frames[f - 1].timestamp;
-    const Estimate a = whole.update(frames[f].depth, dt), b = automatic.update(frames[f].depth, dt);
-    REQUIRE(whole.last_log_likelihoods() == automatic.last_log_likelihoods());
-    REQUIRE(a.pose.translation == b.pose.translation);
-    const model::StateWindow w = automatic.state_window();
-    sizes.insert(w.pixels());
-    const size_t image = static_cast<size_t>(synth.camera.pixel_count());
-    for (size_t i = 0; i < static_cast<size_t>(whole_config.particles); ++i)
-      for (int v = w.v0; v < w.v0 + w.height; ++v)
-        for (int u = w.u0; u < w.u0 + w.width; ++u) {
-          const size_t k = static_cast<size_t>(v * synth.camera.width + u);
-          REQUIRE(automatic.occlusion_state()[i * w.pixels() + w.index(u, v)] == whole.occlusion_state()[i * image + k]);
-        }
-  }
+  for (const model::StateWindow& w : windows) sizes.insert(w.pixels());
   CHECK(sizes.size() >= 3);  // it grew, more than once (21x17 to 27x23 here)
   CHECK(*sizes.rbegin() > 3 * first_size / 2);
 }
