@@ -264,15 +264,12 @@ int main(int argc, char** argv) {
       } catch (const InputError& e) {
         throw bench::UsageError{e.what()};
       }
-    else if (arg == "--occlusion-window") {
-      const std::string value = args.value();
-      if (value == "full")
-        window = OcclusionWindow::whole_image();
-      else if (value != "auto") {
-        const auto [width, height] = bench::parse_size(value, arg);
-        window = OcclusionWindow::fixed(width, height);
+    else if (arg == "--occlusion-window")
+      try {
+        window = occlusion_window_from_string(args.value());
+      } catch (const InputError& e) {
+        throw bench::UsageError{arg + ": " + e.what()};
       }
-    }
     else if (arg == "--simplify-error")
       simplify_error = bench::parse_nonnegative_double(args.value(), arg);
     else if (arg == "--mesh")

@@ -91,6 +91,14 @@ TEST_CASE("the state window is the configured size, centred on the projected mes
   // A negative size is refused by name.
   CHECK_THROWS_WITH(window_config(OcclusionStorage::PerPixelTime, -1, 5).validate(),
                     Catch::Contains("occlusion window -1x5"));
+  // The command lines' spelling (track and depthtrack_bench): auto, full or WxH.
+  CHECK(occlusion_window_from_string("auto").is_automatic());
+  const OcclusionWindow full = occlusion_window_from_string("full");
+  CHECK((!full.is_automatic() && full.width == 0 && full.height == 0));
+  const OcclusionWindow fixed = occlusion_window_from_string("24x16");
+  CHECK((!fixed.is_automatic() && fixed.width == 24 && fixed.height == 16));
+  for (const char* bad : {"32", "32x-4", "wide", "24x16x2", ""})
+    CHECK_THROWS_WITH(occlusion_window_from_string(bad), Catch::Contains("is not auto, full or WxH"));
 }
 
 // Per-pixel time: a pixel outside every window the filter had holds the fresh state (0.1 at time 0) in

@@ -10,8 +10,8 @@
 #include <depthtrack/pose.hpp>
 #include <depthtrack/tracker_config.hpp>
 #include <functional>
-#include <utility>
 #include <memory>
+#include <utility>
 
 namespace depthtrack {
 

@@ -103,6 +103,8 @@ struct OcclusionWindow {
   static OcclusionWindow fixed(int width, int height) { return {width, height, false}; }
   bool is_automatic() const { return automatic && width == 0 && height == 0; }
 };
+// "auto", "full" or "WxH" (positive integers); throws InputError naming the choices.
+OcclusionWindow occlusion_window_from_string(const std::string& text);
 
 // Global search while lost.
 struct RecoveryModel {

@@ -86,18 +86,11 @@ TrackerConfig TrackerOptions::resolve() const {
   if (given(resolution_option)) std::tie(c.width, c.height) = parse_resolution(resolution);
   if (given(occlusion_option)) c.occlusion_storage = occlusion_storage_from_string(occlusion);
   if (given(occlusion_window_option)) {
-    if (occlusion_window == "full")
-      c.occlusion_window = OcclusionWindow::whole_image();
-    else if (occlusion_window == "auto")
-      c.occlusion_window = OcclusionWindow{};
-    else
-      try {
-        const auto [width, height] = parse_resolution(occlusion_window);
-        c.occlusion_window = OcclusionWindow::fixed(width, height);
-      } catch (const InputError&) {
-        throw InputError("--occlusion-window '" + occlusion_window +
-                         "' is not auto, full or WxH with positive integers");
-      }
+    try {
+      c.occlusion_window = occlusion_window_from_string(occlusion_window);
+    } catch (const InputError&) {
+      throw InputError("--occlusion-window '" + occlusion_window + "' is not auto, full or WxH with positive integers");
+    }
   }
   if (given(refine_option)) {
     if (refine != "on" && refine != "off") throw InputError("--refine '" + refine + "' is not on or off");

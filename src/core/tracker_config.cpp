@@ -2,6 +2,7 @@
 #include <cstdlib>
 #include <depthtrack/error.hpp>
 #include <depthtrack/tracker_config.hpp>
+#include <sstream>
 #include <string>
 
 namespace depthtrack {
@@ -40,6 +41,17 @@ Renderer renderer_from_string(const std::string& name) {
   for (auto renderer : {Renderer::Kernel, Renderer::Gl, Renderer::Cpu})
     if (name == to_string(renderer)) return renderer;
   throw InputError("unknown renderer '" + name + "' (choose cpu, gl or kernel)");
+}
+
+OcclusionWindow occlusion_window_from_string(const std::string& text) {
+  if (text == "auto") return OcclusionWindow{};
+  if (text == "full") return OcclusionWindow::whole_image();
+  int width = 0, height = 0;
+  char x = 0, extra = 0;
+  std::istringstream in(text);
+  if (!(in >> width >> x >> height) || (x != 'x' && x != 'X') || (in >> extra) || width <= 0 || height <= 0)
+    throw InputError("occlusion window '" + text + "' is not auto, full or WxH with positive integers");
+  return OcclusionWindow::fixed(width, height);
 }
 
 const char* to_string(RefineLayout layout) {

@@ -184,6 +184,7 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   atlas_ = compute::Buffer<float>(q, render_weigh_ ? 1 : atlas_source_->layout().floats());
   observed_ = compute::Buffer<float>(q, pixels_);
   // An automatic window's rows are allocated once the start sizes it.
+  state_pixel_limit_ = state_pixel_limit();
   reserve_state_rows(occlusion_, occlusion_time_, window_);
   reserve_state_rows(scratch_occlusion_, scratch_occlusion_time_, window_);
   frame_times_ = std::make_unique<FrameTimeTable>(q);
@@ -222,11 +223,7 @@ void DeviceFilter::check_state_memory(const model::StateWindow& window) const {
   if (info.global_memory > 0 && needed > 0.9 * static_cast<double>(info.global_memory)) {
     std::ostringstream m;
     m.precision(3);
-    m << config_.particles << " particles at " << camera_.width << "x" << camera_.height;
-    if (config_.occlusion_window.is_automatic() && window.pixels() > 0)
-      m << " with a " << window.width << "x" << window.height
-        << " occlusion state window (sized for the object at its start)";
-    m << " need " << needed / (1 << 30) << " GiB of device memory but " << info.name << " has "
+    m << model::particles_and_window(config_, camera_, window) << " need " << needed / (1 << 30) << " GiB of device memory but " << info.name << " has "
       << static_cast<double>(info.global_memory) / (1 << 30) << " GiB; at most about "
       << static_cast<long long>(0.9 * static_cast<double>(info.global_memory) / per_particle) << " particles fit";
     throw InputError(m.str());
@@ -243,24 +240,25 @@ size_t DeviceFilter::state_pixel_limit() const {
 }
 
 // Rows for `window` in a pair of state buffers (probabilities, times), reallocated only when they hold
-// fewer: an automatic window's rows are sized at the start and grow with it. A growing window grows by
-// a pixel or two a frame while the object nears, so a buffer outgrown takes half as much again (within
-// the memory's bound) rather than being reallocated every frame.
+// fewer: an automatic window's rows are sized at the start and grow with it. Kernels always take both
+// buffers, so a mode that keeps no such state gets the placeholder (one element; two 16-bit ones).
 void DeviceFilter::reserve_state_rows(compute::Buffer<float>& occlusion, compute::Buffer<uint16_t>& times,
                                       const model::StateWindow& window) {
   const size_t kept = count_ * window.pixels();
-  const size_t limit = state_pixel_limit() * count_;
-  const auto capacity = [&](size_t held) {
-    const size_t roomy = held > 2 ? kept + kept / 2 : kept;  // a start takes what it needs
+  // A window grows by a pixel or two a frame while the object nears, so rows that are outgrown take
+  // half as much again (within the memory's bound) rather than being reallocated every frame; the
+  // placeholder, before the start, takes what the start needs.
+  const auto rows = [&](size_t held, size_t placeholder) {
+    if (held <= placeholder) return std::max(kept, placeholder);
+    const size_t roomy = kept + kept / 2, limit = state_pixel_limit_ * count_;
     return std::max(kept, limit > 0 ? std::min(roomy, limit) : roomy);
   };
-  // Kernels always take both buffers: a mode that keeps no such state gets one element (two 16-bit ones).
   const bool probabilities = config_.occlusion_storage != OcclusionStorage::Off;
   const bool indices = config_.occlusion_storage == OcclusionStorage::PerPixelTime;
-  if (occlusion.size() < (probabilities ? std::max<size_t>(kept, 1) : 1))
-    occlusion = compute::Buffer<float>(*queue_, probabilities ? std::max<size_t>(capacity(occlusion.size()), 1) : 1);
-  if (times.size() < (indices ? std::max<size_t>(kept, 2) : 2))
-    times = compute::Buffer<uint16_t>(*queue_, indices ? std::max<size_t>(capacity(times.size()), 2) : 2);
+  if (probabilities ? occlusion.size() < std::max<size_t>(kept, 1) : occlusion.size() < 1)
+    occlusion = compute::Buffer<float>(*queue_, probabilities ? rows(occlusion.size(), 1) : 1);
+  if (indices ? times.size() < std::max<size_t>(kept, 2) : times.size() < 2)
+    times = compute::Buffer<uint16_t>(*queue_, indices ? rows(times.size(), 2) : 2);
 }
 
 std::string DeviceFilter::description() const {
@@ -302,11 +300,10 @@ void DeviceFilter::initialize_modes(std::span<const Pose> modes, const InitialSp
     for (double v : {m.translation.x(), m.translation.y(), m.translation.z(), q.w(), q.x(), q.y(), q.z()})
       mode_values.push_back(static_cast<float>(v));
   }
+  // An automatic window is sized here: its rows are checked and allocated (a fixed one's already were).
   window_ = next_window_ = model::start_state_window(config_, extent_, modes.front(), camera_);
-  if (config_.occlusion_window.is_automatic()) {
-    check_state_memory(window_);
-    reserve_state_rows(occlusion_, occlusion_time_, window_);
-  }
+  check_state_memory(window_);
+  reserve_state_rows(occlusion_, occlusion_time_, window_);
   compute::Buffer<float> mode_buffer(*queue_, mode_values.size());
   mode_buffer.upload(mode_values);
   const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
@@ -521,7 +518,7 @@ Estimate DeviceFilter::collect() {
   }
   last_resampled_ = e.resampled;
   weighed_in_scratch_ = true;
-  next_window_ = model::next_state_window(window_, config_, extent_, e.pose, camera_, state_pixel_limit());
+  next_window_ = model::next_state_window(window_, config_, extent_, e.pose, camera_, state_pixel_limit_);
 
   if (p->propagated) e.timings.propagate_ms = p->propagated->elapsed_ms();
   if (p->rendered) {

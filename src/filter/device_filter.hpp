@@ -107,7 +107,7 @@ class DeviceFilter final : public FilterBackend {
   size_t checked_particle_count() const;
   void check_state_memory(const model::StateWindow& window) const;
   double bytes_per_particle(size_t state_pixels) const;
-  size_t state_pixel_limit() const;
+  size_t state_pixel_limit() const;  // computed once, into state_pixel_limit_
   void reserve_state_rows(compute::Buffer<float>& occlusion, compute::Buffer<uint16_t>& times,
                           const model::StateWindow& window);
   void upload_particles(const std::vector<model::ParticleState>& particles);
@@ -138,6 +138,7 @@ class DeviceFilter final : public FilterBackend {
   model::ObjectExtent extent_;
   model::StateWindow window_, next_window_;
   size_t count_;
+  size_t state_pixel_limit_ = 0;  // the most pixels a window may grow to in the memory (0: no bound)
   size_t summary_group_ = 0;  // the one-group summary's work-items (none with the wide summary)
   std::unique_ptr<AtlasSource> atlas_source_;
   std::unique_ptr<Kernels> kernels_;

@@ -83,6 +83,15 @@ StateWindow next_state_window(StateWindow window, const TrackerConfig& config, c
   return state_window_at(window, estimate, object.centre, camera);
 }
 
+std::string particles_and_window(const TrackerConfig& config, const Camera& camera, const StateWindow& window) {
+  std::string text = std::to_string(config.particles) + " particles at " + std::to_string(camera.width) + "x" +
+                     std::to_string(camera.height);
+  if (config.occlusion_window.is_automatic() && window.pixels() > 0)
+    text += " with a " + std::to_string(window.width) + "x" + std::to_string(window.height) +
+            " occlusion state window (sized for the object at its start)";
+  return text;
+}
+
 StateWindow state_window_at(StateWindow window, const Pose& pose, const Eigen::Vector3d& centre, const Camera& camera) {
   const Eigen::Vector3d c = pose.rotation * centre + pose.translation;
   if (!(c.z() > 0) || !c.allFinite()) return window;

@@ -10,6 +10,7 @@
 #include <depthtrack/pose.hpp>
 #include <depthtrack/tracker_config.hpp>
 #include <optional>
+#include <string>
 
 namespace depthtrack::model {
 
@@ -61,6 +62,10 @@ StateWindow start_state_window(const TrackerConfig& config, const ObjectExtent& 
 // memory), then placed at the estimate.
 StateWindow next_state_window(StateWindow window, const TrackerConfig& config, const ObjectExtent& object,
                               const Pose& estimate, const Camera& camera, size_t max_pixels);
+
+// "N particles at WxH", and where an automatic window has been sized " with a WxH occlusion state window
+// (sized for the object at its start)": what the reference's and the device's memory errors say did not fit.
+std::string particles_and_window(const TrackerConfig& config, const Camera& camera, const StateWindow& window);
 
 // `window` moved so that its centre is the pixel nearest to the projection of the mesh centre
 // (object frame) in `pose`, clamped inside the image; unmoved when that point is not in front of the

@@ -53,11 +53,7 @@ void check_host_memory(const TrackerConfig& config, const Camera& camera, const 
   if (memory.available > 0 && needed > 0.8 * memory.available) {
     std::ostringstream m;
     m.precision(3);
-    m << config.particles << " particles at " << camera.width << "x" << camera.height;
-    if (config.occlusion_window.is_automatic() && window.pixels() > 0)
-      m << " with a " << window.width << "x" << window.height
-        << " occlusion state window (sized for the object at its start)";
-    m << " need " << needed / (1 << 30) << " GiB of memory for the reference filter but this machine has "
+    m << model::particles_and_window(config, camera, window) << " need " << needed / (1 << 30) << " GiB of memory for the reference filter but this machine has "
       << memory.available / (1 << 30) << " GiB; at most about "
       << static_cast<long long>(0.8 * memory.available / per_particle) << " particles fit";
     throw InputError(m.str());
@@ -74,7 +70,8 @@ ReferenceFilter::ReferenceFilter(const Mesh& mesh, const Camera& camera, const T
       scorer_(mesh, camera, config),
       extent_(model::object_extent(mesh)),
       window_(model::state_window_size(config, camera)),
-      next_window_(window_) {
+      next_window_(window_),
+      state_pixel_limit_(HostMemory(config).state_pixel_limit(config.particles)) {
   check_host_memory(config, camera, window_);
   const size_t n = static_cast<size_t>(config.particles), pixels = static_cast<size_t>(camera.pixel_count());
   pool_ = std::make_unique<ThreadPool>(threads);
@@ -82,9 +79,7 @@ ReferenceFilter::ReferenceFilter(const Mesh& mesh, const Camera& camera, const T
     lanes_.push_back(Lane{
         Rasterizer(mesh, camera, config.near_plane, config.observation.max_depth), std::vector<float>(pixels), {}, {}});
   particles_.resize(n);
-  log_weights_.assign(n, 0.0);
-  if (config.occlusion_storage != OcclusionStorage::Off) occlusion_.resize(n * window_.pixels());
-  if (config.occlusion_storage == OcclusionStorage::PerPixelTime) occlusion_time_.resize(n * window_.pixels());
+  log_weights_.assign(n, 0.0);  // the occlusion rows are allocated at the start (initialize_modes)
 }
 
 std::string ReferenceFilter::description() const {
@@ -364,8 +359,7 @@ Estimate ReferenceFilter::update(const DepthImage& depth, double dt) {
     std::iota(last_parents_.begin(), last_parents_.end(), 0);
   }
   e.timings.resample_ms += gather_clock.elapsed_ms();
-  next_window_ = model::next_state_window(window_, config_, extent_, e.pose, camera_,
-                                         HostMemory(config_).state_pixel_limit(config_.particles));
+  next_window_ = model::next_state_window(window_, config_, extent_, e.pose, camera_, state_pixel_limit_);
   e.timings.total_ms = frame_clock.elapsed_ms();
   ++frame_;
   return e;

@@ -117,6 +117,7 @@ class ReferenceFilter final : public FilterBackend {
   // an automatic window sized from the object's extent).
   model::ObjectExtent extent_;
   model::StateWindow window_, next_window_;
+  size_t state_pixel_limit_;  // the most pixels a window may grow to in the memory (0: no bound)
   std::vector<float> scratch_occlusion_, scratch_occlusion_time_;  // resampling's gather targets
   std::vector<PixelPrior> priors_;                                 // the heaviest particle's
   std::vector<ChunkHeaviest> chunk_heaviest_;                      // weigh_all's, per chunk
