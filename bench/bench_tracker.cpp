@@ -66,7 +66,8 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
   tracker.initialize(scene.ground_truth(0.0));
   const double startup_ms = startup.elapsed_ms();
   const double startup_peak_mib = peak_known ? bench::peak_resident_mib() : NAN;
-  std::vector<double> propagate, render, handoff, weigh, resample, refined, confidence, total, refine_steps;
+  std::vector<double> propagate, render, handoff, weigh, resample, refined, confidence, enqueue, wait, total,
+      refine_steps;
   for (int i = 0; i < frames; ++i) {
     const SynthFrame f = scene.frame(i);
     const Estimate e = tracker.update(f.depth, f.timestamp);
@@ -79,6 +80,8 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
     refined.push_back(e.timings.refine_ms);
     refine_steps.push_back(e.refine_iterations);
     confidence.push_back(e.timings.confidence_ms);
+    enqueue.push_back(e.timings.enqueue_ms);
+    wait.push_back(e.timings.wait_ms);
     total.push_back(e.timings.total_ms);
   }
   const std::string device = tracker.backend_description();
@@ -102,6 +105,8 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
                                         {"resample", &resample},
                                         {"refine", &refined},
                                         {"confidence", &confidence},
+                                        {"enqueue", &enqueue},
+                                        {"wait", &wait},
                                         {"total", &total}}) {
     const double ms = bench::median(*samples);
     bench::print_row({backend, platform, name, "-", test, std::string(metric) + "_ms", "ms", ms});

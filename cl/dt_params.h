@@ -50,6 +50,7 @@ typedef struct {
   float radius;           /* largest vertex distance from the centre */
   float converged_motion; /* a step moving no mesh point farther than this (metres) is not tried */
   dt_u32 vertex_count;
+  float pixel_sigmas; /* the confidence's band: a pixel within this many sigma of the surface is visible */
 } dt_refine_args;
 
 /* The occlusion state window (model::StateWindow, TrackerConfig::occlusion_window): each particle's

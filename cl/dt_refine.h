@@ -145,6 +145,10 @@ DT_DEVICE_FN void dt_refine_pixel(float* acc, uint k, uint bits, uint id, dt_rig
   const float y = observed[k];
   if (bits == DT_NO_SURFACE || !(y > 0.0f) || !isfinite(y)) return;
   const float y_hat = dt_as_float(bits);
+  /* The confidence's counts, with y_hat's own depth band (silhouette_shares). */
+  const float sigma = m.sigma_constant + m.sigma_quadratic * y * y;
+  acc[DT_REFINE_MEASURED] += 1.0f;
+  if (fabs(y - y_hat) <= args.pixel_sigmas * sigma) acc[DT_REFINE_VISIBLE] += 1.0f;
   float p = 0.0f;
 #if DT_OCCLUSION != DT_OCCLUSION_OFF
   const dt_u32 u = k % cam.width, v = k / cam.width;
@@ -161,7 +165,6 @@ DT_DEVICE_FN void dt_refine_pixel(float* acc, uint k, uint bits, uint id, dt_rig
   float posterior;
   acc[DT_REFINE_OBJECTIVE] += dt_pixel_log_ratio(m, y, y_hat, p, &posterior);
   /* E-step: (1 - p) (1 - w) N / mixture = (1 - posterior) (1 - w) N / p_vis. */
-  const float sigma = m.sigma_constant + m.sigma_quadratic * y * y;
   const float z = (y - y_hat) / sigma;
   const float gaussian = m.keep * exp(-0.5f * z * z) / (2.5066282746f * sigma);
   const float responsibility = (1.0f - posterior) * gaussian / (m.tail_density + gaussian);
@@ -225,6 +228,8 @@ DT_DEVICE_FN void dt_refine_finish(__global float* estimate, dt_pose start, dt_p
                                    int tried, dt_vec3 centre, __global float* correction) {
   dt_store_pose(estimate, best);
   estimate[DT_EST_REFINE_ITERATIONS] = DT_CAST(float, tried);
+  estimate[DT_EST_VISIBLE] = best_sums[DT_REFINE_VISIBLE];
+  estimate[DT_EST_MEASURED] = best_sums[DT_REFINE_MEASURED];
   const float nan = dt_as_float(0x7fc00000u);
   for (int c = 0; c < 6; ++c) {
     float unit[6] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f}, column[6];

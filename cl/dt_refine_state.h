@@ -5,9 +5,13 @@
 #include "dt_prelude.h"
 #include "dt_state.h"
 
-#define DT_REFINE_SUMS 29 /* H's lower triangle (21), g (6), objective, pixels */
+#define DT_REFINE_SUMS 31 /* H's lower triangle (21), g (6), objective, pixels, visible, measured */
 #define DT_REFINE_OBJECTIVE 27
 #define DT_REFINE_PIXELS 28
+/* The confidence's counts (TrackSupervisor's silhouette shares): covered pixels with a valid depth,
+ * and those of them within pixel_sigmas sigma of the surface. */
+#define DT_REFINE_VISIBLE 29
+#define DT_REFINE_MEASURED 30
 /* The spread layout's buffers (refine_spread.cl), also filled by the host: a pixel's (depth bits << 32)
  * | triangle with nothing drawn (+inf's bits, no triangle), and a partial row's (stamp << 32) | bits
  * before any group wrote it (a stamp no evaluation has). */

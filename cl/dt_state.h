@@ -20,5 +20,7 @@
 #define DT_EST_RESAMPLE 18 /* 1 when the KL from uniform exceeds the threshold, else 0 (summarize.cl) */
 #define DT_EST_REFINE_ITERATIONS 19 /* steps the refinement tried (refine.cl) */
 #define DT_EST_COV 20 /* 6x6 row-major covariance of the refined pose (refine.cl), NaN without one */
-#define DT_EST_SIZE 56
+#define DT_EST_VISIBLE 56  /* the refined pose's confidence counts (dt_refine_state.h's DT_REFINE_VISIBLE) */
+#define DT_EST_MEASURED 57 /* and DT_REFINE_MEASURED */
+#define DT_EST_SIZE 58
 #endif

@@ -1,5 +1,6 @@
 // Typed buffers on the test device: round trips, sub-ranges, device-side copies.
 #include <catch2/catch.hpp>
+#include <depthtrack/error.hpp>
 #include <numeric>
 #include <vector>
 
@@ -32,6 +33,28 @@ TEST_CASE("Buffer<float> round trip, whole and in sub-ranges", "[compute]") {
   std::vector<float> last(1);
   buffer.download(last, 999);
   CHECK(last[0] == data[999]);
+}
+
+// An enqueued upload takes the bytes before it returns: the host's array may change at once, and
+// uploads, launches and copies keep their order on the queue.
+TEST_CASE("Enqueued uploads take their bytes at once and stay in order with the queue's work", "[compute]") {
+  auto queue = test::test_queue();
+  if (!queue) return;
+  std::vector<float> frame(4096);
+  std::iota(frame.begin(), frame.end(), 1.0f);
+  compute::Buffer<float> a(*queue, frame.size()), b(*queue, frame.size()), kept(*queue, frame.size());
+  a.upload_enqueued(frame);
+  const std::vector<float> first = frame;
+  std::fill(frame.begin(), frame.end(), -7.0f);  // the next frame, before the first copy is awaited
+  queue->copy(a.memory(), 0, kept.memory(), 0, frame.size() * sizeof(float));
+  a.upload_enqueued(frame);  // over the buffer the copy reads: after it, in order
+  b.upload_enqueued(std::span<const float>(frame).subspan(10, 20), 100);
+  CHECK(kept.download() == first);
+  CHECK(a.download() == frame);
+  std::vector<float> part(20);
+  b.download(part, 100);
+  CHECK(part == std::vector<float>(20, -7.0f));
+  CHECK_THROWS_AS(b.upload_enqueued(frame, 1), InputError);  // past the end: refused, nothing written
 }
 
 TEST_CASE("Queue copies between device buffers", "[compute]") {

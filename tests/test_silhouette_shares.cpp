@@ -5,6 +5,11 @@
 #include <cmath>
 #include <depthtrack/mesh.hpp>
 
+#include <depthtrack/tracker.hpp>
+
+#include "reference/observation_model.hpp"
+#include "reference/pose_refiner.hpp"
+#include "synth_frames.hpp"
 #include "tracker/silhouette_shares.hpp"
 
 using namespace depthtrack;
@@ -75,4 +80,61 @@ TEST_CASE("silhouette shares: an object before a wall stands out and an occluder
   const SilhouetteShares blind = scene.shares(std::vector<float>(scene.rendered.size(), NAN));
   CHECK(blind.missing == 1.0);
   CHECK(blind.confidence() == 0.0);
+}
+
+// The filters with refinement take the confidence from the fit's counts at the refined pose instead of
+// drawing it again (FilterBackend::assesses_confidence): the counts must be the silhouette shares'.
+TEST_CASE("the refinement's counts at a pose are the confidence's: pixels measured and within the band",
+          "[confidence]") {
+  Scene scene;
+  std::vector<float> metres = scene.object_on(1.6f);
+  // Of the covered pixels, by hand: 7 with something 0.3 m in front, 5 seen 0.2 m behind the surface,
+  // 4 with no depth; the rest exactly on the surface.
+  std::vector<size_t> covered;
+  for (size_t k = 0; k < metres.size(); ++k)
+    if (scene.rendered[k] > 0) covered.push_back(k);
+  REQUIRE(covered.size() > 40);
+  for (size_t i = 0; i < 16; ++i) {
+    const size_t k = covered[i * 2];
+    metres[k] = i < 7 ? scene.rendered[k] - 0.3f : i < 12 ? scene.rendered[k] + 0.2f : NAN;
+  }
+  const int measured = static_cast<int>(covered.size()) - 4, visible = measured - 12;
+  const SilhouetteShares shares = scene.shares(metres);
+  REQUIRE(shares.confidence() == Approx(static_cast<double>(visible) / measured).epsilon(1e-12));
+
+  const reference::PoseRefiner refiner(scene.mesh, scene.camera, scene.config);
+  const DepthImage depth = DepthImage::from_metres(scene.camera.width, scene.camera.height, metres);
+  const reference::NormalEquations e = refiner.normal_equations(scene.pose, depth, {});
+  CHECK(e.measured == measured);
+  CHECK(e.visible == visible);
+  CHECK(e.visible_share() == shares.confidence());
+  // A wider band takes the pixels 0.2 m behind in (sigma at ~0.8 m is a few millimetres).
+  TrackerConfig wide = scene.config;
+  wide.loss.pixel_sigmas = 0.25 / reference::depth_sigma(wide.observation, 1.0);
+  CHECK(reference::PoseRefiner(scene.mesh, scene.camera, wide).normal_equations(scene.pose, depth, {}).visible ==
+        visible + 5);
+}
+
+TEST_CASE("a reference tracker with refinement reports the silhouette shares' confidence at its estimate",
+          "[confidence]") {
+  const Mesh mesh = builtin_demo_mesh();
+  const SynthConfig synth = test::small_scene(12);
+  const Synthesizer scene(mesh, synth);
+  TrackerConfig config;
+  config.particles = 100;
+  config.width = synth.camera.width;
+  config.height = synth.camera.height;
+  config.backend = "reference";
+  Tracker tracker(mesh, synth.camera, config);
+  tracker.initialize(scene.ground_truth(0.0));
+  const reference::Rasterizer rasterizer(mesh, synth.camera, config.near_plane, config.observation.max_depth);
+  std::vector<float> scratch(static_cast<size_t>(synth.camera.pixel_count()));
+  for (int i = 0; i < synth.frames; ++i) {
+    const SynthFrame f = scene.frame(i);
+    const Estimate e = tracker.update(f.depth, f.timestamp);
+    const SilhouetteShares shares = silhouette_shares(rasterizer, config.observation, config.loss.pixel_sigmas, e.pose,
+                                                      f.depth, scratch);
+    REQUIRE(shares.pixels > 20);
+    REQUIRE(e.confidence == shares.confidence());
+  }
 }

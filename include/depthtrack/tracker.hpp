@@ -31,9 +31,13 @@ struct StepTimings {
   // The estimate's confidence and status: its silhouette drawn and compared on the host, wall-clock;
   // included in total_ms.
   double confidence_ms = 0;
-  // Compute backends: the frame's depth written to the device, host wall time (a blocking write); included
+  // Compute backends: the frame's depth handed to the device (staged and enqueued), host wall time; included
   // in total_ms. 0 on the host.
   double upload_ms = 0;
+  // Compute backends, host wall time: handing the frame's device work over (the upload included), and
+  // then waiting for its estimate. What total_ms holds beyond these and confidence_ms is the host's
+  // reading of the results. 0 on the host.
+  double enqueue_ms = 0, wait_ms = 0;
 };
 
 // What a frame's estimate rests on. Tracking: the filter follows the object. Lost: the confidence

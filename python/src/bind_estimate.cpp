@@ -21,6 +21,8 @@ void bind_estimate(py::module_& m) {
       .def_readonly("search_ms", &StepTimings::search_ms)
       .def_readonly("confidence_ms", &StepTimings::confidence_ms)
       .def_readonly("upload_ms", &StepTimings::upload_ms)
+      .def_readonly("enqueue_ms", &StepTimings::enqueue_ms)
+      .def_readonly("wait_ms", &StepTimings::wait_ms)
       .def_readonly("total_ms", &StepTimings::total_ms);
 
   py::class_<Estimate>(m, "Estimate", "One frame's estimate")

@@ -29,6 +29,11 @@ class Buffer {
     check_range("upload", offset, data.size());
     queue_->write(*memory_, offset * sizeof(T), data.data(), data.size_bytes());
   }
+  // upload() without waiting for the copy (Queue::write_enqueued): data may change once it returns.
+  void upload_enqueued(std::span<const T> data, size_t offset = 0) {
+    check_range("upload", offset, data.size());
+    queue_->write_enqueued(*memory_, offset * sizeof(T), data.data(), data.size_bytes());
+  }
   // Reads elements [offset, offset + out.size()) into out.
   void download(std::span<T> out, size_t offset = 0) const {
     check_range("download", offset, out.size());

@@ -115,6 +115,12 @@ class Queue {
   // Blocking copies between host and device memory, at a byte offset into the device memory.
   virtual void write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) = 0;
   virtual void read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) = 0;
+  // A copy from the host enqueued in order with the work around it, not waited for: the bytes are taken
+  // (staged) before it returns, so `source` may change at once. For a frame's input ahead of its
+  // launches, where a blocking write would add the copy's round trip. By default the blocking write.
+  virtual void write_enqueued(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) {
+    write(memory, offset, source, bytes);
+  }
   // Host access to bytes [offset, offset + bytes) of `memory` for overwriting them all: a pointer
   // that stays valid until unmap(memory, pointer), which makes the new contents visible to work
   // enqueued after it. One mapping per queue at a time. OpenCL maps the buffer (no copy at all

@@ -426,7 +426,7 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   reserve_state_rows(scratch_occlusion_, scratch_occlusion_time_, next_window_);
   time_ += dt;
   const Stopwatch upload;
-  observed_.upload(depth.data());
+  observed_.upload_enqueued(depth.data());  // the frame's launches follow it in order
   p->timings.upload_ms = upload.elapsed_ms();
   // The frame's launches as one batch (a CUDA graph, replayed frame after frame). Only where every
   // launch goes through the queue: the GL renderer's hand-off enqueues work of its own.
@@ -493,6 +493,7 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   p->resampling = resample();
   if (refiner_) p->shifted = shift_particles();
   batch.submit();
+  p->timings.enqueue_ms = p->clock.elapsed_ms();
   pending_ = std::move(p);
 }
 
@@ -502,7 +503,9 @@ Estimate DeviceFilter::collect() {
   Estimate e;
   e.timings = p->timings;
   float est[DT_EST_SIZE];
+  const Stopwatch wait;
   estimate_.download(std::span<float>(est, DT_EST_SIZE));  // the frame's one wait
+  e.timings.wait_ms = wait.elapsed_ms();
   e.pose = Pose({est[DT_EST_TX], est[DT_EST_TX + 1], est[DT_EST_TX + 2]},
                 Eigen::Quaterniond(est[DT_EST_QW], est[DT_EST_QW + 1], est[DT_EST_QW + 2], est[DT_EST_QW + 3]));
   e.linear_velocity = Eigen::Vector3d(est[DT_EST_VX], est[DT_EST_VX + 1], est[DT_EST_VX + 2]);
@@ -515,6 +518,8 @@ Estimate DeviceFilter::collect() {
     for (int r = 0; r < 6; ++r)
       for (int c = 0; c < 6; ++c) e.covariance(r, c) = est[DT_EST_COV + 6 * r + c];
     e.refine_iterations = static_cast<int>(est[DT_EST_REFINE_ITERATIONS]);
+    // Counts, exact in float: the share as the reference divides them.
+    e.confidence = est[DT_EST_MEASURED] > 0 ? static_cast<double>(est[DT_EST_VISIBLE]) / est[DT_EST_MEASURED] : 0.0;
   }
   last_resampled_ = e.resampled;
   weighed_in_scratch_ = true;

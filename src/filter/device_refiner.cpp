@@ -92,7 +92,8 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
 std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& estimate, const RefineInputs& in) {
   if (layout_ == RefineLayout::Spread) return refine_spread(estimate, in);
   const dt_refine_args args =
-      model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time, in.dt);
+      model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time, in.dt,
+                           config_.loss.pixel_sigmas);
   return {queue_.launch(*refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup), estimate, in.states,
                         in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.parents, mesh_.vertices,
                         mesh_.triangles, mesh_.planes, mesh_.triangle_count(), model::camera_params(camera_, config_),
@@ -103,7 +104,8 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
 // stops the fit on the device, and what follows returns at once.
 std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in) {
   const dt_refine_args args =
-      model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time, in.dt);
+      model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time, in.dt,
+                           config_.loss.pixel_sigmas);
   const dt_camera cam = model::camera_params(camera_, config_);
   const dt_model model = model::model_params(config_);
   const auto per_triangle =

@@ -48,6 +48,10 @@ class FilterBackend {
     return e;
   }
   virtual std::string description() const = 0;
+  // True when collect() fills Estimate::confidence itself (the silhouette shares' visible share at the
+  // estimate's pose): the refinement's sums at that pose count its covered pixels, so the tracker need
+  // not draw the pose again on the host.
+  virtual bool assesses_confidence() const { return false; }
   // Width and height of the occlusion state window the last frame kept (TrackerConfig::occlusion_window;
   // 0 x 0 for a filter without one).
   virtual std::pair<int, int> occlusion_window_size() const { return {0, 0}; }

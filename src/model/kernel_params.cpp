@@ -48,7 +48,7 @@ dt_camera camera_params(const Camera& camera, const TrackerConfig& config) {
 }
 
 dt_refine_args refine_params(const Refinement& refine, const Eigen::Vector3d& centre, double radius,
-                             size_t vertex_count, double now, double dt) {
+                             size_t vertex_count, double now, double dt, double pixel_sigmas) {
   return dt_refine_args{static_cast<float>(refine.damping),
                         static_cast<float>(refine.min_incidence),
                         static_cast<float>(centre.x()),
@@ -59,7 +59,8 @@ dt_refine_args refine_params(const Refinement& refine, const Eigen::Vector3d& ce
                         refine.iterations,
                         static_cast<float>(radius),
                         static_cast<float>(refine.converged_motion),
-                        static_cast<dt_u32>(vertex_count)};
+                        static_cast<dt_u32>(vertex_count),
+                        static_cast<float>(pixel_sigmas)};
 }
 
 std::string occlusion_definition(OcclusionStorage storage) {

@@ -20,8 +20,9 @@ static_assert(sizeof(dt_motion) == 28 && offsetof(dt_motion, dt) == 12 && offset
 static_assert(sizeof(dt_initial) == 24 && offsetof(dt_initial, centre_x) == 8 &&
               offsetof(dt_initial, mode_count) == 20);
 static_assert(sizeof(dt_camera) == 32 && offsetof(dt_camera, far) == 20 && offsetof(dt_camera, height) == 28);
-static_assert(sizeof(dt_refine_args) == 44 && offsetof(dt_refine_args, dt) == 24 &&
-              offsetof(dt_refine_args, iterations) == 28 && offsetof(dt_refine_args, vertex_count) == 40);
+static_assert(sizeof(dt_refine_args) == 48 && offsetof(dt_refine_args, dt) == 24 &&
+              offsetof(dt_refine_args, iterations) == 28 && offsetof(dt_refine_args, vertex_count) == 40 &&
+              offsetof(dt_refine_args, pixel_sigmas) == 44);
 static_assert(sizeof(dt_window) == 40 && offsetof(dt_window, image_width) == 32 && offsetof(dt_window, initial) == 36);
 
 // Observation model and occlusion chain of config.
@@ -38,9 +39,10 @@ dt_camera camera_params(const Camera& camera, const TrackerConfig& config);
 // The kernels' DT_OCCLUSION definition for the storage mode, "DT_OCCLUSION=<DT_PER_PIXEL_TIME...>".
 std::string occlusion_definition(OcclusionStorage storage);
 // The refinement's settings for a mesh with this centre (object frame), radius and vertex count, at
-// `now` seconds since the first frame, `dt` after the frame before.
+// `now` seconds since the first frame, `dt` after the frame before; pixel_sigmas: the confidence's band
+// (TrackerConfig::loss).
 dt_refine_args refine_params(const Refinement& refine, const Eigen::Vector3d& centre, double radius,
-                             size_t vertex_count, double now, double dt);
+                             size_t vertex_count, double now, double dt, double pixel_sigmas);
 // The largest float not above threshold: a float x exceeds it exactly when x exceeds threshold, so a
 // float comparison on the device decides as the double comparison on the host.
 float float_threshold(double threshold);

@@ -10,6 +10,12 @@ double depth_sigma(const ObservationModel& m, double y) {
   return m.sigma_constant + m.sigma_quadratic * y * y;
 }
 
+BandSide band_side(const ObservationModel& m, double pixel_sigmas, double y, double y_hat) {
+  const double band = pixel_sigmas * depth_sigma(m, y);
+  if (y < y_hat - band) return BandSide::Nearer;
+  return y > y_hat + band ? BandSide::Behind : BandSide::Within;
+}
+
 PixelDensities pixel_densities(const ObservationModel& m, double y, double y_hat) {
   const double sigma = depth_sigma(m, y);
   const double tail = m.tail_weight / m.max_depth;

@@ -16,6 +16,11 @@ struct PixelDensities {
 // Depth noise sigma(y) grows with the observed depth y.
 double depth_sigma(const ObservationModel& m, double y);
 
+// Where a valid depth y lies against the surface at y_hat, within pixel_sigmas sigma(y): the
+// confidence's visible pixels are Within (silhouette_shares; the refinement counts them too).
+enum class BandSide { Nearer, Within, Behind };
+BandSide band_side(const ObservationModel& m, double pixel_sigmas, double y, double y_hat);
+
 // Densities of observing depth y where the particle renders depth y_hat (both metres, > 0).
 PixelDensities pixel_densities(const ObservationModel& m, double y, double y_hat);
 

@@ -79,6 +79,8 @@ NormalEquations PoseRefiner::normal_equations(const Pose& pose, const DepthImage
       const size_t k = static_cast<size_t>(v) * static_cast<size_t>(camera_.width) + static_cast<size_t>(u);
       const double y_hat = rendered_[k], y = depth.data()[k];
       if (y_hat <= 0 || !DepthImage::is_valid(static_cast<float>(y))) continue;
+      ++e.measured;
+      e.visible += band_side(m, config_.loss.pixel_sigmas, y, y_hat) == BandSide::Within;
       const double p = occlusion.empty() ? 0.0 : occlusion[k];
       const PixelDensities d = pixel_densities(m, y, y_hat);
       e.objective += pixel_log_ratio(d, p);
@@ -122,6 +124,7 @@ RefinedPose PoseRefiner::refine(const Pose& start, const DepthImage& depth, std:
   }
   best.objective = at_best.objective;
   best.pixels = at_best.pixels;
+  best.visible_share = at_best.visible_share();
   const Eigen::LDLT<Matrix6d> solver(at_best.h);
   if (at_best.pixels >= 6 && solver.info() == Eigen::Success && solver.isPositive())
     best.covariance = solver.solve(Matrix6d::Identity());

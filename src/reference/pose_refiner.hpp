@@ -40,6 +40,10 @@ struct NormalEquations {
   Vector6d g = Vector6d::Zero();
   double objective = 0;
   int pixels = 0;  // pixels in h (covered, valid, not grazing)
+  // The confidence's counts (silhouette_shares): covered pixels with a valid depth, and those of them
+  // within config.loss.pixel_sigmas sigma of the surface.
+  int measured = 0, visible = 0;
+  double visible_share() const { return measured > 0 ? static_cast<double>(visible) / measured : 0.0; }
 };
 
 struct RefinedPose {
@@ -47,6 +51,7 @@ struct RefinedPose {
   Matrix6d covariance;  // inverse of h at the pose: camera-frame twist about the centre (m, rad)
   double objective = 0;
   int pixels = 0;
+  double visible_share = 0;  // the confidence at the pose (NormalEquations::visible_share)
   int accepted_steps = 0;
   int iterations = 0;  // steps tried (accepted or not), each one rendering of a candidate pose
 };

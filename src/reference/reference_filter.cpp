@@ -274,6 +274,7 @@ void ReferenceFilter::refine(Estimate& e, const DepthImage& depth, size_t heavie
   e.pose = fit.pose;
   e.covariance = fit.covariance;
   e.refine_iterations = fit.iterations;
+  e.confidence = fit.visible_share;
 }
 
 size_t ReferenceFilter::weigh_all(const DepthImage& depth, double dt, Estimate& e) {

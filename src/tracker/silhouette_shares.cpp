@@ -20,13 +20,16 @@ SilhouetteShares silhouette_shares(const reference::Rasterizer& rasterizer, cons
         ++missing;
         continue;
       }
-      const double band = pixel_sigmas * reference::depth_sigma(model, y);
-      if (y < y_hat - band)
-        ++occluded;
-      else if (y > y_hat + band)
-        ++contradicted;
-      else
-        ++visible;
+      switch (reference::band_side(model, pixel_sigmas, y, y_hat)) {
+        case reference::BandSide::Nearer:
+          ++occluded;
+          break;
+        case reference::BandSide::Behind:
+          ++contradicted;
+          break;
+        case reference::BandSide::Within:
+          ++visible;
+      }
     }
   // The outline: each uncovered 4-neighbour of a covered pixel, once per covered neighbour.
   const int height = rasterizer.camera().height;
@@ -47,9 +50,9 @@ SilhouetteShares silhouette_shares(const reference::Rasterizer& rasterizer, cons
           ++past_edge;
           continue;
         }
-        const double band = pixel_sigmas * reference::depth_sigma(model, y);
-        past_edge += y > y_hat + band;
-        nearer += y < y_hat - band;
+        const reference::BandSide side = reference::band_side(model, pixel_sigmas, y, y_hat);
+        past_edge += side == reference::BandSide::Behind;
+        nearer += side == reference::BandSide::Nearer;
       }
     }
   SilhouetteShares s;

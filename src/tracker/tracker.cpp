@@ -256,7 +256,7 @@ void Tracker::assess_frame(Estimate& e, const DepthImage& working) {
     return;
   }
   const Stopwatch clock;
-  e.confidence = supervisor_->assess(e.pose, working).confidence();
+  if (!backend_->assesses_confidence()) e.confidence = supervisor_->assess(e.pose, working).confidence();
   e.status = supervisor_->observe(e.confidence);
   e.timings.confidence_ms = clock.elapsed_ms();
   e.timings.total_ms += e.timings.confidence_ms;

@@ -166,8 +166,26 @@ void LaunchGraphs::update(Graph& graph) {
   }
 }
 
+// Of the graphs with the same launches, the one holding the most of the recorded arguments: a frame
+// that swaps double buffers alternates between two sets of pointers, so each set keeps a graph of its
+// own and a replay sets only what really changed (a time, a frame index), not every swapped pointer.
+size_t LaunchGraphs::differing_nodes(const Graph& graph) const {
+  size_t differing = 0;
+  for (size_t i = 0; i < recorded_; ++i) differing += launches_[i].bytes != graph.nodes[i].bytes;
+  return differing;
+}
+
 LaunchGraphs::Graph& LaunchGraphs::graph_for_recorded() {
-  const auto found = std::find_if(graphs_.begin(), graphs_.end(), [&](const auto& g) { return matches(*g); });
+  auto found = graphs_.end();
+  size_t fewest = 0;
+  for (auto g = graphs_.begin(); g != graphs_.end(); ++g) {
+    if (!matches(**g)) continue;
+    const size_t differing = differing_nodes(**g);
+    if (found == graphs_.end() || differing < fewest) found = g, fewest = differing;
+  }
+  // A second graph of the same launches is built while the best one still differs in half its nodes
+  // and there is room for it (the first frame's graph of each buffer parity).
+  if (found != graphs_.end() && 2 * fewest > recorded_ && graphs_.size() < kMaxGraphs) found = graphs_.end();
   if (found != graphs_.end()) {
     std::rotate(found, found + 1, graphs_.end());  // now the most recently used
     update(*graphs_.back());

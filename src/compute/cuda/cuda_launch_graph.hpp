@@ -51,6 +51,7 @@ class LaunchGraphs {
   // The cached graph for the recorded launches, or a new one built for them.
   Graph& graph_for_recorded();
   bool matches(const Graph& graph) const;
+  size_t differing_nodes(const Graph& graph) const;
   std::unique_ptr<Graph> build();
   void update(Graph& graph);
   void check(CUresult status, const char* call, const Launch& launch) const;

@@ -27,6 +27,7 @@ CudaQueue::CudaQueue(std::shared_ptr<const Context> context) : context_(std::mov
 
 CudaQueue::~CudaQueue() {
   graphs_.reset();
+  staging_.reset();  // waits for its last copy
   // Pending work still completes; the driver frees the stream afterwards.
   if (context_->try_make_current()) context_->api().cuStreamDestroy(stream_);
 }
@@ -71,6 +72,16 @@ void CudaQueue::write(DeviceMemory& memory, size_t offset, const void* source, s
   context_->check(context_->api().cuMemcpyHtoDAsync(cuda.pointer() + offset, source, bytes, stream_),
                   "cuMemcpyHtoDAsync");
   finish();
+}
+
+void CudaQueue::write_enqueued(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) {
+  const CudaMemory& cuda = checked(memory, offset, bytes, "write");
+  if (bytes == 0) return;
+  if (!source) throw InputError("write of " + std::to_string(bytes) + " bytes from a null host pointer");
+  hand_over_batch();
+  context_->make_current();
+  if (!staging_) staging_ = std::make_unique<PinnedStaging>(context_);
+  staging_->copy_to_device(cuda.pointer() + offset, source, bytes, stream_);
 }
 
 void CudaQueue::read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {

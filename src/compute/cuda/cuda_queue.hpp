@@ -6,6 +6,7 @@
 
 #include "compute/cuda/cuda_context.hpp"
 #include "compute/cuda/cuda_launch_graph.hpp"
+#include "compute/cuda/cuda_pinned_staging.hpp"
 #include "compute/queue.hpp"
 
 namespace depthtrack::compute::cuda {
@@ -24,6 +25,9 @@ class CudaQueue final : public Queue {
   std::unique_ptr<DeviceMemory> allocate(size_t bytes) override;
   void write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) override;
   void read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) override;
+  // Through page-locked staging, so the copy is a DMA the stream runs in order, not a driver-side
+  // staging the host waits for.
+  void write_enqueued(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) override;
   void* map_for_overwrite(DeviceMemory& memory, size_t offset, size_t bytes) override;
   void unmap(DeviceMemory& memory, void* host) override;
   void copy(const DeviceMemory& source, size_t source_offset, DeviceMemory& destination, size_t destination_offset,
@@ -58,6 +62,7 @@ class CudaQueue final : public Queue {
   std::shared_ptr<const Context> context_;
   CUstream stream_ = nullptr;
   std::unique_ptr<LaunchGraphs> graphs_;  // null where graphs are off
+  std::unique_ptr<PinnedStaging> staging_;  // write_enqueued's, made at its first use
   bool batching_ = false;
   // The one mapping map_for_overwrite hands out: host bytes written to the device at unmap.
   struct Mapping {

@@ -89,6 +89,31 @@ void ClQueue::write(DeviceMemory& memory, size_t offset, const void* source, siz
         "clEnqueueWriteBuffer", info_.name);
 }
 
+ClQueue::~ClQueue() {
+  // The staged bytes must outlive their write; at teardown a failure has nowhere to go.
+  if (const cl_event event = staged_write_.get()) clWaitForEvents(1, &event);
+}
+
+void ClQueue::wait_for_staged_write() {
+  if (!staged_write_.get()) return;
+  const cl_event event = staged_write_.get();
+  check(clWaitForEvents(1, &event), "clWaitForEvents", info_.name, "the last staged write");
+  staged_write_ = EventHandle();
+}
+
+void ClQueue::write_enqueued(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) {
+  check_range("write", offset, bytes, memory);
+  if (bytes == 0) return;
+  if (!source) throw InputError("write of " + std::to_string(bytes) + " bytes from a null host pointer");
+  wait_for_staged_write();
+  staging_.assign(static_cast<const unsigned char*>(source), static_cast<const unsigned char*>(source) + bytes);
+  cl_event event = nullptr;
+  check(clEnqueueWriteBuffer(queue_.get(), cl_buffer(memory, "write"), CL_FALSE, offset, bytes, staging_.data(), 0,
+                             nullptr, &event),
+        "clEnqueueWriteBuffer", info_.name);
+  staged_write_ = EventHandle(event);
+}
+
 void ClQueue::read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {
   check_range("read", offset, bytes, memory);
   if (bytes == 0) return;

@@ -21,6 +21,9 @@ class ClQueue final : public Queue {
   std::unique_ptr<DeviceMemory> allocate(size_t bytes) override;
   void write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) override;
   void read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) override;
+  // A non-blocking write from a staging copy kept until the write is done.
+  void write_enqueued(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) override;
+  ~ClQueue() override;
   void* map_for_overwrite(DeviceMemory& memory, size_t offset, size_t bytes) override;
   void unmap(DeviceMemory& memory, void* host) override;
   void copy(const DeviceMemory& source, size_t source_offset, DeviceMemory& destination, size_t destination_offset,
@@ -49,6 +52,10 @@ class ClQueue final : public Queue {
   ContextHandle context_;
   QueueHandle queue_;
   const DeviceMemory* mapped_ = nullptr;  // the one mapping map_for_overwrite hands out
+  // write_enqueued's bytes, and its last write, which must be done before they change or go.
+  std::vector<unsigned char> staging_;
+  EventHandle staged_write_;
+  void wait_for_staged_write();
 };
 
 }  // namespace depthtrack::compute::opencl
