@@ -44,7 +44,8 @@ bool host_backend(const std::string& backend) {
 
 // Prints the case's rows; returns its median frame time (ms).
 double run(const Mesh& mesh, const std::string& mesh_name, const std::string& backend, const std::string& renderer,
-           const Refinement& refine, const Case& c, int frames, const OcclusionWindow& window, double simplify_error) {
+           const Refinement& refine, const Case& c, int frames, const OcclusionWindow& window, double simplify_error,
+           bool step_timings) {
   SynthConfig synth;
   synth.frames = frames;
   synth.occluder_fraction = 0.3;
@@ -58,6 +59,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
   config.refine = refine;
   config.occlusion_window = window;
   config.simplify_error = simplify_error;
+  config.step_timings = step_timings;
   // Start-up: construction (device buffers, kernels built or read from the driver's cache) and the
   // initial particle and occlusion state, with the host memory it peaks at.
   const bool peak_known = bench::reset_peak_resident();
@@ -95,7 +97,8 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
        : window.width > 0 || window.height > 0
            ? "_window" + std::to_string(window.width) + "x" + std::to_string(window.height)
            : std::string("_windowfull")) +
-      (simplify_error > 0 ? "_simplify" + bench::compact_number(simplify_error * 1e3) + "mm" : std::string());
+      (simplify_error > 0 ? "_simplify" + bench::compact_number(simplify_error * 1e3) + "mm" : std::string()) +
+      (step_timings ? "" : "_untimed");
   const std::string platform = host_backend(backend) ? "cpu" : backend;
   const std::string name = host_backend(backend) ? bench::cpu_name() : device;
   for (const auto& [metric, samples] : {std::pair{"propagate", &propagate},
@@ -131,7 +134,7 @@ const char* const kUsage =
     "usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] "
     "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N] [--refine-converged M]\n"
     "       [--refine-layout auto|one-group|spread] [--occlusion-window auto|full|WxH] [--simplify-error M]\n"
-    "       [--mesh FILE] [--no-global] [--multi-objects]\n"
+    "       [--mesh FILE] [--no-global] [--multi-objects] [--untimed-steps]\n"
     "Times tracker frames on a synthetic occluded handset sequence, split into propagate / render / hand-off /\n"
     "weigh / resample, start-up (construction + initialize) with its peak host memory, and the off-screen start\n"
     "(one particle 10,000 km to the side, 5 frames); prints CSV rows\n"
@@ -155,6 +158,8 @@ const char* const kUsage =
     "  --simplify-error M     draw the mesh simplified to within M metres of its surface (default 0: as given;\n"
     "                         TrackerConfig::simplify_error), named in the test column; also --multi-objects'\n"
     "  --mesh FILE            track this mesh instead of the handset (e.g. a 16k-triangle YCB mesh)\n"
+    "  --untimed-steps        the device does not time each step (TrackerConfig::step_timings off: the steps'\n"
+    "                         rows read 0, total_ms without the timing records), named in the test column\n"
     "  --no-global            leave out the global initialization rows (box hint and no hint, 80x60)\n"
     "  --multi-objects        instead: one object against three in one process at 80x60 (ycbv-0000's, else\n"
     "                         the handset thrice), mutual occlusion off and on: multi_object_ratio rows;\n"
@@ -242,7 +247,7 @@ int main(int argc, char** argv) {
   Refinement refine;
   OcclusionWindow window;
   double simplify_error = 0;  // TrackerConfig's default: the mesh as given
-  bool global = true, multi_objects = false;
+  bool global = true, multi_objects = false, step_timings = true;
   std::string mesh_file;
   const auto option = [&](const std::string& arg, bench::ArgReader& args) {
     if (arg == "--backend")
@@ -281,6 +286,8 @@ int main(int argc, char** argv) {
       mesh_file = args.value();
     else if (arg == "--no-global")
       global = false;
+    else if (arg == "--untimed-steps")
+      step_timings = false;
     else if (arg == "--multi-objects")
       multi_objects = true;
     else
@@ -318,12 +325,13 @@ int main(int argc, char** argv) {
       // A case the device cannot run (too many particles for its memory) gets a status row, and
       // the others still run.
       try {
-        const double ms = run(mesh, name, backend, renderer, refine, c, std::max(frames, 4), window, simplify_error);
+        const double ms =
+            run(mesh, name, backend, renderer, refine, c, std::max(frames, 4), window, simplify_error, step_timings);
         // The threaded CPU path is worth its name only against the sequential reference, measured
         // here in the same run on the same case: the speedup row.
         if (backend != "reference" && host_backend(backend)) {
           const double reference_ms = run(mesh, name, "reference", renderer, refine, c, std::max(frames, 4), window,
-                                          simplify_error);
+                                          simplify_error, step_timings);
           const std::string test = name + "_" + std::to_string(c.width) + "x" + std::to_string(c.height) + "_" +
                                    std::to_string(c.particles) + "p";
           bench::print_row(

@@ -94,6 +94,39 @@ TEST_CASE("Two trackers on one Device build each program once and track as on th
   }
 }
 
+// Step timings are diagnostics: without them a frame computes the same, its steps read 0, and the
+// host's times and the total stay.
+TEST_CASE("A device tracker without step timings tracks the same and times only the whole frame",
+          "[device][device_filter]") {
+  if (!test::device_available()) return;
+  const Mesh mesh = builtin_demo_mesh();
+  const SynthConfig synth = test::small_scene(4);
+  const auto frames = test::synthesize(mesh, synth);
+  TrackerConfig config;
+  config.particles = 64;
+  config.backend = test::device_selector();
+  Tracker timed(mesh, synth.camera, config);
+  config.step_timings = false;
+  Tracker untimed(mesh, synth.camera, config);
+  timed.initialize(frames[0].ground_truth);
+  untimed.initialize(frames[0].ground_truth);
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const Estimate a = timed.update(frames[i].depth, frames[i].timestamp);
+    const Estimate b = untimed.update(frames[i].depth, frames[i].timestamp);
+    test::require_same_estimate(a, b);
+    CHECK(a.timings.weigh_ms > 0);
+    CHECK(a.timings.resample_ms > 0);
+    CHECK(a.timings.refine_ms > 0);
+    if (i > 0) CHECK(a.timings.propagate_ms > 0);
+    for (const double step : {b.timings.propagate_ms, b.timings.render_ms, b.timings.weigh_ms, b.timings.resample_ms,
+                              b.timings.refine_ms})
+      CHECK(step == 0);
+    CHECK(b.timings.enqueue_ms > 0);
+    CHECK(b.timings.wait_ms > 0);
+    CHECK(b.timings.total_ms >= b.timings.enqueue_ms + b.timings.wait_ms);
+  }
+}
+
 TEST_CASE("A Device's queues share memory and programs: what one writes another reads", "[device]") {
   if (!test::device_available()) return;
   const auto device = Device::open(test::device_selector());

@@ -148,6 +148,10 @@ struct TrackerConfig {
   std::string gl_path = "auto";
   LossModel loss;
   RecoveryModel recovery;
+  // Compute backends: time each step of a frame on the device (StepTimings' propagate, render, weigh,
+  // resample and refine). Off, those read 0 and the frame goes without its timing records (two per
+  // step on the device, and their reading after it); total_ms and the host's times stay.
+  bool step_timings = true;
 
   // Throws InputError naming the first impossible value.
   void validate() const;

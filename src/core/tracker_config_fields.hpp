@@ -148,6 +148,8 @@ inline auto fields_of(const TrackerConfig*) {
       field("gl_path", &S::gl_path, "the gl renderer's headless GL: auto, egl-device, egl-surfaceless or osmesa"),
       field("loss", &S::loss, "when an estimate counts as lost"),
       field("recovery", &S::recovery, "global search while lost"),
+      field("step_timings", &S::step_timings,
+            "time each step of a frame on the device; off: those times read 0, total_ms stays"),
   };
 }
 

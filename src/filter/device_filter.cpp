@@ -435,7 +435,7 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
   if (dt > 0)
     p->propagated =
-        queue_->launch(*k.propagate, linear, state_, count, static_cast<unsigned>(config_.seed & 0xffffffffu),
+        launch_step(*k.propagate, linear, state_, count, static_cast<unsigned>(config_.seed & 0xffffffffu),
                        static_cast<unsigned>(config_.seed >> 32), frame_,
                        model::motion_params(model::motion_step(config_.motion, dt), centre_));
 
@@ -459,14 +459,14 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   const auto per_particle_group = compute::NdRange::linear(count_ * kGroupSize, kGroupSize);
   if (render_weigh_)
     p->weighed =
-        queue_->launch(*render_weigh_, per_particle_group, state_, render_weigh_mesh_->vertices,
+        launch_step(*render_weigh_, per_particle_group, state_, render_weigh_mesh_->vertices,
                        render_weigh_mesh_->triangles, render_weigh_mesh_->planes, render_weigh_mesh_->triangle_count(),
                        render_weigh_mesh_->vertex_count(), model::camera_params(camera_, config_), observed_, parents_,
                        occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(),
                        log_likelihood_, log_weight_, model::model_params(config_), static_cast<float>(time_), now_index,
                        static_cast<float>(dt), atlas_, static_cast<unsigned>(keep_atlas_), window);
   else
-    p->weighed = queue_->launch(*k.weigh, per_particle_group, atlas_, observed_, parents_, occlusion_, occlusion_time_,
+    p->weighed = launch_step(*k.weigh, per_particle_group, atlas_, observed_, parents_, occlusion_, occlusion_time_,
                                 scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(), log_likelihood_,
                                 log_weight_, static_cast<unsigned>(pixels_), model::model_params(config_),
                                 static_cast<float>(time_), now_index, static_cast<float>(dt),
@@ -482,7 +482,7 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
     p->summarized =
         wide_->summarize(state_, log_weight_, log_likelihood_, weights_, estimate_, cx, cy, cz, kl_threshold);
   else
-    p->summarized = {queue_->launch(*k.summarize, compute::NdRange::linear(summary_group_, summary_group_), state_,
+    p->summarized = {launch_step(*k.summarize, compute::NdRange::linear(summary_group_, summary_group_), state_,
                                     log_weight_, log_likelihood_, weights_, estimate_, count, cx, cy, cz,
                                     kl_threshold)};
   // Before resample() overwrites parents_ with this frame's choice.
@@ -525,22 +525,27 @@ Estimate DeviceFilter::collect() {
   weighed_in_scratch_ = true;
   next_window_ = model::next_state_window(window_, config_, extent_, e.pose, camera_, state_pixel_limit_);
 
-  if (p->propagated) e.timings.propagate_ms = p->propagated->elapsed_ms();
-  if (p->rendered) {
-    e.timings.render_ms += p->rendered->elapsed_ms();
-    e.timings.render_on_device = true;
-  }
-  e.timings.weigh_ms = p->weighed->elapsed_ms();
-  e.timings.resample_ms += device_span_ms(p->summarized);
-  for (const auto& event : p->resampling) e.timings.resample_ms += event->elapsed_ms();
-  if (p->shifted) {
-    // The fit's launches as one span on the device (the spread layout enqueues dozens), then the shift
-    // (enqueued after the resampling).
-    e.timings.refine_ms = p->shifted->elapsed_ms() + device_span_ms(p->refined);
-  }
+  if (config_.step_timings) read_step_times(*p, e.timings);
   e.timings.total_ms = p->clock.elapsed_ms();
   ++frame_;
   return e;
+}
+
+// The steps' device times from their events, once the frame is done.
+void DeviceFilter::read_step_times(Pending& p, StepTimings& timings) const {
+  if (p.propagated) timings.propagate_ms = p.propagated->elapsed_ms();
+  if (p.rendered) {
+    timings.render_ms += p.rendered->elapsed_ms();
+    timings.render_on_device = true;
+  }
+  timings.weigh_ms = p.weighed->elapsed_ms();
+  timings.resample_ms += device_span_ms(p.summarized);
+  for (const auto& event : p.resampling) timings.resample_ms += event->elapsed_ms();
+  if (p.shifted) {
+    // The fit's launches as one span on the device (the spread layout enqueues dozens), then the shift
+    // (enqueued after the resampling).
+    timings.refine_ms = p.shifted->elapsed_ms() + device_span_ms(p.refined);
+  }
 }
 
 // Enqueued every frame; the kernels read the device's decision (estimate_[DT_EST_RESAMPLE]). The
@@ -556,13 +561,13 @@ std::vector<compute::EventPtr> DeviceFilter::resample() {
   if (wide_)
     events = wide_->prefix_sum(weights_, cumulative_, estimate_);
   else
-    events.push_back(queue_->launch(*k.prefix_sum, compute::NdRange::linear(kGroupSize, kGroupSize), weights_,
+    events.push_back(launch_step(*k.prefix_sum, compute::NdRange::linear(kGroupSize, kGroupSize), weights_,
                                     cumulative_, count, estimate_));
   events.push_back(
-      queue_->launch(*k.find_parents, linear, cumulative_, parents_, count, dt_uniform01(words.v[0]), estimate_));
-  events.push_back(queue_->launch(*k.gather_state, linear, state_, scratch_state_, parents_, count, estimate_));
+      launch_step(*k.find_parents, linear, cumulative_, parents_, count, dt_uniform01(words.v[0]), estimate_));
+  events.push_back(launch_step(*k.gather_state, linear, state_, scratch_state_, parents_, count, estimate_));
   std::swap(state_, scratch_state_);
-  events.push_back(queue_->launch(*k.fill_when_resampling, linear, log_weight_, count, 0.0f, estimate_));
+  events.push_back(launch_step(*k.fill_when_resampling, linear, log_weight_, count, 0.0f, estimate_));
   return events;
 }
 

@@ -101,6 +101,13 @@ class DeviceFilter final : public FilterBackend {
                  const std::vector<float>& occlusion_time, const std::vector<double>& log_weights);
 
  private:
+  // A frame's launch, timed on the device when config.step_timings asks for it (else no event: null).
+  template <class... Args>
+  compute::EventPtr launch_step(compute::Kernel& kernel, const compute::NdRange& range, const Args&... args) {
+    if (config_.step_timings) return queue_->launch(kernel, range, args...);
+    queue_->launch_untimed(kernel, range, args...);
+    return nullptr;
+  }
   struct Kernels;
   compute::EventPtr render_atlas(StepTimings& timings);
   // The per-particle device memory, checked before anything is allocated (an automatic window's
@@ -123,6 +130,7 @@ class DeviceFilter final : public FilterBackend {
   compute::EventPtr shift_particles();
 
   struct Pending;  // a frame between enqueue_update and collect: its clock and events
+  void read_step_times(Pending& pending, StepTimings& timings) const;
 
   std::shared_ptr<compute::DeviceContext> device_;
   // A queue of this filter's own on device_ (so several filters' work overlaps), where the backend

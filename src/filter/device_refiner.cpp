@@ -94,10 +94,15 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
   const dt_refine_args args =
       model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time, in.dt,
                            config_.loss.pixel_sigmas);
-  return {queue_.launch(*refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup), estimate, in.states,
-                        in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.parents, mesh_.vertices,
-                        mesh_.triangles, mesh_.planes, mesh_.triangle_count(), model::camera_params(camera_, config_),
-                        model::model_params(config_), args, pose_, tile_, ids_, correction_, in.window)};
+  compute::set_launch_args(*refine_, estimate, in.states, in.observed, in.occlusion, in.occlusion_time, in.frame_times,
+                           in.parents, mesh_.vertices, mesh_.triangles, mesh_.planes, mesh_.triangle_count(),
+                           model::camera_params(camera_, config_), model::model_params(config_), args, pose_, tile_,
+                           ids_, correction_, in.window);
+  if (!config_.step_timings) {
+    queue_.launch_untimed(*refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup));
+    return {};
+  }
+  return {queue_.launch(*refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup))};
 }
 
 // begin, then iterations + 1 evaluations (draw, sums) with no wait: the sums kernel's last group
@@ -116,15 +121,19 @@ std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<floa
   // the launches between them untimed. Each kernel's arguments are set once: the evaluations differ
   // only in the fit's state on the device.
   std::vector<compute::EventPtr> events;
-  events.push_back(queue_.launch(*begin_, compute::NdRange::linear(1, 1), fit_state_, estimate, in.states,
-                                 static_cast<float>(config_.refine.damping)));
+  const bool timed = config_.step_timings;
+  compute::set_launch_args(*begin_, fit_state_, estimate, in.states, static_cast<float>(config_.refine.damping));
+  if (timed)
+    events.push_back(queue_.launch(*begin_, compute::NdRange::linear(1, 1)));
+  else
+    queue_.launch_untimed(*begin_, compute::NdRange::linear(1, 1));
   compute::set_launch_args(*draw_, fit_state_, mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam, nearest_);
   compute::set_launch_args(*sums_, fit_state_, estimate, in.states, in.observed, in.occlusion, in.occlusion_time,
                            in.frame_times, in.parents, mesh_.planes, triangles, cam, model, args, nearest_, partials_,
                            correction_, in.window);
   for (int evaluation = 0; evaluation <= config_.refine.iterations; ++evaluation) {
     queue_.launch_untimed(*draw_, per_triangle);
-    if (evaluation < config_.refine.iterations)
+    if (evaluation < config_.refine.iterations || !timed)
       queue_.launch_untimed(*sums_, over_pixels);
     else
       events.push_back(queue_.launch(*sums_, over_pixels));
@@ -133,9 +142,15 @@ std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<floa
 }
 
 compute::EventPtr DeviceRefiner::shift(const compute::Buffer<float>& from, compute::Buffer<float>& to, size_t count) {
-  return queue_.launch(*shift_, compute::NdRange::linear(round_up(count, kLinearGroup), kLinearGroup), from, to,
-                       static_cast<unsigned>(count), correction_, static_cast<float>(centre_.x()),
-                       static_cast<float>(centre_.y()), static_cast<float>(centre_.z()));
+  compute::set_launch_args(*shift_, from, to, static_cast<unsigned>(count), correction_,
+                           static_cast<float>(centre_.x()), static_cast<float>(centre_.y()),
+                           static_cast<float>(centre_.z()));
+  const auto range = compute::NdRange::linear(round_up(count, kLinearGroup), kLinearGroup);
+  if (!config_.step_timings) {
+    queue_.launch_untimed(*shift_, range);
+    return nullptr;
+  }
+  return queue_.launch(*shift_, range);
 }
 
 }  // namespace depthtrack
