@@ -2,6 +2,7 @@
  * kernels: one small device buffer, sized by the host from this struct. Only 32-bit members. */
 #ifndef DT_REFINE_STATE_H
 #define DT_REFINE_STATE_H
+#include "dt_params.h"
 #include "dt_prelude.h"
 #include "dt_state.h"
 
@@ -28,5 +29,10 @@ typedef struct {
   float candidate[DT_STATE_STRIDE]; /* dt_state.h's layout (pose only) */
   float best[DT_STATE_STRIDE];      /* the best pose evaluated */
   float best_sums[DT_REFINE_SUMS];  /* its normal equations */
+  /* The frame's settings, which change every frame (the time, the state window): set by refine_begin
+   * alone, so the draws' and sums' arguments stay the same from frame to frame (a CUDA graph replays
+   * them without setting any). */
+  dt_refine_args args;
+  dt_window win;
 } dt_refine_state;
 #endif

@@ -14,7 +14,7 @@
 #include "shift_particles.cl"
 
 /* Draws the pose in pose_state into tile (depth bits, DT_NO_SURFACE where empty) and each covered
- * pixel's triangle into ids, then sums the normal equations over the group into sums[k * G]. */
+ * pixel's triangle into ids, then sums the normal equations over the group into sums[k]. */
 DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global const float* observed,
                                      __global const float* occlusion, __global const dt_u16* occlusion_time,
                                      __global const float* frame_times, dt_refine_offsets at,
@@ -64,7 +64,7 @@ __kernel void refine(__global float* estimate, __global const float* states, __g
                      __global const uint* triangles, __global const float* planes, uint triangle_count, dt_camera cam,
                      dt_model m, dt_refine_args args, __global float* pose_state, __global uint* tile,
                      __global uint* ids, __global float* correction, dt_window win) {
-  __local float sums[DT_REFINE_SUMS * DT_GROUP_SIZE];
+  __local float sums[DT_REFINE_SCRATCH];
   __local int proceed;
   int tried = 0; /* work-item 0's count of steps evaluated */
   const uint lid = get_local_id(0);
@@ -84,7 +84,7 @@ __kernel void refine(__global float* estimate, __global const float* states, __g
   float best_sums[DT_REFINE_SUMS];
   float lambda = args.damping;
   if (lid == 0)
-    for (int k = 0; k < DT_REFINE_SUMS; ++k) best_sums[k] = sums[k * DT_GROUP_SIZE];
+    for (int k = 0; k < DT_REFINE_SUMS; ++k) best_sums[k] = sums[k];
   for (int iteration = 0; iteration < args.iterations; ++iteration) {
     if (lid == 0) {
       float step[6];
@@ -99,9 +99,9 @@ __kernel void refine(__global float* estimate, __global const float* states, __g
     dt_refine_evaluate(pose_state, observed, occlusion, occlusion_time, frame_times, at, vertices, triangles, planes,
                        triangle_count, cam, m, args, tile, ids, sums);
     if (lid == 0) {
-      if (dt_refine_keeps(sums[DT_REFINE_OBJECTIVE * DT_GROUP_SIZE], best_sums[DT_REFINE_OBJECTIVE])) {
+      if (dt_refine_keeps(sums[DT_REFINE_OBJECTIVE], best_sums[DT_REFINE_OBJECTIVE])) {
         best = dt_load_pose(pose_state);
-        for (int k = 0; k < DT_REFINE_SUMS; ++k) best_sums[k] = sums[k * DT_GROUP_SIZE];
+        for (int k = 0; k < DT_REFINE_SUMS; ++k) best_sums[k] = sums[k];
         lambda = args.damping;
       } else {
         lambda = dt_refine_damping_after_rejection(lambda);

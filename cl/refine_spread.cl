@@ -23,15 +23,17 @@
 
 /* One work-item: the start (the heaviest particle, which summarize found) is the first candidate. */
 __kernel void refine_begin(__global dt_refine_state* s, __global const float* estimate, __global const float* states,
-                           float damping) {
+                           dt_refine_args args, dt_window win) {
   if (get_global_id(0) != 0) return;
+  s->args = args;
+  s->win = win;
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
   dt_store_pose(s->candidate, dt_load_pose(states + DT_CAST(ulong, heaviest) * DT_STATE_STRIDE));
   s->active = 1;
   s->evaluation = 0;
   s->arrived = 0;
   s->tried = 0;
-  s->lambda = damping;
+  s->lambda = args.damping;
 }
 
 #define DT_REFINE_MAX_POLLS (1u << 20)
@@ -78,24 +80,29 @@ DT_DEVICE_FN void dt_refine_judge(__global dt_refine_state* s, __global float* e
   dt_refine_finish(estimate, start, best, best_sums, s->tried, centre, correction);
 }
 
-/* The partial rows added in group order into total; 1 if every word carried this evaluation's stamp. */
-DT_DEVICE_FN int dt_refine_add_rows(__global volatile const dt_u64* rows, uint groups, uint stamp, float* total) {
-  for (int k = 0; k < DT_REFINE_SUMS; ++k) total[k] = 0.0f;
+/* Sum k's partials added in group order into *total; 1 if every word carried this evaluation's stamp.
+ * Eight words' loads at a time, before any is looked at, so that they are in flight together. */
+#define DT_REFINE_WORDS_AT_ONCE 8
+DT_DEVICE_FN int dt_refine_add_column(__global volatile const dt_u64* rows, uint groups, uint k, uint stamp,
+                                      float* total) {
+  float sum = 0.0f;
   uint stale = 0;
-  for (uint g = 0; g < groups; ++g) {
-    dt_u64 row[DT_REFINE_SUMS];
-    for (int k = 0; k < DT_REFINE_SUMS; ++k) row[k] = rows[DT_CAST(ulong, g) * DT_REFINE_SUMS + k];
-    for (int k = 0; k < DT_REFINE_SUMS; ++k) {
-      stale |= DT_CAST(uint, row[k] >> 32) ^ stamp;
-      total[k] += dt_as_float(DT_CAST(uint, row[k] & 0xffffffffu));
+  for (uint g0 = 0; g0 < groups; g0 += DT_REFINE_WORDS_AT_ONCE) {
+    dt_u64 word[DT_REFINE_WORDS_AT_ONCE];
+    for (uint i = 0; i < DT_REFINE_WORDS_AT_ONCE; ++i)
+      word[i] = g0 + i < groups ? rows[DT_CAST(ulong, g0 + i) * DT_REFINE_SUMS + k] : DT_CAST(dt_u64, stamp) << 32;
+    for (uint i = 0; i < DT_REFINE_WORDS_AT_ONCE; ++i) {
+      stale |= DT_CAST(uint, word[i] >> 32) ^ stamp;
+      sum += dt_as_float(DT_CAST(uint, word[i] & 0xffffffffu)); /* past the groups: + 0 */
     }
   }
+  *total = sum;
   return stale == 0;
 }
 
 /* The image's pixels over all work-items of the grid; each group's sums into its row of partials,
  * every pixel read reset for the next evaluation. The last group to count itself in then adds the
- * rows in group order and judges (dt_refine_judge). The other groups have read the fit's state
+ * rows in group order, a work-item per sum, and its work-item 0 judges (dt_refine_judge). The other groups have read the fit's state
  * before they count themselves in, so the last one may write it.
  * No fence is needed for the rows: OpenCL 1.2 has none that reaches other work-groups (NVIDIA's
  * mem_fence is membar.cta), so each partial is stored with the evaluation's stamp in one 64-bit
@@ -105,11 +112,14 @@ __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate,
                           __global const float* observed, __global const float* occlusion,
                           __global const dt_u16* occlusion_time, __global const float* frame_times,
                           __global const uint* parents, __global const float* planes, uint triangle_count,
-                          dt_camera cam, dt_model m, dt_refine_args args, __global dt_u64* nearest,
-                          __global dt_u64* partials, __global float* correction, dt_window win) {
-  __local float sums[DT_REFINE_SUMS * DT_GROUP_SIZE];
+                          dt_camera cam, dt_model m, __global dt_u64* nearest, __global dt_u64* partials,
+                          __global float* correction) {
+  __local float sums[DT_REFINE_SCRATCH];
+  __local int last, lost;
   if (!s->active) return; /* the same for every work-item, before any barrier */
   const uint stamp = s->stamp;
+  const dt_refine_args args = s->args;
+  const dt_window win = s->win;
   const uint pixels = cam.width * cam.height;
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
   const dt_refine_offsets at = dt_refine_map_offsets(parents[heaviest], win);
@@ -128,32 +138,41 @@ __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate,
   const uint lid = get_local_id(0), groups = get_num_groups(0);
   if (lid < DT_REFINE_SUMS)
     partials[DT_CAST(ulong, get_group_id(0)) * DT_REFINE_SUMS + lid] =
-        (DT_CAST(dt_u64, stamp) << 32) | dt_as_uint(sums[lid * DT_GROUP_SIZE]);
-  barrier(CLK_GLOBAL_MEM_FENCE);
-  /* No barrier after the count: one work-item of the last group adds the rows and judges alone
-   * (PoCL ran every work-item of that group through a return after a barrier there). */
-  if (lid != 0 || dt_atomic_add_u32(&s->arrived, 1u) != groups - 1) return;
-  __global volatile const dt_u64* rows = partials; /* volatile: read again, not from a cache */
-  float total[DT_REFINE_SUMS];
-  /* First pass without a branch on any word, so that a row's loads are in flight together: a check
-   * after each load made them one dependent round trip each (groups x 29 of them, 0.8 ms a fit on the
-   * H200). Nearly always every word already carries the stamp; only if one does not are the rows read
-   * again, each word polled until it does (the same sums, in the same order). */
-  int complete = dt_refine_add_rows(rows, groups, stamp, total);
-  if (!complete) {
-    for (uint g = 0; g < groups; ++g)
-      for (int k = 0; k < DT_REFINE_SUMS; ++k) {
-        const ulong at_row = DT_CAST(ulong, g) * DT_REFINE_SUMS + k;
+        (DT_CAST(dt_u64, stamp) << 32) | dt_as_uint(sums[lid]);
+  barrier(CLK_GLOBAL_MEM_FENCE); /* the row's stores issued before the group counts itself in */
+  /* Work-item 0 counts the group in; the whole group learns whether it came last. Every group passes
+   * every barrier (none is behind a return or a branch: PoCL ran every work-item of a group through a
+   * return placed before a barrier). */
+  if (lid == 0) {
+    last = dt_atomic_add_u32(&s->arrived, 1u) == groups - 1;
+    lost = 0;
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  /* In the last group, work-item k adds sum k over the groups' rows (volatile: read again, not from a
+   * cache). Nearly always every word already carries the stamp; only if one does not is sum k's
+   * column polled, word by word, and added again (the same sums, in the same order). */
+  if (last && lid < DT_REFINE_SUMS) {
+    __global volatile const dt_u64* rows = partials;
+    float total;
+    if (!dt_refine_add_column(rows, groups, lid, stamp, &total)) {
+      for (uint g = 0; g < groups; ++g) {
+        const ulong at_row = DT_CAST(ulong, g) * DT_REFINE_SUMS + lid;
         dt_u64 word = rows[at_row];
         /* A bound, so that a fault can never hang the device: past it the evaluation counts as lost. */
         for (uint polls = 0; DT_CAST(uint, word >> 32) != stamp && polls < DT_REFINE_MAX_POLLS; ++polls)
           word = rows[at_row];
       }
-    complete = dt_refine_add_rows(rows, groups, stamp, total);
+      if (!dt_refine_add_column(rows, groups, lid, stamp, &total)) lost = 1; /* any of them: the same 1 */
+    }
+    sums[lid] = total;
   }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (!last || lid != 0) return;
+  float total[DT_REFINE_SUMS];
+  for (int k = 0; k < DT_REFINE_SUMS; ++k) total[k] = sums[k];
   s->arrived = 0;
   s->stamp = stamp + 1;
   /* A lost evaluation counts as a rejected candidate (the start as one without pixels: the fit ends there). */
-  if (!complete) total[DT_REFINE_PIXELS] = 0.0f, total[DT_REFINE_OBJECTIVE] = DT_LOWEST;
+  if (lost) total[DT_REFINE_PIXELS] = 0.0f, total[DT_REFINE_OBJECTIVE] = DT_LOWEST;
   dt_refine_judge(s, estimate, states, total, args, correction);
 }

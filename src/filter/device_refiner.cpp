@@ -119,18 +119,19 @@ std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<floa
   const unsigned triangles = mesh_.triangle_count();
   // Timed: begin and the last sums, which the filter reads as one span (Event::elapsed_since_ms);
   // the launches between them untimed. Each kernel's arguments are set once: the evaluations differ
-  // only in the fit's state on the device.
+  // only in the fit's state on the device, and the frame's time and window reach the fit through
+  // begin (dt_refine_state), so that only begin's arguments change from frame to frame.
   std::vector<compute::EventPtr> events;
   const bool timed = config_.step_timings;
-  compute::set_launch_args(*begin_, fit_state_, estimate, in.states, static_cast<float>(config_.refine.damping));
+  compute::set_launch_args(*begin_, fit_state_, estimate, in.states, args, in.window);
   if (timed)
     events.push_back(queue_.launch(*begin_, compute::NdRange::linear(1, 1)));
   else
     queue_.launch_untimed(*begin_, compute::NdRange::linear(1, 1));
   compute::set_launch_args(*draw_, fit_state_, mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam, nearest_);
   compute::set_launch_args(*sums_, fit_state_, estimate, in.states, in.observed, in.occlusion, in.occlusion_time,
-                           in.frame_times, in.parents, mesh_.planes, triangles, cam, model, args, nearest_, partials_,
-                           correction_, in.window);
+                           in.frame_times, in.parents, mesh_.planes, triangles, cam, model, nearest_, partials_,
+                           correction_);
   for (int evaluation = 0; evaluation <= config_.refine.iterations; ++evaluation) {
     queue_.launch_untimed(*draw_, per_triangle);
     if (evaluation < config_.refine.iterations || !timed)

@@ -34,25 +34,36 @@ CudaKernel::CudaKernel(std::shared_ptr<const Module> module, CUfunction function
   parameter_sizes_ = query_parameter_sizes(ctx.api(), function_);
 }
 
+// A frame sets a few hundred arguments: the texts are made only for an error, and an argument's bytes
+// reuse its storage.
+std::string CudaKernel::describe_arg(unsigned index) const {
+  return "argument " + std::to_string(index) + " of kernel '" + name_ + "'";
+}
+
 void CudaKernel::set_arg(unsigned index, const DeviceMemory& memory) {
-  const std::string argument = "argument " + std::to_string(index) + " of kernel '" + name_ + "'";
-  const CUdeviceptr pointer = cuda_memory(memory, context(), argument).pointer();
+  const auto* cuda = dynamic_cast<const CudaMemory*>(&memory);
+  if (!cuda || cuda->context().device() != context().device())
+    cuda = &cuda_memory(memory, context(), describe_arg(index));  // throws, naming what is wrong
+  const CUdeviceptr pointer = cuda->pointer();
   set_arg_bytes(index, &pointer, sizeof pointer);
 }
 
 void CudaKernel::set_arg_bytes(unsigned index, const void* value, size_t size) {
-  const std::string argument = "argument " + std::to_string(index) + " of kernel '" + name_ + "'";
-  if (!value || size == 0) throw InputError(argument + ": no value given");
+  if (!value || size == 0) throw InputError(describe_arg(index) + ": no value given");
   if (parameter_sizes_) {
     if (index >= parameter_sizes_->size())
-      throw InputError(argument + ": the kernel takes " + std::to_string(parameter_sizes_->size()) + " arguments");
+      throw InputError(describe_arg(index) + ": the kernel takes " + std::to_string(parameter_sizes_->size()) +
+                       " arguments");
     if (size != (*parameter_sizes_)[index])
-      throw InputError(argument + " is " + std::to_string(size) + " bytes; the kernel declares " +
+      throw InputError(describe_arg(index) + " is " + std::to_string(size) + " bytes; the kernel declares " +
                        std::to_string((*parameter_sizes_)[index]));
   }
   if (arguments_.size() <= index) arguments_.resize(index + 1);
   const auto* bytes = static_cast<const unsigned char*>(value);
-  arguments_[index].emplace(bytes, bytes + size);
+  if (arguments_[index])
+    arguments_[index]->assign(bytes, bytes + size);
+  else
+    arguments_[index].emplace(bytes, bytes + size);
 }
 
 LaunchLimits CudaKernel::limits() const {

@@ -32,6 +32,7 @@ class CudaKernel final : public Kernel {
   void copy_arguments(std::vector<unsigned char>& bytes, std::vector<size_t>& offsets) const;
 
  private:
+  std::string describe_arg(unsigned index) const;
   std::shared_ptr<const Module> module_;
   CUfunction function_;
   std::string name_;
