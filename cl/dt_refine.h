@@ -8,6 +8,7 @@
  * DT_OCCLUSION (as weigh.cl). */
 #ifndef DT_REFINE_H
 #define DT_REFINE_H
+#include "dt_group.h"
 #include "dt_model.h"
 #include "dt_params.h" /* the DT_OCCLUSION codes, dt_refine_args */
 #include "dt_refine_state.h"
@@ -189,41 +190,12 @@ DT_DEVICE_FN void dt_refine_pixel(float* acc, uint k, uint bits, uint id, dt_rig
   acc[DT_REFINE_PIXELS] += 1.0f;
 }
 
-/* The group's sums of every work-item's acc (DT_REFINE_SUMS each), left in sums[0 .. DT_REFINE_SUMS)
- * for every work-item, in a fixed order (the same sums every time). A tree of DT_REFINE_SUMS sums per
- * level kept each work-item adding all of them level after level (8 levels of 31 dependent local loads
- * at 256 work-items, a third of refine_sums' time on the H200); here each work-item adds 32 work-items'
- * values of one sum, then DT_REFINE_SUMS work-items add those partials: two passes. Each work-item's row
- * is DT_REFINE_ROW (odd, 1 mod 32) floats, so that 32 work-items reading one row position each, or
- * writing their rows, touch 32 different banks. sums holds DT_REFINE_SCRATCH floats. */
-#define DT_REFINE_ROW 33
-#define DT_REFINE_LANES 32 /* work-items whose values one work-item adds in the first pass */
-#define DT_REFINE_PARTS (DT_GROUP_SIZE / DT_REFINE_LANES)
-#define DT_REFINE_SCRATCH (DT_GROUP_SIZE * DT_REFINE_ROW + DT_REFINE_PARTS * DT_REFINE_LANES)
-#if DT_GROUP_SIZE % DT_REFINE_LANES != 0 || DT_REFINE_SUMS > DT_REFINE_LANES
-#error "the refinement's group sums need DT_GROUP_SIZE a multiple of 32 and at most 32 sums"
-#endif
+/* The group's sums of every work-item's acc (DT_REFINE_SUMS each), left in sums[0 .. DT_REFINE_SUMS) for
+ * every work-item (dt_group_sums: a tree of 31 sums a level was a third of refine_sums' time on the H200).
+ * sums holds DT_REFINE_SCRATCH floats. */
+#define DT_REFINE_SCRATCH DT_GROUP_SUMS_SCRATCH(DT_REFINE_SUMS)
 DT_DEVICE_FN void dt_refine_group_sums(const float* acc, DT_LOCAL_PTR float* sums) {
-  const uint lid = get_local_id(0);
-  DT_LOCAL_PTR float* parts = sums + DT_GROUP_SIZE * DT_REFINE_ROW;
-  barrier(CLK_LOCAL_MEM_FENCE); /* the previous sums have been read */
-  for (int k = 0; k < DT_REFINE_SUMS; ++k) sums[lid * DT_REFINE_ROW + k] = acc[k];
-  barrier(CLK_LOCAL_MEM_FENCE);
-  /* Work-item lid adds sum k = lid % 32 over work-items part * 32 .. part * 32 + 31, part = lid / 32. */
-  const uint k = lid % DT_REFINE_LANES, part = lid / DT_REFINE_LANES;
-  if (k < DT_REFINE_SUMS) {
-    float total = 0.0f;
-    for (uint lane = 0; lane < DT_REFINE_LANES; ++lane)
-      total += sums[(part * DT_REFINE_LANES + lane) * DT_REFINE_ROW + k];
-    parts[part * DT_REFINE_LANES + k] = total;
-  }
-  barrier(CLK_LOCAL_MEM_FENCE);
-  if (lid < DT_REFINE_SUMS) {
-    float total = 0.0f;
-    for (uint p = 0; p < DT_REFINE_PARTS; ++p) total += parts[p * DT_REFINE_LANES + lid];
-    sums[lid] = total;
-  }
-  barrier(CLK_LOCAL_MEM_FENCE);
+  dt_group_sums(acc, DT_REFINE_SUMS, sums);
 }
 
 /* The damped step from the best pose's sums into step; 0 when there is none to try (too few pixels, a

@@ -19,6 +19,7 @@ __kernel void summarize(__global const float* state, __global const float* log_w
                         uint count, float centre_x, float centre_y, float centre_z, float kl_threshold) {
   __local float scratch[DT_GROUP_SIZE];
   __local uint scratch_index[DT_GROUP_SIZE];
+  __local float sums[DT_GROUP_SUMS_SCRATCH(DT_WEIGHTED_SUMS)];
   const uint lid = get_local_id(0);
   const dt_vec3 centre = dt_vec3_make(centre_x, centre_y, centre_z);
 
@@ -39,14 +40,16 @@ __kernel void summarize(__global const float* state, __global const float* log_w
     weights[i] = w;
     if (w > 0.0f) dt_add_weighted(acc, state, log_likelihood, i, w, centre); /* 0 adds exactly 0 */
   }
-  for (int k = 0; k < DT_WEIGHTED_SUMS; ++k) acc[k] = dt_group_sum(scratch, acc[k]);
+  dt_group_sums(acc, DT_WEIGHTED_SUMS, sums);
+  for (int k = 0; k < DT_WEIGHTED_SUMS; ++k) acc[k] = sums[k];
 
   dt_quat mean = dt_load_rotation(state, heaviest);
   for (int iteration = 0; iteration < DT_KARCHER_STEPS; ++iteration) {
     float step[3] = {0.0f, 0.0f, 0.0f};
     for (uint i = lid; i < count; i += DT_GROUP_SIZE)
       if (weights[i] > 0.0f) dt_add_karcher_step(step, state, i, weights[i], mean); /* 0 adds exactly 0 */
-    for (int k = 0; k < 3; ++k) step[k] = dt_group_sum(scratch, step[k]);
+    dt_group_sums(step, 3, sums);
+    for (int k = 0; k < 3; ++k) step[k] = sums[k];
     mean = dt_quat_normalize(dt_quat_mul(mean, dt_quat_exp(dt_vec3_make(step[0], step[1], step[2]))));
   }
 
