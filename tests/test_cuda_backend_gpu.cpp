@@ -143,26 +143,45 @@ TEST_CASE("A CUDA allocation beyond free memory names both sizes", "[cuda]") {
   CHECK_THROWS_AS(queue->allocate(0), BackendError);
 }
 
-// The general [compute] test checks a batch's results; this one that the graph is built once and
-// replayed: the same kernels over the same ranges build nothing new, only changed arguments are set
-// again, and another range is a graph of its own.
-TEST_CASE("CUDA batches replay one graph, setting only the arguments that changed", "[cuda]") {
-  auto queue = cuda_queue();
-  if (!queue) return;
-  auto* cuda = dynamic_cast<compute::cuda::CudaQueue*>(queue.get());
-  REQUIRE(cuda);
-  if (!cuda->graphs()) {
-    std::cout << "SKIPPED: CUDA graphs are off (DEPTHTRACK_CUDA_GRAPHS) or the driver lacks them\n";
-    return;
-  }
-  const char* source = R"(
+namespace {
+// A CUDA queue with graphs and a kernel adding a value to each element: what the graph tests batch.
+// queue stays null (a message says why) where there is no CUDA device or graphs are off.
+struct GraphQueue {
+  std::unique_ptr<compute::Queue> queue;
+  compute::cuda::CudaQueue* cuda = nullptr;
+  std::unique_ptr<compute::Program> program;
+  std::unique_ptr<compute::Kernel> kernel;
+  GraphQueue() {
+    auto opened = cuda_queue();
+    if (!opened) return;
+    cuda = dynamic_cast<compute::cuda::CudaQueue*>(opened.get());
+    REQUIRE(cuda);
+    if (!cuda->graphs()) {
+      std::cout << "SKIPPED: CUDA graphs are off (DEPTHTRACK_CUDA_GRAPHS) or the driver lacks them\n";
+      return;
+    }
+    const char* source = R"(
 __kernel void add(__global float* y, float value, uint count) {
   const uint i = get_global_id(0);
   if (i < count) y[i] += value;
 }
 )";
-  auto program = queue->build("add", compute::kernel_source("dt_prelude.h") + source, {});
-  auto kernel = program->kernel("add");
+    program = opened->build("add", compute::kernel_source("dt_prelude.h") + source, {});
+    kernel = program->kernel("add");
+    queue = std::move(opened);
+  }
+};
+}  // namespace
+
+// The general [compute] test checks a batch's results; this one that the graph is built once and
+// replayed: the same kernels over the same ranges build nothing new, only changed arguments are set
+// again, and another range is a graph of its own.
+TEST_CASE("CUDA batches replay one graph, setting only the arguments that changed", "[cuda]") {
+  GraphQueue g;
+  if (!g.queue) return;
+  compute::Queue* queue = g.queue.get();
+  compute::Kernel* kernel = g.kernel.get();
+  const compute::cuda::CudaQueue* cuda = g.cuda;
   const unsigned count = 256;
   compute::Buffer<float> ys(*queue, count);
   ys.upload(std::vector<float>(count, 0.0f));
@@ -193,22 +212,11 @@ __kernel void add(__global float* y, float value, uint count) {
 // A frame that swaps double buffers alternates between two sets of pointers: each set gets a graph of
 // its own, so a replay sets only the arguments that really changed.
 TEST_CASE("CUDA batches over swapped buffers keep a graph per buffer and replay it as it is", "[cuda]") {
-  auto queue = cuda_queue();
-  if (!queue) return;
-  auto* cuda = dynamic_cast<compute::cuda::CudaQueue*>(queue.get());
-  REQUIRE(cuda);
-  if (!cuda->graphs()) {
-    std::cout << "SKIPPED: CUDA graphs are off (DEPTHTRACK_CUDA_GRAPHS) or the driver lacks them\n";
-    return;
-  }
-  const char* source = R"(
-__kernel void add(__global float* y, float value, uint count) {
-  const uint i = get_global_id(0);
-  if (i < count) y[i] += value;
-}
-)";
-  auto program = queue->build("add", compute::kernel_source("dt_prelude.h") + source, {});
-  auto kernel = program->kernel("add");
+  GraphQueue g;
+  if (!g.queue) return;
+  compute::Queue* queue = g.queue.get();
+  compute::Kernel* kernel = g.kernel.get();
+  const compute::cuda::CudaQueue* cuda = g.cuda;
   const unsigned count = 64;
   compute::Buffer<float> a(*queue, count), b(*queue, count);
   a.upload(std::vector<float>(count, 0.0f));

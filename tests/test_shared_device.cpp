@@ -17,6 +17,21 @@
 using namespace depthtrack;
 using Catch::Matchers::Contains;
 
+namespace {
+// The built-in object's small occluded scene (4 frames) and 64 particles on the test device.
+struct SmallDeviceScene {
+  Mesh mesh = builtin_demo_mesh();
+  SynthConfig synth = test::small_scene(4);
+  std::vector<SynthFrame> frames = test::synthesize(mesh, synth);
+  TrackerConfig config = [] {
+    TrackerConfig c;
+    c.particles = 64;
+    c.backend = test::device_selector();
+    return c;
+  }();
+};
+}  // namespace
+
 TEST_CASE("Device opens host and compute selectors and names a bad one", "[device]") {
   const auto reference = Device::open("reference");
   CHECK(reference->is_host());
@@ -99,20 +114,16 @@ TEST_CASE("Two trackers on one Device build each program once and track as on th
 TEST_CASE("A device tracker without step timings tracks the same and times only the whole frame",
           "[device][device_filter]") {
   if (!test::device_available()) return;
-  const Mesh mesh = builtin_demo_mesh();
-  const SynthConfig synth = test::small_scene(4);
-  const auto frames = test::synthesize(mesh, synth);
-  TrackerConfig config;
-  config.particles = 64;
-  config.backend = test::device_selector();
-  Tracker timed(mesh, synth.camera, config);
+  const SmallDeviceScene scene;
+  TrackerConfig config = scene.config;
+  Tracker timed(scene.mesh, scene.synth.camera, config);
   config.step_timings = false;
-  Tracker untimed(mesh, synth.camera, config);
-  timed.initialize(frames[0].ground_truth);
-  untimed.initialize(frames[0].ground_truth);
-  for (size_t i = 0; i < frames.size(); ++i) {
-    const Estimate a = timed.update(frames[i].depth, frames[i].timestamp);
-    const Estimate b = untimed.update(frames[i].depth, frames[i].timestamp);
+  Tracker untimed(scene.mesh, scene.synth.camera, config);
+  timed.initialize(scene.frames[0].ground_truth);
+  untimed.initialize(scene.frames[0].ground_truth);
+  for (size_t i = 0; i < scene.frames.size(); ++i) {
+    const SynthFrame& f = scene.frames[i];
+    const Estimate a = timed.update(f.depth, f.timestamp), b = untimed.update(f.depth, f.timestamp);
     test::require_same_estimate(a, b);
     CHECK(a.timings.weigh_ms > 0);
     CHECK(a.timings.resample_ms > 0);
@@ -145,12 +156,11 @@ TEST_CASE("A Device's queues share memory and programs: what one writes another 
 TEST_CASE("A MultiTracker's objects, enqueued together on one Device, equal single trackers run one by one",
           "[device][device_filter][multi]") {
   if (!test::device_available()) return;
-  const Mesh mesh = builtin_demo_mesh();
-  const SynthConfig synth = test::small_scene(4);
-  const auto frames = test::synthesize(mesh, synth);
-  TrackerConfig config;
-  config.particles = 64;
-  config.backend = test::device_selector();
+  const SmallDeviceScene scene;
+  const Mesh& mesh = scene.mesh;
+  const SynthConfig& synth = scene.synth;
+  const auto& frames = scene.frames;
+  TrackerConfig config = scene.config;
   // Three objects: the synthetic object's own pose and 4 cm to either side (those two track clutter).
   std::vector<Pose> starts(3, frames[0].ground_truth);
   starts[1].translation.x() -= 0.04;

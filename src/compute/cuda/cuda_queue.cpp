@@ -62,26 +62,30 @@ const CudaMemory& CudaQueue::checked(const DeviceMemory& memory, size_t offset, 
   return *cuda;
 }
 
-void CudaQueue::write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) {
+// Where a write of `bytes` from `source` goes on the device, checked, with the batch handed over and the
+// context current; 0 when there is nothing to write.
+CUdeviceptr CudaQueue::write_target(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) {
   const CudaMemory& cuda = checked(memory, offset, bytes, "write");
-  if (bytes == 0) return;
+  if (bytes == 0) return 0;
   if (!source) throw InputError("write of " + std::to_string(bytes) + " bytes from a null host pointer");
   hand_over_batch();
   context_->make_current();
+  return cuda.pointer() + offset;
+}
+
+void CudaQueue::write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) {
+  const CUdeviceptr target = write_target(memory, offset, source, bytes);
+  if (!target) return;
   // On the queue's stream, then waited for: in order with enqueued work, and blocking.
-  context_->check(context_->api().cuMemcpyHtoDAsync(cuda.pointer() + offset, source, bytes, stream_),
-                  "cuMemcpyHtoDAsync");
+  context_->check(context_->api().cuMemcpyHtoDAsync(target, source, bytes, stream_), "cuMemcpyHtoDAsync");
   finish();
 }
 
 void CudaQueue::write_enqueued(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) {
-  const CudaMemory& cuda = checked(memory, offset, bytes, "write");
-  if (bytes == 0) return;
-  if (!source) throw InputError("write of " + std::to_string(bytes) + " bytes from a null host pointer");
-  hand_over_batch();
-  context_->make_current();
+  const CUdeviceptr target = write_target(memory, offset, source, bytes);
+  if (!target) return;
   if (!staging_) staging_ = std::make_unique<PinnedStaging>(context_);
-  staging_->copy_to_device(cuda.pointer() + offset, source, bytes, stream_);
+  staging_->copy_to_device(target, source, bytes, stream_);
 }
 
 void CudaQueue::read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {

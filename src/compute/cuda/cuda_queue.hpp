@@ -56,6 +56,7 @@ class CudaQueue final : public Queue {
   // A new stream in `context`.
   explicit CudaQueue(std::shared_ptr<const Context> context);
 
+  CUdeviceptr write_target(DeviceMemory& memory, size_t offset, const void* source, size_t bytes);
   // `memory` as this device's memory, with [offset, offset + bytes) inside it (else InputError).
   const CudaMemory& checked(const DeviceMemory& memory, size_t offset, size_t bytes, const char* what) const;
 
