@@ -184,12 +184,15 @@ __kernel void find_parents(__global const float* cumulative, __global uint* pare
   parents[child] = lo;
 }
 
-/* Children copy their parent's kinematic state; without resampling each particle copies its own. */
+/* Children copy their parent's kinematic state; without resampling each particle copies its own. After a
+ * resampling the log weights start afresh at 0 (in the same launch: one fewer in the frame). */
 __kernel void gather_state(__global const float* from, __global float* to, __global const uint* parents, uint count,
-                           __global const float* estimate) {
+                           __global const float* estimate, __global float* log_weight) {
   const uint child = get_global_id(0);
   if (child >= count) return;
-  const uint parent = dt_resampling(estimate) ? parents[child] : child;
+  const int resampling = dt_resampling(estimate);
+  if (resampling) log_weight[child] = 0.0f;
+  const uint parent = resampling ? parents[child] : child;
   __global const float* source = from + DT_CAST(ulong, parent) * DT_STATE_STRIDE;
   __global float* target = to + DT_CAST(ulong, child) * DT_STATE_STRIDE;
   for (int k = 0; k < DT_STATE_STRIDE; ++k) target[k] = source[k];
@@ -204,12 +207,6 @@ __kernel void identity_parents(__global uint* parents, uint count) {
 __kernel void fill(__global float* values, uint count, float value) {
   const uint i = get_global_id(0);
   if (i < count) values[i] = value;
-}
-
-/* The weights start afresh after a resampling. */
-__kernel void fill_when_resampling(__global float* values, uint count, float value, __global const float* estimate) {
-  const uint i = get_global_id(0);
-  if (i < count && dt_resampling(estimate)) values[i] = value;
 }
 
 #include "time_index.cl"

@@ -392,7 +392,6 @@ TEST_CASE("resampling kernels follow the decision in the estimate buffer: gather
   auto program = build(*q, "resample.cl");
   auto find = program->kernel("find_parents");
   auto gather_state = program->kernel("gather_state");
-  auto reset = program->kernel("fill_when_resampling");
   const unsigned count = 3;
   const std::vector<unsigned> parents_in = {2, 2, 0};
   std::vector<float> state(count * DT_STATE_STRIDE);
@@ -424,8 +423,7 @@ TEST_CASE("resampling kernels follow the decision in the estimate buffer: gather
       CHECK(parents.download() == std::vector<unsigned>{0, 1, 2});
       parents.upload(parents_in);  // gather_state must not follow these
     }
-    q->launch(*gather_state, linear, from, to, parents, count, decision);
-    q->launch(*reset, linear, weights, count, 0.0f, decision);
+    q->launch(*gather_state, linear, from, to, parents, count, decision, weights);
     const auto got_state = to.download(), got_weights = weights.download();
     for (unsigned child = 0; child < count; ++child) {
       const unsigned source = resample ? parents_in[child] : child;

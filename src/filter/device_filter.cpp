@@ -96,7 +96,7 @@ struct DeviceFilter::Kernels {
   std::shared_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
       initialize_program;
   std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state,
-      identity_parents, fill, fill_when_resampling, initialize_particles, fill_per_particle, fill_time_indices,
+      identity_parents, fill, initialize_particles, fill_per_particle, fill_time_indices,
       retire_time_indices;
 };
 
@@ -145,7 +145,6 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   k.gather_state = k.resample_program->kernel("gather_state");
   k.identity_parents = k.resample_program->kernel("identity_parents");
   k.fill = k.resample_program->kernel("fill");
-  k.fill_when_resampling = k.resample_program->kernel("fill_when_resampling");
   k.initialize_program = device_->programs.program("initialize.cl", defines);
   k.initialize_particles = k.initialize_program->kernel("initialize_particles");
   k.fill_per_particle = k.initialize_program->kernel("fill_per_particle");
@@ -565,9 +564,9 @@ std::vector<compute::EventPtr> DeviceFilter::resample() {
                                     cumulative_, count, estimate_));
   events.push_back(
       launch_step(*k.find_parents, linear, cumulative_, parents_, count, dt_uniform01(words.v[0]), estimate_));
-  events.push_back(launch_step(*k.gather_state, linear, state_, scratch_state_, parents_, count, estimate_));
+  events.push_back(
+      launch_step(*k.gather_state, linear, state_, scratch_state_, parents_, count, estimate_, log_weight_));
   std::swap(state_, scratch_state_);
-  events.push_back(launch_step(*k.fill_when_resampling, linear, log_weight_, count, 0.0f, estimate_));
   return events;
 }
 
