@@ -147,6 +147,7 @@ void run_multi_object_ratio(const std::string& backend, const std::string& rende
   config.width = 80;
   config.height = 60;
   config.simplify_error = simplify_error;
+  config.step_timings = true;  // the steps' sum is one of the stages printed
   const bool host = backend == "reference" || backend == "cpu" || backend.rfind("cpu:", 0) == 0;
   std::string device;
   const StageMedians one = median_frame(scene, 1, false, config, device);

@@ -247,4 +247,26 @@ TEST_CASE("CUDA batches over swapped buffers keep a graph per buffer and replay 
   CHECK(b.download()[count - 1] == 8.0f + 2.0f);
 }
 
+// A frame's batch handed over in two parts (Queue::flush_batch, so the device starts on the first while
+// the host records the rest): each part is a graph of its own, replayed as it is frame after frame.
+TEST_CASE("A flushed CUDA batch is handed over in parts, each part replayed frame after frame", "[cuda]") {
+  GraphQueue g;
+  if (!g.queue) return;
+  const unsigned count = 64;
+  compute::Buffer<float> ys(*g.queue, count);
+  ys.upload(std::vector<float>(count, 0.0f));
+  const auto range = compute::NdRange::linear(count, 64);
+  for (int frame = 0; frame < 3; ++frame) {
+    compute::LaunchBatch batch(*g.queue, true);
+    g.queue->launch(*g.kernel, range, ys, 1.0f, count);
+    batch.flush();
+    g.queue->launch_untimed(*g.kernel, range, ys, 2.0f, count);
+    g.queue->launch_untimed(*g.kernel, range, ys, 3.0f, count);
+    batch.submit();
+  }
+  CHECK(g.cuda->graphs()->graphs_built() == 2);
+  CHECK(g.cuda->graphs()->nodes_updated() == 0);
+  CHECK(ys.download() == std::vector<float>(count, 3 * 6.0f));
+}
+
 #endif

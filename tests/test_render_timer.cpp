@@ -78,6 +78,7 @@ TEST_CASE("with the GL atlas the device filter reports GL's draw time, device-ti
   const Synthesizer synthesizer(builtin_demo_mesh(), synth);
   TrackerConfig config;
   config.renderer = Renderer::Gl;
+  config.step_timings = true;
   config.particles = 300;
   config.backend = test::device_selector();
   const Camera working = synth.camera.decimated(8);

@@ -116,6 +116,7 @@ TEST_CASE("A device tracker without step timings tracks the same and times only 
   if (!test::device_available()) return;
   const SmallDeviceScene scene;
   TrackerConfig config = scene.config;
+  config.step_timings = true;
   Tracker timed(scene.mesh, scene.synth.camera, config);
   config.step_timings = false;
   Tracker untimed(scene.mesh, scene.synth.camera, config);

@@ -72,6 +72,7 @@ std::vector<BenchCase> grid_cases(const BenchGrid& grid, const std::vector<Bench
 CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::string& renderer, int frames,
                     const std::string& commit, double reference_ms, std::vector<BenchRow>& rows) {
   TrackerConfig config;
+  config.step_timings = true;  // the per-step split is what this suite prints
   config.backend = target.backend;
   config.renderer = renderer_from_string(renderer);
   config.gl_path = gl_path_from_environment();  // as demo and track take it (the library reads no environment)

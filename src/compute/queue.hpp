@@ -165,6 +165,9 @@ class Queue {
   // cheaper way launch at once (the default).
   virtual void begin_batch() {}
   virtual void end_batch() {}
+  // Hands what the open batch holds so far to the device and goes on batching: the device starts on the
+  // first launches while the host records the rest (a frame's latency). None open, or none held: nothing.
+  virtual void flush_batch() {}
 
   // Another in-order queue on the same device and context: memory allocated and programs built through
   // either serve both, and work enqueued on the two may run at the same time (each tracker of several
@@ -192,6 +195,9 @@ class LaunchBatch {
     Queue* queue = queue_;
     queue_ = nullptr;
     if (queue) queue->end_batch();
+  }
+  void flush() {
+    if (queue_) queue_->flush_batch();
   }
 
  private:

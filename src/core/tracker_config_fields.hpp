@@ -149,7 +149,7 @@ inline auto fields_of(const TrackerConfig*) {
       field("loss", &S::loss, "when an estimate counts as lost"),
       field("recovery", &S::recovery, "global search while lost"),
       field("step_timings", &S::step_timings,
-            "time each step of a frame on the device; off: those times read 0, total_ms stays"),
+            "time each step of a frame on the device (profiling); off: those times read 0, total_ms stays"),
   };
 }
 

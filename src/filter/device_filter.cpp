@@ -472,6 +472,9 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
                                 atlas_source_->layout().kernel_args(), window,
                                 atlas_source_->tile_boxes() ? *atlas_source_->tile_boxes() : unused_boxes_,
                                 static_cast<unsigned>(atlas_source_->tile_boxes() != nullptr));
+  // The device starts on propagate and weigh (most of a small frame's first half) while the host
+  // records the summary, the refinement and the resampling.
+  batch.flush();
   std::swap(occlusion_, scratch_occlusion_);
   std::swap(occlusion_time_, scratch_occlusion_time_);
   const float kl_threshold = model::float_threshold(config_.resample_kl_threshold);

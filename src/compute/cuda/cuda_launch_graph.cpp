@@ -10,8 +10,9 @@ namespace depthtrack::compute::cuda {
 
 namespace {
 // Distinct launch sequences kept instantiated: a frame has two or three (the first frame's has no
-// propagation, a rare one retires old time indices), a queue's other batches a few more.
-constexpr size_t kMaxGraphs = 8;
+// propagation, a rare one retires old time indices), each handed over in two parts (Queue::flush_batch)
+// and kept for either parity of the swapped buffers, and a queue's other batches a few more.
+constexpr size_t kMaxGraphs = 16;
 
 bool same_shape(const LaunchShape& a, const LaunchShape& b) {
   return std::equal(a.grid, a.grid + 3, b.grid) && std::equal(a.block, a.block + 3, b.block);

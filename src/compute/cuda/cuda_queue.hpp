@@ -41,6 +41,7 @@ class CudaQueue final : public Queue {
   // DEPTHTRACK_CUDA_GRAPHS is not "0" or "off" (the environment is read when the queue is made).
   void begin_batch() override;
   void end_batch() override;
+  void flush_batch() override { hand_over_batch(); }
   const LaunchGraphs* graphs() const { return graphs_.get(); }  // null without graphs; for tests
   // A stream of its own in this queue's context.
   std::unique_ptr<Queue> another_queue() override;
