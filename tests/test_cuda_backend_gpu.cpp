@@ -258,11 +258,15 @@ TEST_CASE("A flushed CUDA batch is handed over in parts, each part replayed fram
   const auto range = compute::NdRange::linear(count, 64);
   for (int frame = 0; frame < 3; ++frame) {
     compute::LaunchBatch batch(*g.queue, true);
-    g.queue->launch(*g.kernel, range, ys, 1.0f, count);
+    const compute::EventPtr first = g.queue->launch(*g.kernel, range, ys, 1.0f, count);
     batch.flush();
-    g.queue->launch_untimed(*g.kernel, range, ys, 2.0f, count);
+    const compute::EventPtr second = g.queue->launch(*g.kernel, range, ys, 2.0f, count);
     g.queue->launch_untimed(*g.kernel, range, ys, 3.0f, count);
     batch.submit();
+    // Each part's timed launch records events of its own: the second part did not take the first's.
+    REQUIRE(first != second);
+    CHECK(first->elapsed_ms() >= 0);
+    CHECK(second->elapsed_since_ms(*first).value_or(0.0) >= first->elapsed_ms());
   }
   CHECK(g.cuda->graphs()->graphs_built() == 2);
   CHECK(g.cuda->graphs()->nodes_updated() == 0);

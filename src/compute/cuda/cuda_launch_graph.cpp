@@ -27,6 +27,7 @@ struct LaunchGraphs::Graph {
     CUfunction function = nullptr;
     LaunchShape shape;
     bool timed = false;
+    size_t event_slot = 0;  // the events its event-record nodes record (timed only)
     CUgraphNode node = nullptr;
     std::vector<unsigned char> bytes;  // the arguments the executable graph holds now
   };
@@ -64,11 +65,12 @@ EventPtr LaunchGraphs::record(const CudaKernel& kernel, const LaunchShape& shape
   launch.name = &kernel.name();
   launch.shape = shape;
   launch.timed = timed;
-  const size_t position = recorded_++;
+  ++recorded_;
   if (!timed) return nullptr;
-  if (events_.size() <= position) events_.resize(position + 1);
-  if (!events_[position]) events_[position] = std::make_shared<CudaEvent>(context_);
-  return events_[position];
+  const size_t slot = launch.event_slot = next_event_slot_++;
+  if (events_.size() <= slot) events_.resize(slot + 1);
+  if (!events_[slot]) events_[slot] = std::make_shared<CudaEvent>(context_);
+  return events_[slot];
 }
 
 void LaunchGraphs::check(CUresult status, const char* call, const Launch& launch) const {
@@ -83,6 +85,7 @@ bool LaunchGraphs::matches(const Graph& graph) const {
     const Launch& l = launches_[i];
     const Graph::Node& n = graph.nodes[i];
     if (l.function != n.function || l.timed != n.timed || !same_shape(l.shape, n.shape)) return false;
+    if (l.timed && l.event_slot != n.event_slot) return false;  // its nodes record other events
   }
   return true;
 }
@@ -124,7 +127,8 @@ std::unique_ptr<LaunchGraphs::Graph> LaunchGraphs::build() {
     const size_t dependencies = previous ? 1 : 0;
     if (launch.timed) {
       CUgraphNode start = nullptr;
-      check(api.cuGraphAddEventRecordNode(&start, graph->graph, &previous, dependencies, events_[i]->start_handle()),
+      check(api.cuGraphAddEventRecordNode(&start, graph->graph, &previous, dependencies,
+                                          events_[launch.event_slot]->start_handle()),
             "cuGraphAddEventRecordNode", launch);
       after(start);
     }
@@ -132,6 +136,7 @@ std::unique_ptr<LaunchGraphs::Graph> LaunchGraphs::build() {
     node.function = launch.function;
     node.shape = launch.shape;
     node.timed = launch.timed;
+    node.event_slot = launch.event_slot;
     node.bytes = launch.bytes;
     const CUDA_KERNEL_NODE_PARAMS params =
         node_params(launch.function, launch.shape, pointers_into(launch.bytes, launch.offsets, pointers));
@@ -140,7 +145,7 @@ std::unique_ptr<LaunchGraphs::Graph> LaunchGraphs::build() {
     after(node.node);
     if (launch.timed) {
       CUgraphNode end = nullptr;
-      check(api.cuGraphAddEventRecordNode(&end, graph->graph, &previous, 1, events_[i]->end_handle()),
+      check(api.cuGraphAddEventRecordNode(&end, graph->graph, &previous, 1, events_[launch.event_slot]->end_handle()),
             "cuGraphAddEventRecordNode", launch);
       after(end);
     }

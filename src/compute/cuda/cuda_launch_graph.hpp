@@ -26,9 +26,12 @@ class LaunchGraphs {
   // Whether the driver has every graph function this needs.
   static bool supported(const DriverApi& api);
 
+  // A batch begins: its timed launches take event slots from the first again.
+  void begin_batch() { next_event_slot_ = 0; }
   // Records a launch of `kernel` with its arguments as set now. A timed launch's event is the same
-  // object at the same position of every batch (the replayed graph records it), so it is valid until
-  // the next submit.
+  // object at the same place of every batch (the replayed graph records it), so it is valid until the
+  // batch's next part is submitted after the next begin_batch. The parts of one batch (submitted in
+  // turn: Queue::flush_batch) take different slots.
   EventPtr record(const CudaKernel& kernel, const LaunchShape& shape, bool timed);
   bool empty() const { return recorded_ == 0; }
   // Launches what was recorded since the last submit on `stream` (nothing when nothing was).
@@ -43,6 +46,7 @@ class LaunchGraphs {
     const std::string* name = nullptr;  // the kernel's, for messages while this batch lasts
     LaunchShape shape;
     bool timed = false;
+    size_t event_slot = 0;             // a timed launch's place in events_
     std::vector<unsigned char> bytes;  // the arguments' values
     std::vector<size_t> offsets;       // where each argument starts in bytes
   };
@@ -59,7 +63,8 @@ class LaunchGraphs {
   std::shared_ptr<const Context> context_;
   std::vector<Launch> launches_;  // reused from batch to batch: the first recorded_ are this batch's
   size_t recorded_ = 0;
-  std::vector<std::shared_ptr<CudaEvent>> events_;  // by position in the batch, made when first timed
+  std::vector<std::shared_ptr<CudaEvent>> events_;  // by slot, made when first timed
+  size_t next_event_slot_ = 0;                      // the batch's next timed launch's slot
   std::vector<std::unique_ptr<Graph>> graphs_;      // the most recently used last
   uint64_t graphs_built_ = 0, nodes_updated_ = 0;
 };

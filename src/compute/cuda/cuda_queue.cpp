@@ -35,6 +35,7 @@ CudaQueue::~CudaQueue() {
 void CudaQueue::begin_batch() {
   if (batching_) throw InputError("begin_batch on " + context_->where() + ": a batch is already open");
   batching_ = graphs_ != nullptr;
+  if (graphs_) graphs_->begin_batch();
 }
 
 void CudaQueue::end_batch() {
