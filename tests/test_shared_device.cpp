@@ -130,8 +130,8 @@ TEST_CASE("A device tracker without step timings tracks the same and times only 
     CHECK(a.timings.resample_ms > 0);
     CHECK(a.timings.refine_ms > 0);
     if (i > 0) CHECK(a.timings.propagate_ms > 0);
-    for (const double step : {b.timings.propagate_ms, b.timings.render_ms, b.timings.weigh_ms, b.timings.resample_ms,
-                              b.timings.refine_ms})
+    for (const double step :
+         {b.timings.propagate_ms, b.timings.render_ms, b.timings.weigh_ms, b.timings.resample_ms, b.timings.refine_ms})
       CHECK(step == 0);
     CHECK(b.timings.enqueue_ms > 0);
     CHECK(b.timings.wait_ms > 0);

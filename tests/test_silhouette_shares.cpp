@@ -4,7 +4,6 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <depthtrack/mesh.hpp>
-
 #include <depthtrack/tracker.hpp>
 
 #include "reference/observation_model.hpp"
@@ -132,8 +131,8 @@ TEST_CASE("a reference tracker with refinement reports the silhouette shares' co
   for (int i = 0; i < synth.frames; ++i) {
     const SynthFrame f = scene.frame(i);
     const Estimate e = tracker.update(f.depth, f.timestamp);
-    const SilhouetteShares shares = silhouette_shares(rasterizer, config.observation, config.loss.pixel_sigmas, e.pose,
-                                                      f.depth, scratch);
+    const SilhouetteShares shares =
+        silhouette_shares(rasterizer, config.observation, config.loss.pixel_sigmas, e.pose, f.depth, scratch);
     REQUIRE(shares.pixels > 20);
     REQUIRE(e.confidence == shares.confidence());
   }

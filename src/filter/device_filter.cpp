@@ -96,8 +96,7 @@ struct DeviceFilter::Kernels {
   std::shared_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
       initialize_program;
   std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state,
-      identity_parents, fill, initialize_particles, fill_per_particle, fill_time_indices,
-      retire_time_indices;
+      identity_parents, fill, initialize_particles, fill_per_particle, fill_time_indices, retire_time_indices;
 };
 
 DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
@@ -433,10 +432,9 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   const unsigned count = static_cast<unsigned>(count_);
   const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
   if (dt > 0)
-    p->propagated =
-        launch_step(*k.propagate, linear, state_, count, static_cast<unsigned>(config_.seed & 0xffffffffu),
-                       static_cast<unsigned>(config_.seed >> 32), frame_,
-                       model::motion_params(model::motion_step(config_.motion, dt), centre_));
+    p->propagated = launch_step(*k.propagate, linear, state_, count, static_cast<unsigned>(config_.seed & 0xffffffffu),
+                                static_cast<unsigned>(config_.seed >> 32), frame_,
+                                model::motion_params(model::motion_step(config_.motion, dt), centre_));
 
   if (!render_weigh_) p->rendered = render_atlas(p->timings);
 
@@ -459,19 +457,19 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   if (render_weigh_)
     p->weighed =
         launch_step(*render_weigh_, per_particle_group, state_, render_weigh_mesh_->vertices,
-                       render_weigh_mesh_->triangles, render_weigh_mesh_->planes, render_weigh_mesh_->triangle_count(),
-                       render_weigh_mesh_->vertex_count(), model::camera_params(camera_, config_), observed_, parents_,
-                       occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(),
-                       log_likelihood_, log_weight_, model::model_params(config_), static_cast<float>(time_), now_index,
-                       static_cast<float>(dt), atlas_, static_cast<unsigned>(keep_atlas_), window);
+                    render_weigh_mesh_->triangles, render_weigh_mesh_->planes, render_weigh_mesh_->triangle_count(),
+                    render_weigh_mesh_->vertex_count(), model::camera_params(camera_, config_), observed_, parents_,
+                    occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(),
+                    log_likelihood_, log_weight_, model::model_params(config_), static_cast<float>(time_), now_index,
+                    static_cast<float>(dt), atlas_, static_cast<unsigned>(keep_atlas_), window);
   else
-    p->weighed = launch_step(*k.weigh, per_particle_group, atlas_, observed_, parents_, occlusion_, occlusion_time_,
-                                scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(), log_likelihood_,
-                                log_weight_, static_cast<unsigned>(pixels_), model::model_params(config_),
-                                static_cast<float>(time_), now_index, static_cast<float>(dt),
-                                atlas_source_->layout().kernel_args(), window,
-                                atlas_source_->tile_boxes() ? *atlas_source_->tile_boxes() : unused_boxes_,
-                                static_cast<unsigned>(atlas_source_->tile_boxes() != nullptr));
+    p->weighed =
+        launch_step(*k.weigh, per_particle_group, atlas_, observed_, parents_, occlusion_, occlusion_time_,
+                    scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(), log_likelihood_, log_weight_,
+                    static_cast<unsigned>(pixels_), model::model_params(config_), static_cast<float>(time_), now_index,
+                    static_cast<float>(dt), atlas_source_->layout().kernel_args(), window,
+                    atlas_source_->tile_boxes() ? *atlas_source_->tile_boxes() : unused_boxes_,
+                    static_cast<unsigned>(atlas_source_->tile_boxes() != nullptr));
   // The device starts on propagate and weigh (most of a small frame's first half) while the host
   // records the summary, the refinement and the resampling.
   batch.flush();
@@ -485,8 +483,7 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
         wide_->summarize(state_, log_weight_, log_likelihood_, weights_, estimate_, cx, cy, cz, kl_threshold);
   else
     p->summarized = {launch_step(*k.summarize, compute::NdRange::linear(summary_group_, summary_group_), state_,
-                                    log_weight_, log_likelihood_, weights_, estimate_, count, cx, cy, cz,
-                                    kl_threshold)};
+                                 log_weight_, log_likelihood_, weights_, estimate_, count, cx, cy, cz, kl_threshold)};
   // Before resample() overwrites parents_ with this frame's choice.
   if (refiner_)
     p->refined =
@@ -563,8 +560,8 @@ std::vector<compute::EventPtr> DeviceFilter::resample() {
   if (wide_)
     events = wide_->prefix_sum(weights_, cumulative_, estimate_);
   else
-    events.push_back(launch_step(*k.prefix_sum, compute::NdRange::linear(kGroupSize, kGroupSize), weights_,
-                                    cumulative_, count, estimate_));
+    events.push_back(launch_step(*k.prefix_sum, compute::NdRange::linear(kGroupSize, kGroupSize), weights_, cumulative_,
+                                 count, estimate_));
   events.push_back(
       launch_step(*k.find_parents, linear, cumulative_, parents_, count, dt_uniform01(words.v[0]), estimate_));
   events.push_back(
