@@ -5,9 +5,14 @@
 #include "dt_params.h"
 #include "dt_prelude.h"
 
+/* The depth noise at observed depth y (reference::depth_sigma). */
+DT_FN float dt_depth_sigma(const dt_model m, float y) {
+  return m.sigma_constant + m.sigma_quadratic * y * y;
+}
+
 /* log(((1 - p) p_vis + p p_occ) / p_bg) for observed y, rendered y_hat; *posterior gets p's Bayes update. */
 DT_FN float dt_pixel_log_ratio(const dt_model m, float y, float y_hat, float p, float* posterior) {
-  const float sigma = m.sigma_constant + m.sigma_quadratic * y * y;
+  const float sigma = dt_depth_sigma(m, y);
   const float z = (y - y_hat) / sigma;
   const float ls2 = m.lambda * sigma * sigma;
   /* All three densities divided by exp(log_scale), as in the reference: lambda exp(exponent), the

@@ -147,7 +147,7 @@ DT_DEVICE_FN void dt_refine_pixel(float* acc, uint k, uint bits, uint id, dt_rig
   if (bits == DT_NO_SURFACE || !(y > 0.0f) || !isfinite(y)) return;
   const float y_hat = dt_as_float(bits);
   /* The confidence's counts, with y_hat's own depth band (silhouette_shares). */
-  const float sigma = m.sigma_constant + m.sigma_quadratic * y * y;
+  const float sigma = dt_depth_sigma(m, y);
   acc[DT_REFINE_MEASURED] += 1.0f;
   if (fabs(y - y_hat) <= args.pixel_sigmas * sigma) acc[DT_REFINE_VISIBLE] += 1.0f;
   float p = 0.0f;
@@ -190,13 +190,9 @@ DT_DEVICE_FN void dt_refine_pixel(float* acc, uint k, uint bits, uint id, dt_rig
   acc[DT_REFINE_PIXELS] += 1.0f;
 }
 
-/* The group's sums of every work-item's acc (DT_REFINE_SUMS each), left in sums[0 .. DT_REFINE_SUMS) for
- * every work-item (dt_group_sums: a tree of 31 sums a level was a third of refine_sums' time on the H200).
- * sums holds DT_REFINE_SCRATCH floats. */
+/* The refinement's group sums (dt_group_sums of DT_REFINE_SUMS a work-item; a tree of 31 sums a level
+ * was a third of refine_sums' time on the H200) need this many floats of work-group memory. */
 #define DT_REFINE_SCRATCH DT_GROUP_SUMS_SCRATCH(DT_REFINE_SUMS)
-DT_DEVICE_FN void dt_refine_group_sums(const float* acc, DT_LOCAL_PTR float* sums) {
-  dt_group_sums(acc, DT_REFINE_SUMS, sums);
-}
 
 /* The damped step from the best pose's sums into step; 0 when there is none to try (too few pixels, a
  * singular system, or converged: PoseRefiner's step_motion |dt| + radius |dw| below converged_motion). */

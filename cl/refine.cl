@@ -50,7 +50,7 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
     dt_refine_pixel(acc, k, tile[k], ids[k], pose, centre, observed, occlusion, occlusion_time, frame_times, at, planes,
                     triangle_count, cam, m, args);
   }
-  dt_refine_group_sums(acc, sums);
+  dt_group_sums(acc, DT_REFINE_SUMS, sums);
 }
 
 /* estimate: holds summarize's heaviest particle and receives the refined pose and its covariance

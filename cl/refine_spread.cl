@@ -134,7 +134,7 @@ __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate,
     dt_refine_pixel(acc, k, DT_CAST(uint, drawn >> 32), DT_CAST(uint, drawn & 0xffffffffu), pose, centre, observed,
                     occlusion, occlusion_time, frame_times, at, planes, triangle_count, cam, m, args);
   }
-  dt_refine_group_sums(acc, sums);
+  dt_group_sums(acc, DT_REFINE_SUMS, sums);
   const uint lid = get_local_id(0), groups = get_num_groups(0);
   if (lid < DT_REFINE_SUMS)
     partials[DT_CAST(ulong, get_group_id(0)) * DT_REFINE_SUMS + lid] =

@@ -8,6 +8,7 @@
 
 #include "reference/observation_model.hpp"
 #include "reference/pose_refiner.hpp"
+#include "reference/reference_filter.hpp"
 #include "synth_frames.hpp"
 #include "tracker/silhouette_shares.hpp"
 
@@ -131,6 +132,18 @@ TEST_CASE("a reference tracker with refinement reports the silhouette shares' co
   for (int i = 0; i < synth.frames; ++i) {
     const SynthFrame f = scene.frame(i);
     const Estimate e = tracker.update(f.depth, f.timestamp);
+    const SilhouetteShares shares =
+        silhouette_shares(rasterizer, config.observation, config.loss.pixel_sigmas, e.pose, f.depth, scratch);
+    REQUIRE(shares.pixels > 20);
+    REQUIRE(e.confidence == shares.confidence());
+  }
+  // The filter's own estimate carries it (the tracker would otherwise draw it again itself).
+  reference::ReferenceFilter filter(mesh, synth.camera, config);
+  REQUIRE(filter.assesses_confidence());
+  filter.initialize(scene.ground_truth(0.0), InitialSpread{0.01, 0.05});
+  for (int i = 0; i < synth.frames; ++i) {
+    const SynthFrame f = scene.frame(i);
+    const Estimate e = filter.update(f.depth, i == 0 ? 0.0 : f.timestamp - scene.frame(i - 1).timestamp);
     const SilhouetteShares shares =
         silhouette_shares(rasterizer, config.observation, config.loss.pixel_sigmas, e.pose, f.depth, scratch);
     REQUIRE(shares.pixels > 20);

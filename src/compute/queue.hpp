@@ -177,6 +177,16 @@ class Queue {
 };
 
 // Queue::begin_batch() for a scope, ended by submit() or, on an exception, when the scope is left.
+// launch() when `timed`, else launch_untimed() and no event (null): a launch whose device time only a
+// profiling run reads (TrackerConfig::step_timings).
+template <class... Args>
+EventPtr launch_timed_if(bool timed, Queue& queue, Kernel& kernel, const NdRange& range, const Args&... args) {
+  if constexpr (sizeof...(Args) > 0) set_launch_args(kernel, args...);
+  if (timed) return queue.launch(kernel, range);
+  queue.launch_untimed(kernel, range);
+  return nullptr;
+}
+
 class LaunchBatch {
  public:
   LaunchBatch(Queue& queue, bool enabled) : queue_(enabled ? &queue : nullptr) {

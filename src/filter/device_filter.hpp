@@ -104,9 +104,7 @@ class DeviceFilter final : public FilterBackend {
   // A frame's launch, timed on the device when config.step_timings asks for it (else no event: null).
   template <class... Args>
   compute::EventPtr launch_step(compute::Kernel& kernel, const compute::NdRange& range, const Args&... args) {
-    if (config_.step_timings) return queue_->launch(kernel, range, args...);
-    queue_->launch_untimed(kernel, range, args...);
-    return nullptr;
+    return compute::launch_timed_if(config_.step_timings, *queue_, kernel, range, args...);
   }
   struct Kernels;
   compute::EventPtr render_atlas(StepTimings& timings);

@@ -93,15 +93,13 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
   if (layout_ == RefineLayout::Spread) return refine_spread(estimate, in);
   const dt_refine_args args = model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time,
                                                    in.dt, config_.loss.pixel_sigmas);
-  compute::set_launch_args(*refine_, estimate, in.states, in.observed, in.occlusion, in.occlusion_time, in.frame_times,
-                           in.parents, mesh_.vertices, mesh_.triangles, mesh_.planes, mesh_.triangle_count(),
-                           model::camera_params(camera_, config_), model::model_params(config_), args, pose_, tile_,
-                           ids_, correction_, in.window);
-  if (!config_.step_timings) {
-    queue_.launch_untimed(*refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup));
-    return {};
-  }
-  return {queue_.launch(*refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup))};
+  const compute::EventPtr fit = compute::launch_timed_if(
+      config_.step_timings, queue_, *refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup), estimate, in.states,
+      in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.parents, mesh_.vertices, mesh_.triangles,
+      mesh_.planes, mesh_.triangle_count(), model::camera_params(camera_, config_), model::model_params(config_), args,
+      pose_, tile_, ids_, correction_, in.window);
+  if (!fit) return {};
+  return {fit};
 }
 
 // begin, then iterations + 1 evaluations (draw, sums) with no wait: the sums kernel's last group
@@ -121,35 +119,27 @@ std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<floa
   // begin (dt_refine_state), so that only begin's arguments change from frame to frame.
   std::vector<compute::EventPtr> events;
   const bool timed = config_.step_timings;
-  compute::set_launch_args(*begin_, fit_state_, estimate, in.states, args, in.window);
-  if (timed)
-    events.push_back(queue_.launch(*begin_, compute::NdRange::linear(1, 1)));
-  else
-    queue_.launch_untimed(*begin_, compute::NdRange::linear(1, 1));
+  if (compute::EventPtr begun = compute::launch_timed_if(timed, queue_, *begin_, compute::NdRange::linear(1, 1),
+                                                         fit_state_, estimate, in.states, args, in.window))
+    events.push_back(std::move(begun));
   compute::set_launch_args(*draw_, fit_state_, mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam, nearest_);
   compute::set_launch_args(*sums_, fit_state_, estimate, in.states, in.observed, in.occlusion, in.occlusion_time,
                            in.frame_times, in.parents, mesh_.planes, triangles, cam, model, nearest_, partials_,
                            correction_);
   for (int evaluation = 0; evaluation <= config_.refine.iterations; ++evaluation) {
     queue_.launch_untimed(*draw_, per_triangle);
-    if (evaluation < config_.refine.iterations || !timed)
-      queue_.launch_untimed(*sums_, over_pixels);
-    else
-      events.push_back(queue_.launch(*sums_, over_pixels));
+    if (compute::EventPtr last =
+            compute::launch_timed_if(timed && evaluation == config_.refine.iterations, queue_, *sums_, over_pixels))
+      events.push_back(std::move(last));
   }
   return events;
 }
 
 compute::EventPtr DeviceRefiner::shift(const compute::Buffer<float>& from, compute::Buffer<float>& to, size_t count) {
-  compute::set_launch_args(*shift_, from, to, static_cast<unsigned>(count), correction_,
-                           static_cast<float>(centre_.x()), static_cast<float>(centre_.y()),
-                           static_cast<float>(centre_.z()));
-  const auto range = compute::NdRange::linear(round_up(count, kLinearGroup), kLinearGroup);
-  if (!config_.step_timings) {
-    queue_.launch_untimed(*shift_, range);
-    return nullptr;
-  }
-  return queue_.launch(*shift_, range);
+  return compute::launch_timed_if(config_.step_timings, queue_, *shift_,
+                                  compute::NdRange::linear(round_up(count, kLinearGroup), kLinearGroup), from, to,
+                                  static_cast<unsigned>(count), correction_, static_cast<float>(centre_.x()),
+                                  static_cast<float>(centre_.y()), static_cast<float>(centre_.z()));
 }
 
 }  // namespace depthtrack
