@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "compute/buffer.hpp"
+#include "compute/kernel_sources.hpp"
 #include "compute_support.hpp"
 
 using namespace depthtrack;
@@ -55,6 +56,45 @@ TEST_CASE("Enqueued uploads take their bytes at once and stay in order with the 
   b.download(part, 100);
   CHECK(part == std::vector<float>(20, -7.0f));
   CHECK_THROWS_AS(b.upload_enqueued(frame, 1), InputError);  // past the end: refused, nothing written
+}
+
+// An enqueued read sees the queue's work before it and none after it (here a launch in the same batch,
+// which CUDA records as a graph, and an upload), its bytes land at wait_enqueued_reads(), and a second
+// read in flight first completes the first.
+TEST_CASE("Enqueued reads see the work before them, not after, and land at the wait", "[compute]") {
+  auto queue = test::test_queue();
+  if (!queue) return;
+  const char* source = R"(
+__kernel void add(__global float* y, float value, uint count) {
+  const uint i = get_global_id(0);
+  if (i < count) y[i] += value;
+}
+)";
+  const auto program = queue->build("add", compute::kernel_source("dt_prelude.h") + source, {});
+  const auto add = program->kernel("add");
+  const unsigned count = 512;
+  std::vector<float> start(count);
+  std::iota(start.begin(), start.end(), 0.0f);
+  compute::Buffer<float> ys(*queue, count);
+  ys.upload(start);
+  std::vector<float> seen(count, -1.0f), part(8, -1.0f);
+  {
+    compute::LaunchBatch batch(*queue, true);
+    queue->launch(*add, compute::NdRange::linear(count, 64), ys, 1.0f, count);
+    ys.download_enqueued(seen);
+    queue->launch_untimed(*add, compute::NdRange::linear(count, 64), ys, 10.0f, count);
+    batch.submit();
+  }
+  ys.upload_enqueued(std::vector<float>(count, 5.0f));
+  queue->wait_enqueued_reads();
+  for (unsigned i = 0; i < count; ++i) REQUIRE(seen[i] == start[i] + 1.0f);
+  ys.download_enqueued(seen);
+  ys.download_enqueued(part, 100);  // completes the first
+  CHECK(seen == std::vector<float>(count, 5.0f));
+  queue->wait_enqueued_reads();
+  CHECK(part == std::vector<float>(8, 5.0f));
+  queue->wait_enqueued_reads();  // nothing in flight: returns
+  CHECK_THROWS_AS(ys.download_enqueued(part, count - 4), InputError);  // past the end: refused
 }
 
 TEST_CASE("Queue copies between device buffers", "[compute]") {

@@ -39,6 +39,12 @@ class Buffer {
     check_range("download", offset, out.size());
     queue_->read(*memory_, offset * sizeof(T), out.data(), out.size_bytes());
   }
+  // download() without waiting (Queue::read_enqueued): `out` holds the elements after the queue's
+  // wait_enqueued_reads(), and must stay valid until then.
+  void download_enqueued(std::span<T> out, size_t offset = 0) const {
+    check_range("download", offset, out.size());
+    queue_->read_enqueued(*memory_, offset * sizeof(T), out.data(), out.size_bytes());
+  }
   // Maps elements [offset, offset + count) for the host to overwrite.
   HostOverwrite<T> overwrite(size_t offset, size_t count) {
     check_range("map", offset, count);

@@ -121,6 +121,15 @@ class Queue {
   virtual void write_enqueued(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) {
     write(memory, offset, source, bytes);
   }
+  // A copy to the host enqueued in order with the work around it, not waited for: the bytes reach
+  // `destination` in wait_enqueued_reads(), which waits for that copy only, not for work enqueued after
+  // it (a frame's estimate goes out ahead of the resampling only the next frame needs). `destination`
+  // must stay valid until then. One read is in flight at a time: another first completes it. By
+  // default the blocking read, at once.
+  virtual void read_enqueued(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {
+    read(memory, offset, destination, bytes);
+  }
+  virtual void wait_enqueued_reads() {}
   // Host access to bytes [offset, offset + bytes) of `memory` for overwriting them all: a pointer
   // that stays valid until unmap(memory, pointer), which makes the new contents visible to work
   // enqueued after it. One mapping per queue at a time. OpenCL maps the buffer (no copy at all

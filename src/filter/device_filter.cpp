@@ -161,6 +161,7 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   cumulative_ = compute::Buffer<float>(q, 2 * count_);  // float-float pairs
   parents_ = compute::Buffer<unsigned>(q, count_);
   estimate_ = compute::Buffer<float>(q, DT_EST_SIZE);
+  estimate_host_.resize(DT_EST_SIZE);
   if (renders_inside_weigh(config.renderer, pixels_, q.info().local_memory) && atlas_source_->device_mesh()) {
     const size_t shared_points =
         render_weigh_shared_points(pixels_, atlas_source_->device_mesh()->vertex_count(), q.info().local_memory);
@@ -198,7 +199,14 @@ struct DeviceFilter::Pending {
   std::vector<compute::EventPtr> summarized, refined, resampling;
 };
 
-DeviceFilter::~DeviceFilter() = default;
+DeviceFilter::~DeviceFilter() {
+  // A shared queue may outlive this filter: a read of an uncollected (or failed) frame's estimate
+  // lands before estimate_host_ goes.
+  try {
+    queue_->wait_enqueued_reads();
+  } catch (...) {  // a device error at teardown has nowhere to go
+  }
+}
 
 double DeviceFilter::bytes_per_particle(size_t state_pixels) const {
   // GL's pages sit on the same GPU; the kernel renderer's atlas stays in work-group memory where it fits.
@@ -489,6 +497,9 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
     p->refined =
         refiner_->refine(estimate_, RefineInputs{state_, observed_, scratch_occlusion_, scratch_occlusion_time_,
                                                  frame_times_->device(), parents_, window, time_, dt});
+  // The estimate is complete: it goes to the host ahead of the resampling and the shift, which only the
+  // next frame needs (they run while the host takes the estimate).
+  estimate_.download_enqueued(std::span<float>(estimate_host_));
   p->resampling = resample();
   if (refiner_) p->shifted = shift_particles();
   batch.submit();
@@ -501,10 +512,10 @@ Estimate DeviceFilter::collect() {
   const std::unique_ptr<Pending> p = std::move(pending_);
   Estimate e;
   e.timings = p->timings;
-  float est[DT_EST_SIZE];
   const Stopwatch wait;
-  estimate_.download(std::span<float>(est, DT_EST_SIZE));  // the frame's one wait
+  queue_->wait_enqueued_reads();  // the frame's one wait
   e.timings.wait_ms = wait.elapsed_ms();
+  const float* est = estimate_host_.data();
   e.pose = Pose({est[DT_EST_TX], est[DT_EST_TX + 1], est[DT_EST_TX + 2]},
                 Eigen::Quaterniond(est[DT_EST_QW], est[DT_EST_QW + 1], est[DT_EST_QW + 2], est[DT_EST_QW + 3]));
   e.linear_velocity = Eigen::Vector3d(est[DT_EST_VX], est[DT_EST_VX + 1], est[DT_EST_VX + 2]);

@@ -154,6 +154,9 @@ class DeviceFilter final : public FilterBackend {
   Mesh mesh_;  // kept for score_poses' scorer, made only when it is first called
   compute::Buffer<float> state_, scratch_state_, log_weight_, log_likelihood_, weights_, cumulative_, estimate_;
   compute::Buffer<unsigned> parents_;
+  // Where the frame's estimate arrives (Queue::read_enqueued, before the resampling): the filter's own,
+  // so that it outlives any frame left uncollected.
+  std::vector<float> estimate_host_;
   compute::Buffer<float> atlas_, observed_;
   compute::Buffer<unsigned> unused_boxes_;  // weigh's boxes argument where the atlas source keeps none
   // The kernel renderer's rasterization inside weigh (renders_inside_weigh), drawing the kernel atlas

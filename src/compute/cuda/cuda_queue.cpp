@@ -27,7 +27,8 @@ CudaQueue::CudaQueue(std::shared_ptr<const Context> context) : context_(std::mov
 
 CudaQueue::~CudaQueue() {
   graphs_.reset();
-  staging_.reset();  // waits for its last copy
+  staging_.reset();  // each waits for its last copy
+  read_staging_.reset();
   // Pending work still completes; the driver frees the stream afterwards.
   if (context_->try_make_current()) context_->api().cuStreamDestroy(stream_);
 }
@@ -87,6 +88,20 @@ void CudaQueue::write_enqueued(DeviceMemory& memory, size_t offset, const void* 
   if (!target) return;
   if (!staging_) staging_ = std::make_unique<PinnedStaging>(context_);
   staging_->copy_to_device(target, source, bytes, stream_);
+}
+
+void CudaQueue::read_enqueued(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {
+  const CudaMemory& cuda = checked(memory, offset, bytes, "read");
+  if (bytes == 0) return;
+  if (!destination) throw InputError("read of " + std::to_string(bytes) + " bytes into a null host pointer");
+  hand_over_batch();
+  context_->make_current();
+  if (!read_staging_) read_staging_ = std::make_unique<PinnedStaging>(context_);
+  read_staging_->copy_to_host(destination, cuda.pointer() + offset, bytes, stream_);
+}
+
+void CudaQueue::wait_enqueued_reads() {
+  if (read_staging_) read_staging_->deliver();
 }
 
 void CudaQueue::read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {

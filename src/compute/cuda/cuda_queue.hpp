@@ -28,6 +28,9 @@ class CudaQueue final : public Queue {
   // Through page-locked staging, so the copy is a DMA the stream runs in order, not a driver-side
   // staging the host waits for.
   void write_enqueued(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) override;
+  // Through page-locked memory of its own, delivered at wait_enqueued_reads().
+  void read_enqueued(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) override;
+  void wait_enqueued_reads() override;
   void* map_for_overwrite(DeviceMemory& memory, size_t offset, size_t bytes) override;
   void unmap(DeviceMemory& memory, void* host) override;
   void copy(const DeviceMemory& source, size_t source_offset, DeviceMemory& destination, size_t destination_offset,
@@ -64,7 +67,8 @@ class CudaQueue final : public Queue {
   std::shared_ptr<const Context> context_;
   CUstream stream_ = nullptr;
   std::unique_ptr<LaunchGraphs> graphs_;  // null where graphs are off
-  std::unique_ptr<PinnedStaging> staging_;  // write_enqueued's, made at its first use
+  std::unique_ptr<PinnedStaging> staging_;       // write_enqueued's, made at its first use
+  std::unique_ptr<PinnedStaging> read_staging_;  // read_enqueued's, likewise
   bool batching_ = false;
   // The one mapping map_for_overwrite hands out: host bytes written to the device at unmap.
   struct Mapping {

@@ -1,6 +1,7 @@
 #include "compute/opencl/cl_queue.hpp"
 
 #include <cstdio>
+#include <cstring>
 #include <depthtrack/error.hpp>
 
 #include "compute/format_bytes.hpp"
@@ -92,6 +93,7 @@ void ClQueue::write(DeviceMemory& memory, size_t offset, const void* source, siz
 ClQueue::~ClQueue() {
   // The staged bytes must outlive their write; at teardown a failure has nowhere to go.
   if (const cl_event event = staged_write_.get()) clWaitForEvents(1, &event);
+  if (const cl_event event = staged_read_.get()) clWaitForEvents(1, &event);
 }
 
 void ClQueue::wait_for_staged_write() {
@@ -112,6 +114,29 @@ void ClQueue::write_enqueued(DeviceMemory& memory, size_t offset, const void* so
                              nullptr, &event),
         "clEnqueueWriteBuffer", info_.name);
   staged_write_ = EventHandle(event);
+}
+
+void ClQueue::read_enqueued(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {
+  check_range("read", offset, bytes, memory);
+  if (bytes == 0) return;
+  if (!destination) throw InputError("read of " + std::to_string(bytes) + " bytes into a null host pointer");
+  wait_enqueued_reads();
+  read_staging_.resize(bytes);
+  cl_event event = nullptr;
+  check(clEnqueueReadBuffer(queue_.get(), cl_buffer(memory, "read"), CL_FALSE, offset, bytes, read_staging_.data(), 0,
+                            nullptr, &event),
+        "clEnqueueReadBuffer", info_.name);
+  staged_read_ = EventHandle(event);
+  read_destination_ = destination;
+}
+
+void ClQueue::wait_enqueued_reads() {
+  if (!read_destination_) return;
+  const cl_event event = staged_read_.get();
+  check(clWaitForEvents(1, &event), "clWaitForEvents", info_.name, "an enqueued read");
+  std::memcpy(read_destination_, read_staging_.data(), read_staging_.size());
+  read_destination_ = nullptr;
+  staged_read_ = EventHandle();
 }
 
 void ClQueue::read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {
@@ -203,6 +228,10 @@ EventPtr ClQueue::enqueue(Kernel& kernel, const NdRange& range, bool timed) {
                                                range.local, 0, nullptr, timed ? &event : nullptr);
   if (status != CL_SUCCESS) check(status, "clEnqueueNDRangeKernel", info_.name, what());
   return timed ? std::make_shared<ClEvent>(EventHandle(event), info_.name) : nullptr;
+}
+
+void ClQueue::flush_batch() {
+  check(clFlush(queue_.get()), "clFlush", info_.name);
 }
 
 void ClQueue::finish() {

@@ -23,6 +23,9 @@ class ClQueue final : public Queue {
   void read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) override;
   // A non-blocking write from a staging copy kept until the write is done.
   void write_enqueued(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) override;
+  // A non-blocking read into a staging copy, delivered at wait_enqueued_reads().
+  void read_enqueued(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) override;
+  void wait_enqueued_reads() override;
   ~ClQueue() override;
   void* map_for_overwrite(DeviceMemory& memory, size_t offset, size_t bytes) override;
   void unmap(DeviceMemory& memory, void* host) override;
@@ -33,6 +36,9 @@ class ClQueue final : public Queue {
   EventPtr launch(Kernel& kernel, const NdRange& range) override;
   void launch_untimed(Kernel& kernel, const NdRange& range) override;
   void finish() override;
+  // Submits what is enqueued (clFlush): the device starts on a frame's first launches while the host
+  // enqueues the rest.
+  void flush_batch() override;
   // A command queue of its own on this queue's context.
   std::unique_ptr<Queue> another_queue() override;
 
@@ -56,6 +62,10 @@ class ClQueue final : public Queue {
   std::vector<unsigned char> staging_;
   EventHandle staged_write_;
   void wait_for_staged_write();
+  // read_enqueued's bytes, their destination and the read, until wait_enqueued_reads().
+  std::vector<unsigned char> read_staging_;
+  void* read_destination_ = nullptr;
+  EventHandle staged_read_;
 };
 
 }  // namespace depthtrack::compute::opencl
