@@ -479,7 +479,9 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
                     atlas_source_->tile_boxes() ? *atlas_source_->tile_boxes() : unused_boxes_,
                     static_cast<unsigned>(atlas_source_->tile_boxes() != nullptr));
   // The device starts on propagate and weigh (most of a small frame's first half) while the host
-  // records the summary, the refinement and the resampling.
+  // records the summary, and the summary while it records the refinement (on a slow host the device
+  // had waited for the refinement's 19 launches to be recorded). The estimate's read hands over the
+  // refinement, the batch's end the resampling.
   batch.flush();
   std::swap(occlusion_, scratch_occlusion_);
   std::swap(occlusion_time_, scratch_occlusion_time_);
@@ -492,6 +494,7 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   else
     p->summarized = {launch_step(*k.summarize, compute::NdRange::linear(summary_group_, summary_group_), state_,
                                  log_weight_, log_likelihood_, weights_, estimate_, count, cx, cy, cz, kl_threshold)};
+  batch.flush();
   // Before resample() overwrites parents_ with this frame's choice.
   if (refiner_)
     p->refined =

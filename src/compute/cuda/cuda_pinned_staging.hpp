@@ -26,6 +26,10 @@ class PinnedStaging {
   void copy_to_host(void* destination, CUdeviceptr source, size_t bytes, CUstream stream);
   // Waits for the last copy_to_host and copies its bytes to their destination (none pending: nothing).
   void deliver();
+  // Whether a copy may still be under way, and the queue's word that it is not (its stream reached a
+  // later point), so that the next copy skips the wait on its event (a few microseconds a frame).
+  bool copy_pending() const { return copying_; }
+  void copy_known_done() { copying_ = false; }
 
  private:
   void wait_for_last_copy();

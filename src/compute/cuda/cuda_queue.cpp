@@ -88,6 +88,7 @@ void CudaQueue::write_enqueued(DeviceMemory& memory, size_t offset, const void* 
   if (!target) return;
   if (!staging_) staging_ = std::make_unique<PinnedStaging>(context_);
   staging_->copy_to_device(target, source, bytes, stream_);
+  upload_before_read_ = false;  // this copy follows any read in flight
 }
 
 void CudaQueue::read_enqueued(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {
@@ -98,10 +99,15 @@ void CudaQueue::read_enqueued(const DeviceMemory& memory, size_t offset, void* d
   context_->make_current();
   if (!read_staging_) read_staging_ = std::make_unique<PinnedStaging>(context_);
   read_staging_->copy_to_host(destination, cuda.pointer() + offset, bytes, stream_);
+  upload_before_read_ = staging_ && staging_->copy_pending();
 }
 
 void CudaQueue::wait_enqueued_reads() {
-  if (read_staging_) read_staging_->deliver();
+  if (!read_staging_) return;
+  read_staging_->deliver();
+  // The stream runs in order: the upload enqueued before the read is done too.
+  if (upload_before_read_) staging_->copy_known_done();
+  upload_before_read_ = false;
 }
 
 void CudaQueue::read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {
@@ -208,6 +214,8 @@ void CudaQueue::finish() {
   hand_over_batch();
   context_->make_current();
   context_->check(context_->api().cuStreamSynchronize(stream_), "cuStreamSynchronize");
+  if (staging_) staging_->copy_known_done();
+  upload_before_read_ = false;
 }
 
 }  // namespace depthtrack::compute::cuda

@@ -69,6 +69,7 @@ class CudaQueue final : public Queue {
   std::unique_ptr<LaunchGraphs> graphs_;  // null where graphs are off
   std::unique_ptr<PinnedStaging> staging_;       // write_enqueued's, made at its first use
   std::unique_ptr<PinnedStaging> read_staging_;  // read_enqueued's, likewise
+  bool upload_before_read_ = false;              // the last upload precedes the read in flight
   bool batching_ = false;
   // The one mapping map_for_overwrite hands out: host bytes written to the device at unmap.
   struct Mapping {
