@@ -93,7 +93,7 @@ __kernel void add(__global float* y, float value, uint count) {
   CHECK(seen == std::vector<float>(count, 5.0f));
   queue->wait_enqueued_reads();
   CHECK(part == std::vector<float>(8, 5.0f));
-  queue->wait_enqueued_reads();  // nothing in flight: returns
+  queue->wait_enqueued_reads();                                        // nothing in flight: returns
   CHECK_THROWS_AS(ys.download_enqueued(part, count - 4), InputError);  // past the end: refused
 }
 

@@ -91,14 +91,22 @@ void CudaQueue::write_enqueued(DeviceMemory& memory, size_t offset, const void* 
   upload_before_read_ = false;  // this copy follows any read in flight
 }
 
-void CudaQueue::read_enqueued(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {
+// Where a read of `bytes` into `destination` comes from on the device, checked, with the batch handed
+// over and the context current; 0 when there is nothing to read.
+CUdeviceptr CudaQueue::read_source(const DeviceMemory& memory, size_t offset, const void* destination, size_t bytes) {
   const CudaMemory& cuda = checked(memory, offset, bytes, "read");
-  if (bytes == 0) return;
+  if (bytes == 0) return 0;
   if (!destination) throw InputError("read of " + std::to_string(bytes) + " bytes into a null host pointer");
   hand_over_batch();
   context_->make_current();
+  return cuda.pointer() + offset;
+}
+
+void CudaQueue::read_enqueued(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {
+  const CUdeviceptr source = read_source(memory, offset, destination, bytes);
+  if (!source) return;
   if (!read_staging_) read_staging_ = std::make_unique<PinnedStaging>(context_);
-  read_staging_->copy_to_host(destination, cuda.pointer() + offset, bytes, stream_);
+  read_staging_->copy_to_host(destination, source, bytes, stream_);
   upload_before_read_ = staging_ && staging_->copy_pending();
 }
 
@@ -111,13 +119,9 @@ void CudaQueue::wait_enqueued_reads() {
 }
 
 void CudaQueue::read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {
-  const CudaMemory& cuda = checked(memory, offset, bytes, "read");
-  if (bytes == 0) return;
-  if (!destination) throw InputError("read of " + std::to_string(bytes) + " bytes into a null host pointer");
-  hand_over_batch();
-  context_->make_current();
-  context_->check(context_->api().cuMemcpyDtoHAsync(destination, cuda.pointer() + offset, bytes, stream_),
-                  "cuMemcpyDtoHAsync");
+  const CUdeviceptr source = read_source(memory, offset, destination, bytes);
+  if (!source) return;
+  context_->check(context_->api().cuMemcpyDtoHAsync(destination, source, bytes, stream_), "cuMemcpyDtoHAsync");
   finish();
 }
 

@@ -61,6 +61,7 @@ class CudaQueue final : public Queue {
   explicit CudaQueue(std::shared_ptr<const Context> context);
 
   CUdeviceptr write_target(DeviceMemory& memory, size_t offset, const void* source, size_t bytes);
+  CUdeviceptr read_source(const DeviceMemory& memory, size_t offset, const void* destination, size_t bytes);
   // `memory` as this device's memory, with [offset, offset + bytes) inside it (else InputError).
   const CudaMemory& checked(const DeviceMemory& memory, size_t offset, size_t bytes, const char* what) const;
 
