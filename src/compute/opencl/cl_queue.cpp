@@ -24,6 +24,18 @@ void check_range(const char* what, size_t offset, size_t bytes, const DeviceMemo
                      std::to_string(memory.bytes()) + " bytes");
 }
 
+// A transfer's checks, shared by the blocking and enqueued writes (to_device) and reads: the range inside
+// the buffer and a host pointer; false when there is nothing to copy (OpenCL 1.2 rejects empty transfers).
+bool transfer_wanted(bool to_device, size_t offset, size_t bytes, const DeviceMemory& memory, const void* host) {
+  const char* what = to_device ? "write" : "read";
+  check_range(what, offset, bytes, memory);
+  if (bytes == 0) return false;
+  if (!host)
+    throw InputError(std::string(what) + " of " + std::to_string(bytes) + " bytes " + (to_device ? "from" : "into") +
+                     " a null host pointer");
+  return true;
+}
+
 std::string sizes(const size_t* values, unsigned dimensions) {
   std::string text = "[";
   for (unsigned d = 0; d < dimensions; ++d) text += (d ? ", " : "") + std::to_string(values[d]);
@@ -82,9 +94,7 @@ std::unique_ptr<DeviceMemory> ClQueue::allocate(size_t bytes) {
 }
 
 void ClQueue::write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) {
-  check_range("write", offset, bytes, memory);
-  if (bytes == 0) return;  // OpenCL 1.2 rejects empty transfers
-  if (!source) throw InputError("write of " + std::to_string(bytes) + " bytes from a null host pointer");
+  if (!transfer_wanted(true, offset, bytes, memory, source)) return;
   check(clEnqueueWriteBuffer(queue_.get(), cl_buffer(memory, "write"), CL_TRUE, offset, bytes, source, 0, nullptr,
                              nullptr),
         "clEnqueueWriteBuffer", info_.name);
@@ -104,9 +114,7 @@ void ClQueue::wait_for_staged_write() {
 }
 
 void ClQueue::write_enqueued(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) {
-  check_range("write", offset, bytes, memory);
-  if (bytes == 0) return;
-  if (!source) throw InputError("write of " + std::to_string(bytes) + " bytes from a null host pointer");
+  if (!transfer_wanted(true, offset, bytes, memory, source)) return;
   wait_for_staged_write();
   staging_.assign(static_cast<const unsigned char*>(source), static_cast<const unsigned char*>(source) + bytes);
   cl_event event = nullptr;
@@ -117,9 +125,7 @@ void ClQueue::write_enqueued(DeviceMemory& memory, size_t offset, const void* so
 }
 
 void ClQueue::read_enqueued(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {
-  check_range("read", offset, bytes, memory);
-  if (bytes == 0) return;
-  if (!destination) throw InputError("read of " + std::to_string(bytes) + " bytes into a null host pointer");
+  if (!transfer_wanted(false, offset, bytes, memory, destination)) return;
   wait_enqueued_reads();
   read_staging_.resize(bytes);
   cl_event event = nullptr;
@@ -140,9 +146,7 @@ void ClQueue::wait_enqueued_reads() {
 }
 
 void ClQueue::read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {
-  check_range("read", offset, bytes, memory);
-  if (bytes == 0) return;
-  if (!destination) throw InputError("read of " + std::to_string(bytes) + " bytes into a null host pointer");
+  if (!transfer_wanted(false, offset, bytes, memory, destination)) return;
   check(clEnqueueReadBuffer(queue_.get(), cl_buffer(memory, "read"), CL_TRUE, offset, bytes, destination, 0, nullptr,
                             nullptr),
         "clEnqueueReadBuffer", info_.name);
