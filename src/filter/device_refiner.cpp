@@ -90,9 +90,9 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
 }
 
 std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& estimate, const RefineInputs& in) {
-  if (layout_ == RefineLayout::Spread) return refine_spread(estimate, in);
   const dt_refine_args args = model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time,
                                                    in.dt, config_.loss.pixel_sigmas);
+  if (layout_ == RefineLayout::Spread) return refine_spread(estimate, in, args);
   const compute::EventPtr fit = compute::launch_timed_if(
       config_.step_timings, queue_, *refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup), estimate, in.states,
       in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.parents, mesh_.vertices, mesh_.triangles,
@@ -104,9 +104,8 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
 
 // begin, then iterations + 1 evaluations (draw, sums) with no wait: the sums kernel's last group
 // stops the fit on the device, and what follows returns at once.
-std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in) {
-  const dt_refine_args args = model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time,
-                                                   in.dt, config_.loss.pixel_sigmas);
+std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in,
+                                                            const dt_refine_args& args) {
   const dt_camera cam = model::camera_params(camera_, config_);
   const dt_model model = model::model_params(config_);
   const auto per_triangle =

@@ -61,7 +61,8 @@ class DeviceRefiner {
   RefineLayout layout() const { return layout_; }  // OneGroup or Spread, never Auto
 
  private:
-  std::vector<compute::EventPtr> refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in);
+  std::vector<compute::EventPtr> refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in,
+                                               const dt_refine_args& args);
 
   compute::Queue& queue_;
   TrackerConfig config_;
