@@ -32,14 +32,16 @@ DT_DEVICE_FN float dt_group_sum(DT_LOCAL_PTR float* scratch, float value) {
 DT_DEVICE_FN void dt_group_sums(const float* acc, uint n, DT_LOCAL_PTR float* sums) {
   const uint lid = get_local_id(0), row = DT_GROUP_SUMS_ROW(n);
   DT_LOCAL_PTR float* parts = sums + DT_GROUP_SIZE * row; /* (DT_GROUP_SIZE / 32) x 32 partials */
-  barrier(CLK_LOCAL_MEM_FENCE); /* the previous sums have been read */
+  /* The previous sums have been read. */
+  barrier(CLK_LOCAL_MEM_FENCE);
   for (uint k = 0; k < n; ++k) sums[lid * row + k] = acc[k];
   barrier(CLK_LOCAL_MEM_FENCE);
   /* Work-item lid adds value k = lid % 32 of work-items part * 32 .. part * 32 + 31, part = lid / 32. */
   const uint k = lid % DT_GROUP_SUMS_LANES, part = lid / DT_GROUP_SUMS_LANES;
   if (k < n) {
     float total = 0.0f;
-    for (uint lane = 0; lane < DT_GROUP_SUMS_LANES; ++lane) total += sums[(part * DT_GROUP_SUMS_LANES + lane) * row + k];
+    for (uint lane = 0; lane < DT_GROUP_SUMS_LANES; ++lane)
+      total += sums[(part * DT_GROUP_SUMS_LANES + lane) * row + k];
     parts[part * DT_GROUP_SUMS_LANES + k] = total;
   }
   barrier(CLK_LOCAL_MEM_FENCE);

@@ -170,6 +170,22 @@ __kernel void add(__global float* y, float value, uint count) {
     kernel = program->kernel("add");
     queue = std::move(opened);
   }
+  // `count` zeros on the queue.
+  compute::Buffer<float> zeros(unsigned count) {
+    compute::Buffer<float> values(*queue, count);
+    values.upload(std::vector<float>(count, 0.0f));
+    return values;
+  }
+  // One batch of two launches of add over `range`: a timed one adding `a` to `first`, then an untimed
+  // one adding `b` to `second`.
+  void two_launches(compute::Buffer<float>& first, float a, compute::Buffer<float>& second, float b,
+                    const compute::NdRange& range) {
+    const unsigned count = static_cast<unsigned>(first.size());
+    compute::LaunchBatch batch(*queue, true);
+    queue->launch(*kernel, range, first, a, count);
+    queue->launch_untimed(*kernel, range, second, b, count);
+    batch.submit();
+  }
 };
 }  // namespace
 
@@ -179,20 +195,13 @@ __kernel void add(__global float* y, float value, uint count) {
 TEST_CASE("CUDA batches replay one graph, setting only the arguments that changed", "[cuda]") {
   GraphQueue g;
   if (!g.queue) return;
-  compute::Queue* queue = g.queue.get();
-  compute::Kernel* kernel = g.kernel.get();
-  const compute::cuda::CudaQueue* cuda = g.cuda;
   const unsigned count = 256;
-  compute::Buffer<float> ys(*queue, count);
-  ys.upload(std::vector<float>(count, 0.0f));
+  compute::Buffer<float> ys = g.zeros(count);
   const auto range = compute::NdRange::linear(count, 64);
   const auto frame = [&](float first, float second, const compute::NdRange& r) {
-    compute::LaunchBatch batch(*queue, true);
-    queue->launch(*kernel, r, ys, first, count);
-    queue->launch_untimed(*kernel, r, ys, second, count);
-    batch.submit();
+    g.two_launches(ys, first, ys, second, r);
   };
-  const compute::cuda::LaunchGraphs& graphs = *cuda->graphs();
+  const compute::cuda::LaunchGraphs& graphs = *g.cuda->graphs();
   frame(1.0f, 2.0f, range);
   CHECK(graphs.graphs_built() == 1);
   CHECK(graphs.nodes_updated() == 0);
@@ -214,21 +223,13 @@ TEST_CASE("CUDA batches replay one graph, setting only the arguments that change
 TEST_CASE("CUDA batches over swapped buffers keep a graph per buffer and replay it as it is", "[cuda]") {
   GraphQueue g;
   if (!g.queue) return;
-  compute::Queue* queue = g.queue.get();
-  compute::Kernel* kernel = g.kernel.get();
-  const compute::cuda::CudaQueue* cuda = g.cuda;
   const unsigned count = 64;
-  compute::Buffer<float> a(*queue, count), b(*queue, count);
-  a.upload(std::vector<float>(count, 0.0f));
-  b.upload(std::vector<float>(count, 0.0f));
+  compute::Buffer<float> a = g.zeros(count), b = g.zeros(count);
   const auto range = compute::NdRange::linear(count, 64);
   const auto frame = [&](compute::Buffer<float>& first, compute::Buffer<float>& second, float value) {
-    compute::LaunchBatch batch(*queue, true);
-    queue->launch(*kernel, range, first, 1.0f, count);
-    queue->launch_untimed(*kernel, range, second, value, count);
-    batch.submit();
+    g.two_launches(first, 1.0f, second, value, range);
   };
-  const compute::cuda::LaunchGraphs& graphs = *cuda->graphs();
+  const compute::cuda::LaunchGraphs& graphs = *g.cuda->graphs();
   frame(a, b, 1.0f);
   frame(b, a, 1.0f);  // both pointers swapped: a graph of its own
   CHECK(graphs.graphs_built() == 2);
@@ -253,8 +254,7 @@ TEST_CASE("A flushed CUDA batch is handed over in parts, each part replayed fram
   GraphQueue g;
   if (!g.queue) return;
   const unsigned count = 64;
-  compute::Buffer<float> ys(*g.queue, count);
-  ys.upload(std::vector<float>(count, 0.0f));
+  compute::Buffer<float> ys = g.zeros(count);
   const auto range = compute::NdRange::linear(count, 64);
   for (int frame = 0; frame < 3; ++frame) {
     compute::LaunchBatch batch(*g.queue, true);
