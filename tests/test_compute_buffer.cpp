@@ -97,39 +97,6 @@ __kernel void add(__global float* y, float value, uint count) {
   CHECK_THROWS_AS(ys.download_enqueued(part, count - 4), InputError);  // past the end: refused
 }
 
-// A kernel's arguments are set for every launch, and a backend may skip setting one that has not changed
-// (OpenCL: ClKernel remembers them): a changed value, another buffer, and a new buffer allocated where a
-// freed one was (its handle may come back) must each reach the next launch.
-TEST_CASE("Launches see each argument as given, also a new buffer in a freed one's place", "[compute]") {
-  auto queue = test::test_queue();
-  if (!queue) return;
-  const char* source = R"(
-__kernel void put(__global float* y, float value, uint count) {
-  const uint i = get_global_id(0);
-  if (i < count) y[i] = value;
-}
-)";
-  const auto program = queue->build("put", compute::kernel_source("dt_prelude.h") + source, {});
-  const auto put = program->kernel("put");
-  const unsigned count = 256;
-  const auto range = compute::NdRange::linear(count, 64);
-  compute::Buffer<float> a(*queue, count), b(*queue, count);
-  queue->launch(*put, range, a, 1.0f, count);
-  queue->launch(*put, range, a, 2.0f, count);  // the value changed
-  queue->launch(*put, range, b, 2.0f, count);  // the buffer changed
-  queue->launch(*put, range, b, 3.0f, 16u);    // the count changed: the rest of b keeps 2
-  CHECK(a.download() == std::vector<float>(count, 2.0f));
-  std::vector<float> expected(count, 2.0f);
-  std::fill(expected.begin(), expected.begin() + 16, 3.0f);
-  CHECK(b.download() == expected);
-  for (int round = 0; round < 4; ++round) {  // freed and allocated again: the same arguments but a new buffer
-    a = compute::Buffer<float>(*queue, count);
-    a.upload(std::vector<float>(count, -1.0f));
-    queue->launch(*put, range, a, 2.0f, count);
-    REQUIRE(a.download() == std::vector<float>(count, 2.0f));
-  }
-}
-
 TEST_CASE("Queue copies between device buffers", "[compute]") {
   auto queue = test::test_queue();
   if (!queue) return;

@@ -1,6 +1,5 @@
 #include "compute/opencl/cl_kernel.hpp"
 
-#include <algorithm>
 #include <depthtrack/error.hpp>
 
 #include "compute/opencl/cl_errors.hpp"
@@ -16,39 +15,18 @@ std::string ClKernel::describe_arg(unsigned index) const {
   return text;
 }
 
-bool ClKernel::holds(unsigned index, const void* value, size_t size) {
-  if (index >= held_.size()) held_.resize(index + 1);
-  auto& held = held_[index];
-  if (!value) {  // a work-group memory size: not remembered
-    held.clear();
-    return false;
-  }
-  const auto* bytes = static_cast<const unsigned char*>(value);
-  if (held.size() == size && std::equal(held.begin(), held.end(), bytes)) return true;
-  held.assign(bytes, bytes + size);
-  return false;
-}
-
 void ClKernel::set_arg(unsigned index, const DeviceMemory& memory) {
   const auto* cl = dynamic_cast<const ClMemory*>(&memory);
   if (!cl) throw InputError(describe_arg(index) + ": the device memory was not allocated by an OpenCL queue");
-  const uint64_t serial = cl->serial();
-  if (holds(index, &serial, sizeof serial)) return;
   const cl_mem buffer = cl->get();
   const cl_int status = clSetKernelArg(kernel_.get(), index, sizeof buffer, &buffer);
-  if (status != CL_SUCCESS) {
-    held_[index].clear();  // not set: the next launch tries again
-    check(status, "clSetKernelArg", device_, describe_arg(index));
-  }
+  if (status != CL_SUCCESS) check(status, "clSetKernelArg", device_, describe_arg(index));
 }
 
 void ClKernel::set_arg_bytes(unsigned index, const void* value, size_t size) {
-  if (holds(index, value, size)) return;
   const cl_int status = clSetKernelArg(kernel_.get(), index, size, value);
-  if (status != CL_SUCCESS) {
-    held_[index].clear();
+  if (status != CL_SUCCESS)
     check(status, "clSetKernelArg", device_, describe_arg(index) + ", a value of " + std::to_string(size) + " bytes");
-  }
 }
 
 }  // namespace depthtrack::compute::opencl

@@ -1,7 +1,6 @@
 #pragma once
-// A cl_kernel as Kernel: an argument goes to clSetKernelArg when it differs from what the kernel holds.
+// A cl_kernel as Kernel: arguments go straight to clSetKernelArg.
 #include <string>
-#include <vector>
 
 #include "compute/opencl/cl_handle.hpp"
 #include "compute/queue.hpp"
@@ -20,16 +19,10 @@ class ClKernel final : public Kernel {
 
  private:
   std::string describe_arg(unsigned index) const;
-  // Whether argument index already holds these bytes; if not, they are remembered as what it will hold.
-  bool holds(unsigned index, const void* value, size_t size);
 
   KernelHandle kernel_;
   std::string name_;
   std::string device_;
-  // What each argument was last set to (a buffer: its ClMemory::serial; empty: not set). A launch sets
-  // every argument and most are the same frame after frame, while each clSetKernelArg costs the host
-  // on NVIDIA's OpenCL; the kernel keeps a set value until it is set again (OpenCL 1.2, 5.9.2).
-  std::vector<std::vector<unsigned char>> held_;
 };
 
 }  // namespace depthtrack::compute::opencl

@@ -1,7 +1,5 @@
 #pragma once
 // A cl_mem buffer as DeviceMemory.
-#include <atomic>
-#include <cstdint>
 #include <depthtrack/error.hpp>
 #include <string>
 
@@ -15,18 +13,10 @@ class ClMemory final : public DeviceMemory {
   ClMemory(MemHandle buffer, size_t bytes) : buffer_(std::move(buffer)), bytes_(bytes) {}
   size_t bytes() const override { return bytes_; }
   cl_mem get() const { return buffer_.get(); }
-  // Unique to this buffer in the process: a freed buffer's cl_mem value can come back for a new one,
-  // so a kernel's remembered arguments (ClKernel) name buffers by this, not by the handle.
-  uint64_t serial() const { return serial_; }
 
  private:
-  static uint64_t next_serial() {
-    static std::atomic<uint64_t> counter{0};
-    return ++counter;
-  }
   MemHandle buffer_;
   size_t bytes_;
-  uint64_t serial_ = next_serial();
 };
 
 // The cl_mem behind memory; InputError when it came from another backend's queue.
