@@ -21,28 +21,19 @@
 #include "dt_refine.h"
 #include "shift_particles.cl"
 
-/* Work-item 0: the start (the heaviest particle, which summarize found) is the first candidate. With
- * draw_here (a small mesh: DeviceRefiner), the group also draws it, a triangle per work-item in turn,
- * so that no refine_draw launch is needed; every work-item reads the start itself. */
+/* One work-item: the start (the heaviest particle, which summarize found) is the first candidate. */
 __kernel void refine_begin(__global dt_refine_state* s, __global const float* estimate, __global const float* states,
-                           dt_refine_args args, dt_window win, __global const float* vertices,
-                           __global const uint* triangles, __global const float* planes, uint triangle_count,
-                           dt_camera cam, __global dt_u64* nearest, uint draw_here) {
-  __global const float* start = states + DT_CAST(ulong, dt_as_uint(estimate[DT_EST_HEAVIEST])) * DT_STATE_STRIDE;
-  if (get_global_id(0) == 0) {
-    s->args = args;
-    s->win = win;
-    dt_store_pose(s->candidate, dt_load_pose(start));
-    s->active = 1;
-    s->evaluation = 0;
-    s->arrived = 0;
-    s->tried = 0;
-    s->lambda = args.damping;
-  }
-  if (!draw_here) return;
-  const dt_rigid pose = dt_particle_pose(start); /* the candidate's floats */
-  for (uint t = get_global_id(0); t < triangle_count; t += get_global_size(0))
-    dt_draw_triangle(pose, vertices, triangles, planes, t, cam, 0, 0, nearest, 0);
+                           dt_refine_args args, dt_window win) {
+  if (get_global_id(0) != 0) return;
+  s->args = args;
+  s->win = win;
+  const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
+  dt_store_pose(s->candidate, dt_load_pose(states + DT_CAST(ulong, heaviest) * DT_STATE_STRIDE));
+  s->active = 1;
+  s->evaluation = 0;
+  s->arrived = 0;
+  s->tried = 0;
+  s->lambda = args.damping;
 }
 
 #define DT_REFINE_MAX_POLLS (1u << 20)
@@ -116,19 +107,15 @@ DT_DEVICE_FN int dt_refine_add_column(__global volatile const dt_u64* rows, uint
  * No fence is needed for the rows: OpenCL 1.2 has none that reaches other work-groups (NVIDIA's
  * mem_fence is membar.cta), so each partial is stored with the evaluation's stamp in one 64-bit
  * word, (stamp << 32) | bits, and the last group waits for every word to carry this evaluation's
- * stamp: the other groups have finished, only their stores can still be on the way. With draw_here
- * (a small mesh), the last group then draws the next candidate, if there is one, in place of a
- * refine_draw launch: a triangle per work-item in turn, after a barrier that makes work-item 0's
- * candidate visible to the group. */
+ * stamp: the other groups have finished, only their stores can still be on the way. */
 __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate, __global const float* states,
                           __global const float* observed, __global const float* occlusion,
                           __global const dt_u16* occlusion_time, __global const float* frame_times,
-                          __global const uint* parents, __global const float* vertices, __global const uint* triangles,
-                          __global const float* planes, uint triangle_count, dt_camera cam, dt_model m,
-                          __global dt_u64* nearest, __global dt_u64* partials, __global float* correction,
-                          uint draw_here) {
+                          __global const uint* parents, __global const float* planes, uint triangle_count,
+                          dt_camera cam, dt_model m, __global dt_u64* nearest, __global dt_u64* partials,
+                          __global float* correction) {
   __local float sums[DT_REFINE_SCRATCH];
-  __local int last, lost, drawn_next;
+  __local int last, lost;
   if (!s->active) return; /* the same for every work-item, before any barrier */
   const uint stamp = s->stamp;
   const dt_refine_args args = s->args;
@@ -180,20 +167,12 @@ __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate,
     sums[lid] = total;
   }
   barrier(CLK_LOCAL_MEM_FENCE);
-  if (last && lid == 0) {
-    float total[DT_REFINE_SUMS];
-    for (int k = 0; k < DT_REFINE_SUMS; ++k) total[k] = sums[k];
-    s->arrived = 0;
-    s->stamp = stamp + 1;
-    /* A lost evaluation counts as a rejected candidate (the start as one without pixels: the fit ends there). */
-    if (lost) total[DT_REFINE_PIXELS] = 0.0f, total[DT_REFINE_OBJECTIVE] = DT_LOWEST;
-    dt_refine_judge(s, estimate, states, total, args, correction);
-    drawn_next = draw_here && s->active;
-  }
-  if (!draw_here) return; /* the same for every work-item, before the barrier */
-  barrier(CLK_GLOBAL_MEM_FENCE | CLK_LOCAL_MEM_FENCE);
-  if (!last || !drawn_next) return;
-  const dt_rigid next = dt_particle_pose(s->candidate);
-  for (uint t = lid; t < triangle_count; t += get_local_size(0))
-    dt_draw_triangle(next, vertices, triangles, planes, t, cam, 0, 0, nearest, 0);
+  if (!last || lid != 0) return;
+  float total[DT_REFINE_SUMS];
+  for (int k = 0; k < DT_REFINE_SUMS; ++k) total[k] = sums[k];
+  s->arrived = 0;
+  s->stamp = stamp + 1;
+  /* A lost evaluation counts as a rejected candidate (the start as one without pixels: the fit ends there). */
+  if (lost) total[DT_REFINE_PIXELS] = 0.0f, total[DT_REFINE_OBJECTIVE] = DT_LOWEST;
+  dt_refine_judge(s, estimate, states, total, args, correction);
 }

@@ -25,12 +25,7 @@ constexpr size_t kMaxSumGroups = 256;
 // Pixels each work-item of the spread sums kernel adds: fewer groups leave fewer rows of partials for
 // the last group's one work-item to add (19 rows at 80x60 with a pixel each, 5 with 4).
 constexpr size_t kSumPixelsPerItem = 4;
-static_assert(kRefineGroup >= DT_REFINE_SUMS);
-// Meshes of at most this many triangles are drawn by one group of the spread layout (begin's, then the
-// sums' last group's: a few triangles a work-item) instead of by a refine_draw launch per evaluation,
-// which halves the fit's launches (10 instead of 19 at 8 iterations). Larger meshes (a YCB object's
-// 16,384: 64 a work-item) are drawn a triangle per work-item over the device.
-constexpr size_t kDrawInGroupTriangles = 2048;  // a group writes its row of partials a sum per work-item
+static_assert(kRefineGroup >= DT_REFINE_SUMS);  // a group writes its row of partials a sum per work-item
 
 size_t round_up(size_t n, size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
@@ -107,9 +102,8 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
   return {fit};
 }
 
-// begin, then iterations + 1 evaluations (draw, sums; a small mesh drawn by begin and the sums' last
-// group) with no wait: the sums kernel's last group stops the fit on the device, and what follows
-// returns at once.
+// begin, then iterations + 1 evaluations (draw, sums) with no wait: the sums kernel's last group
+// stops the fit on the device, and what follows returns at once.
 std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in,
                                                             const dt_refine_args& args) {
   const dt_camera cam = model::camera_params(camera_, config_);
@@ -118,25 +112,21 @@ std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<floa
       compute::NdRange::linear(round_up(std::max<size_t>(mesh_.triangle_count(), 1), kLinearGroup), kLinearGroup);
   const auto over_pixels = compute::NdRange::linear(sum_groups_ * kRefineGroup, kRefineGroup);
   const unsigned triangles = mesh_.triangle_count();
-  const unsigned draw_here = triangles <= kDrawInGroupTriangles;
   // Timed: begin and the last sums, which the filter reads as one span (Event::elapsed_since_ms);
   // the launches between them untimed. Each kernel's arguments are set once: the evaluations differ
   // only in the fit's state on the device, and the frame's time and window reach the fit through
   // begin (dt_refine_state), so that only begin's arguments change from frame to frame.
   std::vector<compute::EventPtr> events;
   const bool timed = config_.step_timings;
-  const auto begin_range = draw_here ? compute::NdRange::linear(kRefineGroup, kRefineGroup) : compute::NdRange::linear(1, 1);
-  if (compute::EventPtr begun =
-          compute::launch_timed_if(timed, queue_, *begin_, begin_range, fit_state_, estimate, in.states, args, in.window,
-                                   mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam, nearest_, draw_here))
+  if (compute::EventPtr begun = compute::launch_timed_if(timed, queue_, *begin_, compute::NdRange::linear(1, 1),
+                                                         fit_state_, estimate, in.states, args, in.window))
     events.push_back(std::move(begun));
-  if (!draw_here)
-    compute::set_launch_args(*draw_, fit_state_, mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam, nearest_);
+  compute::set_launch_args(*draw_, fit_state_, mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam, nearest_);
   compute::set_launch_args(*sums_, fit_state_, estimate, in.states, in.observed, in.occlusion, in.occlusion_time,
-                           in.frame_times, in.parents, mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam,
-                           model, nearest_, partials_, correction_, draw_here);
+                           in.frame_times, in.parents, mesh_.planes, triangles, cam, model, nearest_, partials_,
+                           correction_);
   for (int evaluation = 0; evaluation <= config_.refine.iterations; ++evaluation) {
-    if (!draw_here) queue_.launch_untimed(*draw_, per_triangle);
+    queue_.launch_untimed(*draw_, per_triangle);
     if (compute::EventPtr last =
             compute::launch_timed_if(timed && evaluation == config_.refine.iterations, queue_, *sums_, over_pixels))
       events.push_back(std::move(last));

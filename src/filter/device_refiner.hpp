@@ -4,7 +4,7 @@
 // buffer; shift then moves every particle by the same correction. Two layouts of the same fit
 // (Refinement::layout): the whole fit in one work-group and one launch (cl/refine.cl), or each
 // step's rendering and sums spread over many work-groups, the sums' last group solving and deciding
-// (cl/refine_spread.cl: 2 launches a step, 1 for a small mesh that the sums' last group draws, iterations + 1 evaluations enqueued, the ones after
+// (cl/refine_spread.cl: 2 launches a step, iterations + 1 evaluations enqueued, the ones after
 // convergence returning at once; it needs 64-bit atomics). Its own program, built with a larger work-group than the
 // filter's kernels. Reference: reference::PoseRefiner and ReferenceFilter::refine.
 #include <depthtrack/camera.hpp>
