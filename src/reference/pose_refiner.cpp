@@ -2,10 +2,10 @@
 
 #include <Eigen/Cholesky>
 #include <cmath>
-#include <limits>
 
 #include "atlas/triangle_planes.hpp"
 #include "reference/observation_model.hpp"
+#include "reference/pose_covariance.hpp"
 
 namespace depthtrack::reference {
 
@@ -125,11 +125,7 @@ RefinedPose PoseRefiner::refine(const Pose& start, const DepthImage& depth, std:
   best.objective = at_best.objective;
   best.pixels = at_best.pixels;
   best.visible_share = at_best.visible_share();
-  const Eigen::LDLT<Matrix6d> solver(at_best.h);
-  if (at_best.pixels >= 6 && solver.info() == Eigen::Success && solver.isPositive())
-    best.covariance = solver.solve(Matrix6d::Identity());
-  else
-    best.covariance.setConstant(std::numeric_limits<double>::quiet_NaN());
+  best.covariance = pose_covariance(at_best.h, at_best.pixels, radius_);
   return best;
 }
 
