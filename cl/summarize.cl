@@ -1,6 +1,7 @@
 /* Normalization, degeneracy and the estimate, in one work-group of DT_GROUP_SIZE that strides over
  * all particles: log-sum-exp, ESS, KL from uniform, the weighted mean centre and velocities, and the
- * rotation mean in the tangent space of the heaviest particle (4 Karcher iterations), and the
+ * rotation mean in the tangent space of the heaviest particle (karcher_steps Karcher iterations: 0
+ * when the refinement replaces the mean pose, which then stays the heaviest particle's rotation), and the
  * resampling decision (KL > kl_threshold) that resample.cl's kernels read. With the effective sample
  * size near 1 nearly every weight is exactly 0 in float, and such a particle adds exactly 0 to every
  * weighted sum (its state is finite), so its state is not read: the passes over the states then cost
@@ -16,7 +17,8 @@
 
 __kernel void summarize(__global const float* state, __global const float* log_weight,
                         __global const float* log_likelihood, __global float* weights, __global float* estimate,
-                        uint count, float centre_x, float centre_y, float centre_z, float kl_threshold) {
+                        uint count, float centre_x, float centre_y, float centre_z, float kl_threshold,
+                        uint karcher_steps) {
   __local float scratch[DT_GROUP_SIZE];
   __local uint scratch_index[DT_GROUP_SIZE];
   __local float sums[DT_GROUP_SUMS_SCRATCH(DT_WEIGHTED_SUMS)];
@@ -44,7 +46,7 @@ __kernel void summarize(__global const float* state, __global const float* log_w
   for (int k = 0; k < DT_WEIGHTED_SUMS; ++k) acc[k] = sums[k];
 
   dt_quat mean = dt_load_rotation(state, heaviest);
-  for (int iteration = 0; iteration < DT_KARCHER_STEPS; ++iteration) {
+  for (uint iteration = 0; iteration < karcher_steps; ++iteration) {
     float step[3] = {0.0f, 0.0f, 0.0f};
     for (uint i = lid; i < count; i += DT_GROUP_SIZE)
       if (weights[i] > 0.0f) dt_add_karcher_step(step, state, i, weights[i], mean); /* 0 adds exactly 0 */

@@ -130,7 +130,7 @@ __kernel void summarize_karcher(__global const float* state, __global const floa
 /* One group; groups: how many the passes before ran with. */
 __kernel void summarize_finish(__global const float* state, __global float* estimate, uint count, uint groups,
                                float centre_x, float centre_y, float centre_z, float kl_threshold,
-                               __global const float* partials) {
+                               __global const float* partials, uint karcher_steps) {
   __local float scratch[DT_GROUP_SIZE];
   __local uint scratch_index[DT_GROUP_SIZE];
   const dt_vec3 centre = dt_vec3_make(centre_x, centre_y, centre_z);
@@ -143,6 +143,6 @@ __kernel void summarize_finish(__global const float* state, __global float* esti
   max_ll = dt_group_argmax(scratch, scratch_index, max_ll, 0, &unused);
   float acc[DT_WEIGHTED_SUMS];
   for (uint k = 0; k < DT_WEIGHTED_SUMS; ++k) acc[k] = dt_partials_sum(scratch, partials, DT_PARTIAL_ACC + k, groups);
-  const dt_quat mean = dt_partials_mean(scratch, state, partials, groups, heaviest, DT_KARCHER_STEPS);
+  const dt_quat mean = dt_partials_mean(scratch, state, partials, groups, heaviest, karcher_steps);
   if (get_local_id(0) == 0) dt_write_estimate(estimate, acc, mean, centre, count, max_ll, heaviest, kl_threshold);
 }

@@ -10,6 +10,7 @@
 #include "dt_atlas.h"
 #include "dt_params.h"
 #include "dt_state.h"
+#include "dt_summary.h"
 #include "dt_time_index.h"
 #include "filter/wide_summary.hpp"
 #include "model/occlusion_chain.hpp"
@@ -282,8 +283,11 @@ TEST_CASE("summarize kernel equals the reference normalization and mean pose", "
   // 1,000 particles: more than one pass of summarize.cl's one group; 40,000: summarize_wide.cl's passes
   // over many groups, as the filter runs them for large clouds.
   const size_t count = GENERATE(size_t{1000}, size_t{40000});
+  // The rotation mean's Karcher steps: all of them, or none where the refinement replaces the mean
+  // (the rotation then stays the heaviest particle's).
+  const unsigned karcher_steps = GENERATE(unsigned{DT_KARCHER_STEPS}, 0u);
   const bool wide = count >= kWideSummaryParticles;
-  INFO(count << " particles, " << (wide ? "many groups" : "one group"));
+  INFO(count << " particles, " << (wide ? "many groups" : "one group") << ", " << karcher_steps << " Karcher steps");
   std::mt19937 rng(11);
   std::normal_distribution<double> n;
   std::vector<model::ParticleState> states(count);
@@ -308,12 +312,12 @@ TEST_CASE("summarize kernel equals the reference normalization and mean pose", "
   if (wide) {
     WideSummary summary(*q, programs, "DT_OCCLUSION=0", count);
     CHECK(summary.groups() > 1);
-    summary.summarize(state, lw, ll, w, est, 0.0f, 0.0f, 0.02f, kl_threshold);
+    summary.summarize(state, lw, ll, w, est, 0.0f, 0.0f, 0.02f, kl_threshold, karcher_steps);
     q->finish();
   } else {
     auto summarize = build(*q, "summarize.cl")->kernel("summarize");
     q->launch(*summarize, compute::NdRange::linear(kGroup, kGroup), state, lw, ll, w, est, static_cast<unsigned>(count),
-              0.0f, 0.0f, 0.02f, kl_threshold)
+              0.0f, 0.0f, 0.02f, kl_threshold, karcher_steps)
         ->wait();
   }
   const auto e = est.download();
@@ -324,7 +328,14 @@ TEST_CASE("summarize kernel equals the reference normalization and mean pose", "
     poses.push_back(states[i].pose);
     velocity += summary.normalized[i] * states[i].linear_velocity;
   }
-  const Pose mean = reference::weighted_mean_pose(poses, summary.normalized, Eigen::Vector3d(0, 0, 0.02));
+  Pose mean = reference::weighted_mean_pose(poses, summary.normalized, Eigen::Vector3d(0, 0, 0.02));
+  if (karcher_steps == 0) {  // the weighted centre, turned as the heaviest particle is
+    const size_t heaviest = static_cast<size_t>(
+        std::max_element(log_weights.begin(), log_weights.end()) - log_weights.begin());
+    const Eigen::Vector3d centre(0, 0, 0.02), mean_centre = mean.apply(centre);
+    mean.rotation = states[heaviest].pose.rotation;
+    mean.translation = mean_centre - mean.rotation * centre;
+  }
   const Pose got({e[DT_EST_TX], e[DT_EST_TX + 1], e[DT_EST_TX + 2]},
                  Eigen::Quaterniond(e[DT_EST_QW], e[DT_EST_QW + 1], e[DT_EST_QW + 2], e[DT_EST_QW + 3]));
   CHECK(e[DT_EST_ESS] == Approx(summary.effective_sample_size).epsilon(1e-4));

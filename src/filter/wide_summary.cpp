@@ -39,7 +39,7 @@ std::vector<compute::EventPtr> WideSummary::summarize(const compute::Buffer<floa
                                                       const compute::Buffer<float>& log_likelihood,
                                                       compute::Buffer<float>& weights, compute::Buffer<float>& estimate,
                                                       float centre_x, float centre_y, float centre_z,
-                                                      float kl_threshold) {
+                                                      float kl_threshold, unsigned karcher_steps) {
   const auto grid = compute::NdRange::linear(groups_ * kGroupSize, kGroupSize);
   const unsigned count = static_cast<unsigned>(particles_);
   // Timed by its first and last launch (Event::elapsed_since_ms), as the spread refinement is.
@@ -47,10 +47,11 @@ std::vector<compute::EventPtr> WideSummary::summarize(const compute::Buffer<floa
   queue_.launch_untimed(*sum_, grid, log_weight, count, partials_);
   queue_.launch_untimed(*weights_, grid, states, log_weight, log_likelihood, weights, count, centre_x, centre_y,
                         centre_z, partials_);
-  for (unsigned step = 0; step < DT_KARCHER_STEPS; ++step)
+  for (unsigned step = 0; step < karcher_steps; ++step)
     queue_.launch_untimed(*karcher_, grid, states, weights, count, step, partials_);
   return {first, queue_.launch(*finish_, compute::NdRange::linear(kGroupSize, kGroupSize), states, estimate, count,
-                               static_cast<unsigned>(groups_), centre_x, centre_y, centre_z, kl_threshold, partials_)};
+                               static_cast<unsigned>(groups_), centre_x, centre_y, centre_z, kl_threshold, partials_,
+                               karcher_steps)};
 }
 
 std::vector<compute::EventPtr> WideSummary::prefix_sum(const compute::Buffer<float>& weights,

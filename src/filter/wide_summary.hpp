@@ -35,7 +35,8 @@ class WideSummary {
                                            const compute::Buffer<float>& log_weight,
                                            const compute::Buffer<float>& log_likelihood,
                                            compute::Buffer<float>& weights, compute::Buffer<float>& estimate,
-                                           float centre_x, float centre_y, float centre_z, float kl_threshold);
+                                           float centre_x, float centre_y, float centre_z, float kl_threshold,
+                                           unsigned karcher_steps);
   // prefix_sum's output (float-float cumulative weights), if the estimate says to resample.
   std::vector<compute::EventPtr> prefix_sum(const compute::Buffer<float>& weights, compute::Buffer<float>& cumulative,
                                             const compute::Buffer<float>& estimate);
