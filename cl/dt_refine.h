@@ -212,111 +212,16 @@ DT_DEVICE_FN float dt_refine_damping_after_rejection(float lambda) {
   return fmax(10.0f * lambda, 1.0f);
 }
 
-/* reference::pose_covariance's bound on an axis' share left unexplained (1 / its variance inflation). */
-#define DT_MAX_VARIANCE_INFLATION 1e3f
-
-/* reference::determined_axes in float: c (unit diagonal) is overwritten by the Schur complements. */
-DT_DEVICE_FN void dt_determined_axes(float c[6][6], const float* weight, int* left, int* taken) {
-  for (int i = 0; i < 6; ++i) taken[i] = 0;
-  for (;;) {
-    int pivot = -1;
-    for (int i = 0; i < 6; ++i) {
-      if (!left[i]) continue;
-      if (!(c[i][i] >= 1.0f / DT_MAX_VARIANCE_INFLATION)) {
-        left[i] = 0; /* explained by the axes taken */
-        continue;
-      }
-      if (pivot < 0 || c[i][i] * weight[i] > c[pivot][pivot] * weight[pivot]) pivot = i;
-    }
-    if (pivot < 0) return;
-    taken[pivot] = 1;
-    left[pivot] = 0;
-    for (int i = 0; i < 6; ++i)
-      for (int j = 0; j < 6; ++j)
-        if (left[i] && left[j]) c[i][j] -= c[i][pivot] * c[j][pivot] / c[pivot][pivot];
-  }
-}
-
-/* reference::invert_block in float. */
-DT_DEVICE_FN int dt_invert_block(float c[6][6], const int* taken, float inverse[6][6]) {
-  float l[6][6];
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j) l[i][j] = 0.0f, inverse[i][j] = 0.0f;
-  for (int j = 0; j < 6; ++j) {
-    if (!taken[j]) continue;
-    float d = c[j][j];
-    for (int m = 0; m < j; ++m) d -= l[j][m] * l[j][m];
-    if (!(d > 0.0f)) return 0;
-    l[j][j] = sqrt(d);
-    for (int i = j + 1; i < 6; ++i) {
-      if (!taken[i]) continue;
-      float e = c[i][j];
-      for (int m = 0; m < j; ++m) e -= l[i][m] * l[j][m];
-      l[i][j] = e / l[j][j];
-    }
-  }
-  for (int k = 0; k < 6; ++k) {
-    if (!taken[k]) continue;
-    float y[6] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f}, x[6] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
-    for (int i = 0; i < 6; ++i) {
-      if (!taken[i]) continue;
-      float e = i == k ? 1.0f : 0.0f;
-      for (int m = 0; m < i; ++m) e -= l[i][m] * y[m];
-      y[i] = e / l[i][i];
-    }
-    for (int i = 5; i >= 0; --i) {
-      if (!taken[i]) continue;
-      float e = y[i];
-      for (int m = i + 1; m < 6; ++m) e -= l[m][i] * x[m];
-      x[i] = e / l[i][i];
-    }
-    for (int i = 0; i < 6; ++i) inverse[i][k] = x[i];
-  }
-  return 1;
-}
-
-/* reference::pose_covariance in float, from the sums' H (lower triangle, row by row) into out (6x6,
- * row-major): an undetermined axis +infinity on the diagonal and 0 elsewhere in its row and column,
- * NaN everywhere with fewer than 6 pixels. */
-DT_DEVICE_FN void dt_refine_covariance(const float* sums, float radius, __global float* out) {
-  const float nan = dt_as_float(0x7fc00000u), infinity = dt_as_float(0x7f800000u);
-  float h[6][6], c[6][6], inverse[6][6], scale[6], weight[6];
-  int left[6], taken[6];
-  int k = 0;
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j <= i; ++j) {
-      h[i][j] = sums[k++];
-      h[j][i] = h[i][j];
-    }
-  for (int i = 0; i < 6; ++i) {
-    left[i] = h[i][i] > 0.0f && isfinite(h[i][i]);
-    scale[i] = left[i] ? 1.0f / sqrt(h[i][i]) : 0.0f;
-    weight[i] = i < 3 || !(radius > 0.0f) ? h[i][i] : h[i][i] / (radius * radius);
-  }
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j) c[i][j] = scale[i] * h[i][j] * scale[j];
-  float pivoted[6][6];
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j) pivoted[i][j] = c[i][j];
-  dt_determined_axes(pivoted, weight, left, taken);
-  const int ok = sums[DT_REFINE_PIXELS] >= 6.0f && dt_invert_block(c, taken, inverse);
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j)
-      out[6 * i + j] = !ok                     ? nan
-                       : taken[i] && taken[j] ? scale[i] * inverse[i][j] * scale[j]
-                       : i == j               ? infinity
-                                              : 0.0f;
-}
-
-/* The fit's results: the refined pose, the steps tried and the covariance (dt_refine_covariance) into estimate, and into correction the twist that puts the heaviest particle (start) on the
+/* The fit's results: the refined pose, the steps tried and its H and pixels (the host makes the covariance) into estimate, and into correction the twist that puts the heaviest particle (start) on the
  * refined pose (see ReferenceFilter::refine). */
 DT_DEVICE_FN void dt_refine_finish(__global float* estimate, dt_pose start, dt_pose best, const float* best_sums,
-                                   int tried, dt_vec3 centre, float radius, __global float* correction) {
+                                   int tried, dt_vec3 centre, __global float* correction) {
   dt_store_pose(estimate, best);
   estimate[DT_EST_REFINE_ITERATIONS] = DT_CAST(float, tried);
   estimate[DT_EST_VISIBLE] = best_sums[DT_REFINE_VISIBLE];
   estimate[DT_EST_MEASURED] = best_sums[DT_REFINE_MEASURED];
-  dt_refine_covariance(best_sums, radius, estimate + DT_EST_COV);
+  for (int k = 0; k < 21; ++k) estimate[DT_EST_NORMAL + k] = best_sums[k];
+  estimate[DT_EST_FIT_PIXELS] = best_sums[DT_REFINE_PIXELS];
   const dt_vec3 from = dt_pose_centre(start, centre), to = dt_pose_centre(best, centre);
   const dt_vec3 rotation = dt_quat_log(dt_quat_mul(best.q, dt_quat_conj(start.q)));
   correction[0] = to.x - from.x;

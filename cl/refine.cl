@@ -108,5 +108,5 @@ __kernel void refine(__global float* estimate, __global const float* states, __g
       }
     }
   }
-  if (lid == 0) dt_refine_finish(estimate, start, best, best_sums, tried, centre, args.radius, correction);
+  if (lid == 0) dt_refine_finish(estimate, start, best, best_sums, tried, centre, correction);
 }

@@ -77,7 +77,7 @@ DT_DEVICE_FN void dt_refine_judge(__global dt_refine_state* s, __global float* e
   s->active = 0;
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
   const dt_pose start = dt_load_pose(states + DT_CAST(ulong, heaviest) * DT_STATE_STRIDE);
-  dt_refine_finish(estimate, start, best, best_sums, s->tried, centre, args.radius, correction);
+  dt_refine_finish(estimate, start, best, best_sums, s->tried, centre, correction);
 }
 
 /* Sum k's partials added in group order into *total; 1 if every word carried this evaluation's stamp.

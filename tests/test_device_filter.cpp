@@ -233,9 +233,10 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
       const double sd_tolerance = renderer == "gl" || cuda || gpu_spread ? 5e-2 : 1e-3;
       // The built-in box (the scene without ../shared/data) is seen nearly face-on: its faces' depth
       // leaves sliding along them undetermined, and the normal equations are singular up to rounding.
-      // Before such axes were set apart (reference::pose_covariance) double and float disagreed on
-      // which axes blew up or turned NaN (NaN vs 3 m, 5e4 vs 7.7, 0.014 vs NaN); now both must flag
-      // the same axes (+infinity) and agree on the others. The handset has every axis determined.
+      // Before such axes were set apart (model::pose_covariance, which makes both backends' covariance
+      // from their H) double and float disagreed on which axes blew up or turned NaN (NaN vs 3 m, 5e4
+      // vs 7.7, 0.014 vs NaN); now the float H and the double H must set apart the same axes
+      // (+infinity) and agree on the others. The handset has every axis determined.
       for (int axis = 0; axis < 6; ++axis) {
         const bool undetermined = std::isinf(a.covariance(axis, axis));
         REQUIRE(std::isinf(b.covariance(axis, axis)) == undetermined);

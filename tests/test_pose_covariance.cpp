@@ -1,4 +1,4 @@
-// The refined pose's covariance (reference::pose_covariance): the inverse of the normal equations
+// The refined pose's covariance (model::pose_covariance): the inverse of the normal equations
 // where the pixels determine every axis, and the undetermined axes set apart (+infinity, no
 // correlation) where they do not: checked on hand-built systems and on a box seen face-on.
 #include <catch2/catch.hpp>
@@ -6,7 +6,7 @@
 #include <depthtrack/tracker_config.hpp>
 #include <limits>
 
-#include "reference/pose_covariance.hpp"
+#include "model/pose_covariance.hpp"
 #include "reference/pose_refiner.hpp"
 #include "scene.hpp"
 
@@ -44,13 +44,13 @@ bool undetermined(const Matrix6d& covariance, int axis) {
 TEST_CASE("the pose covariance is the inverse of a well-conditioned system", "[refine]") {
   Matrix6d diagonal = Matrix6d::Zero();
   diagonal.diagonal() << 4, 9, 16, 1, 25, 100;
-  const Matrix6d from_diagonal = reference::pose_covariance(diagonal, 100, 0.1);
+  const Matrix6d from_diagonal = model::pose_covariance(diagonal, 100, 0.1);
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j) CHECK(from_diagonal(i, j) == Approx(i == j ? 1.0 / diagonal(i, i) : 0.0).margin(1e-15));
 
   const Matrix6d h = system_of(varied_rows());
   const Matrix6d inverse = h.inverse();  // Eigen's LU: an independent inverse
-  const Matrix6d covariance = reference::pose_covariance(h, 40, 0.1);
+  const Matrix6d covariance = model::pose_covariance(h, 40, 0.1);
   CHECK((covariance - inverse).cwiseAbs().maxCoeff() <= 1e-9 * inverse.cwiseAbs().maxCoeff());
 }
 
@@ -59,7 +59,7 @@ TEST_CASE("the pose covariance sets apart an axis the others explain and keeps t
   SECTION("an axis with nothing on it: +infinity, and the others the inverse of their own block") {
     for (Vector6d& row : rows) row[5] = 0;  // a turn about a face's normal moves no depth
     const Matrix6d h = system_of(rows);
-    const Matrix6d covariance = reference::pose_covariance(h, 40, 0.1);
+    const Matrix6d covariance = model::pose_covariance(h, 40, 0.1);
     CHECK(undetermined(covariance, 5));
     const Eigen::Matrix<double, 5, 5> block = h.topLeftCorner<5, 5>().inverse();
     CHECK((covariance.topLeftCorner<5, 5>() - block).cwiseAbs().maxCoeff() <= 1e-9 * block.cwiseAbs().maxCoeff());
@@ -67,7 +67,7 @@ TEST_CASE("the pose covariance sets apart an axis the others explain and keeps t
   SECTION("a face's sliding, proportional to its depth: the sliding is set apart, the depth kept") {
     // A face tilted 1/100 from face-on: depth changes with x a hundredth as much as with z.
     for (Vector6d& row : rows) row[0] = 0.01 * row[2];
-    const Matrix6d covariance = reference::pose_covariance(system_of(rows), 40, 0.1);
+    const Matrix6d covariance = model::pose_covariance(system_of(rows), 40, 0.1);
     CHECK(undetermined(covariance, 0));
     for (int axis = 1; axis < 6; ++axis) CHECK(std::isfinite(covariance(axis, axis)));
     CHECK(covariance(2, 2) > 0);
@@ -79,22 +79,22 @@ TEST_CASE("the pose covariance sets apart an axis the others explain and keeps t
       for (size_t k = 0; k < mixed.size(); ++k)
         mixed[k][4] = mixed[k][1] + mixed[k][3] + share * (k % 2 ? 1.0 : -1.0) * 3.0;
       const Matrix6d h = system_of(mixed);
-      const Matrix6d covariance = reference::pose_covariance(h, 40, 0.1);
+      const Matrix6d covariance = model::pose_covariance(h, 40, 0.1);
       // The variance inflation of axis 4, (C^-1)_44 = (H^-1)_44 H_44, from Eigen's inverse.
       const double inflation = h.inverse()(4, 4) * h(4, 4);
       INFO("share " << share << ": inflation " << inflation);
       const int set_apart = undetermined(covariance, 1) + undetermined(covariance, 3) + undetermined(covariance, 4);
-      if (inflation > 10 * reference::kMaxVarianceInflation) {
+      if (inflation > 10 * model::kMaxVarianceInflation) {
         CHECK(set_apart == 1);  // one of the three: the least informative
       } else {
-        REQUIRE(inflation < reference::kMaxVarianceInflation / 10);
+        REQUIRE(inflation < model::kMaxVarianceInflation / 10);
         CHECK(set_apart == 0);
         CHECK((covariance - h.inverse()).cwiseAbs().maxCoeff() <= 1e-6 * h.inverse().cwiseAbs().maxCoeff());
       }
     }
   }
   SECTION("too few pixels: NaN everywhere") {
-    CHECK(reference::pose_covariance(system_of(rows), 5, 0.1).array().isNaN().all());
+    CHECK(model::pose_covariance(system_of(rows), 5, 0.1).array().isNaN().all());
   }
 }
 

@@ -16,6 +16,7 @@
 #include "filter/device_refiner.hpp"
 #include "filter/wide_summary.hpp"
 #include "model/kernel_params.hpp"
+#include "model/pose_covariance.hpp"
 #include "model/particle_packing.hpp"
 #include "philox.h"
 
@@ -533,8 +534,11 @@ Estimate DeviceFilter::collect() {
   e.mean_log_likelihood = est[DT_EST_MEAN_LL];
   e.resampled = est[DT_EST_RESAMPLE] != 0.0f;
   if (refiner_) {
-    for (int r = 0; r < 6; ++r)
-      for (int c = 0; c < 6; ++c) e.covariance(r, c) = est[DT_EST_COV + 6 * r + c];
+    // The fit's H (float sums) made into the covariance here, in double, as the reference makes it.
+    Eigen::Matrix<double, 6, 6> h;
+    for (int r = 0, k = 0; r < 6; ++r)
+      for (int c = 0; c <= r; ++c, ++k) h(r, c) = h(c, r) = est[DT_EST_NORMAL + k];
+    e.covariance = model::pose_covariance(h, static_cast<int>(est[DT_EST_FIT_PIXELS]), refiner_->radius());
     e.refine_iterations = static_cast<int>(est[DT_EST_REFINE_ITERATIONS]);
     // Counts, exact in float: the share as the reference divides them.
     e.confidence = est[DT_EST_MEASURED] > 0 ? static_cast<double>(est[DT_EST_VISIBLE]) / est[DT_EST_MEASURED] : 0.0;

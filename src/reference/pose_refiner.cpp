@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "atlas/triangle_planes.hpp"
+#include "model/pose_covariance.hpp"
 #include "reference/observation_model.hpp"
-#include "reference/pose_covariance.hpp"
 
 namespace depthtrack::reference {
 
@@ -125,7 +125,7 @@ RefinedPose PoseRefiner::refine(const Pose& start, const DepthImage& depth, std:
   best.objective = at_best.objective;
   best.pixels = at_best.pixels;
   best.visible_share = at_best.visible_share();
-  best.covariance = pose_covariance(at_best.h, at_best.pixels, radius_);
+  best.covariance = model::pose_covariance(at_best.h, at_best.pixels, radius_);
   return best;
 }
 

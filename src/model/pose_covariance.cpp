@@ -1,10 +1,10 @@
-#include "reference/pose_covariance.hpp"
+#include "model/pose_covariance.hpp"
 
 #include <array>
 #include <cmath>
 #include <limits>
 
-namespace depthtrack::reference {
+namespace depthtrack::model {
 
 namespace {
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
@@ -96,4 +96,4 @@ Matrix6d pose_covariance(const Matrix6d& h, int pixels, double radius) {
   return covariance;
 }
 
-}  // namespace depthtrack::reference
+}  // namespace depthtrack::model

@@ -11,18 +11,18 @@
 // (the axes taken explain its column but for that share) or that H has nothing on (H_ii <= 0). Of a
 // face's sliding and its depth, the depth is taken first and the sliding set apart. A set-apart axis
 // gets +infinity on the diagonal and 0 elsewhere in its row and column; the others the inverse of
-// their own block (their covariance with the set-apart axes held). cl/dt_refine.h's
-// dt_refine_covariance does the same steps in float.
+// their own block (their covariance with the set-apart axes held). Every backend's fit hands its H
+// here (the device's in the estimate buffer: DT_EST_NORMAL), so there is one implementation, in double.
 #include <Eigen/Core>
 
-namespace depthtrack::reference {
+namespace depthtrack::model {
 
 // An axis is set apart when the axes taken before it explain all but 1 / 1e3 of its column (R^2 above
-// 0.999): float's sums still give a kept axis' variance to a few parts in a thousand.
+// 0.999): the device's float sums of H still give a kept axis' variance to a few parts in a thousand.
 constexpr double kMaxVarianceInflation = 1e3;
 
 // radius: the mesh's, the length that turns a rotation into metres for the pivot's choice. NaN
 // everywhere with fewer than 6 pixels (the fit had too few to say anything).
 Eigen::Matrix<double, 6, 6> pose_covariance(const Eigen::Matrix<double, 6, 6>& h, int pixels, double radius);
 
-}  // namespace depthtrack::reference
+}  // namespace depthtrack::model
