@@ -212,8 +212,9 @@ DT_DEVICE_FN float dt_refine_damping_after_rejection(float lambda) {
   return fmax(10.0f * lambda, 1.0f);
 }
 
-/* The fit's results: the refined pose, the steps tried and its H and pixels (the host makes the covariance) into estimate, and into correction the twist that puts the heaviest particle (start) on the
- * refined pose (see ReferenceFilter::refine). */
+/* The fit's results: the refined pose, the steps tried and its H and pixels (the host makes the covariance) into
+ * estimate, and into correction the twist that puts the heaviest particle (start) on the refined pose (see
+ * ReferenceFilter::refine). */
 DT_DEVICE_FN void dt_refine_finish(__global float* estimate, dt_pose start, dt_pose best, const float* best_sums,
                                    int tried, dt_vec3 centre, __global float* correction) {
   dt_store_pose(estimate, best);

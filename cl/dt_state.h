@@ -19,9 +19,11 @@
 #define DT_EST_HEAVIEST 17 /* index of the heaviest particle, its bits stored as a float (summarize.cl) */
 #define DT_EST_RESAMPLE 18 /* 1 when the KL from uniform exceeds the threshold, else 0 (summarize.cl) */
 #define DT_EST_REFINE_ITERATIONS 19 /* steps the refinement tried (refine.cl) */
-#define DT_EST_NORMAL 20 /* the fit's H at the refined pose, its lower triangle row by row (21 floats): the host makes the covariance (model::pose_covariance) */
+/* The fit's H at the refined pose, its lower triangle row by row (21 floats), from which the host makes the
+ * covariance (model::pose_covariance). */
+#define DT_EST_NORMAL 20
 #define DT_EST_FIT_PIXELS 41 /* the pixels in that H (dt_refine_state.h's DT_REFINE_PIXELS) */
-#define DT_EST_VISIBLE 42  /* the refined pose's confidence counts (DT_REFINE_VISIBLE) */
-#define DT_EST_MEASURED 43 /* and DT_REFINE_MEASURED */
+#define DT_EST_VISIBLE 42    /* the refined pose's confidence counts (DT_REFINE_VISIBLE) */
+#define DT_EST_MEASURED 43   /* and DT_REFINE_MEASURED */
 #define DT_EST_SIZE 44
 #endif

@@ -252,14 +252,15 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
     std::printf(
         "%s, %s, renderer %s, refinement %s on %s: worst relative log-likelihood difference %.2g, estimates within "
         "%.2g m / %.2g rad, "
-        "ESS within %.2g, refined standard deviations within %.2g (relative; %d undetermined axes), confidence within %.2g, "
+        "ESS within %.2g, refined standard deviations within %.2g (relative; %d undetermined axes), confidence within "
+        "%.2g, "
         "%d resamplings, ancestry identical but for %d numerical ties; %d silhouette coverage flips; "
         "ancestry and estimates compared in %d of %zu frames; state window %dx%d moved %d times, grew %d times\n",
         scene.name.c_str(), to_string(mode), renderer.c_str(),
         to_string(resolved_refine_layout(layout, info, scene.mesh.triangles.size())), device.description().c_str(),
-        worst_ll, worst_t, worst_r, worst_ess, worst_sd, undetermined_axes, worst_confidence, resamplings, ties, coverage_flips,
-        compared_frames, scene.frames.size(), reference.state_window().width, reference.state_window().height,
-        window_moves, window_growths);
+        worst_ll, worst_t, worst_r, worst_ess, worst_sd, undetermined_axes, worst_confidence, resamplings, ties,
+        coverage_flips, compared_frames, scene.frames.size(), reference.state_window().width,
+        reference.state_window().height, window_moves, window_growths);
     CHECK(resamplings > 0);
     if (window.width > 0) CHECK(window_moves > 0);  // the rows followed the estimate
     CHECK(window_growths >= min_growths);

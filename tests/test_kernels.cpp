@@ -330,8 +330,8 @@ TEST_CASE("summarize kernel equals the reference normalization and mean pose", "
   }
   Pose mean = reference::weighted_mean_pose(poses, summary.normalized, Eigen::Vector3d(0, 0, 0.02));
   if (karcher_steps == 0) {  // the weighted centre, turned as the heaviest particle is
-    const size_t heaviest = static_cast<size_t>(
-        std::max_element(log_weights.begin(), log_weights.end()) - log_weights.begin());
+    const size_t heaviest =
+        static_cast<size_t>(std::max_element(log_weights.begin(), log_weights.end()) - log_weights.begin());
     const Eigen::Vector3d centre(0, 0, 0.02), mean_centre = mean.apply(centre);
     mean.rotation = states[heaviest].pose.rotation;
     mean.translation = mean_centre - mean.rotation * centre;

@@ -16,8 +16,8 @@
 #include "filter/device_refiner.hpp"
 #include "filter/wide_summary.hpp"
 #include "model/kernel_params.hpp"
-#include "model/pose_covariance.hpp"
 #include "model/particle_packing.hpp"
+#include "model/pose_covariance.hpp"
 #include "philox.h"
 
 namespace depthtrack {

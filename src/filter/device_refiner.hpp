@@ -59,7 +59,7 @@ class DeviceRefiner {
   compute::EventPtr shift(const compute::Buffer<float>& from, compute::Buffer<float>& to, size_t count);
 
   RefineLayout layout() const { return layout_; }  // OneGroup or Spread, never Auto
-  double radius() const { return radius_; }         // the mesh's (model::pose_covariance's pivot)
+  double radius() const { return radius_; }        // the mesh's (model::pose_covariance's pivot)
 
  private:
   std::vector<compute::EventPtr> refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in,
