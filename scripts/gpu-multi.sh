@@ -2,9 +2,11 @@
 # On the lent GPU machine: one object against ycbv-0000's three in one process, 2,000 particles each at
 # 80x60, per backend (issue 10: three objects <= 1.5x one): `depthtrack_bench --multi-objects` prints
 # multi_object_ratio rows (the median frame of one object and of three, and three / one) with mutual
-# occlusion off and on, the same without the host thread pool, and each stage's median. Then the same through `track` (mean per-frame latency after the first frame, the
-# PNG decoding overlapped), as measured before the objects overlapped on the device. Carry .devdeps,
-# .device and .devdata.
+# occlusion off and on, the same without the host thread pool, and each stage's median: untimed, as a
+# tracker runs by default (the bar), then with the steps timed (steps_sum, render_sum), both over FRAMES
+# (default 40) frames of the ten-frame clip played forth and back. Then the same through `track` (mean
+# per-frame latency after the first frame, the PNG decoding overlapped), as measured before the objects
+# overlapped on the device. Carry .devdeps, .device and .devdata.
 set -uo pipefail
 source .device/enter .devdeps
 export DEPTHTRACK_DATA_DIR=$PWD/.devdata
@@ -17,8 +19,10 @@ if [[ ! -x $build/depthtrack || ! -x $build/depthtrack_bench ]]; then
 fi
 particles=${PARTICLES:-2000}
 for b in ${BACKENDS:-cuda opencl:nvidia}; do
-  "$build/depthtrack_bench" --multi-objects --backend "$b" --particles "$particles" | grep -v '^backend,' |
-    awk -F, '{ print $1, $(NF-3), $(NF-2), $NF, $(NF-1) }'
+  for timing in --untimed-steps ""; do
+    "$build/depthtrack_bench" --multi-objects --backend "$b" --particles "$particles" --frames "${FRAMES:-40}" \
+      $timing | grep -v '^backend,' | awk -F, '{ print $1, $(NF-3), $(NF-2), $NF, $(NF-1) }'
+  done
 done
 m=.devdata/meshes/ycb
 q=.devdata/sequences/ycbv-0000

@@ -253,20 +253,26 @@ size_t DeviceFilter::state_pixel_limit() const {
 void DeviceFilter::reserve_state_rows(compute::Buffer<float>& occlusion, compute::Buffer<uint16_t>& times,
                                       const model::StateWindow& window) {
   const size_t kept = count_ * window.pixels();
-  // A window grows by a pixel or two a frame while the object nears, so rows that are outgrown take
-  // half as much again (within the memory's bound) rather than being reallocated every frame; the
-  // placeholder, before the start, takes what the start needs.
-  const auto rows = [&](size_t held, size_t placeholder) {
-    if (held <= placeholder) return std::max(kept, placeholder);
+  // An automatic window grows by a pixel or two a frame while the estimate settles or the object
+  // nears, so its rows take half as much again (within the memory's bound), at the start as when
+  // outgrown, rather than being reallocated every few frames: a reallocation's free waits for the
+  // device, that is for every object's work queued on it, and changes the frame's graph. A fixed
+  // window never grows: its rows are what it needs.
+  const auto rows = [&](size_t placeholder) {
+    if (!config_.occlusion_window.is_automatic()) return std::max(kept, placeholder);
     const size_t roomy = kept + kept / 2, limit = state_pixel_limit_ * count_;
-    return std::max(kept, limit > 0 ? std::min(roomy, limit) : roomy);
+    return std::max({kept, placeholder, limit > 0 ? std::min(roomy, limit) : roomy});
   };
   const bool probabilities = config_.occlusion_storage != OcclusionStorage::Off;
   const bool indices = config_.occlusion_storage == OcclusionStorage::PerPixelTime;
-  if (probabilities ? occlusion.size() < std::max<size_t>(kept, 1) : occlusion.size() < 1)
-    occlusion = compute::Buffer<float>(*queue_, probabilities ? rows(occlusion.size(), 1) : 1);
-  if (indices ? times.size() < std::max<size_t>(kept, 2) : times.size() < 2)
-    times = compute::Buffer<uint16_t>(*queue_, indices ? rows(times.size(), 2) : 2);
+  if (probabilities ? occlusion.size() < std::max<size_t>(kept, 1) : occlusion.size() < 1) {
+    occlusion = compute::Buffer<float>(*queue_, probabilities ? rows(1) : 1);
+    ++state_row_allocations_;
+  }
+  if (indices ? times.size() < std::max<size_t>(kept, 2) : times.size() < 2) {
+    times = compute::Buffer<uint16_t>(*queue_, indices ? rows(2) : 2);
+    ++state_row_allocations_;
+  }
 }
 
 std::string DeviceFilter::description() const {

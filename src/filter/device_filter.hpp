@@ -81,6 +81,9 @@ class DeviceFilter final : public FilterBackend {
   std::vector<model::ParticleState> particles() const;
   // Where the occlusion rows lie: the state window of the last frame (or of the start).
   const model::StateWindow& state_window() const { return window_; }
+  // How often an occlusion state buffer (probabilities or times, current or scratch) was allocated,
+  // placeholders included: an automatic window's growth within its rows' room allocates nothing.
+  size_t state_row_allocations() const { return state_row_allocations_; }
   // The occlusion probabilities and times, particles x the state window's pixels, row-major from its
   // top-left corner (empty where the mode keeps none):
   // downloaded only when asked, for tests. A time is its frame's (0 for the start, and for a pixel
@@ -146,6 +149,7 @@ class DeviceFilter final : public FilterBackend {
   model::StateWindow window_, next_window_;
   size_t count_;
   size_t state_pixel_limit_ = 0;  // the most pixels a window may grow to in the memory (0: no bound)
+  size_t state_row_allocations_ = 0;
   size_t summary_group_ = 0;  // the one-group summary's work-items (none with the wide summary)
   std::unique_ptr<AtlasSource> atlas_source_;
   std::unique_ptr<Kernels> kernels_;
