@@ -313,16 +313,21 @@ TEST_CASE("with a state window cutting the object the device filter still equals
   compare_with_reference("kernel", RefineLayout::Auto, OcclusionWindow{14, 10});
 }
 
+// The handset receding to 1.15 m by frame 18 of this path, then coming in to 0.78 m by frame 53: frames 18-53.
+Scene nearing_scene() {
+  TrajectoryModel nearing;
+  nearing.amplitude = {0.02, 0.01, -0.35};
+  nearing.period = 8.0;
+  return make_scene(36, 8, nearing, 18);
+}
+
 // The automatic window (the default) grown while the object comes nearer: rows of the last frame's
 // size read, rows of the new size written, on the device as in the reference. The handset recedes to
 // 1.15 m at frame 18 of this path, then comes in to 0.78 m by frame 53.
 TEST_CASE("with an automatic window growing as the object nears the device filter still equals the reference",
           "[device][kernel][window]") {
   if (!test::device_available()) return;
-  TrajectoryModel nearing;
-  nearing.amplitude = {0.02, 0.01, -0.35};
-  nearing.period = 8.0;
-  compare_with_reference("kernel", RefineLayout::Auto, OcclusionWindow{}, make_scene(36, 8, nearing, 18), 1);
+  compare_with_reference("kernel", RefineLayout::Auto, OcclusionWindow{}, nearing_scene(), 1);
 }
 
 // An automatic window's rows hold half as much again as its window: while the window stays within that
@@ -332,10 +337,7 @@ TEST_CASE("with an automatic window growing as the object nears the device filte
 TEST_CASE("an automatic window's rows have room for half as much again: growing within it allocates nothing",
           "[device][kernel][window]") {
   if (!test::device_available()) return;
-  TrajectoryModel nearing;
-  nearing.amplitude = {0.02, 0.01, -0.35};
-  nearing.period = 8.0;
-  const Scene scene = make_scene(36, 8, nearing, 18);
+  const Scene scene = nearing_scene();
   TrackerConfig config;
   config.particles = 50;
   config.seed = 9;
