@@ -52,6 +52,11 @@ Scene make_scene(int frames, int decimation = 8, const TrajectoryModel& path = {
   return s;
 }
 
+// The time from frame f - 1 to frame f (0 for the first: the start's frame propagates nothing).
+double frame_dt(const Scene& scene, size_t f) {
+  return f == 0 ? 0.0 : scene.frames[f].timestamp - scene.frames[f - 1].timestamp;
+}
+
 // The reference's log-likelihood of one particle from a given rendering (its atlas tile) and a
 // snapshot of its occlusion state before the frame.
 // The snapshot's rows lie in the state window `before`; this frame's is `window` (a pixel outside it,
@@ -118,7 +123,7 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
     int undetermined_axes = 0;  // over the compared frames' covariances
     int resamplings = 0, ties = 0, coverage_flips = 0, compared_frames = 0, window_moves = 0, window_growths = 0;
     for (size_t f = 0; f < scene.frames.size(); ++f) {
-      const double dt = f == 0 ? 0.0 : scene.frames[f].timestamp - scene.frames[f - 1].timestamp;
+      const double dt = frame_dt(scene, f);
       const std::vector<float> occlusion_before = reference.occlusion_state(),
                                times_before = reference.occlusion_times();
       const model::StateWindow window_before = reference.state_window();
@@ -322,8 +327,7 @@ Scene nearing_scene() {
 }
 
 // The automatic window (the default) grown while the object comes nearer: rows of the last frame's
-// size read, rows of the new size written, on the device as in the reference. The handset recedes to
-// 1.15 m at frame 18 of this path, then comes in to 0.78 m by frame 53.
+// size read, rows of the new size written, on the device as in the reference.
 TEST_CASE("with an automatic window growing as the object nears the device filter still equals the reference",
           "[device][kernel][window]") {
   if (!test::device_available()) return;
@@ -333,7 +337,8 @@ TEST_CASE("with an automatic window growing as the object nears the device filte
 // An automatic window's rows hold half as much again as its window: while the window stays within that
 // (an estimate settling after its start, an object nearing a little) no state row is allocated again.
 // Each reallocation's free waits for the device (every object's work queued on it) and changes the
-// frame's graph: on the H200 they were most of three objects' enqueue time. The same nearing path.
+// frame's graph: session 13's H200 trace of ycbv-0000's first ten frames found such spikes in three
+// objects' enqueue. The same nearing path.
 TEST_CASE("an automatic window's rows have room for half as much again: growing within it allocates nothing",
           "[device][kernel][window]") {
   if (!test::device_available()) return;
@@ -349,7 +354,7 @@ TEST_CASE("an automatic window's rows have room for half as much again: growing 
   const size_t first_frame_allocations = device.state_row_allocations() + 2;
   bool grown_past_room = false;
   for (size_t f = 0; f < scene.frames.size(); ++f) {
-    const double dt = f == 0 ? 0.0 : scene.frames[f].timestamp - scene.frames[f - 1].timestamp;
+    const double dt = frame_dt(scene, f);
     device.update(scene.frames[f].depth, dt);
     const size_t pixels = device.state_window().pixels();  // the rows this frame wrote
     INFO("frame " << f << ": " << pixels << " pixels, " << start_pixels << " at the start");
@@ -424,7 +429,7 @@ void each_frame_from_common_state(const Scene& scene, const TrackerConfig& confi
     INFO(scene.name << ", frame " << f);
     device.set_state(reference.particles(), reference.occlusion_state(), reference.occlusion_times(),
                      reference.log_weights());
-    const double dt = f == 0 ? 0.0 : scene.frames[f].timestamp - scene.frames[f - 1].timestamp;
+    const double dt = frame_dt(scene, f);
     const Estimate a = reference.update(scene.frames[f].depth, dt);
     const Estimate b = device.update(scene.frames[f].depth, dt);
     check(f, a, b, reference, device);

@@ -21,7 +21,9 @@ struct StepBytes {
 StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, bool gl_handoff, int refine_iterations,
                      bool inside_weigh = false, std::optional<size_t> state_pixels = std::nullopt);
 
-// Device memory the filter's buffers take without GL pages, MiB (device_filter_bytes_per_particle).
+// Device memory the filter's buffers take without GL pages, MiB (device_filter_bytes_per_particle), with
+// the state window's rows as it needs them: an automatic window's buffers hold room for up to half as
+// many again (DeviceFilter::reserve_state_rows), which this leaves out.
 double filter_memory_mib(size_t particles, size_t pixels, OcclusionStorage mode, bool atlas = true,
                          std::optional<size_t> state_pixels = std::nullopt);
 
