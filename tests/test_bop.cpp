@@ -97,7 +97,9 @@ TEST_CASE("a BOP scene converted from the YCB-Video clip tracks with the clip's 
     CHECK(!bop.frames[i].colour_path.empty());
   }
 
-  const std::string common = " --resolution 160x120 --particles 100 --seed 5 --init-from-gt --init-perturb \"0.005 3\"";
+  // The mesh as given: simplification's collapses can differ between the two files' float roundings.
+  const std::string common =
+      " --resolution 160x120 --particles 100 --seed 5 --init-from-gt --init-perturb \"0.005 3\" --simplify-error 0";
   const auto [status_a, log_a] = test::run_cli("track --mesh " + mug->string() + " --sequence " + clip->string() +
                                                    " --object mug --out " + (dir / "ycbv.csv").string() + common,
                                                dir / "log_a.txt");

@@ -177,7 +177,8 @@ def test_simplify_error_draws_fewer_triangles_of_a_fine_mesh(tmp_path):
     camera = depthtrack.Camera(640, 480, 525, 525, 319.5, 239.5)
     mesh = depthtrack.Mesh.load(str(tmp_path / "sphere.obj"))
     config = depthtrack.TrackerConfig()
-    assert config.simplify_error == 0
+    assert config.simplify_error == 0.0005
+    config.simplify_error = 0
     as_given = depthtrack.Tracker(mesh, camera, config)
     assert as_given.mesh_triangles == as_given.drawn_triangles == triangles
     config.simplify_error = 0.002
