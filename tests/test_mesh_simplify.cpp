@@ -8,6 +8,7 @@
 #include <iostream>
 #include <numbers>
 
+#include "cli_support.hpp"
 #include "core/mesh_simplify.hpp"
 #include "support.hpp"
 #include "synth_frames.hpp"
@@ -175,4 +176,25 @@ TEST_CASE("A tracker drawing the mug simplified to 0.5 mm tracks it as one drawi
   CHECK(full_mm < 3.0);
   CHECK(simplified_mm < 3.0);
   CHECK(std::abs(simplified_mm - full_mm) < 0.5);
+}
+
+TEST_CASE("track notes how far the default simplification thins a fine mesh, as the tracker draws it", "[simplify][cli]") {
+  const auto dir = test::write_cli_sequence("cli_simplify_note", 2);
+  const auto sphere_path = dir / "sphere.obj";
+  test::write_obj(sphere_path, uv_sphere(0.05f, 48, 96));  // 9,024 triangles, far finer than 0.5 mm needs
+  // What a tracker with the default configuration draws of the file as track reads it.
+  const Mesh read = Mesh::load(sphere_path);
+  const Tracker tracker(read, Camera::make(160, 120, 131.25, 131.25, 79.875, 59.875), TrackerConfig{});
+  REQUIRE(tracker.drawn_triangles() < read.triangles.size() / 4);
+  const std::string run = "track --mesh " + sphere_path.string() + " --sequence " + (dir / "seq").string() +
+                          " --resolution 80x60 --particles 20 --init-from-gt --out " + (dir / "out.csv").string();
+  const auto [status, output] = test::run_cli(run, dir / "log.txt");
+  INFO(output);
+  CHECK(status == 0);
+  CHECK_THAT(output, Catch::Contains("simplified within 0.5 mm: " + std::to_string(tracker.drawn_triangles()) +
+                                     " of its " + std::to_string(read.triangles.size()) + " triangles"));
+  const auto [status_given, output_given] = test::run_cli(run + " --simplify-error 0", dir / "log_given.txt");
+  INFO(output_given);
+  CHECK(status_given == 0);
+  CHECK_THAT(output_given, !Catch::Contains("simplified"));
 }

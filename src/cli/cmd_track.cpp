@@ -16,6 +16,7 @@
 #include "cli/progress.hpp"
 #include "cli/run_summary.hpp"
 #include "cli/tracker_options.hpp"
+#include "core/mesh_simplify.hpp"
 
 namespace depthtrack::cli {
 
@@ -77,12 +78,25 @@ InitHint init_hint(const TrackArgs& a) {
   return InitHint::box(static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]), static_cast<int>(v[3]));
 }
 
-Mesh load_mesh(const std::string& path, double unit_scale) {
+// The mesh, with notes on what the tracker will draw of it: degenerate triangles dropped, and how far the
+// default (or given) simplification thins it (TrackerConfig::simplify_error), so that a run's speed and a
+// fine mesh's precision are not a surprise.
+Mesh load_mesh(const std::string& path, double unit_scale, const TrackerConfig& config) {
   const Mesh mesh = Mesh::load(path, unit_scale);
   warn_if_mesh_scale_unusual(mesh, path, unit_scale);
   if (mesh.dropped_degenerate > 0)
     std::fprintf(stderr, "depthtrack: note: dropped %zu degenerate triangles of '%s'\n", mesh.dropped_degenerate,
                  path.c_str());
+  if (config.simplify_error > 0) {
+    Mesh checked = mesh;
+    checked.validate_and_clean(path);
+    const size_t drawn = simplify_within(checked, config.simplify_error).mesh.triangles.size();
+    if (drawn < checked.triangles.size())
+      std::fprintf(stderr,
+                   "depthtrack: note: drawing '%s' simplified within %g mm: %zu of its %zu triangles "
+                   "(--simplify-error 0 draws it as given)\n",
+                   path.c_str(), config.simplify_error * 1e3, drawn, checked.triangles.size());
+  }
   return mesh;
 }
 
@@ -115,7 +129,7 @@ void run_track_objects(const TrackArgs& a) {
     one.object = a.objects[i];
     TrackedObject o{a.objects[i], {}, load_sequence(a.sequence, a.objects[i]), {}};
     const bool bop_units = o.sequence.format == "bop" && a.unit_scale_option->count() == 0;
-    o.mesh = load_mesh(a.meshes[i], bop_units ? 0.001 : a.unit_scale);
+    o.mesh = load_mesh(a.meshes[i], bop_units ? 0.001 : a.unit_scale, config);
     o.initial = initial_pose(one, o.sequence, o.mesh, config.seed);  // as the object's own run starts
     objects.push_back(std::move(o));
   }
@@ -169,7 +183,7 @@ void run_track(TrackArgs a) {
   const double unit_scale = bop_units ? 0.001 : a.unit_scale;
   if (bop_units)
     std::fprintf(stderr, "depthtrack: note: BOP scene: reading the mesh in millimetres (--unit-scale 0.001)\n");
-  const Mesh mesh = load_mesh(a.mesh, unit_scale);
+  const Mesh mesh = load_mesh(a.mesh, unit_scale, config);
   const bool global = !a.init_box.empty() || a.init_global;
   const InitHint hint = init_hint(a);
   const auto spread_values = parse_numbers(a.init_spread, 2, "--init-spread");
