@@ -17,15 +17,17 @@ class MutualOcclusion;
 class ThreadPool;
 
 // Host wall time of each stage of the last MultiTracker::update, ms: where a several-object frame's time
-// goes. The stages run one after another; each object's own steps are in its Estimate::timings.
+// goes. The stages follow one another on the calling thread; meanwhile the pool collects and assesses the
+// objects already enqueued (except with the GL renderer). Each object's own steps are in its
+// Estimate::timings.
 struct MultiStageTimings {
-  double working_ms = 0;     // the frame checked and decimated to the working resolution, once
-  double occluders_ms = 0;   // mutual occlusion: the objects' previous estimates drawn (or reused)
-  double masks_ms = 0;       // mutual occlusion: each object's masked working frame
-  double enqueue_ms = 0;     // every object's start_frame: upload, enqueue (a host filter: its whole update)
+  double working_ms = 0;    // the frame checked and decimated to the working resolution, once
+  double occluders_ms = 0;  // mutual occlusion: the objects' previous estimates drawn (the last frame drew them)
+  double masks_ms = 0;      // mutual occlusion: each object's masked working frame
+  double enqueue_ms = 0;    // every object's start_frame: upload, enqueue (a host filter: its whole update)
   std::vector<double> object_enqueue_ms;  // each object's share of enqueue_ms, in order
-  double collect_ms = 0;     // waiting for every object's estimate, one after another (confidences meanwhile)
-  double confidence_ms = 0;  // the confidences and statuses still running after the last collection (a pool)
+  double collect_ms = 0;  // from the last enqueue to the last estimate collected (earlier ones meanwhile)
+  double confidence_ms = 0;  // confidences, statuses and next layers still running after that (a pool)
   double total_ms = 0;       // the whole update
 };
 
@@ -56,6 +58,12 @@ class MultiTracker {
   // One frame, already at the working resolution, for every object; sensor_frame() as Tracker's.
   std::vector<Estimate> run(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame,
                             double timestamp);
+  // run's two ways of starting every object (start(j)) and collecting and assessing it (assess(j) after
+  // the estimate): collected on the pool as the later objects are enqueued, or on this thread (GL).
+  void pipelined(size_t n, const std::function<void(size_t)>& start, const std::function<void(size_t)>& assess,
+                 std::vector<Estimate>& estimates);
+  void collected_here(size_t n, const std::function<void(size_t)>& start, const std::function<void(size_t)>& assess,
+                      std::vector<Estimate>& estimates, std::exception_ptr& failure);
 
   std::shared_ptr<Device> device_;
   std::vector<Tracker> trackers_;
@@ -66,6 +74,7 @@ class MultiTracker {
   // The objects' host steps (confidence, occluder layers) side by side: a thread per object, at most
   // the hardware's; the device's results are collected on the calling thread.
   std::unique_ptr<ThreadPool> pool_;
+  bool collects_on_pool_ = true;  // false with the GL renderer: its timer events are read on this thread
   MultiStageTimings timings_;
   std::vector<Pose> poses_;  // each object's previous estimate (or start)
   std::vector<bool> initialized_;
