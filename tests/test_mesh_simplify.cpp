@@ -178,7 +178,8 @@ TEST_CASE("A tracker drawing the mug simplified to 0.5 mm tracks it as one drawi
   CHECK(std::abs(simplified_mm - full_mm) < 0.5);
 }
 
-TEST_CASE("track notes how far the default simplification thins a fine mesh, as the tracker draws it", "[simplify][cli]") {
+TEST_CASE("track notes how far the default simplification thins a fine mesh, as the tracker draws it",
+          "[simplify][cli]") {
   const auto dir = test::write_cli_sequence("cli_simplify_note", 2);
   const auto sphere_path = dir / "sphere.obj";
   test::write_obj(sphere_path, uv_sphere(0.05f, 48, 96));  // 9,024 triangles, far finer than 0.5 mm needs

@@ -26,7 +26,7 @@ struct MultiStageTimings {
   double masks_ms = 0;      // mutual occlusion: each object's masked working frame
   double enqueue_ms = 0;    // every object's start_frame: upload, enqueue (a host filter: its whole update)
   std::vector<double> object_enqueue_ms;  // each object's share of enqueue_ms, in order
-  double collect_ms = 0;  // from the last enqueue to the last estimate collected (earlier ones meanwhile)
+  double collect_ms = 0;     // from the last enqueue to the last estimate collected (earlier ones meanwhile)
   double confidence_ms = 0;  // confidences, statuses and next layers still running after that (a pool)
   double total_ms = 0;       // the whole update
 };
