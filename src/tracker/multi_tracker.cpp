@@ -153,9 +153,10 @@ void MultiTracker::pipelined(size_t n, const std::function<void(size_t)>& start,
         [&](const std::function<void()>& release) {
           for (size_t j = 0; j < n; ++j) {
             start(j);
+            // Before the last release, so that the last collection cannot precede it.
+            if (j + 1 == n) enqueued_at = clock.elapsed_ms();
             release();
           }
-          enqueued_at = clock.elapsed_ms();
         },
         [&](size_t j, int) {
           estimates[j] = trackers_[j].collect_frame();
