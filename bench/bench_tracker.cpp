@@ -164,7 +164,8 @@ const char* const kUsage =
     "                         timing records), named in the test column; otherwise every step is timed\n"
     "  --no-global            leave out the global initialization rows (box hint and no hint, 80x60)\n"
     "  --multi-objects        instead: one object against three in one process at 80x60 (ycbv-0000's, else\n"
-    "                         the handset thrice), mutual occlusion off and on: multi_object_ratio rows;\n"
+    "                         the handset thrice), mutual occlusion off and on: multi_object_ratio rows (and\n"
+    "                         multi_object_ratio_to_mean, over the three objects alone);\n"
     "                         --particles N each (default 2000); --frames N frames (ycbv-0000's ten-frame\n"
     "                         clip played forth and back); --untimed-steps as for one object\n"
     "Without --particles and --resolution: the reference at 80x60 (200 particles) and 640x480 (50).\n";

@@ -11,7 +11,9 @@ namespace depthtrack::bench {
 // the CLI's --init-perturb "0.01 5") on `frames` frames of its clip played forth and back where the data
 // folder has them, else the handset (or the built-in mesh) three times at three poses on the synthetic
 // sequence, `frames` long. `step_timings` as TrackerConfig's (off: the steps' sums read 0 on a compute
-// backend, and the test column ends in _untimed). Prints CSV rows,
+// backend, and the test column ends in _untimed). Prints CSV rows: also each object alone
+// (object<j>_alone_ms, the first being one_object_ms), their mean (one_object_mean_ms) and three over it
+// (multi_object_ratio_to_mean);
 // the three objects' median again with their host steps on the calling thread alone (host_threads 1), then
 // the median of each of MultiTracker::update's stages (MultiStageTimings) for one object and three:
 // <one_object|three_objects>_<stage>_ms.

@@ -135,6 +135,15 @@ TEST_CASE("depthtrack_bench --multi-objects prints one and three objects' median
     CHECK(one > 0);
     CHECK(three > 0);
     CHECK(metrics.at("multi_object_ratio") == Approx(three / one).epsilon(1e-4));  // six significant digits printed
+    // Each of the three alone, the first the one object above, and three over their mean.
+    const double alone[3] = {metrics.at("object0_alone_ms"), metrics.at("object1_alone_ms"),
+                             metrics.at("object2_alone_ms")};
+    CHECK(alone[0] == Approx(one).epsilon(1e-5));
+    CHECK(alone[1] > 0);
+    CHECK(alone[2] > 0);
+    const double mean = (alone[0] + alone[1] + alone[2]) / 3;
+    CHECK(metrics.at("one_object_mean_ms") == Approx(mean).epsilon(1e-4));
+    CHECK(metrics.at("multi_object_ratio_to_mean") == Approx(three / mean).epsilon(1e-4));
     const double serial = metrics.at("three_objects_one_host_thread_ms");
     CHECK(serial > 0);
     CHECK(metrics.at("one_host_thread_ratio") == Approx(serial / one).epsilon(1e-4));
