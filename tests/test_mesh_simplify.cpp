@@ -199,3 +199,25 @@ TEST_CASE("track notes how far the default simplification thins a fine mesh, as 
   CHECK(status_given == 0);
   CHECK_THAT(output_given, !Catch::Contains("simplified"));
 }
+
+TEST_CASE("A small part is drawn simplified within 2 % of its radius, not the default's 0.5 mm", "[simplify]") {
+  const Mesh part = uv_sphere(0.01f, 48, 96);  // 1 cm radius, 9,024 triangles
+  const double radius = part.radius();
+  // A 5 cm sphere takes the default as it is; the 1 cm one 2 % of its radius, 0.2 mm.
+  CHECK(drawing_error(uv_sphere(0.05f, 48, 96), 0.0005) == 0.0005);
+  CHECK(drawing_error(part, 0.0005) == Approx(0.02 * radius));
+  CHECK(drawing_error(part, 0) == 0);
+  const MeshSimplification kept = simplify_within(part, drawing_error(part, 0.0005)),
+                           at_default = simplify_within(part, 0.0005);
+  // Its surface stays within about twice that of the original's vertices: 4 % of the radius, where 0.5 mm
+  // would let it move up to 10 %.
+  const double kept_distance = farthest_vertex(part, kept.mesh), default_distance = farthest_vertex(part, at_default.mesh);
+  INFO("farthest original vertex: " << kept_distance * 1e3 << " mm within 2 % of the radius, " << default_distance * 1e3
+                                    << " mm within 0.5 mm");
+  CHECK(kept_distance <= 2 * 0.02 * radius);
+  CHECK(default_distance > kept_distance);
+  // A tracker with the default configuration draws exactly that.
+  const Tracker tracker(part, Camera::make(160, 120, 131.25, 131.25, 79.875, 59.875), TrackerConfig{});
+  CHECK(tracker.drawn_triangles() == kept.mesh.triangles.size());
+  CHECK(tracker.drawn_triangles() > at_default.mesh.triangles.size());
+}

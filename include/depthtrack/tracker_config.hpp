@@ -125,7 +125,8 @@ struct TrackerConfig {
   // observation model assumes (sigma_constant, 3 mm): ycbv-0000's 16k-triangle scans keep 234-3,196
   // triangles (Tracker::drawn_triangles), a frame of 2,000 particles takes half the time or less on the
   // H200, and their ADD-S over three seeds is level with the mesh as given (README, "Simplified mesh").
-  // Set 0 for exact synthetic depth of a fine mesh, where the fit resolves tenths of a millimetre.
+  // A small part is simplified within 2 % of its radius at most, so that it keeps its shape. Set 0 for
+  // exact synthetic depth of a fine mesh, where the fit resolves tenths of a millimetre.
   double simplify_error = 0.0005;
   int particles = 200;
   int width = 80;  // working resolution: the sensor image is decimated to it

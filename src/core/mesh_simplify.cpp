@@ -2,6 +2,7 @@
 
 #include <meshoptimizer.h>
 
+#include <algorithm>
 #include <cmath>
 #include <depthtrack/error.hpp>
 #include <limits>
@@ -9,6 +10,10 @@
 #include <vector>
 
 namespace depthtrack {
+
+double drawing_error(const Mesh& mesh, double simplify_error) {
+  return std::min(simplify_error, kMaxRadiusShare * static_cast<double>(mesh.radius()));
+}
 
 MeshSimplification simplify_within(const Mesh& mesh, double max_error) {
   if (!std::isfinite(max_error) || max_error < 0)
