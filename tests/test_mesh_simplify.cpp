@@ -211,7 +211,8 @@ TEST_CASE("A small part is drawn simplified within 2 % of its radius, not the de
                            at_default = simplify_within(part, 0.0005);
   // Its surface stays within about twice that of the original's vertices: 4 % of the radius, where 0.5 mm
   // would let it move up to 10 %.
-  const double kept_distance = farthest_vertex(part, kept.mesh), default_distance = farthest_vertex(part, at_default.mesh);
+  const double kept_distance = farthest_vertex(part, kept.mesh),
+               default_distance = farthest_vertex(part, at_default.mesh);
   INFO("farthest original vertex: " << kept_distance * 1e3 << " mm within 2 % of the radius, " << default_distance * 1e3
                                     << " mm within 0.5 mm");
   CHECK(kept_distance <= 2 * 0.02 * radius);

@@ -134,7 +134,8 @@ inline auto fields_of(const TrackerConfig*) {
       field("occlusion_window", &S::occlusion_window,
             "where particles keep occlusion state: a window around the estimate, automatic by default"),
       field("simplify_error", &S::simplify_error,
-            "the mesh is drawn simplified to within this distance of its surface (m); 0: as given"),
+            "the mesh is drawn simplified to within this distance of its surface (m; at most 2 % of its radius); "
+            "0: as given"),
       field("particles", &S::particles, "number of particles"),
       field("width", &S::width, "working resolution: the sensor image is decimated to it"),
       field("height", &S::height, "working resolution height"),
