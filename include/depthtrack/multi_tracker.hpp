@@ -71,8 +71,8 @@ class MultiTracker {
   std::vector<std::vector<float>> occluder_layers();
 
   std::unique_ptr<MutualOcclusion> occlusion_;  // null when off or with one object
-  // The objects' host steps (confidence, occluder layers) side by side: a thread per object, at most
-  // the hardware's; the device's results are collected on the calling thread.
+  // The objects' host steps (collecting, confidence, occluder layers) side by side: a thread per object, at
+  // most the hardware's; with the GL renderer the device's results are collected on the calling thread.
   std::unique_ptr<ThreadPool> pool_;
   bool collects_on_pool_ = true;  // false with the GL renderer: its timer events are read on this thread
   MultiStageTimings timings_;
