@@ -34,8 +34,8 @@ struct MultiStageTimings {
 class MultiTracker {
  public:
   // InputError for no mesh or a null device; each tracker as Tracker(device, mesh, sensor, config).
-  // host_threads: the threads the objects' host steps (confidence, occluder layers) share, the caller's
-  // included; 0: one per object, at most the hardware's. Any count gives the same estimates.
+  // host_threads: the threads the objects' host steps (collecting, confidence, occluder layers) share, the
+  // caller's included; 0: one per object, at most the hardware's. Any count gives the same estimates.
   MultiTracker(std::shared_ptr<Device> device, const std::vector<Mesh>& meshes, const Camera& sensor,
                const TrackerConfig& config, bool mutual_occlusion = true, int host_threads = 0);
   ~MultiTracker();
