@@ -84,5 +84,34 @@ def test_multi_tracker_gives_each_object_its_own_run(scene):
             per_object[i].append(e)
     assert_same_as_cli(scene, per_object[0])
     assert_same_as_cli(scene, per_object[1])
+    # Where the last frame's time went: each object's start, and no mutual occlusion stages without it.
+    timings = multi.last_timings
+    assert len(timings.object_enqueue_ms) == 2
+    assert timings.enqueue_ms == pytest.approx(sum(timings.object_enqueue_ms))
+    assert timings.occluders_ms == 0 and timings.masks_ms == 0
+    assert timings.total_ms >= timings.enqueue_ms > 0
     with pytest.raises(depthtrack.InputError, match="object 5 does not exist"):
         multi.initialize(5, scene["first_pose"])
+
+
+def test_multi_tracker_on_one_host_thread_gives_the_same_poses(scene):
+    """host_threads only spreads the host's steps: one thread gives the pool's poses, bit for bit."""
+    cam = scene["manifest"]["camera"]
+    camera = depthtrack.Camera(cam["width"], cam["height"], cam["fx"], cam["fy"], cam["cx"], cam["cy"])
+    config = depthtrack.TrackerConfig()
+    config.particles, config.width, config.height, config.seed = PARTICLES, 80, 60, SEED
+    mesh = depthtrack.Mesh.load(str(scene["mesh"]))
+    runs = []
+    for threads in (0, 1):
+        multi = depthtrack.MultiTracker([mesh, mesh], camera, config, host_threads=threads)
+        for i in range(2):
+            multi.initialize(i, scene["first_pose"], spread_metres=SPREAD_METRES,
+                             spread_radians=math.radians(SPREAD_DEGREES))
+        scale = scene["manifest"]["metres_per_unit"]
+        runs.append([[e.pose for e in multi.update(units, timestamp, metres_per_unit=scale)]
+                     for timestamp, units in scene["frames"]])
+    for pool_frame, serial_frame in zip(runs[0], runs[1]):
+        for a, b in zip(pool_frame, serial_frame):
+            assert (a == b).all()
+    with pytest.raises(depthtrack.InputError, match="host_threads"):
+        depthtrack.MultiTracker([mesh], camera, config, host_threads=-1)
