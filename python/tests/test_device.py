@@ -62,13 +62,18 @@ def test_device_open_names_a_bad_selector():
         depthtrack.Device.open("cpu:0")
 
 
-def test_multi_tracker_gives_each_object_its_own_run(scene):
-    """Two copies of the object at one pose, without mutual occlusion: each gets the CLI's poses."""
+def multi_setup(scene):
+    """The scene's camera, the CLI run's configuration and the scene's mesh, for the several-object tests."""
     cam = scene["manifest"]["camera"]
     camera = depthtrack.Camera(cam["width"], cam["height"], cam["fx"], cam["fy"], cam["cx"], cam["cy"])
     config = depthtrack.TrackerConfig()
     config.particles, config.width, config.height, config.seed = PARTICLES, 80, 60, SEED
-    mesh = depthtrack.Mesh.load(str(scene["mesh"]))
+    return camera, config, depthtrack.Mesh.load(str(scene["mesh"]))
+
+
+def test_multi_tracker_gives_each_object_its_own_run(scene):
+    """Two copies of the object at one pose, without mutual occlusion: each gets the CLI's poses."""
+    camera, config, mesh = multi_setup(scene)
     multi = depthtrack.MultiTracker([mesh, mesh], camera, config, device=depthtrack.Device.open("cpu:2"),
                                     mutual_occlusion=False)
     assert len(multi) == 2 and multi.device == "cpu:2"
@@ -96,11 +101,7 @@ def test_multi_tracker_gives_each_object_its_own_run(scene):
 
 def test_multi_tracker_on_one_host_thread_gives_the_same_poses(scene):
     """host_threads only spreads the host's steps: one thread gives the pool's poses, bit for bit."""
-    cam = scene["manifest"]["camera"]
-    camera = depthtrack.Camera(cam["width"], cam["height"], cam["fx"], cam["fy"], cam["cx"], cam["cy"])
-    config = depthtrack.TrackerConfig()
-    config.particles, config.width, config.height, config.seed = PARTICLES, 80, 60, SEED
-    mesh = depthtrack.Mesh.load(str(scene["mesh"]))
+    camera, config, mesh = multi_setup(scene)
     runs = []
     for threads in (0, 1):
         multi = depthtrack.MultiTracker([mesh, mesh], camera, config, host_threads=threads)
