@@ -6,6 +6,7 @@
 #include <depthtrack/sequence.hpp>
 #include <depthtrack/synth.hpp>
 #include <filesystem>
+#include <numeric>
 #include <vector>
 
 #include "bench_rows.hpp"
@@ -171,13 +172,9 @@ void run_multi_object_ratio(const std::string& backend, const std::string& rende
   const StageMedians one = median_frame(scene, 0, 1, false, config, device);
   // Each of the three alone: the objects differ (a 16k-triangle mug against a 234-triangle box at 0.5 mm),
   // so "one object's time" is also read as the mean of the three's.
-  double alone_sum = one.frame;
   std::vector<double> alone{one.frame};
-  for (size_t j = 1; j < scene.meshes.size(); ++j) {
-    alone.push_back(median_frame(scene, j, 1, false, config, device).frame);
-    alone_sum += alone.back();
-  }
-  const double alone_mean = alone_sum / static_cast<double>(alone.size());
+  for (size_t j = 1; j < scene.meshes.size(); ++j) alone.push_back(median_frame(scene, j, 1, false, config, device).frame);
+  const double alone_mean = std::accumulate(alone.begin(), alone.end(), 0.0) / static_cast<double>(alone.size());
   const std::string platform = host ? "cpu" : backend;
   const std::string name = host ? cpu_name() : device;
   for (const bool occlusion : {false, true}) {

@@ -63,7 +63,7 @@ class MultiTracker {
   void pipelined(size_t n, const std::function<void(size_t)>& start, const std::function<void(size_t)>& assess,
                  std::vector<Estimate>& estimates);
   void collected_here(size_t n, const std::function<void(size_t)>& start, const std::function<void(size_t)>& assess,
-                      std::vector<Estimate>& estimates, std::exception_ptr& failure);
+                      std::vector<Estimate>& estimates);
 
   std::shared_ptr<Device> device_;
   std::vector<Tracker> trackers_;

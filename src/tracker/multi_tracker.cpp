@@ -100,38 +100,33 @@ std::vector<Estimate> MultiTracker::run(const DepthImage& working,
   const size_t n = trackers_.size();
   std::vector<DepthImage> masked(occlusion_ ? n : 0);
   const auto frame_of = [&](size_t j) -> const DepthImage& { return occlusion_ ? masked[j] : working; };
-  std::exception_ptr failure;
   std::vector<Estimate> estimates(n);
-  try {
-    if (occlusion_) {
-      Stopwatch clock;
-      // Every mask is made before any object starts: a lost object's search redraws its silhouette.
-      const std::vector<std::vector<float>> layers = occluder_layers();
-      timings_.occluders_ms = clock.lap_ms();
-      for (size_t j = 0; j < n; ++j) masked[j] = occlusion_->frame_for(j, working, poses_, layers);
-      timings_.masks_ms = clock.lap_ms();
-    }
-    const auto start = [&](size_t j) {
-      const Stopwatch own;
-      trackers_[j].start_frame(frame_of(j), sensor_frame, timestamp);
-      timings_.object_enqueue_ms.push_back(own.elapsed_ms());
-      timings_.enqueue_ms += timings_.object_enqueue_ms.back();
-    };
-    // After its estimate: the confidence and status, then the next frame's occluder layer (this estimate
-    // drawn: the host confidence drew it already; a refining backend's confidence comes from the device,
-    // and nothing had drawn it), each tracker's own state only, so on any thread.
-    const auto assess = [&](size_t j) {
-      trackers_[j].assess_frame(estimates[j], frame_of(j));
-      if (occlusion_) trackers_[j].silhouette(estimates[j].pose);
-    };
-    if (collects_on_pool_)
-      pipelined(n, start, assess, estimates);
-    else
-      collected_here(n, start, assess, estimates, failure);
-  } catch (...) {
-    if (!failure) failure = std::current_exception();
+  if (occlusion_) {
+    Stopwatch clock;
+    // Every mask is made before any object starts: a lost object's search redraws its silhouette.
+    const std::vector<std::vector<float>> layers = occluder_layers();
+    timings_.occluders_ms = clock.lap_ms();
+    for (size_t j = 0; j < n; ++j) masked[j] = occlusion_->frame_for(j, working, poses_, layers);
+    timings_.masks_ms = clock.lap_ms();
   }
-  if (failure) std::rethrow_exception(failure);
+  const auto start = [&](size_t j) {
+    const Stopwatch own;
+    trackers_[j].start_frame(frame_of(j), sensor_frame, timestamp);
+    timings_.object_enqueue_ms.push_back(own.elapsed_ms());
+    timings_.enqueue_ms += timings_.object_enqueue_ms.back();
+  };
+  // After its estimate: the confidence and status, then the next frame's occluder layer (this estimate
+  // drawn: the host confidence drew it already; a refining backend's confidence comes from the device,
+  // and nothing had drawn it), each tracker's own state only, so on any thread.
+  const auto assess = [&](size_t j) {
+    trackers_[j].assess_frame(estimates[j], frame_of(j));
+    if (occlusion_) trackers_[j].silhouette(estimates[j].pose);
+  };
+  // Each rethrows the first failure once every started object is collected; the poses then stay.
+  if (collects_on_pool_)
+    pipelined(n, start, assess, estimates);
+  else
+    collected_here(n, start, assess, estimates);
   for (size_t j = 0; j < n; ++j) poses_[j] = estimates[j].pose;
   return estimates;
 }
@@ -177,8 +172,8 @@ void MultiTracker::pipelined(size_t n, const std::function<void(size_t)>& start,
 // pool while the next is collected. collect_ms ends with the last collection, confidence_ms is what the
 // assessments take after it.
 void MultiTracker::collected_here(size_t n, const std::function<void(size_t)>& start,
-                                  const std::function<void(size_t)>& assess, std::vector<Estimate>& estimates,
-                                  std::exception_ptr& failure) {
+                                  const std::function<void(size_t)>& assess, std::vector<Estimate>& estimates) {
+  std::exception_ptr failure;
   size_t started = 0;
   try {
     for (; started < n; ++started) start(started);
@@ -209,6 +204,7 @@ void MultiTracker::collected_here(size_t n, const std::function<void(size_t)>& s
     if (!failure) failure = std::current_exception();
   }
   timings_.confidence_ms = clock.lap_ms();
+  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace depthtrack
