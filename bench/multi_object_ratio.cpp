@@ -170,7 +170,7 @@ void run_multi_object_ratio(const std::string& backend, const std::string& rende
   const bool host = backend == "reference" || backend == "cpu" || backend.rfind("cpu:", 0) == 0;
   std::string device;
   const StageMedians one = median_frame(scene, 0, 1, false, config, device);
-  // Each of the three alone: the objects differ (a 16k-triangle mug against a 234-triangle box at 0.5 mm),
+  // Each of the three alone: the objects differ (at 0.5 mm a 3,196-triangle mug against a 234-triangle box),
   // so "one object's time" is also read as the mean of the three's.
   std::vector<double> alone{one.frame};
   for (size_t j = 1; j < scene.meshes.size(); ++j) alone.push_back(median_frame(scene, j, 1, false, config, device).frame);

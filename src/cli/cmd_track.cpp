@@ -90,13 +90,12 @@ Mesh load_mesh(const std::string& path, double unit_scale, const TrackerConfig& 
   if (config.simplify_error > 0) {
     Mesh checked = mesh;
     checked.validate_and_clean(path);
-    const double error = drawing_error(checked, config.simplify_error);
-    const size_t drawn = simplify_within(checked, error).mesh.triangles.size();
+    const size_t drawn = simplify_for_drawing(checked, config.simplify_error).mesh.triangles.size();
     if (drawn < checked.triangles.size())
       std::fprintf(stderr,
                    "depthtrack: note: drawing '%s' simplified within %g mm: %zu of its %zu triangles "
                    "(--simplify-error 0 draws it as given)\n",
-                   path.c_str(), error * 1e3, drawn, checked.triangles.size());
+                   path.c_str(), drawing_error(checked, config.simplify_error) * 1e3, drawn, checked.triangles.size());
   }
   return mesh;
 }

@@ -15,6 +15,10 @@ double drawing_error(const Mesh& mesh, double simplify_error) {
   return std::min(simplify_error, kMaxRadiusShare * static_cast<double>(mesh.radius()));
 }
 
+MeshSimplification simplify_for_drawing(const Mesh& mesh, double simplify_error) {
+  return simplify_within(mesh, drawing_error(mesh, simplify_error));
+}
+
 MeshSimplification simplify_within(const Mesh& mesh, double max_error) {
   if (!std::isfinite(max_error) || max_error < 0)
     throw InputError("mesh simplification error " + std::to_string(max_error) + " m must be finite and >= 0");

@@ -26,5 +26,8 @@ MeshSimplification simplify_within(const Mesh& mesh, double max_error);
 // binds from 2.5 cm of radius up: every mesh measured so far).
 inline constexpr double kMaxRadiusShare = 0.02;
 double drawing_error(const Mesh& mesh, double simplify_error);
+// What a tracker draws of `mesh` (validated) for TrackerConfig::simplify_error: simplify_within at
+// drawing_error. The one rule for Tracker and track's note on it.
+MeshSimplification simplify_for_drawing(const Mesh& mesh, double simplify_error);
 
 }  // namespace depthtrack

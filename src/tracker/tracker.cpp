@@ -64,7 +64,7 @@ void Tracker::construct(const Device& device, const Mesh& checked, const Tracker
   config_ = config;
   centre_ = checked.centre().cast<double>();
   // Every rendering draws the simplified mesh (the given one when simplify_error is 0).
-  const MeshSimplification drawn = simplify_within(checked, drawing_error(checked, config.simplify_error));
+  const MeshSimplification drawn = simplify_for_drawing(checked, config.simplify_error);
   mesh_triangles_ = checked.triangles.size();
   drawn_triangles_ = drawn.mesh.triangles.size();
   backend_ = make_filter_backend(device, drawn.mesh, working_, config);
