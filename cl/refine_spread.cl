@@ -21,10 +21,10 @@
 #include "dt_refine.h"
 #include "shift_particles.cl"
 
-/* One work-item: the start (the heaviest particle, which summarize found) is the first candidate. */
-__kernel void refine_begin(__global dt_refine_state* s, __global const float* estimate, __global const float* states,
-                           dt_refine_args args, dt_window win) {
-  if (get_global_id(0) != 0) return;
+/* The fit's state at the frame's start: the start (the heaviest particle, which summarize found) is the
+ * first candidate. */
+DT_DEVICE_FN void dt_refine_start(__global dt_refine_state* s, __global const float* estimate,
+                                  __global const float* states, dt_refine_args args, dt_window win) {
   s->args = args;
   s->win = win;
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
@@ -34,6 +34,12 @@ __kernel void refine_begin(__global dt_refine_state* s, __global const float* es
   s->arrived = 0;
   s->tried = 0;
   s->lambda = args.damping;
+}
+
+/* One work-item: dt_refine_start. */
+__kernel void refine_begin(__global dt_refine_state* s, __global const float* estimate, __global const float* states,
+                           dt_refine_args args, dt_window win) {
+  if (get_global_id(0) == 0) dt_refine_start(s, estimate, states, args, win);
 }
 
 #define DT_REFINE_MAX_POLLS (1u << 20)
@@ -175,4 +181,53 @@ __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate,
   /* A lost evaluation counts as a rejected candidate (the start as one without pixels: the fit ends there). */
   if (lost) total[DT_REFINE_PIXELS] = 0.0f, total[DT_REFINE_OBJECTIVE] = DT_LOWEST;
   dt_refine_judge(s, estimate, states, total, args, correction);
+}
+
+/* The whole fit in one work-group and one launch (the one-launch layout): the start, then each
+ * evaluation's draw and sums as above, with the group's barriers where the spread layout has kernel
+ * boundaries, and work-item 0 judging; it stops as soon as the fit does. One launch a frame instead of
+ * 2 x (iterations + 1) + 1: on a driver whose launches cost the host several microseconds each (NVIDIA's
+ * OpenCL) that outweighs spreading the draws and sums over the device. Same arguments as refine_begin
+ * and refine_sums together. */
+__kernel void refine_one_launch(__global dt_refine_state* s, __global float* estimate, __global const float* states,
+                                __global const float* observed, __global const float* occlusion,
+                                __global const dt_u16* occlusion_time, __global const float* frame_times,
+                                __global const uint* parents, __global const float* vertices,
+                                __global const uint* triangles, __global const float* planes, uint triangle_count,
+                                dt_camera cam, dt_model m, dt_refine_args args, dt_window win,
+                                __global dt_u64* nearest, __global float* correction) {
+  __local float sums[DT_REFINE_SCRATCH];
+  __local int active;
+  const uint lid = get_local_id(0), pixels = cam.width * cam.height;
+  if (lid == 0) dt_refine_start(s, estimate, states, args, win);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
+  const dt_refine_offsets at = dt_refine_map_offsets(parents[heaviest], win);
+  for (;;) {
+    const dt_rigid pose = dt_particle_pose(s->candidate);
+    for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
+      dt_draw_triangle(pose, vertices, triangles, planes, t, cam, 0, 0, nearest, 0);
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    const dt_vec3 centre = dt_vertex_at(pose, args.centre_x, args.centre_y, args.centre_z);
+    float acc[DT_REFINE_SUMS];
+    for (int k = 0; k < DT_REFINE_SUMS; ++k) acc[k] = 0.0f;
+    for (uint k = lid; k < pixels; k += DT_GROUP_SIZE) {
+      const dt_u64 drawn = nearest[k];
+      if (drawn == DT_NEAREST_EMPTY) continue;
+      nearest[k] = DT_NEAREST_EMPTY;
+      dt_refine_pixel(acc, k, DT_CAST(uint, drawn >> 32), DT_CAST(uint, drawn & 0xffffffffu), pose, centre, observed,
+                      occlusion, occlusion_time, frame_times, at, planes, triangle_count, cam, m, args);
+    }
+    dt_group_sums(acc, DT_REFINE_SUMS, sums);
+    if (lid == 0) {
+      float total[DT_REFINE_SUMS];
+      for (int k = 0; k < DT_REFINE_SUMS; ++k) total[k] = sums[k];
+      dt_refine_judge(s, estimate, states, total, args, correction);
+      active = DT_CAST(int, s->active);
+    }
+    /* The next candidate (global) and the decision (local) seen by the whole group; every work-item
+     * has read this evaluation's sums and reset its pixels. */
+    barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+    if (!active) break;
+  }
 }

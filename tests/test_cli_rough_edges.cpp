@@ -140,7 +140,7 @@ TEST_CASE("the benchmarks answer --help and refuse malformed numbers", "[cli][be
       {"depthtrack_bench", "--frames", "--frames needs a value"},
       {"depthtrack_bench", "--fast", "unknown option '--fast'"},
       {"depthtrack_bench", "--refine-layout wide",
-       "unknown refinement layout 'wide' (choose auto, one-group or spread)"},
+       "unknown refinement layout 'wide' (choose auto, one-group, spread or one-launch)"},
       {"depthtrack_bench_atlas", "--repeats 0", "--repeats: '0' is not a positive integer"},
       {"depthtrack_bench_atlas", "--particles 1e3", "--particles: '1e3' is not a positive integer"},
       {"depthtrack_bench_soak", "--frames 0", "--frames: '0' is not a positive integer"},

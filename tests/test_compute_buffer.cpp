@@ -58,6 +58,25 @@ TEST_CASE("Enqueued uploads take their bytes at once and stay in order with the 
   CHECK_THROWS_AS(b.upload_enqueued(frame, 1), InputError);  // past the end: refused, nothing written
 }
 
+// The backends stage enqueued transfers through one host area each way, made larger when a transfer
+// needs more: the first write may still be in flight when the area is replaced.
+TEST_CASE("Enqueued transfers larger than every one before them arrive intact", "[compute]") {
+  auto queue = test::test_queue();
+  if (!queue) return;
+  std::vector<float> big(8192);
+  std::iota(big.begin(), big.end(), 0.5f);
+  compute::Buffer<float> buffer(*queue, big.size());
+  buffer.upload_enqueued(std::vector<float>(16, 3.0f), 8000);
+  buffer.upload_enqueued(big);
+  std::vector<float> head(16, -1.0f), all(big.size(), -1.0f);
+  buffer.download_enqueued(head, 4);
+  queue->wait_enqueued_reads();
+  CHECK(head == std::vector<float>(big.begin() + 4, big.begin() + 20));
+  buffer.download_enqueued(all);
+  queue->wait_enqueued_reads();
+  CHECK(all == big);
+}
+
 // An enqueued read sees the queue's work before it and none after it (here a launch in the same batch,
 // which CUDA records as a graph, and an upload), its bytes land at wait_enqueued_reads(), and a second
 // read in flight first completes the first.

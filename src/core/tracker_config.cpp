@@ -62,14 +62,16 @@ const char* to_string(RefineLayout layout) {
       return "one-group";
     case RefineLayout::Spread:
       return "spread";
+    case RefineLayout::OneLaunch:
+      return "one-launch";
   }
   return "?";
 }
 
 RefineLayout refine_layout_from_string(const std::string& name) {
-  for (auto layout : {RefineLayout::Auto, RefineLayout::OneGroup, RefineLayout::Spread})
+  for (auto layout : {RefineLayout::Auto, RefineLayout::OneGroup, RefineLayout::Spread, RefineLayout::OneLaunch})
     if (name == to_string(layout)) return layout;
-  throw InputError("unknown refinement layout '" + name + "' (choose auto, one-group or spread)");
+  throw InputError("unknown refinement layout '" + name + "' (choose auto, one-group, spread or one-launch)");
 }
 
 namespace {
@@ -121,8 +123,8 @@ void TrackerConfig::validate() const {
           "refine converged motion must be >= 0 metres");
   require(probability(refine.min_incidence) && refine.min_incidence < 1, "refine min incidence must be in [0, 1)");
   require(refine.layout == RefineLayout::Auto || refine.layout == RefineLayout::OneGroup ||
-              refine.layout == RefineLayout::Spread,
-          "refine layout must be auto, one-group or spread");
+              refine.layout == RefineLayout::Spread || refine.layout == RefineLayout::OneLaunch,
+          "refine layout must be auto, one-group, spread or one-launch");
   require(positive(near_plane) && near_plane < observation.max_depth, "near plane must be in (0, max depth)");
   require(positive(max_time_step), "max time step must be positive");
   require(positive(loss.pixel_sigmas), "loss pixel_sigmas must be positive");

@@ -31,7 +31,7 @@ inline const char* named_choices(const Renderer*) {
   return "kernel, gl or cpu";
 }
 inline const char* named_choices(const RefineLayout*) {
-  return "auto, one-group or spread";
+  return "auto, one-group, spread or one-launch";
 }
 
 template <typename Struct, typename Member>
@@ -88,7 +88,8 @@ inline auto fields_of(const Refinement*) {
             "stop when the next step moves no mesh point farther than this (m); 0 takes every step"),
       field("min_incidence", &S::min_incidence, "pixels whose |cos(normal, ray)| is below this are left out"),
       field("layout", &S::layout,
-            "device backends: auto, one-group (the fit in one work-group) or spread (its steps over many)"),
+            "device backends: auto, one-group (the fit in one work-group), spread (its steps over many) or "
+            "one-launch (spread's steps in one work-group)"),
   };
 }
 

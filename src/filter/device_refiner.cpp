@@ -42,14 +42,24 @@ size_t round_up(size_t n, size_t multiple) {
 // threshold lies between the two meshes and was not measured itself. With 4 pixels a work-item in the
 // sums (5 rows for the last group, session 8), spread is faster on NVIDIA OpenCL too: handset 0.138 /
 // 0.158 ms spread / one group, the mug simplified to 3,196 triangles 0.153 / 0.271; so every GPU spreads.
+// Round 2, session 18: the spread layout's draw and sums in one group (one-launch) against spread,
+// untimed frame at 2,000 particles (H100, docs/design-notes.md): NVIDIA OpenCL handset 0.46-0.55 ->
+// 0.38-0.42 ms, the mug simplified to 412 / 1,120 / 3,196 triangles 0.47 -> 0.42, 0.54 -> 0.43, 0.54 ->
+// 0.54 (its host's launches are the frame's cost there); CUDA, whose graphs make launches cheap, slower
+// for every mesh (handset 0.24-0.27 -> 0.24-0.32). PoCL (2 cores) handset refine_ms 0.79-0.81 against
+// 1.16-1.35 one group and 1.31-1.60 spread; the 16,384-triangle mug 3.4-3.5 against spread's 2.7-3.4.
+// Once OpenCL's transfers went through pinned memory (0.1 ms less host time a frame for either layout)
+// the one group's device time decided the 3,196-triangle mug: 0.455 ms against spread's 0.44-0.51
+// before. So below 2,048 triangles every device but CUDA fits in one launch (not measured between
+// 1,120 and 3,196).
 RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceInfo& device, size_t triangle_count) {
-  if (layout == RefineLayout::Spread && !device.int64_atomics)
-    throw InputError("refinement layout spread needs 64-bit atomic min (cl_khr_int64_extended_atomics), which " +
+  if ((layout == RefineLayout::Spread || layout == RefineLayout::OneLaunch) && !device.int64_atomics)
+    throw InputError("refinement layout " + std::string(to_string(layout)) + " needs 64-bit atomic min (cl_khr_int64_extended_atomics), which " +
                      device.name + " does not list; use --refine-layout one-group or auto");
   if (layout != RefineLayout::Auto) return layout;
   if (!device.int64_atomics) return RefineLayout::OneGroup;
-  if (triangle_count >= kSpreadTriangles) return RefineLayout::Spread;
-  return device.is_gpu ? RefineLayout::Spread : RefineLayout::OneGroup;
+  if (triangle_count >= kSpreadTriangles || device.backend == "cuda") return RefineLayout::Spread;
+  return RefineLayout::OneLaunch;
 }
 
 DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh,
@@ -60,7 +70,7 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
       centre_(mesh.centre().cast<double>()),
       radius_(mesh.radius()),
       layout_(resolved_refine_layout(config.refine.layout, queue.info(), mesh.triangles.size())),
-      program_(programs.program(layout_ == RefineLayout::Spread ? "refine_spread.cl" : "refine.cl",
+      program_(programs.program(layout_ == RefineLayout::OneGroup ? "refine.cl" : "refine_spread.cl",
                                 {"DT_GROUP_SIZE=" + std::to_string(kRefineGroup), occlusion_definition})),
       mesh_(queue, mesh),
       correction_(queue, 6) {
@@ -72,19 +82,23 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
     ids_ = compute::Buffer<unsigned>(queue, static_cast<size_t>(camera.pixel_count()));
     return;
   }
-  begin_ = program_->kernel("refine_begin");
-  draw_ = program_->kernel("refine_draw");
-  sums_ = program_->kernel("refine_sums");
   const size_t pixels = static_cast<size_t>(camera.pixel_count());
-  const size_t per_group = kRefineGroup * kSumPixelsPerItem;
-  sum_groups_ = std::clamp<size_t>((pixels + per_group - 1) / per_group, 1, kMaxSumGroups);
-  // Stamp 0 in the state and rows unwritten: no row counts as written before its group writes it
-  // (refine_spread.cl's refine_sums).
   fit_state_ = compute::Buffer<float>(queue, sizeof(dt_refine_state) / sizeof(float));
   fit_state_.upload(std::vector<float>(fit_state_.size(), 0.0f));
-  partials_ = compute::Buffer<uint64_t>(queue, sum_groups_ * DT_REFINE_SUMS);
-  partials_.upload(std::vector<uint64_t>(partials_.size(), DT_ROW_UNWRITTEN));
-  // The spread layout never clears: every evaluation resets the pixels it drew (refine_spread.cl).
+  if (layout_ == RefineLayout::OneLaunch) {
+    refine_ = program_->kernel("refine_one_launch");
+  } else {
+    begin_ = program_->kernel("refine_begin");
+    draw_ = program_->kernel("refine_draw");
+    sums_ = program_->kernel("refine_sums");
+    const size_t per_group = kRefineGroup * kSumPixelsPerItem;
+    sum_groups_ = std::clamp<size_t>((pixels + per_group - 1) / per_group, 1, kMaxSumGroups);
+    // Stamp 0 in the state and rows unwritten: no row counts as written before its group writes it
+    // (refine_spread.cl's refine_sums).
+    partials_ = compute::Buffer<uint64_t>(queue, sum_groups_ * DT_REFINE_SUMS);
+    partials_.upload(std::vector<uint64_t>(partials_.size(), DT_ROW_UNWRITTEN));
+  }
+  // Neither spread layout clears: every evaluation resets the pixels it drew (refine_spread.cl).
   nearest_ = compute::Buffer<uint64_t>(queue, pixels);
   nearest_.upload(std::vector<uint64_t>(pixels, DT_NEAREST_EMPTY));
 }
@@ -93,6 +107,15 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
   const dt_refine_args args = model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time,
                                                    in.dt, config_.loss.pixel_sigmas);
   if (layout_ == RefineLayout::Spread) return refine_spread(estimate, in, args);
+  if (layout_ == RefineLayout::OneLaunch) {
+    const compute::EventPtr fit = compute::launch_timed_if(
+        config_.step_timings, queue_, *refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup), fit_state_,
+        estimate, in.states, in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.parents, mesh_.vertices,
+        mesh_.triangles, mesh_.planes, mesh_.triangle_count(), model::camera_params(camera_, config_),
+        model::model_params(config_), args, in.window, nearest_, correction_);
+    if (!fit) return {};
+    return {fit};
+  }
   const compute::EventPtr fit = compute::launch_timed_if(
       config_.step_timings, queue_, *refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup), estimate, in.states,
       in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.parents, mesh_.vertices, mesh_.triangles,

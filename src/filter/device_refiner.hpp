@@ -1,11 +1,12 @@
 #pragma once
 // The pose refinement on the device: after weighing, the heaviest particle's pose is fitted to the
 // frame's likelihood and the refined pose, its covariance and the steps tried go into the estimate
-// buffer; shift then moves every particle by the same correction. Two layouts of the same fit
+// buffer; shift then moves every particle by the same correction. Three layouts of the same fit
 // (Refinement::layout): the whole fit in one work-group and one launch (cl/refine.cl), or each
 // step's rendering and sums spread over many work-groups, the sums' last group solving and deciding
 // (cl/refine_spread.cl: 2 launches a step, iterations + 1 evaluations enqueued, the ones after
-// convergence returning at once; it needs 64-bit atomics). Its own program, built with a larger work-group than the
+// convergence returning at once; it needs 64-bit atomics), or the spread layout's kernels as one
+// work-group's loop, one launch (refine_spread.cl's refine_one_launch; 64-bit atomics too). Its own program, built with a larger work-group than the
 // filter's kernels. Reference: reference::PoseRefiner and ReferenceFilter::refine.
 #include <depthtrack/camera.hpp>
 #include <depthtrack/mesh.hpp>
@@ -38,10 +39,10 @@ struct RefineInputs {
 };
 
 // The layout Auto picks: Spread for meshes of kSpreadTriangles triangles or more on every device, and
-// for smaller ones on GPUs; OneGroup for smaller meshes on CPUs (measured on PoCL and the H200:
-// docs/design-notes.md), and on devices without 64-bit atomic min (DeviceInfo::int64_atomics), where
-// Spread asked for is an InputError.
-constexpr size_t kSpreadTriangles = 4096;
+// for smaller ones on CUDA; OneLaunch for smaller meshes elsewhere (measured on PoCL and NVIDIA's
+// CUDA and OpenCL: device_refiner.cpp); OneGroup on devices without 64-bit atomic min
+// (DeviceInfo::int64_atomics), where Spread or OneLaunch asked for is an InputError.
+constexpr size_t kSpreadTriangles = 2048;
 RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceInfo& device, size_t triangle_count);
 
 class DeviceRefiner {
@@ -58,7 +59,7 @@ class DeviceRefiner {
   // may be the same buffer).
   compute::EventPtr shift(const compute::Buffer<float>& from, compute::Buffer<float>& to, size_t count);
 
-  RefineLayout layout() const { return layout_; }  // OneGroup or Spread, never Auto
+  RefineLayout layout() const { return layout_; }  // never Auto
   double radius() const { return radius_; }        // the mesh's (model::pose_covariance's pivot)
 
  private:

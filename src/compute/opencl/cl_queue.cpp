@@ -101,48 +101,30 @@ void ClQueue::write(DeviceMemory& memory, size_t offset, const void* source, siz
 }
 
 ClQueue::~ClQueue() {
-  // The staged bytes must outlive their write; at teardown a failure has nowhere to go.
-  if (const cl_event event = staged_write_.get()) clWaitForEvents(1, &event);
-  if (const cl_event event = staged_read_.get()) clWaitForEvents(1, &event);
-}
-
-void ClQueue::wait_for_staged_write() {
-  if (!staged_write_.get()) return;
-  const cl_event event = staged_write_.get();
-  check(clWaitForEvents(1, &event), "clWaitForEvents", info_.name, "the last staged write");
-  staged_write_ = EventHandle();
+  staging_.reset();  // each waits for its last transfer
+  read_staging_.reset();
 }
 
 void ClQueue::write_enqueued(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) {
   if (!transfer_wanted(true, offset, bytes, memory, source)) return;
-  wait_for_staged_write();
-  staging_.assign(static_cast<const unsigned char*>(source), static_cast<const unsigned char*>(source) + bytes);
-  cl_event event = nullptr;
-  check(clEnqueueWriteBuffer(queue_.get(), cl_buffer(memory, "write"), CL_FALSE, offset, bytes, staging_.data(), 0,
-                             nullptr, &event),
-        "clEnqueueWriteBuffer", info_.name);
-  staged_write_ = EventHandle(event);
+  if (!staging_) staging_ = std::make_unique<PinnedStaging>(context_.get(), queue_.get(), info_.name);
+  staging_->copy_to_device(cl_buffer(memory, "write"), offset, source, bytes);
 }
 
 void ClQueue::read_enqueued(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {
   if (!transfer_wanted(false, offset, bytes, memory, destination)) return;
   wait_enqueued_reads();
-  read_staging_.resize(bytes);
-  cl_event event = nullptr;
-  check(clEnqueueReadBuffer(queue_.get(), cl_buffer(memory, "read"), CL_FALSE, offset, bytes, read_staging_.data(), 0,
-                            nullptr, &event),
-        "clEnqueueReadBuffer", info_.name);
-  staged_read_ = EventHandle(event);
-  read_destination_ = destination;
+  if (!read_staging_) read_staging_ = std::make_unique<PinnedStaging>(context_.get(), queue_.get(), info_.name);
+  read_staging_->copy_to_host(destination, cl_buffer(memory, "read"), offset, bytes);
+  upload_before_read_ = staging_ && staging_->copy_pending();
 }
 
 void ClQueue::wait_enqueued_reads() {
-  if (!read_destination_) return;
-  const cl_event event = staged_read_.get();
-  check(clWaitForEvents(1, &event), "clWaitForEvents", info_.name, "an enqueued read");
-  std::memcpy(read_destination_, read_staging_.data(), read_staging_.size());
-  read_destination_ = nullptr;
-  staged_read_ = EventHandle();
+  if (!read_staging_) return;
+  read_staging_->deliver();
+  // The queue is in order: a write enqueued before the read is done too.
+  if (upload_before_read_) staging_->copy_known_done();
+  upload_before_read_ = false;
 }
 
 void ClQueue::read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) {
@@ -240,6 +222,7 @@ void ClQueue::flush_batch() {
 
 void ClQueue::finish() {
   check(clFinish(queue_.get()), "clFinish", info_.name);
+  if (staging_) staging_->copy_known_done();
 }
 
 }  // namespace depthtrack::compute::opencl

@@ -2,9 +2,11 @@
 // One OpenCL device as Queue: its own context and an in-order, profiled command queue.
 #include <CL/cl.h>
 
+#include <memory>
 #include <vector>
 
 #include "compute/opencl/cl_handle.hpp"
+#include "compute/opencl/cl_pinned_staging.hpp"
 #include "compute/queue.hpp"
 
 namespace depthtrack::compute::opencl {
@@ -21,9 +23,9 @@ class ClQueue final : public Queue {
   std::unique_ptr<DeviceMemory> allocate(size_t bytes) override;
   void write(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) override;
   void read(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) override;
-  // A non-blocking write from a staging copy kept until the write is done.
+  // A non-blocking write through pinned host memory (PinnedStaging).
   void write_enqueued(DeviceMemory& memory, size_t offset, const void* source, size_t bytes) override;
-  // A non-blocking read into a staging copy, delivered at wait_enqueued_reads().
+  // A non-blocking read into pinned host memory, delivered at wait_enqueued_reads().
   void read_enqueued(const DeviceMemory& memory, size_t offset, void* destination, size_t bytes) override;
   void wait_enqueued_reads() override;
   ~ClQueue() override;
@@ -58,14 +60,10 @@ class ClQueue final : public Queue {
   ContextHandle context_;
   QueueHandle queue_;
   const DeviceMemory* mapped_ = nullptr;  // the one mapping map_for_overwrite hands out
-  // write_enqueued's bytes, and its last write, which must be done before they change or go.
-  std::vector<unsigned char> staging_;
-  EventHandle staged_write_;
-  void wait_for_staged_write();
-  // read_enqueued's bytes, their destination and the read, until wait_enqueued_reads().
-  std::vector<unsigned char> read_staging_;
-  void* read_destination_ = nullptr;
-  EventHandle staged_read_;
+  // write_enqueued's and read_enqueued's areas, made at first use; after the queue, so that they go
+  // (waiting for their last transfer) while it still exists.
+  std::unique_ptr<PinnedStaging> staging_, read_staging_;
+  bool upload_before_read_ = false;  // a write was pending when the read was enqueued: done once it is
 };
 
 }  // namespace depthtrack::compute::opencl
