@@ -133,8 +133,8 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
 const char* const kUsage =
     "usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] "
     "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N] [--refine-converged M]\n"
-    "       [--refine-layout auto|one-group|spread|one-launch] [--occlusion-window auto|full|WxH] [--simplify-error M]\n"
-    "       [--mesh FILE] [--no-global] [--multi-objects] [--untimed-steps]\n"
+    "       [--refine-layout auto|one-group|spread|one-launch] [--occlusion-window auto|full|WxH]\n"
+    "       [--simplify-error M] [--mesh FILE] [--no-global] [--multi-objects] [--untimed-steps]\n"
     "Times tracker frames on a synthetic occluded handset sequence, split into propagate / render / hand-off /\n"
     "weigh / resample, start-up (construction + initialize) with its peak host memory, and the off-screen start\n"
     "(one particle 10,000 km to the side, 5 frames); prints CSV rows\n"

@@ -159,8 +159,9 @@ TEST_CASE("A partial file overrides only its keys; bad keys, types and values na
   CHECK_THROWS_WITH(tracker_config_from_json(R"({"motion": 3})"), Contains("'motion' must be an object"));
   CHECK_THROWS_WITH(tracker_config_from_json(R"({"occlusion_storage": "sometimes"})"),
                     Contains("'occlusion_storage': unknown occlusion mode 'sometimes'"));
-  CHECK_THROWS_WITH(tracker_config_from_json(R"({"refine": {"layout": "many"}})"),
-                    Contains("'refine.layout': unknown refinement layout 'many' (choose auto, one-group, spread or one-launch)"));
+  CHECK_THROWS_WITH(
+      tracker_config_from_json(R"({"refine": {"layout": "many"}})"),
+      Contains("'refine.layout': unknown refinement layout 'many' (choose auto, one-group, spread or one-launch)"));
   CHECK(tracker_config_from_json(R"({"refine": {"layout": "one-group"}})").refine.layout == RefineLayout::OneGroup);
   CHECK_THROWS_WITH(tracker_config_from_json(R"([1, 2])"), Contains("must be an object, got an array"));
   CHECK_THROWS_WITH(tracker_config_from_json(R"({"particles": 0})"), Contains("particle count 0 must be at least 1"));

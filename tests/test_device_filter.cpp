@@ -235,8 +235,7 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
       // held to it.
       const bool cuda = config.backend.rfind("cuda", 0) == 0;
       const RefineLayout resolved = resolved_refine_layout(layout, info, scene.mesh.triangles.size());
-      const bool gpu_spread =
-          info.is_gpu && (resolved == RefineLayout::Spread || resolved == RefineLayout::OneLaunch);
+      const bool gpu_spread = info.is_gpu && (resolved == RefineLayout::Spread || resolved == RefineLayout::OneLaunch);
       const double sd_tolerance = renderer == "gl" || cuda || gpu_spread ? 5e-2 : 1e-3;
       // The built-in box (the scene without ../shared/data) is seen nearly face-on: its faces' depth
       // leaves sliding along them undetermined, and the normal equations are singular up to rounding.

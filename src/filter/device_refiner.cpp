@@ -54,8 +54,9 @@ size_t round_up(size_t n, size_t multiple) {
 // 1,120 and 3,196).
 RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceInfo& device, size_t triangle_count) {
   if ((layout == RefineLayout::Spread || layout == RefineLayout::OneLaunch) && !device.int64_atomics)
-    throw InputError("refinement layout " + std::string(to_string(layout)) + " needs 64-bit atomic min (cl_khr_int64_extended_atomics), which " +
-                     device.name + " does not list; use --refine-layout one-group or auto");
+    throw InputError("refinement layout " + std::string(to_string(layout)) +
+                     " needs 64-bit atomic min (cl_khr_int64_extended_atomics), which " + device.name +
+                     " does not list; use --refine-layout one-group or auto");
   if (layout != RefineLayout::Auto) return layout;
   if (!device.int64_atomics) return RefineLayout::OneGroup;
   if (triangle_count >= kSpreadTriangles || device.backend == "cuda") return RefineLayout::Spread;

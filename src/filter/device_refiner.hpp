@@ -6,8 +6,8 @@
 // step's rendering and sums spread over many work-groups, the sums' last group solving and deciding
 // (cl/refine_spread.cl: 2 launches a step, iterations + 1 evaluations enqueued, the ones after
 // convergence returning at once; it needs 64-bit atomics), or the spread layout's kernels as one
-// work-group's loop, one launch (refine_spread.cl's refine_one_launch; 64-bit atomics too). Its own program, built with a larger work-group than the
-// filter's kernels. Reference: reference::PoseRefiner and ReferenceFilter::refine.
+// work-group's loop, one launch (refine_spread.cl's refine_one_launch; 64-bit atomics too). Its own program, built with
+// a larger work-group than the filter's kernels. Reference: reference::PoseRefiner and ReferenceFilter::refine.
 #include <depthtrack/camera.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/tracker_config.hpp>

@@ -29,8 +29,8 @@ void PinnedStaging::wait_for_last_copy() {
 
 void PinnedStaging::release_area() {
   if (host_) {
-    check(clEnqueueUnmapMemObject(queue_, area_.get(), host_, 0, nullptr, nullptr), "clEnqueueUnmapMemObject",
-          device_, "a staging area");
+    check(clEnqueueUnmapMemObject(queue_, area_.get(), host_, 0, nullptr, nullptr), "clEnqueueUnmapMemObject", device_,
+          "a staging area");
   }
   host_ = nullptr;
   capacity_ = 0;
