@@ -6,12 +6,11 @@
  * equations are a group sum and work-item 0 solves them (Cholesky of the diagonally scaled system)
  * and keeps each step unless it lowers the log-likelihood; it stops when the next step would move no
  * mesh point farther than converged_motion. No host round trip: the estimate
- * buffer receives the refined pose and its covariance, `correction` the twist that shift_particles applies to every
+ * buffer receives the refined pose and its covariance, `correction` the twist that resample_particles applies to every
  * particle (the one that moves the heaviest particle onto the refined pose). Compile-time choices as for weigh.cl
  * (DT_GROUP_SIZE, DT_OCCLUSION); the pieces shared with cl/refine_spread.cl are in dt_refine.h.
  * Reference: PoseRefiner::refine and ReferenceFilter::refine. */
 #include "dt_refine.h"
-#include "shift_particles.cl"
 
 /* Draws the pose in pose_state into tile (depth bits, DT_NO_SURFACE where empty) and each covered
  * pixel's triangle into ids, then sums the normal equations over the group into sums[k]. */

@@ -19,7 +19,6 @@
 #endif
 #define DT_NEAREST_PACKED 1
 #include "dt_refine.h"
-#include "shift_particles.cl"
 
 /* The fit's state at the frame's start: the start (the heaviest particle, which summarize found) is the
  * first candidate. */

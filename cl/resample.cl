@@ -1,13 +1,15 @@
-/* Systematic resampling on the device: prefix sum of the normalized weights, each child's parent
- * by binary search, then the gather of the particles' kinematic state. Their per-pixel occlusion
+/* Systematic resampling on the device: prefix sum of the normalized weights, then each child's parent
+ * by binary search and the gather of its kinematic state, with the refinement's shift, in one kernel
+ * (resample_particles). Their per-pixel occlusion
  * state is not copied here: the next frame's weigh reads each child's row from its parent
  * (weigh.cl), so parents always holds the last frame's choice (the identity without resampling).
  * Reference: systematic_resample.
  * Whether to resample is decided on the device too: summarize.cl sets estimate[DT_EST_RESAMPLE],
  * and every kernel here that takes `estimate` reads it, so that the host enqueues the same
  * sequence each frame without waiting for the decision: without it they return at once, but
- * find_parents writes the identity and gather_state copies (the host swaps the state buffers every frame). */
+ * resample_particles writes the identity and copies (the host swaps the state buffers every frame). */
 #include "dt_prelude.h"
+#include "dt_pose_twist.h"
 #include "dt_state.h"
 
 DT_DEVICE_FN int dt_resampling(__global const float* estimate) {
@@ -163,16 +165,8 @@ DT_DEVICE_FN int dt_exceeds(float hi, float lo, float count, float u, float chil
   return (p - s) + (p_err - s_err) > 0.0f;
 }
 
-/* Child j takes the first parent whose cumulative weight exceeds (u + j) / count (the last if none);
- * without resampling each particle is its own parent. */
-__kernel void find_parents(__global const float* cumulative, __global uint* parents, uint count, float u,
-                           __global const float* estimate) {
-  const uint child = get_global_id(0);
-  if (child >= count) return;
-  if (!dt_resampling(estimate)) {
-    parents[child] = child;
-    return;
-  }
+/* The first parent whose cumulative weight exceeds (u + child) / count (the last if none). */
+DT_DEVICE_FN uint dt_find_parent(__global const float* cumulative, uint count, float u, uint child) {
   uint lo = 0, hi = count - 1; /* the answer lies in [lo, hi] */
   while (lo < hi) {
     const uint mid = lo + (hi - lo) / 2;
@@ -181,21 +175,32 @@ __kernel void find_parents(__global const float* cumulative, __global uint* pare
     else
       lo = mid + 1;
   }
-  parents[child] = lo;
+  return lo;
 }
 
-/* Children copy their parent's kinematic state; without resampling each particle copies its own. After a
- * resampling the log weights start afresh at 0 (in the same launch: one fewer in the frame). */
-__kernel void gather_state(__global const float* from, __global float* to, __global const uint* parents, uint count,
-                           __global const float* estimate, __global float* log_weight) {
+/* The frame's resampling and the cloud's shift, a work-item per child (one launch for what were three:
+ * find the parents, gather their states, move them): child j takes its parent (dt_find_parent; without
+ * resampling each particle is its own), writes it to parents (the next weigh reads the child's occlusion
+ * row from there), copies the parent's kinematic state from `from` into `to` and, with shift, moves its
+ * pose by the refinement's correction twist about the mesh's centre (velocities unchanged: the cloud
+ * follows the refined pose). After a resampling the log weights start afresh at 0. Reference:
+ * systematic_resample, then ReferenceFilter::refine's shift. */
+__kernel void resample_particles(__global const float* cumulative, __global uint* parents, uint count, float u,
+                                 __global const float* estimate, __global const float* from, __global float* to,
+                                 __global float* log_weight, __global const float* correction, float centre_x,
+                                 float centre_y, float centre_z, uint shift) {
   const uint child = get_global_id(0);
   if (child >= count) return;
   const int resampling = dt_resampling(estimate);
+  const uint parent = resampling ? dt_find_parent(cumulative, count, u, child) : child;
+  parents[child] = parent;
   if (resampling) log_weight[child] = 0.0f;
-  const uint parent = resampling ? parents[child] : child;
   __global const float* source = from + DT_CAST(ulong, parent) * DT_STATE_STRIDE;
   __global float* target = to + DT_CAST(ulong, child) * DT_STATE_STRIDE;
   for (int k = 0; k < DT_STATE_STRIDE; ++k) target[k] = source[k];
+  if (!shift) return;
+  const float twist[6] = {correction[0], correction[1], correction[2], correction[3], correction[4], correction[5]};
+  dt_store_pose(target, dt_apply_twist(dt_load_pose(source), dt_vec3_make(centre_x, centre_y, centre_z), twist));
 }
 
 /* Each particle its own parent: the start, and a state set from the host. */

@@ -19,6 +19,7 @@
 #include "philox.h"
 #include "reference/observation_model.hpp"
 #include "reference/pose_mean.hpp"
+#include "reference/pose_refiner.hpp"
 #include "reference/rasterizer.hpp"
 #include "reference/weights.hpp"
 
@@ -348,12 +349,12 @@ TEST_CASE("summarize kernel equals the reference normalization and mean pose", "
   for (size_t i = 0; i < count; ++i) REQUIRE(weights[i] == Approx(summary.normalized[i]).epsilon(1e-4).margin(1e-9));
 }
 
-TEST_CASE("prefix-sum and find-parents kernels resample as the reference does", "[device][kernels]") {
+TEST_CASE("prefix-sum and resampling kernels choose the parents the reference does", "[device][kernels]") {
   if (!test::device_available()) return;
   auto q = compute::open_device(test::device_selector());
   auto program = build(*q, "resample.cl");
   auto prefix = program->kernel("prefix_sum");
-  auto find = program->kernel("find_parents");
+  auto resample = program->kernel("resample_particles");
   compute::ProgramCache programs(*q);
   std::mt19937 rng(2);
   std::exponential_distribution<double> e;
@@ -365,7 +366,8 @@ TEST_CASE("prefix-sum and find-parents kernels resample as the reference does", 
     double sum = 0;
     for (auto& x : w) sum += x = e(rng) * (e(rng) > 1.5 ? 20 : 1);  // a few heavy particles
     for (auto& x : w) x /= sum;
-    compute::Buffer<float> weights(*q, count), cumulative(*q, 2 * count);
+    compute::Buffer<float> weights(*q, count), cumulative(*q, 2 * count), from(*q, count * DT_STATE_STRIDE),
+        to(*q, count * DT_STATE_STRIDE), log_weights(*q, count), no_correction(*q, 6);
     compute::Buffer<unsigned> parents(*q, count);
     compute::Buffer<float> decision(*q, DT_EST_SIZE);  // the estimate buffer, saying "resample"
     std::vector<float> resample_flag(DT_EST_SIZE, 0.0f);
@@ -384,8 +386,8 @@ TEST_CASE("prefix-sum and find-parents kernels resample as the reference does", 
                 decision);
     }
     const float u = dt_uniform01(dt_random_words(4, 0, 1, DT_STREAM_RESAMPLE, 0).v[0]);
-    q->launch(*find, compute::NdRange::linear((count + 63) / 64 * 64, 64), cumulative, parents,
-              static_cast<unsigned>(count), u, decision)
+    q->launch(*resample, compute::NdRange::linear((count + 63) / 64 * 64, 64), cumulative, parents,
+              static_cast<unsigned>(count), u, decision, from, to, log_weights, no_correction, 0.0f, 0.0f, 0.0f, 0u)
         ->wait();
     const auto got = parents.download();
     const auto expected = reference::systematic_resample(w, u);
@@ -401,46 +403,84 @@ TEST_CASE("resampling kernels follow the decision in the estimate buffer: gather
   if (!test::device_available()) return;
   auto q = compute::open_device(test::device_selector());
   auto program = build(*q, "resample.cl");
-  auto find = program->kernel("find_parents");
-  auto gather_state = program->kernel("gather_state");
+  auto resample = program->kernel("resample_particles");
   const unsigned count = 3;
-  const std::vector<unsigned> parents_in = {2, 2, 0};
   std::vector<float> state(count * DT_STATE_STRIDE);
   for (size_t i = 0; i < state.size(); ++i) state[i] = static_cast<float>(i);
-  // Cumulative weights (float-float pairs) that would make every child take particle 0.
+  // Cumulative weights (float-float pairs) that make every child take particle 0 when resampling.
   const std::vector<float> cumulative_in = {1.0f, 0.0f, 1.0f, 0.0f, 1.0f, 0.0f};
-  for (const bool resample : {false, true}) {
-    INFO((resample ? "resampling" : "not resampling"));
+  for (const bool resampling : {false, true}) {
+    INFO((resampling ? "resampling" : "not resampling"));
     std::vector<float> flag(DT_EST_SIZE, 0.0f);
-    flag[DT_EST_RESAMPLE] = resample ? 1.0f : 0.0f;
+    flag[DT_EST_RESAMPLE] = resampling ? 1.0f : 0.0f;
     compute::Buffer<float> decision(*q, DT_EST_SIZE), from(*q, state.size()), to(*q, state.size()), weights(*q, count),
-        cumulative(*q, cumulative_in.size());
+        cumulative(*q, cumulative_in.size()), no_correction(*q, 6);
     compute::Buffer<unsigned> parents(*q, count);
     decision.upload(flag);
     from.upload(state);
     to.upload(std::vector<float>(state.size(), -1.0f));
     weights.upload(std::vector<float>(count, 7.0f));
     cumulative.upload(cumulative_in);
-    parents.upload(parents_in);
-    const auto linear = compute::NdRange::linear(64, 64);
-    if (resample) {
-      q->launch(*find, linear, cumulative, parents, count, 0.5f, decision);
-      const auto found = parents.download();
-      CHECK(found == std::vector<unsigned>(count, 0u));
-      parents.upload(parents_in);
-    } else {
-      q->launch(*find, linear, cumulative, parents, count, 0.5f, decision);
-      // Each its own parent: the next weigh reads every particle's own row.
-      CHECK(parents.download() == std::vector<unsigned>{0, 1, 2});
-      parents.upload(parents_in);  // gather_state must not follow these
-    }
-    q->launch(*gather_state, linear, from, to, parents, count, decision, weights);
+    parents.upload(std::vector<unsigned>{2, 2, 2});  // overwritten
+    q->launch(*resample, compute::NdRange::linear(64, 64), cumulative, parents, count, 0.5f, decision, from, to,
+              weights, no_correction, 0.0f, 0.0f, 0.0f, 0u);
+    // Without resampling each is its own parent: the next weigh reads every particle's own row.
+    const std::vector<unsigned> expected_parents = resampling ? std::vector<unsigned>(count, 0u)
+                                                              : std::vector<unsigned>{0, 1, 2};
+    CHECK(parents.download() == expected_parents);
     const auto got_state = to.download(), got_weights = weights.download();
     for (unsigned child = 0; child < count; ++child) {
-      const unsigned source = resample ? parents_in[child] : child;
       for (unsigned k = 0; k < DT_STATE_STRIDE; ++k)
-        REQUIRE(got_state[child * DT_STATE_STRIDE + k] == state[source * DT_STATE_STRIDE + k]);
-      REQUIRE(got_weights[child] == (resample ? 0.0f : 7.0f));
+        REQUIRE(got_state[child * DT_STATE_STRIDE + k] == state[expected_parents[child] * DT_STATE_STRIDE + k]);
+      REQUIRE(got_weights[child] == (resampling ? 0.0f : 7.0f));
     }
+  }
+}
+
+// With the refinement on, every child is moved by its correction twist about the mesh's centre as it
+// is gathered: the pose the reference's apply_twist gives, the velocities copied unchanged.
+TEST_CASE("the resampling kernel moves each child by the refinement's correction", "[device][kernels][refine]") {
+  if (!test::device_available()) return;
+  auto q = compute::open_device(test::device_selector());
+  auto program = build(*q, "resample.cl");
+  auto resample = program->kernel("resample_particles");
+  const std::vector<Pose> poses = {
+      Pose({0.01, -0.02, 0.5}, Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()))),
+      Pose({-0.05, 0.03, 0.7}, Eigen::Quaterniond(Eigen::AngleAxisd(-1.2, Eigen::Vector3d(0, 1, 0)))),
+  };
+  const unsigned count = static_cast<unsigned>(poses.size());
+  std::vector<float> state(count * DT_STATE_STRIDE, 0.0f);
+  for (unsigned i = 0; i < count; ++i) {
+    float* s = &state[i * DT_STATE_STRIDE];
+    const Eigen::Quaterniond& r = poses[i].rotation;
+    for (int k = 0; k < 3; ++k) s[DT_TX + k] = static_cast<float>(poses[i].translation[k]);
+    s[DT_QW] = static_cast<float>(r.w()), s[DT_QW + 1] = static_cast<float>(r.x());
+    s[DT_QW + 2] = static_cast<float>(r.y()), s[DT_QW + 3] = static_cast<float>(r.z());
+    for (int k = DT_VX; k < DT_STATE_STRIDE; ++k) s[k] = 0.25f * static_cast<float>(k + i);
+  }
+  reference::Vector6d twist;
+  twist << 0.002, -0.001, 0.003, 0.01, -0.02, 0.015;
+  const Eigen::Vector3d centre(0.01, 0.02, -0.03);
+  const std::vector<float> twist_f(twist.data(), twist.data() + 6);
+  std::vector<float> flag(DT_EST_SIZE, 0.0f);  // not resampling: each child is its own parent
+  compute::Buffer<float> decision(*q, DT_EST_SIZE), from(*q, state.size()), to(*q, state.size()), weights(*q, count),
+      cumulative(*q, 2 * count), correction(*q, 6);
+  compute::Buffer<unsigned> parents(*q, count);
+  decision.upload(flag);
+  from.upload(state);
+  correction.upload(twist_f);
+  q->launch(*resample, compute::NdRange::linear(64, 64), cumulative, parents, count, 0.5f, decision, from, to, weights,
+            correction, static_cast<float>(centre.x()), static_cast<float>(centre.y()),
+            static_cast<float>(centre.z()), 1u);
+  const auto got = to.download();
+  for (unsigned i = 0; i < count; ++i) {
+    const float* s = &got[i * DT_STATE_STRIDE];
+    const Pose moved({s[DT_TX], s[DT_TX + 1], s[DT_TX + 2]},
+                     Eigen::Quaterniond(s[DT_QW], s[DT_QW + 1], s[DT_QW + 2], s[DT_QW + 3]));
+    const Pose expected = reference::apply_twist(poses[i], centre, twist);
+    CHECK(translation_error(moved, expected) < 1e-6);
+    CHECK(rotation_error(moved, expected) < 1e-5);
+    CHECK(translation_error(moved, poses[i]) > 1e-3);  // it did move
+    for (int k = DT_VX; k < DT_STATE_STRIDE; ++k) REQUIRE(s[k] == state[i * DT_STATE_STRIDE + k]);
   }
 }

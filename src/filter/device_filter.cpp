@@ -97,8 +97,7 @@ size_t render_weigh_resident_groups(size_t pixels, size_t shared_points, const c
 struct DeviceFilter::Kernels {
   std::shared_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
       initialize_program;
-  std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, find_parents, gather_state,
-      identity_parents, fill, initialize_particles, fill_per_particle, fill_time_indices, retire_time_indices;
+  std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, resample_particles, identity_parents, fill, initialize_particles, fill_per_particle, fill_time_indices, retire_time_indices;
 };
 
 DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
@@ -142,8 +141,7 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
     k.summarize = k.summarize_program->kernel("summarize");
     k.prefix_sum = k.resample_program->kernel("prefix_sum");
   }
-  k.find_parents = k.resample_program->kernel("find_parents");
-  k.gather_state = k.resample_program->kernel("gather_state");
+  k.resample_particles = k.resample_program->kernel("resample_particles");
   k.identity_parents = k.resample_program->kernel("identity_parents");
   k.fill = k.resample_program->kernel("fill");
   k.initialize_program = device_->programs.program("initialize.cl", defines);
@@ -192,12 +190,14 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   if (config.refine.enabled)
     refiner_ = std::make_unique<DeviceRefiner>(q, device_->programs, mesh, camera, config,
                                                model::occlusion_definition(config.occlusion_storage));
+  else
+    no_correction_ = compute::Buffer<float>(q, 6);  // never read: resample_particles' shift is off
 }
 
 struct DeviceFilter::Pending {
   Stopwatch clock;
   StepTimings timings;  // the atlas source's host part
-  compute::EventPtr propagated, rendered, weighed, shifted;
+  compute::EventPtr propagated, rendered, weighed;
   std::vector<compute::EventPtr> summarized, refined, resampling;
 };
 
@@ -516,7 +516,6 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   // next frame needs (they run while the host takes the estimate).
   estimate_.download_enqueued(std::span<float>(estimate_host_));
   p->resampling = resample();
-  if (refiner_) p->shifted = shift_particles();
   batch.submit();
   p->timings.enqueue_ms = p->clock.elapsed_ms();
   pending_ = std::move(p);
@@ -569,11 +568,9 @@ void DeviceFilter::read_step_times(Pending& p, StepTimings& timings) const {
   timings.weigh_ms = p.weighed->elapsed_ms();
   timings.resample_ms += device_span_ms(p.summarized);
   for (const auto& event : p.resampling) timings.resample_ms += event->elapsed_ms();
-  if (p.shifted) {
-    // The fit's launches as one span on the device (the spread layout enqueues dozens), then the shift
-    // (enqueued after the resampling).
-    timings.refine_ms = p.shifted->elapsed_ms() + device_span_ms(p.refined);
-  }
+  // The fit's launches as one span on the device (the spread layout enqueues dozens); the cloud's shift
+  // is part of resample_particles, in resample_ms.
+  if (!p.refined.empty()) timings.refine_ms = device_span_ms(p.refined);
 }
 
 // Enqueued every frame; the kernels read the device's decision (estimate_[DT_EST_RESAMPLE]). The
@@ -591,18 +588,14 @@ std::vector<compute::EventPtr> DeviceFilter::resample() {
   else
     events.push_back(launch_step(*k.prefix_sum, compute::NdRange::linear(kGroupSize, kGroupSize), weights_, cumulative_,
                                  count, estimate_));
-  events.push_back(
-      launch_step(*k.find_parents, linear, cumulative_, parents_, count, dt_uniform01(words.v[0]), estimate_));
-  events.push_back(
-      launch_step(*k.gather_state, linear, state_, scratch_state_, parents_, count, estimate_, log_weight_));
+  // With the refinement on, the children are moved by its correction as they are gathered.
+  const Eigen::Vector3f centre = (refiner_ ? refiner_->centre() : centre_).cast<float>();
+  events.push_back(launch_step(*k.resample_particles, linear, cumulative_, parents_, count, dt_uniform01(words.v[0]),
+                               estimate_, state_, scratch_state_, log_weight_,
+                               refiner_ ? refiner_->correction() : no_correction_, centre.x(), centre.y(), centre.z(),
+                               static_cast<unsigned>(refiner_ != nullptr)));
   std::swap(state_, scratch_state_);
   return events;
-}
-
-// resample() left the gathered (or copied) states in state_ and the weighed ones in scratch_state_:
-// the cloud is shifted in place.
-compute::EventPtr DeviceFilter::shift_particles() {
-  return refiner_->shift(state_, state_, count_);
 }
 
 std::vector<double> DeviceFilter::last_log_likelihoods() const {

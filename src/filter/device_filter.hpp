@@ -124,11 +124,9 @@ class DeviceFilter final : public FilterBackend {
   // Per-pixel rows downloaded in particle order: particle i's is row parents_[i].
   template <typename T>
   std::vector<T> rows_by_parent(const compute::Buffer<T>& rows) const;
-  // Enqueues the resampling kernels, which resample only if the device decided to; their events.
+  // Enqueues the resampling kernels, which resample only if the device decided to, and move the
+  // children by the refinement's correction; their events. The weighed states stay in scratch_state_.
   std::vector<compute::EventPtr> resample();
-  // Enqueues the shift of the cloud by the refinement's correction, leaving the weighed states in
-  // scratch_state_ (where resampling left them, or copied there); its event.
-  compute::EventPtr shift_particles();
 
   struct Pending;  // a frame between enqueue_update and collect: its clock and events
   void read_step_times(Pending& pending, StepTimings& timings) const;
@@ -163,6 +161,7 @@ class DeviceFilter final : public FilterBackend {
   std::vector<float> estimate_host_;
   compute::Buffer<float> atlas_, observed_;
   compute::Buffer<unsigned> unused_boxes_;  // weigh's boxes argument where the atlas source keeps none
+  compute::Buffer<float> no_correction_;    // resample_particles' correction argument without the refinement
   // The kernel renderer's rasterization inside weigh (renders_inside_weigh), drawing the kernel atlas
   // source's mesh.
   std::unique_ptr<compute::Kernel> render_weigh_;

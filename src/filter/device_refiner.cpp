@@ -17,7 +17,7 @@ namespace {
 // memory (29.7 KB) within CUDA's 48 KB of static shared memory and the registers within a
 // multiprocessor. The spread layout's sums kernel uses the same size (its per-group tree).
 constexpr size_t kRefineGroup = 256;
-constexpr size_t kLinearGroup = 64;  // shift, and the spread layout's draws: a work-item per particle / triangle
+constexpr size_t kLinearGroup = 64;  // the spread layout's draws: a work-item per triangle
 // The spread sums kernel: enough groups for every pixel of the image to have its own work-item, at
 // most this many rows of partials for its last group to add (beyond 256 x 256 pixels a work-item
 // sums several).
@@ -75,7 +75,6 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
                                 {"DT_GROUP_SIZE=" + std::to_string(kRefineGroup), occlusion_definition})),
       mesh_(queue, mesh),
       correction_(queue, 6) {
-  shift_ = program_->kernel("shift_particles");
   if (layout_ == RefineLayout::OneGroup) {
     refine_ = program_->kernel("refine");
     pose_ = compute::Buffer<float>(queue, DT_STATE_STRIDE);
@@ -158,11 +157,5 @@ std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<floa
   return events;
 }
 
-compute::EventPtr DeviceRefiner::shift(const compute::Buffer<float>& from, compute::Buffer<float>& to, size_t count) {
-  return compute::launch_timed_if(config_.step_timings, queue_, *shift_,
-                                  compute::NdRange::linear(round_up(count, kLinearGroup), kLinearGroup), from, to,
-                                  static_cast<unsigned>(count), correction_, static_cast<float>(centre_.x()),
-                                  static_cast<float>(centre_.y()), static_cast<float>(centre_.z()));
-}
 
 }  // namespace depthtrack

@@ -55,9 +55,10 @@ class DeviceRefiner {
   // Enqueues the fit; estimate holds summarize's output and receives the refined pose. The events of
   // every kernel it enqueued, in order (their device times add up to the fit's).
   std::vector<compute::EventPtr> refine(compute::Buffer<float>& estimate, const RefineInputs& in);
-  // Enqueues the shift of count particles by the last fit's correction, from `from` into `to` (which
-  // may be the same buffer).
-  compute::EventPtr shift(const compute::Buffer<float>& from, compute::Buffer<float>& to, size_t count);
+  // The twist that moves the heaviest particle onto the last fit's refined pose, about centre():
+  // resample_particles (cl/resample.cl) moves every particle by it.
+  const compute::Buffer<float>& correction() const { return correction_; }
+  const Eigen::Vector3d& centre() const { return centre_; }
 
   RefineLayout layout() const { return layout_; }  // never Auto
   double radius() const { return radius_; }        // the mesh's (model::pose_covariance's pivot)
@@ -73,7 +74,7 @@ class DeviceRefiner {
   double radius_;
   RefineLayout layout_;
   std::shared_ptr<compute::Program> program_;
-  std::unique_ptr<compute::Kernel> refine_, shift_;
+  std::unique_ptr<compute::Kernel> refine_;
   // The spread layout's kernels (cl/refine_spread.cl), its fit state, per-group partial sums and
   // the candidate's drawing (depth bits and triangle per pixel).
   std::unique_ptr<compute::Kernel> begin_, draw_, sums_;
@@ -81,7 +82,7 @@ class DeviceRefiner {
   compute::Buffer<float> fit_state_;
   compute::Buffer<uint64_t> partials_, nearest_;  // (stamp << 32) | sum bits; (depth bits << 32) | triangle
   MeshBuffers mesh_;
-  compute::Buffer<float> correction_;  // the twist shift applies
+  compute::Buffer<float> correction_;  // the twist the cloud follows
   // The one-group layout's one-pose scratch (state, depth bits, triangle ids).
   compute::Buffer<float> pose_;
   compute::Buffer<unsigned> tile_, ids_;
