@@ -425,8 +425,8 @@ TEST_CASE("resampling kernels follow the decision in the estimate buffer: gather
     q->launch(*resample, compute::NdRange::linear(64, 64), cumulative, parents, count, 0.5f, decision, from, to,
               weights, no_correction, 0.0f, 0.0f, 0.0f, 0u);
     // Without resampling each is its own parent: the next weigh reads every particle's own row.
-    const std::vector<unsigned> expected_parents = resampling ? std::vector<unsigned>(count, 0u)
-                                                              : std::vector<unsigned>{0, 1, 2};
+    const std::vector<unsigned> expected_parents =
+        resampling ? std::vector<unsigned>(count, 0u) : std::vector<unsigned>{0, 1, 2};
     CHECK(parents.download() == expected_parents);
     const auto got_state = to.download(), got_weights = weights.download();
     for (unsigned child = 0; child < count; ++child) {
@@ -470,8 +470,8 @@ TEST_CASE("the resampling kernel moves each child by the refinement's correction
   from.upload(state);
   correction.upload(twist_f);
   q->launch(*resample, compute::NdRange::linear(64, 64), cumulative, parents, count, 0.5f, decision, from, to, weights,
-            correction, static_cast<float>(centre.x()), static_cast<float>(centre.y()),
-            static_cast<float>(centre.z()), 1u);
+            correction, static_cast<float>(centre.x()), static_cast<float>(centre.y()), static_cast<float>(centre.z()),
+            1u);
   const auto got = to.download();
   for (unsigned i = 0; i < count; ++i) {
     const float* s = &got[i * DT_STATE_STRIDE];

@@ -97,7 +97,8 @@ size_t render_weigh_resident_groups(size_t pixels, size_t shared_points, const c
 struct DeviceFilter::Kernels {
   std::shared_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
       initialize_program;
-  std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, resample_particles, identity_parents, fill, initialize_particles, fill_per_particle, fill_time_indices, retire_time_indices;
+  std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, resample_particles, identity_parents, fill,
+      initialize_particles, fill_per_particle, fill_time_indices, retire_time_indices;
 };
 
 DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,

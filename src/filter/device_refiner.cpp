@@ -157,5 +157,4 @@ std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<floa
   return events;
 }
 
-
 }  // namespace depthtrack
