@@ -1,7 +1,8 @@
 #pragma once
 // The pose refinement on the device: after weighing, the heaviest particle's pose is fitted to the
 // frame's likelihood and the refined pose, its covariance and the steps tried go into the estimate
-// buffer; shift then moves every particle by the same correction. Three layouts of the same fit
+// buffer, the correction that moved the heaviest particle there into correction(), by which the
+// resampling moves every particle (resample_particles). Three layouts of the same fit
 // (Refinement::layout): the whole fit in one work-group and one launch (cl/refine.cl), or each
 // step's rendering and sums spread over many work-groups, the sums' last group solving and deciding
 // (cl/refine_spread.cl: 2 launches a step, iterations + 1 evaluations enqueued, the ones after
