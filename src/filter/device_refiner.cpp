@@ -44,8 +44,8 @@ size_t round_up(size_t n, size_t multiple) {
 // 0.158 ms spread / one group, the mug simplified to 3,196 triangles 0.153 / 0.271; so every GPU spreads.
 // Round 2, session 18: the spread layout's draw and sums in one group (one-launch) against spread,
 // untimed frame at 2,000 particles (H100, docs/design-notes.md): NVIDIA OpenCL handset 0.46-0.55 ->
-// 0.38-0.42 ms, the mug simplified to 412 / 1,120 / 3,196 triangles 0.47 -> 0.42, 0.54 -> 0.43, 0.54 ->
-// 0.54 (its host's launches are the frame's cost there); CUDA, whose graphs make launches cheap, slower
+// 0.38-0.42 ms, the mug simplified to 412 / 1,120 / 3,196 triangles 0.45-0.47 -> 0.42-0.43, 0.47-0.54 ->
+// 0.43-0.44, 0.48-0.54 -> 0.49-0.56 (its host's launches are the frame's cost there); CUDA, whose graphs make launches cheap, slower
 // for every mesh (handset 0.24-0.27 -> 0.24-0.32). PoCL (2 cores) handset refine_ms 0.79-0.81 against
 // 1.16-1.35 one group and 1.31-1.60 spread; the 16,384-triangle mug 3.4-3.5 against spread's 2.7-3.4.
 // Once OpenCL's transfers went through pinned memory (0.1 ms less host time a frame for either layout)
