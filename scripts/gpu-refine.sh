@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# On the lent GPU machine: the pose refinement's two device layouts (issue 8's cost bar, issue 12's
+# On the lent GPU machine: the pose refinement's device layouts (issue 8's cost bar, issue 12's
 # latency): `depthtrack_bench` at 2,000 particles, 80x60, for the handset (842 triangles) and the YCB mug
-# (16,384), each backend, refinement one-group / spread / off, rows refine_ms, refine_share,
-# refine_iterations, total_ms; then the equivalence tests with refinement on each backend (both layouts:
-# auto is spread on CUDA and for large meshes, the "layout auto does not pick" test runs one-group). Carry .devdeps, .device
+# (16,384), each backend, refinement one-group / spread / one-launch / off, rows refine_ms, refine_share,
+# refine_iterations, total_ms; then the equivalence tests with refinement on each backend (every layout:
+# the "each refinement layout auto does not pick" test runs the ones auto leaves out). Carry .devdeps, .device
 # and .devdata. FRAMES (default 20), BACKENDS (default cuda opencl:nvidia), TESTS=0 skips the tests.
 set -uo pipefail
 source .device/enter .devdeps
@@ -19,7 +19,7 @@ frames=${FRAMES:-20}
 rows=',(refine_ms|refine_share|refine_iterations|total_ms),'
 for b in ${BACKENDS:-cuda opencl:nvidia}; do
   for mesh in "" .devdata/meshes/ycb/025_mug.obj; do
-    for layout in one-group spread; do
+    for layout in one-group spread one-launch; do
       "$build/depthtrack_bench" --backend "$b" --particles 2000 --frames "$frames" --no-global \
         --refine-layout "$layout" ${mesh:+--mesh "$mesh"} | grep -E "$rows" | cut -d, -f1,5-
     done
