@@ -30,6 +30,10 @@ struct Scene {
   Camera working;
 };
 
+size_t scene_pixels(const Scene& scene) {
+  return static_cast<size_t>(scene.working.pixel_count());
+}
+
 // The handset when ../shared is there, else the built-in object; 30 % occluded, decimated to 80x60
 // (decimation 8 of the 640x480 sensor). `path` moves it; the frames before `skip` are left out.
 Scene make_scene(int frames, int decimation = 8, const TrajectoryModel& path = {}, int skip = 0) {
@@ -234,7 +238,7 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
       // layout's there 0.7 % (H100, round 2 session 18). PoCL, any layout, stays within 0.1 %, and is
       // held to it.
       const bool cuda = config.backend.rfind("cuda", 0) == 0;
-      const RefineLayout resolved = resolved_refine_layout(layout, info, scene.mesh.triangles.size());
+      const RefineLayout resolved = resolved_refine_layout(layout, info, scene.mesh.triangles.size(), scene_pixels(scene));
       const bool gpu_spread = info.is_gpu && (resolved == RefineLayout::Spread || resolved == RefineLayout::OneLaunch);
       const double sd_tolerance = renderer == "gl" || cuda || gpu_spread ? 5e-2 : 1e-3;
       // The built-in box (the scene without ../shared/data) is seen nearly face-on: its faces' depth
@@ -263,7 +267,7 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
         "%d resamplings, ancestry identical but for %d numerical ties; %d silhouette coverage flips; "
         "ancestry and estimates compared in %d of %zu frames; state window %dx%d moved %d times, grew %d times\n",
         scene.name.c_str(), to_string(mode), renderer.c_str(),
-        to_string(resolved_refine_layout(layout, info, scene.mesh.triangles.size())), device.description().c_str(),
+        to_string(resolved_refine_layout(layout, info, scene.mesh.triangles.size(), scene_pixels(scene))), device.description().c_str(),
         worst_ll, worst_t, worst_r, worst_ess, worst_sd, undetermined_axes, worst_confidence, resamplings, ties,
         coverage_flips, compared_frames, scene.frames.size(), reference.state_window().width,
         reference.state_window().height, window_moves, window_growths);
@@ -385,28 +389,32 @@ TEST_CASE(
   opencl_gpu.is_gpu = true;
   opencl_cpu.backend = "opencl";
   for (compute::DeviceInfo* d : {&cuda_gpu, &opencl_gpu, &opencl_cpu}) d->int64_atomics = true;
-  const size_t handset = 842, mug = 16384;
-  CHECK(resolved_refine_layout(RefineLayout::Auto, cuda_gpu, handset) == RefineLayout::Spread);
-  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, handset) == RefineLayout::OneLaunch);
-  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_cpu, handset) == RefineLayout::OneLaunch);
-  CHECK(resolved_refine_layout(RefineLayout::Auto, cuda_gpu, mug) == RefineLayout::Spread);
-  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, mug) == RefineLayout::Spread);
-  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_cpu, mug) == RefineLayout::Spread);
-  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, kSpreadTriangles - 1) == RefineLayout::OneLaunch);
-  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, kSpreadTriangles) == RefineLayout::Spread);
+  const size_t handset = 842, mug = 16384, small = 80 * 60, large = 640 * 480;
+  CHECK(resolved_refine_layout(RefineLayout::Auto, cuda_gpu, handset, small) == RefineLayout::Spread);
+  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, handset, small) == RefineLayout::OneLaunch);
+  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_cpu, handset, small) == RefineLayout::OneLaunch);
+  CHECK(resolved_refine_layout(RefineLayout::Auto, cuda_gpu, mug, small) == RefineLayout::Spread);
+  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, mug, small) == RefineLayout::Spread);
+  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_cpu, mug, small) == RefineLayout::Spread);
+  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, kSpreadTriangles - 1, small) == RefineLayout::OneLaunch);
+  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, kSpreadTriangles, small) == RefineLayout::Spread);
+  // A GPU spreads a large image's pixels over its groups; a CPU runs a group in sequence anyway.
+  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, handset, kOneLaunchGpuPixels) == RefineLayout::OneLaunch);
+  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, handset, large) == RefineLayout::Spread);
+  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_cpu, handset, large) == RefineLayout::OneLaunch);
   // A layout asked for is kept.
-  CHECK(resolved_refine_layout(RefineLayout::OneGroup, cuda_gpu, mug) == RefineLayout::OneGroup);
-  CHECK(resolved_refine_layout(RefineLayout::Spread, opencl_cpu, handset) == RefineLayout::Spread);
-  CHECK(resolved_refine_layout(RefineLayout::OneLaunch, cuda_gpu, mug) == RefineLayout::OneLaunch);
+  CHECK(resolved_refine_layout(RefineLayout::OneGroup, cuda_gpu, mug, small) == RefineLayout::OneGroup);
+  CHECK(resolved_refine_layout(RefineLayout::Spread, opencl_cpu, handset, small) == RefineLayout::Spread);
+  CHECK(resolved_refine_layout(RefineLayout::OneLaunch, cuda_gpu, mug, small) == RefineLayout::OneLaunch);
   // The spread drawing keeps depth and triangle in one 64-bit atomic min: a device without it fits
   // in one group, and spread asked for there is refused by name.
   compute::DeviceInfo no_int64 = opencl_gpu;
   no_int64.int64_atomics = false;
   no_int64.name = "an old GPU";
-  CHECK(resolved_refine_layout(RefineLayout::Auto, no_int64, mug) == RefineLayout::OneGroup);
-  CHECK_THROWS_WITH(resolved_refine_layout(RefineLayout::Spread, no_int64, mug),
+  CHECK(resolved_refine_layout(RefineLayout::Auto, no_int64, mug, small) == RefineLayout::OneGroup);
+  CHECK_THROWS_WITH(resolved_refine_layout(RefineLayout::Spread, no_int64, mug, small),
                     Catch::Contains("cl_khr_int64_extended_atomics") && Catch::Contains("an old GPU"));
-  CHECK_THROWS_WITH(resolved_refine_layout(RefineLayout::OneLaunch, no_int64, mug),
+  CHECK_THROWS_WITH(resolved_refine_layout(RefineLayout::OneLaunch, no_int64, mug, small),
                     Catch::Contains("one-launch") && Catch::Contains("an old GPU"));
 }
 
@@ -416,7 +424,8 @@ TEST_CASE("with each refinement layout auto does not pick the device filter stil
           "[device][kernel][refine]") {
   if (!test::device_available()) return;
   const compute::DeviceInfo info = compute::open_device(test::device_selector())->info();
-  const RefineLayout picked = resolved_refine_layout(RefineLayout::Auto, info, make_scene(1).mesh.triangles.size());
+  const RefineLayout picked = resolved_refine_layout(RefineLayout::Auto, info, make_scene(1).mesh.triangles.size(),
+                                                     scene_pixels(make_scene(1)));
   for (const RefineLayout layout : {RefineLayout::OneGroup, RefineLayout::Spread, RefineLayout::OneLaunch}) {
     if (layout == picked) continue;
     if (layout != RefineLayout::OneGroup && !info.int64_atomics) {

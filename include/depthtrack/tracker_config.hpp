@@ -41,8 +41,8 @@ Renderer renderer_from_string(const std::string& name);  // throws InputError na
 
 // How the device backends lay out the refinement (Refinement::layout); the reference has one way.
 enum class RefineLayout {
-  Auto,       // given 64-bit atomics: Spread for meshes of 2,048 triangles or more and on CUDA, else OneLaunch;
-              // without them OneGroup
+  Auto,       // given 64-bit atomics: Spread for meshes of 2,048 triangles or more, on CUDA and on GPUs for
+              // images over 160x120, else OneLaunch; without them OneGroup
   OneGroup,   // the whole fit in one work-group, one launch (cl/refine.cl)
   Spread,     // each step a draw and a sums launch over many work-groups, the last one solving (cl/refine_spread.cl)
   OneLaunch,  // Spread's draw and sums in one work-group, the whole fit one launch (needs 64-bit atomics)

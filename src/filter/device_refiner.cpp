@@ -51,8 +51,11 @@ size_t round_up(size_t n, size_t multiple) {
 // Once OpenCL's transfers went through pinned memory (0.1 ms less host time a frame for either layout)
 // the one group's device time decided the 3,196-triangle mug: 0.455 ms against spread's 0.44-0.51
 // before. So below 2,048 triangles every device but CUDA fits in one launch (not measured between
-// 1,120 and 3,196).
-RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceInfo& device, size_t triangle_count) {
+// 1,120 and 3,196). PoCL at 200 particles, refine_ms one-launch / spread / one-group: 160x120 0.99 / 1.99 /
+// 1.46, 320x240 1.83 / 4.00 / 2.78; on a GPU the one group's pixel loop grows with the image
+// (kOneLaunchGpuPixels).
+RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceInfo& device, size_t triangle_count,
+                                    size_t pixel_count) {
   if ((layout == RefineLayout::Spread || layout == RefineLayout::OneLaunch) && !device.int64_atomics)
     throw InputError("refinement layout " + std::string(to_string(layout)) +
                      " needs 64-bit atomic min (cl_khr_int64_extended_atomics), which " + device.name +
@@ -60,6 +63,7 @@ RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceIn
   if (layout != RefineLayout::Auto) return layout;
   if (!device.int64_atomics) return RefineLayout::OneGroup;
   if (triangle_count >= kSpreadTriangles || device.backend == "cuda") return RefineLayout::Spread;
+  if (device.is_gpu && pixel_count > kOneLaunchGpuPixels) return RefineLayout::Spread;
   return RefineLayout::OneLaunch;
 }
 
@@ -70,7 +74,8 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       radius_(mesh.radius()),
-      layout_(resolved_refine_layout(config.refine.layout, queue.info(), mesh.triangles.size())),
+      layout_(resolved_refine_layout(config.refine.layout, queue.info(), mesh.triangles.size(),
+                                     static_cast<size_t>(camera.pixel_count()))),
       program_(programs.program(layout_ == RefineLayout::OneGroup ? "refine.cl" : "refine_spread.cl",
                                 {"DT_GROUP_SIZE=" + std::to_string(kRefineGroup), occlusion_definition})),
       mesh_(queue, mesh),

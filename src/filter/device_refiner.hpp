@@ -40,11 +40,16 @@ struct RefineInputs {
 };
 
 // The layout Auto picks: Spread for meshes of kSpreadTriangles triangles or more on every device, and
-// for smaller ones on CUDA; OneLaunch for smaller meshes elsewhere (measured on PoCL and NVIDIA's
+// for smaller ones on CUDA and on GPUs over kOneLaunchGpuPixels; OneLaunch for smaller meshes elsewhere (measured on PoCL and NVIDIA's
 // CUDA and OpenCL: device_refiner.cpp); OneGroup on devices without 64-bit atomic min
 // (DeviceInfo::int64_atomics), where Spread or OneLaunch asked for is an InputError.
 constexpr size_t kSpreadTriangles = 2048;
-RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceInfo& device, size_t triangle_count);
+// On a GPU, OneLaunch's one group sums every pixel of the image in each evaluation: beyond this many
+// pixels (160x120; measured at 80x60 only) a GPU spreads. A CPU runs a group's work-items in sequence
+// anyway (PoCL: one-launch the fastest at 80x60, 160x120 and 320x240).
+constexpr size_t kOneLaunchGpuPixels = 160 * 120;
+RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceInfo& device, size_t triangle_count,
+                                    size_t pixel_count);
 
 class DeviceRefiner {
  public:
