@@ -85,6 +85,25 @@ DT_DEVICE_FN void dt_refine_judge(__global dt_refine_state* s, __global float* e
   dt_refine_finish(estimate, start, best, best_sums, s->tried, centre, correction);
 }
 
+/* The normal equations' sums of the pixels first, first + stride, ... that the candidate drew, into
+ * acc (DT_REFINE_SUMS, zeroed here), each pixel read reset for the next evaluation: refine_sums strides
+ * over the grid, refine_one_launch over its one group. */
+DT_DEVICE_FN void dt_refine_sum_drawn(float* acc, uint first, uint stride, __global dt_u64* nearest, dt_rigid pose,
+                                      dt_refine_args args, __global const float* observed,
+                                      __global const float* occlusion, __global const dt_u16* occlusion_time,
+                                      __global const float* frame_times, dt_refine_offsets at,
+                                      __global const float* planes, uint triangle_count, dt_camera cam, dt_model m) {
+  const dt_vec3 centre = dt_vertex_at(pose, args.centre_x, args.centre_y, args.centre_z);
+  for (int k = 0; k < DT_REFINE_SUMS; ++k) acc[k] = 0.0f;
+  for (uint k = first; k < cam.width * cam.height; k += stride) {
+    const dt_u64 drawn = nearest[k];
+    if (drawn == DT_NEAREST_EMPTY) continue; /* nothing drawn: nothing to reset or sum */
+    nearest[k] = DT_NEAREST_EMPTY;
+    dt_refine_pixel(acc, k, DT_CAST(uint, drawn >> 32), DT_CAST(uint, drawn & 0xffffffffu), pose, centre, observed,
+                    occlusion, occlusion_time, frame_times, at, planes, triangle_count, cam, m, args);
+  }
+}
+
 /* Sum k's partials added in group order into *total; 1 if every word carried this evaluation's stamp.
  * Eight words' loads at a time, before any is looked at, so that they are in flight together. */
 #define DT_REFINE_WORDS_AT_ONCE 8
@@ -125,20 +144,12 @@ __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate,
   const uint stamp = s->stamp;
   const dt_refine_args args = s->args;
   const dt_window win = s->win;
-  const uint pixels = cam.width * cam.height;
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
   const dt_refine_offsets at = dt_refine_map_offsets(parents[heaviest], win);
   const dt_rigid pose = dt_particle_pose(s->candidate);
-  const dt_vec3 centre = dt_vertex_at(pose, args.centre_x, args.centre_y, args.centre_z);
   float acc[DT_REFINE_SUMS];
-  for (int k = 0; k < DT_REFINE_SUMS; ++k) acc[k] = 0.0f;
-  for (uint k = get_global_id(0); k < pixels; k += get_global_size(0)) {
-    const dt_u64 drawn = nearest[k];
-    if (drawn == DT_NEAREST_EMPTY) continue; /* nothing drawn: nothing to reset or sum */
-    nearest[k] = DT_NEAREST_EMPTY;
-    dt_refine_pixel(acc, k, DT_CAST(uint, drawn >> 32), DT_CAST(uint, drawn & 0xffffffffu), pose, centre, observed,
-                    occlusion, occlusion_time, frame_times, at, planes, triangle_count, cam, m, args);
-  }
+  dt_refine_sum_drawn(acc, get_global_id(0), get_global_size(0), nearest, pose, args, observed, occlusion,
+                      occlusion_time, frame_times, at, planes, triangle_count, cam, m);
   dt_group_sums(acc, DT_REFINE_SUMS, sums);
   const uint lid = get_local_id(0), groups = get_num_groups(0);
   if (lid < DT_REFINE_SUMS)
@@ -197,7 +208,7 @@ __kernel void refine_one_launch(__global dt_refine_state* s, __global float* est
                                 __global dt_u64* nearest, __global float* correction) {
   __local float sums[DT_REFINE_SCRATCH];
   __local int active;
-  const uint lid = get_local_id(0), pixels = cam.width * cam.height;
+  const uint lid = get_local_id(0);
   if (lid == 0) dt_refine_start(s, estimate, states, args, win);
   barrier(CLK_GLOBAL_MEM_FENCE);
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
@@ -207,16 +218,9 @@ __kernel void refine_one_launch(__global dt_refine_state* s, __global float* est
     for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
       dt_draw_triangle(pose, vertices, triangles, planes, t, cam, 0, 0, nearest, 0);
     barrier(CLK_GLOBAL_MEM_FENCE);
-    const dt_vec3 centre = dt_vertex_at(pose, args.centre_x, args.centre_y, args.centre_z);
     float acc[DT_REFINE_SUMS];
-    for (int k = 0; k < DT_REFINE_SUMS; ++k) acc[k] = 0.0f;
-    for (uint k = lid; k < pixels; k += DT_GROUP_SIZE) {
-      const dt_u64 drawn = nearest[k];
-      if (drawn == DT_NEAREST_EMPTY) continue;
-      nearest[k] = DT_NEAREST_EMPTY;
-      dt_refine_pixel(acc, k, DT_CAST(uint, drawn >> 32), DT_CAST(uint, drawn & 0xffffffffu), pose, centre, observed,
-                      occlusion, occlusion_time, frame_times, at, planes, triangle_count, cam, m, args);
-    }
+    dt_refine_sum_drawn(acc, lid, DT_GROUP_SIZE, nearest, pose, args, observed, occlusion, occlusion_time,
+                        frame_times, at, planes, triangle_count, cam, m);
     dt_group_sums(acc, DT_REFINE_SUMS, sums);
     if (lid == 0) {
       float total[DT_REFINE_SUMS];

@@ -590,7 +590,7 @@ std::vector<compute::EventPtr> DeviceFilter::resample() {
     events.push_back(launch_step(*k.prefix_sum, compute::NdRange::linear(kGroupSize, kGroupSize), weights_, cumulative_,
                                  count, estimate_));
   // With the refinement on, the children are moved by its correction as they are gathered.
-  const Eigen::Vector3f centre = (refiner_ ? refiner_->centre() : centre_).cast<float>();
+  const Eigen::Vector3f centre = centre_.cast<float>();
   events.push_back(launch_step(*k.resample_particles, linear, cumulative_, parents_, count, dt_uniform01(words.v[0]),
                                estimate_, state_, scratch_state_, log_weight_,
                                refiner_ ? refiner_->correction() : no_correction_, centre.x(), centre.y(), centre.z(),

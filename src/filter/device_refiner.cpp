@@ -112,20 +112,19 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
   const dt_refine_args args = model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time,
                                                    in.dt, config_.loss.pixel_sigmas);
   if (layout_ == RefineLayout::Spread) return refine_spread(estimate, in, args);
-  if (layout_ == RefineLayout::OneLaunch) {
-    const compute::EventPtr fit = compute::launch_timed_if(
-        config_.step_timings, queue_, *refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup), fit_state_,
-        estimate, in.states, in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.parents, mesh_.vertices,
-        mesh_.triangles, mesh_.planes, mesh_.triangle_count(), model::camera_params(camera_, config_),
-        model::model_params(config_), args, in.window, nearest_, correction_);
-    if (!fit) return {};
-    return {fit};
-  }
-  const compute::EventPtr fit = compute::launch_timed_if(
-      config_.step_timings, queue_, *refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup), estimate, in.states,
-      in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.parents, mesh_.vertices, mesh_.triangles,
-      mesh_.planes, mesh_.triangle_count(), model::camera_params(camera_, config_), model::model_params(config_), args,
-      pose_, tile_, ids_, correction_, in.window);
+  const auto one_group = compute::NdRange::linear(kRefineGroup, kRefineGroup);
+  const compute::EventPtr fit =
+      layout_ == RefineLayout::OneLaunch
+          ? compute::launch_timed_if(config_.step_timings, queue_, *refine_, one_group, fit_state_, estimate, in.states,
+                                     in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.parents,
+                                     mesh_.vertices, mesh_.triangles, mesh_.planes, mesh_.triangle_count(),
+                                     model::camera_params(camera_, config_), model::model_params(config_), args,
+                                     in.window, nearest_, correction_)
+          : compute::launch_timed_if(config_.step_timings, queue_, *refine_, one_group, estimate, in.states,
+                                     in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.parents,
+                                     mesh_.vertices, mesh_.triangles, mesh_.planes, mesh_.triangle_count(),
+                                     model::camera_params(camera_, config_), model::model_params(config_), args, pose_,
+                                     tile_, ids_, correction_, in.window);
   if (!fit) return {};
   return {fit};
 }

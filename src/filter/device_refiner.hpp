@@ -61,10 +61,9 @@ class DeviceRefiner {
   // Enqueues the fit; estimate holds summarize's output and receives the refined pose. The events of
   // every kernel it enqueued, in order (their device times add up to the fit's).
   std::vector<compute::EventPtr> refine(compute::Buffer<float>& estimate, const RefineInputs& in);
-  // The twist that moves the heaviest particle onto the last fit's refined pose, about centre():
-  // resample_particles (cl/resample.cl) moves every particle by it.
+  // The twist that moves the heaviest particle onto the last fit's refined pose, about the mesh's
+  // centre: resample_particles (cl/resample.cl) moves every particle by it.
   const compute::Buffer<float>& correction() const { return correction_; }
-  const Eigen::Vector3d& centre() const { return centre_; }
 
   RefineLayout layout() const { return layout_; }  // never Auto
   double radius() const { return radius_; }        // the mesh's (model::pose_covariance's pivot)
