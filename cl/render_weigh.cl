@@ -5,7 +5,9 @@
  * read of it. The same depths and, over the same rectangle (the pose's box, which boxed rasterize.cl
  * keeps, and the state window), the same sums in the same order as rasterize.cl + weigh.cl (the
  * atomic minimum does not depend on the order the triangles come in). With keep_atlas the tile is also
- * stored in the atlas (particle-major, as rasterize.cl writes it), for tests that compare it.
+ * stored in the atlas (particle-major, as rasterize.cl writes it), for tests that compare it. With
+ * propagate the group first moves its particle by the frame's motion step (dt_propagate.h, what
+ * propagate.cl does; the frame then launches one kernel fewer).
  * Compile-time choices: DT_GROUP_SIZE (power of two), DT_OCCLUSION as weigh.cl, DT_TILE_PIXELS the
  * image's pixels (the tile's size in work-group memory: the host uses this kernel only where it fits),
  * DT_SHARED_POINTS the vertices whose projections the group keeps in work-group memory (the mesh's
@@ -13,11 +15,12 @@
  * groups each compute unit should hold at once (CUDA's __launch_bounds__ through DT_RESIDENCY; 0: no hint).
  * Reference: Rasterizer::render and ReferenceFilter::weigh_particle. */
 #include "rasterize.cl"
+#include "dt_propagate.h"
 #include "dt_weigh.h"
 
 #define DT_DRAW_LIST 512u /* triangles listed per chunk (2 KB of work-group memory) */
 
-__kernel DT_RESIDENCY void render_weigh(__global const float* states, __global const float* vertices,
+__kernel DT_RESIDENCY void render_weigh(__global float* states, __global const float* vertices,
                                         __global const uint* triangles, __global const float* planes,
                                         uint triangle_count, uint vertex_count, dt_camera cam,
                                         __global const float* observed, __global const uint* parents,
@@ -25,7 +28,8 @@ __kernel DT_RESIDENCY void render_weigh(__global const float* states, __global c
                                         __global float* occlusion_to, __global dt_u16* time_to,
                                         __global float* frame_times, __global float* log_likelihood,
                                         __global float* log_weight, dt_model m, float now, uint now_index, float dt,
-                                        __global uint* atlas, uint keep_atlas, dt_window win) {
+                                        __global uint* atlas, uint keep_atlas, dt_window win, uint propagate,
+                                        uint seed_lo, uint seed_hi, uint frame, dt_motion motion) {
   __local uint tile[DT_TILE_PIXELS];
   __local float scratch[5 * DT_GROUP_SIZE]; /* dt_pose_box's reduction, then the group sum */
 #if DT_SHARED_POINTS > 0
@@ -35,6 +39,10 @@ __kernel DT_RESIDENCY void render_weigh(__global const float* states, __global c
 #endif
   const uint particle = get_group_id(0), lid = get_local_id(0), pixels = cam.width * cam.height;
   dt_weigh_begin(frame_times, now, now_index);
+  if (propagate) { /* a kernel argument: every work-item meets the barrier */
+    if (lid == 0) dt_propagate_particle(states, particle, seed_lo, seed_hi, frame, motion);
+    barrier(CLK_GLOBAL_MEM_FENCE);
+  }
   /* Only the pose's box is cleared, drawn and weighed (no triangle draws outside it), with the state
    * window's pixels, whose state moves from the parent's row to the particle's own. */
   const dt_rigid pose = dt_particle_pose(states + DT_CAST(ulong, particle) * DT_STATE_STRIDE);

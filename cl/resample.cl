@@ -1,6 +1,6 @@
 /* Systematic resampling on the device: prefix sum of the normalized weights, then each child's parent
  * by binary search and the gather of its kinematic state, with the refinement's shift, in one kernel
- * (resample_particles). Their per-pixel occlusion
+ * (resample_particles; for small clouds resample_scanning does the prefix sum too). Their per-pixel occlusion
  * state is not copied here: the next frame's weigh reads each child's row from its parent
  * (weigh.cl), so parents always holds the last frame's choice (the identity without resampling).
  * Reference: systematic_resample.
@@ -64,16 +64,11 @@ DT_DEVICE_FN void dt_pairs_total(DT_LOCAL_PTR const float* part_hi, DT_LOCAL_PTR
   }
 }
 
-/* Inclusive prefix sum of values [begin, end) in one work-group, starting from (hi, lo) before begin,
- * as float-float pairs written to cumulative[2i], cumulative[2i+1]: each work-item sums a contiguous
- * sub-chunk, work-item 0 scans the sub-chunk totals, then each writes its sub-chunk's running sums. */
-DT_DEVICE_FN void dt_scan_range(__global const float* values, __global float* cumulative, uint begin, uint end,
-                                float start_hi, float start_lo, DT_LOCAL_PTR float* part_hi,
-                                DT_LOCAL_PTR float* part_lo) {
-  const uint lid = get_local_id(0);
-  uint from, to;
-  dt_sub_chunk_sums(values, begin, end, part_hi, part_lo, &from, &to);
-  if (lid == 0) {
+/* The sub-chunk totals in part_hi, part_lo made each sub-chunk's running sum before it, from
+ * (start_hi, start_lo), by work-item 0 in order; on return every work-item sees all. */
+DT_DEVICE_FN void dt_chunk_starts(DT_LOCAL_PTR float* part_hi, DT_LOCAL_PTR float* part_lo, float start_hi,
+                                  float start_lo) {
+  if (get_local_id(0) == 0) {
     float run_hi = start_hi, run_lo = start_lo;
     for (uint g = 0; g < DT_GROUP_SIZE; ++g) {
       const float chunk_hi = part_hi[g], chunk_lo = part_lo[g];
@@ -84,6 +79,18 @@ DT_DEVICE_FN void dt_scan_range(__global const float* values, __global float* cu
     }
   }
   barrier(CLK_LOCAL_MEM_FENCE);
+}
+
+/* Inclusive prefix sum of values [begin, end) in one work-group, starting from (hi, lo) before begin,
+ * as float-float pairs written to cumulative[2i], cumulative[2i+1]: each work-item sums a contiguous
+ * sub-chunk, work-item 0 scans the sub-chunk totals, then each writes its sub-chunk's running sums. */
+DT_DEVICE_FN void dt_scan_range(__global const float* values, __global float* cumulative, uint begin, uint end,
+                                float start_hi, float start_lo, DT_LOCAL_PTR float* part_hi,
+                                DT_LOCAL_PTR float* part_lo) {
+  const uint lid = get_local_id(0);
+  uint from, to;
+  dt_sub_chunk_sums(values, begin, end, part_hi, part_lo, &from, &to);
+  dt_chunk_starts(part_hi, part_lo, start_hi, start_lo);
   float hi = part_hi[lid], lo = part_lo[lid];
   for (uint i = from; i < to; ++i) {
     dt_ff_add(&hi, &lo, values[i]);
@@ -178,6 +185,49 @@ DT_DEVICE_FN uint dt_find_parent(__global const float* cumulative, uint count, f
   return lo;
 }
 
+/* The first parent whose cumulative weight exceeds (u + child) / count (the last if none), where the
+ * cumulative weights are not stored but each of the group's sub-chunks has its start and its last
+ * cumulative weight in work-group memory (resample_scanning): the first sub-chunk whose last weight
+ * exceeds, then a walk through it from its start. The walk adds what dt_scan_range adds, in its order,
+ * so the values compared, and (the weights being non-negative, the sums non-decreasing) the parent,
+ * are dt_find_parent's over prefix_sum's output. */
+DT_DEVICE_FN uint dt_find_parent_in_chunks(__global const float* values, uint count, float u, uint child,
+                                           DT_LOCAL_PTR const float* start_hi, DT_LOCAL_PTR const float* start_lo,
+                                           DT_LOCAL_PTR const float* last_hi, DT_LOCAL_PTR const float* last_lo) {
+  const uint chunk = (count + DT_GROUP_SIZE - 1) / DT_GROUP_SIZE;
+  uint lo = 0, hi = (count + chunk - 1) / chunk - 1; /* the non-empty sub-chunks */
+  while (lo < hi) {
+    const uint mid = lo + (hi - lo) / 2;
+    if (dt_exceeds(last_hi[mid], last_lo[mid], DT_CAST(float, count), u, DT_CAST(float, child)))
+      hi = mid;
+    else
+      lo = mid + 1;
+  }
+  float sum_hi = start_hi[lo], sum_lo = start_lo[lo];
+  const uint end = min(count, (lo + 1) * chunk);
+  for (uint i = lo * chunk; i < end; ++i) {
+    dt_ff_add(&sum_hi, &sum_lo, values[i]);
+    if (dt_exceeds(sum_hi, sum_lo, DT_CAST(float, count), u, DT_CAST(float, child))) return i;
+  }
+  return count - 1;
+}
+
+/* Child j of parent: parents[j], the parent's kinematic state copied from `from` into `to`, moved
+ * with shift by the correction twist about the centre (velocities unchanged: the cloud follows the
+ * refined pose); after a resampling the log weight starts afresh at 0. */
+DT_DEVICE_FN void dt_resample_child(uint child, uint parent, int resampling, __global uint* parents,
+                                    __global const float* from, __global float* to, __global float* log_weight,
+                                    __global const float* correction, dt_vec3 centre, uint shift) {
+  parents[child] = parent;
+  if (resampling) log_weight[child] = 0.0f;
+  __global const float* source = from + DT_CAST(ulong, parent) * DT_STATE_STRIDE;
+  __global float* target = to + DT_CAST(ulong, child) * DT_STATE_STRIDE;
+  for (int k = 0; k < DT_STATE_STRIDE; ++k) target[k] = source[k];
+  if (!shift) return;
+  const float twist[6] = {correction[0], correction[1], correction[2], correction[3], correction[4], correction[5]};
+  dt_store_pose(target, dt_apply_twist(dt_load_pose(source), centre, twist));
+}
+
 /* The frame's resampling and the cloud's shift, a work-item per child (one launch for what were three:
  * find the parents, gather their states, move them): child j takes its parent (dt_find_parent; without
  * resampling each particle is its own), writes it to parents (the next weigh reads the child's occlusion
@@ -192,15 +242,42 @@ __kernel void resample_particles(__global const float* cumulative, __global uint
   const uint child = get_global_id(0);
   if (child >= count) return;
   const int resampling = dt_resampling(estimate);
-  const uint parent = resampling ? dt_find_parent(cumulative, count, u, child) : child;
-  parents[child] = parent;
-  if (resampling) log_weight[child] = 0.0f;
-  __global const float* source = from + DT_CAST(ulong, parent) * DT_STATE_STRIDE;
-  __global float* target = to + DT_CAST(ulong, child) * DT_STATE_STRIDE;
-  for (int k = 0; k < DT_STATE_STRIDE; ++k) target[k] = source[k];
-  if (!shift) return;
-  const float twist[6] = {correction[0], correction[1], correction[2], correction[3], correction[4], correction[5]};
-  dt_store_pose(target, dt_apply_twist(dt_load_pose(source), dt_vec3_make(centre_x, centre_y, centre_z), twist));
+  dt_resample_child(child, resampling ? dt_find_parent(cumulative, count, u, child) : child, resampling, parents,
+                    from, to, log_weight, correction, dt_vec3_make(centre_x, centre_y, centre_z), shift);
+}
+
+/* resample_particles for a cloud small enough (the host's kScanningResampleParticles) that every
+ * group of DT_GROUP_SIZE scans the weights itself: each group sums and scans their sub-chunks in
+ * work-group memory (prefix_sum's first half), and each work-item walks its own sub-chunk from its
+ * start to its last cumulative weight (prefix_sum's second half, not stored). The same parents as
+ * prefix_sum + resample_particles, one launch and the cumulative weights' round trip fewer; each group
+ * repeats the scan, which the GPU runs side by side. The scan runs whether or not the estimate says
+ * to resample (a barrier a value in memory decides on is not portable); its cost is a read of the
+ * weights. */
+__kernel void resample_scanning(__global const float* weights, __global uint* parents, uint count, float u,
+                                __global const float* estimate, __global const float* from, __global float* to,
+                                __global float* log_weight, __global const float* correction, float centre_x,
+                                float centre_y, float centre_z, uint shift) {
+  __local float start_hi[DT_GROUP_SIZE];
+  __local float start_lo[DT_GROUP_SIZE];
+  __local float last_hi[DT_GROUP_SIZE];
+  __local float last_lo[DT_GROUP_SIZE];
+  const uint lid = get_local_id(0);
+  uint first, end;
+  dt_sub_chunk_sums(weights, 0, count, start_hi, start_lo, &first, &end);
+  dt_chunk_starts(start_hi, start_lo, 0.0f, 0.0f);
+  float hi = start_hi[lid], lo = start_lo[lid];
+  for (uint i = first; i < end; ++i) dt_ff_add(&hi, &lo, weights[i]);
+  last_hi[lid] = hi;
+  last_lo[lid] = lo;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  const uint child = get_global_id(0);
+  if (child >= count) return;
+  const int resampling = dt_resampling(estimate);
+  const uint parent =
+      resampling ? dt_find_parent_in_chunks(weights, count, u, child, start_hi, start_lo, last_hi, last_lo) : child;
+  dt_resample_child(child, parent, resampling, parents, from, to, log_weight, correction,
+                    dt_vec3_make(centre_x, centre_y, centre_z), shift);
 }
 
 /* Each particle its own parent: the start, and a state set from the host. */

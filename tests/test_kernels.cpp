@@ -355,16 +355,26 @@ TEST_CASE("prefix-sum and resampling kernels choose the parents the reference do
   auto program = build(*q, "resample.cl");
   auto prefix = program->kernel("prefix_sum");
   auto resample = program->kernel("resample_particles");
+  auto scanning = program->kernel("resample_scanning");
   compute::ProgramCache programs(*q);
   std::mt19937 rng(2);
   std::exponential_distribution<double> e;
   // The last: over many groups (prefix_sum_totals, prefix_sum_ranges), as the filter for large clouds.
-  for (size_t count : {size_t{5}, size_t{200}, size_t{5000}, size_t{40000}}) {
+  // Each count with weights spread over the cloud, and with all weight on two particles and exact zeros
+  // elsewhere (an effective sample size near 1: flat runs of cumulative weights, ties everywhere).
+  for (size_t count : {size_t{1}, size_t{5}, size_t{200}, size_t{2000}, size_t{5000}, size_t{40000}})
+  for (const bool degenerate : {false, true}) {
     const bool wide = count >= kWideSummaryParticles;
-    INFO(count << " particles, " << (wide ? "many groups" : "one group"));
+    INFO(count << " particles, " << (wide ? "many groups" : "one group") << (degenerate ? ", two heavy" : ""));
     std::vector<double> w(count);
     double sum = 0;
     for (auto& x : w) sum += x = e(rng) * (e(rng) > 1.5 ? 20 : 1);  // a few heavy particles
+    if (degenerate) {
+      std::fill(w.begin(), w.end(), 0.0);
+      w[count / 3] = 0.7;
+      w[count - 1] += 0.3;
+      sum = 1.0;
+    }
     for (auto& x : w) x /= sum;
     compute::Buffer<float> weights(*q, count), cumulative(*q, 2 * count), from(*q, count * DT_STATE_STRIDE),
         to(*q, count * DT_STATE_STRIDE), log_weights(*q, count), no_correction(*q, 6);
@@ -394,6 +404,14 @@ TEST_CASE("prefix-sum and resampling kernels choose the parents the reference do
     const auto cum = cumulative.download();
     CHECK(cum[2 * count - 2] + cum[2 * count - 1] == Approx(1.0).epsilon(1e-5));
     for (size_t j = 0; j < count; ++j) REQUIRE(static_cast<int>(got[j]) == expected[j]);
+    if (wide) continue;
+    // Every group scanning the weights itself (the filter's kernel for small clouds): the same parents.
+    parents.upload(std::vector<unsigned>(count, 12345u));
+    q->launch(*scanning, compute::NdRange::linear((count + kGroup - 1) / kGroup * kGroup, kGroup), weights, parents,
+              static_cast<unsigned>(count), u, decision, from, to, log_weights, no_correction, 0.0f, 0.0f, 0.0f, 0u)
+        ->wait();
+    const auto scanned = parents.download();
+    for (size_t j = 0; j < count; ++j) REQUIRE(static_cast<int>(scanned[j]) == expected[j]);
   }
 }
 
@@ -403,14 +421,18 @@ TEST_CASE("resampling kernels follow the decision in the estimate buffer: gather
   if (!test::device_available()) return;
   auto q = compute::open_device(test::device_selector());
   auto program = build(*q, "resample.cl");
-  auto resample = program->kernel("resample_particles");
   const unsigned count = 3;
   std::vector<float> state(count * DT_STATE_STRIDE);
   for (size_t i = 0; i < state.size(); ++i) state[i] = static_cast<float>(i);
-  // Cumulative weights (float-float pairs) that make every child take particle 0 when resampling.
-  const std::vector<float> cumulative_in = {1.0f, 0.0f, 1.0f, 0.0f, 1.0f, 0.0f};
+  // Cumulative weights (float-float pairs), or for resample_scanning the weights, that make every child
+  // take particle 0 when resampling.
+  const std::vector<float> cumulative_in = {1.0f, 0.0f, 1.0f, 0.0f, 1.0f, 0.0f},
+                           weights_in = {1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+  for (const char* kernel : {"resample_particles", "resample_scanning"})
   for (const bool resampling : {false, true}) {
-    INFO((resampling ? "resampling" : "not resampling"));
+    INFO(kernel << (resampling ? ", resampling" : ", not resampling"));
+    auto resample = program->kernel(kernel);
+    const bool scanning = std::string(kernel) == "resample_scanning";
     std::vector<float> flag(DT_EST_SIZE, 0.0f);
     flag[DT_EST_RESAMPLE] = resampling ? 1.0f : 0.0f;
     compute::Buffer<float> decision(*q, DT_EST_SIZE), from(*q, state.size()), to(*q, state.size()), weights(*q, count),
@@ -420,10 +442,10 @@ TEST_CASE("resampling kernels follow the decision in the estimate buffer: gather
     from.upload(state);
     to.upload(std::vector<float>(state.size(), -1.0f));
     weights.upload(std::vector<float>(count, 7.0f));
-    cumulative.upload(cumulative_in);
+    cumulative.upload(scanning ? weights_in : cumulative_in);
     parents.upload(std::vector<unsigned>{2, 2, 2});  // overwritten
-    q->launch(*resample, compute::NdRange::linear(64, 64), cumulative, parents, count, 0.5f, decision, from, to,
-              weights, no_correction, 0.0f, 0.0f, 0.0f, 0u);
+    q->launch(*resample, compute::NdRange::linear(kGroup, kGroup), cumulative, parents, count, 0.5f, decision, from,
+              to, weights, no_correction, 0.0f, 0.0f, 0.0f, 0u);
     // Without resampling each is its own parent: the next weigh reads every particle's own row.
     const std::vector<unsigned> expected_parents =
         resampling ? std::vector<unsigned>(count, 0u) : std::vector<unsigned>{0, 1, 2};
@@ -439,11 +461,10 @@ TEST_CASE("resampling kernels follow the decision in the estimate buffer: gather
 
 // With the refinement on, every child is moved by its correction twist about the mesh's centre as it
 // is gathered: the pose the reference's apply_twist gives, the velocities copied unchanged.
-TEST_CASE("the resampling kernel moves each child by the refinement's correction", "[device][kernels][refine]") {
+TEST_CASE("the resampling kernels move each child by the refinement's correction", "[device][kernels][refine]") {
   if (!test::device_available()) return;
   auto q = compute::open_device(test::device_selector());
   auto program = build(*q, "resample.cl");
-  auto resample = program->kernel("resample_particles");
   const std::vector<Pose> poses = {
       Pose({0.01, -0.02, 0.5}, Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()))),
       Pose({-0.05, 0.03, 0.7}, Eigen::Quaterniond(Eigen::AngleAxisd(-1.2, Eigen::Vector3d(0, 1, 0)))),
@@ -469,9 +490,13 @@ TEST_CASE("the resampling kernel moves each child by the refinement's correction
   decision.upload(flag);
   from.upload(state);
   correction.upload(twist_f);
-  q->launch(*resample, compute::NdRange::linear(64, 64), cumulative, parents, count, 0.5f, decision, from, to, weights,
-            correction, static_cast<float>(centre.x()), static_cast<float>(centre.y()), static_cast<float>(centre.z()),
-            1u);
+  cumulative.upload(std::vector<float>(2 * count, 0.5f));  // resample_scanning reads weights here
+  for (const char* kernel : {"resample_particles", "resample_scanning"}) {
+  INFO(kernel);
+  to.upload(std::vector<float>(state.size(), -1.0f));
+  q->launch(*program->kernel(kernel), compute::NdRange::linear(kGroup, kGroup), cumulative, parents, count, 0.5f,
+            decision, from, to, weights, correction, static_cast<float>(centre.x()), static_cast<float>(centre.y()),
+            static_cast<float>(centre.z()), 1u);
   const auto got = to.download();
   for (unsigned i = 0; i < count; ++i) {
     const float* s = &got[i * DT_STATE_STRIDE];
@@ -482,5 +507,6 @@ TEST_CASE("the resampling kernel moves each child by the refinement's correction
     CHECK(rotation_error(moved, expected) < 1e-5);
     CHECK(translation_error(moved, poses[i]) > 1e-3);  // it did move
     for (int k = DT_VX; k < DT_STATE_STRIDE; ++k) REQUIRE(s[k] == state[i * DT_STATE_STRIDE + k]);
+  }
   }
 }

@@ -88,12 +88,19 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
          whole = whole_program->kernel("render_weigh");
     compute::Kernel* fused = corners.get();
 
+    auto propagate_program = build("propagate.cl", {"DT_GROUP_SIZE=128"});
+    auto propagate = propagate_program->kernel("propagate");
+    const dt_motion motion = model::motion_params(model::motion_step(config.motion, dt), Eigen::Vector3d(0.01, 0, 0));
+    const unsigned seed_lo = 5, seed_hi = 1, frame = 3;
+
     struct Run {
-      std::vector<float> atlas, ll, lw, occlusion, table;
+      std::vector<float> atlas, ll, lw, occlusion, table, states;
       std::vector<uint16_t> times;
     };
+    enum class Motion { None, Kernel, Inside };  // no motion step; propagate.cl first; render_weigh's own
     // inside: render_weigh; else rasterize, boxed or not, then weigh.
-    auto run = [&](bool inside, unsigned keep_atlas, const dt_window& win, unsigned boxed = 0) {
+    auto run = [&](bool inside, unsigned keep_atlas, const dt_window& win, unsigned boxed = 0,
+                   Motion step = Motion::None) {
       const size_t rows = count * win.width * win.height;
       compute::Buffer<float> states(*q, count * DT_STATE_STRIDE), obs(*q, pixels), occ_from(*q, rows), occ_to(*q, rows),
           table(*q, DT_TIME_TABLE), ll(*q, count), lw(*q, count), atlas(*q, layout.floats());
@@ -109,10 +116,14 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
       lw.upload(std::vector<float>(count, 2.0f));
       atlas.upload(std::vector<float>(layout.floats(), -3.0f));
       parent_buffer.upload(parents);
+      if (step == Motion::Kernel)
+        q->launch(*propagate, compute::NdRange::linear(64, 64), states, static_cast<unsigned>(count), seed_lo, seed_hi,
+                  frame, motion);
       if (inside) {
         q->launch(*fused, range, states, mesh_buffers.vertices, mesh_buffers.triangles, mesh_buffers.planes,
                   mesh_buffers.triangle_count(), mesh_buffers.vertex_count(), cam, obs, parent_buffer, occ_from, t_from,
-                  occ_to, t_to, table, ll, lw, m, now, now_index, dt, atlas, keep_atlas, win);
+                  occ_to, t_to, table, ll, lw, m, now, now_index, dt, atlas, keep_atlas, win,
+                  static_cast<unsigned>(step == Motion::Inside), seed_lo, seed_hi, frame, motion);
       } else {
         q->launch(*rasterize, range, states, mesh_buffers.vertices, mesh_buffers.triangles, mesh_buffers.planes,
                   mesh_buffers.triangle_count(), mesh_buffers.vertex_count(), cam, layout.kernel_args(), atlas, boxes,
@@ -121,7 +132,8 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
                   static_cast<unsigned>(pixels), m, now, now_index, dt, layout.kernel_args(), win, boxes, boxed);
       }
       q->finish();
-      return Run{atlas.download(), ll.download(), lw.download(), occ_to.download(), table.download(), t_to.download()};
+      return Run{atlas.download(), ll.download(), lw.download(), occ_to.download(),
+                 table.download(), states.download(), t_to.download()};
     };
     // The whole image's state, and a 16x12 state window (cutting the object) moved by (3, 2) since the rows were
     // written.
@@ -175,6 +187,16 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
       CHECK(boxed.occlusion == apart.occlusion);
       CHECK(boxed.times == apart.times);
       CHECK(boxed.table == apart.table);
+      // Each group moving its own particle first (the filter's frame, one launch fewer): the states and
+      // sums propagate.cl followed by render_weigh give, bit for bit; and the particles did move.
+      fused = listed.get();
+      const Run moved_first = run(true, 1, win, 0, Motion::Kernel), moved_inside = run(true, 1, win, 0, Motion::Inside);
+      CHECK(moved_inside.states == moved_first.states);
+      CHECK(moved_inside.states != inside.states);
+      CHECK(moved_inside.atlas == moved_first.atlas);
+      CHECK(moved_inside.ll == moved_first.ll);
+      CHECK(moved_inside.occlusion == moved_first.occlusion);
+      CHECK(moved_inside.ll != inside.ll);
     }
   }
 }

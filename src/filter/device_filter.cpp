@@ -25,6 +25,10 @@ namespace depthtrack {
 namespace {
 constexpr size_t kGroupSize = 128;   // work-items per group in weigh, summarize and the per-pixel fills
 constexpr size_t kLinearGroup = 64;  // work-items per group in the per-particle kernels
+// Up to this many particles every resampling group scans the weights itself (resample_scanning: one
+// launch, not two). Each group repeats the scan, count^2 / kGroupSize adds in all: a GPU runs the groups
+// side by side, a CPU device one after another, where at 4,096 they cost about what the launch saves.
+constexpr size_t kScanningResampleParticles = 4096;
 
 // A run of launches' device time from its first event to its last, the gaps between them included
 // (the launches between are untimed); the events' own times added where the backend has no common clock.
@@ -97,7 +101,8 @@ size_t render_weigh_resident_groups(size_t pixels, size_t shared_points, const c
 struct DeviceFilter::Kernels {
   std::shared_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
       initialize_program;
-  std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, resample_particles, identity_parents, fill,
+  std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, resample_particles, resample_scanning,
+      identity_parents, fill,
       initialize_particles, fill_per_particle, fill_time_indices, retire_time_indices;
 };
 
@@ -142,7 +147,10 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
     k.summarize = k.summarize_program->kernel("summarize");
     k.prefix_sum = k.resample_program->kernel("prefix_sum");
   }
-  k.resample_particles = k.resample_program->kernel("resample_particles");
+  if (count_ <= kScanningResampleParticles)
+    k.resample_scanning = k.resample_program->kernel("resample_scanning");
+  else
+    k.resample_particles = k.resample_program->kernel("resample_particles");
   k.identity_parents = k.resample_program->kernel("identity_parents");
   k.fill = k.resample_program->kernel("fill");
   k.initialize_program = device_->programs.program("initialize.cl", defines);
@@ -448,10 +456,12 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   compute::LaunchBatch batch(*queue_, atlas_source_->device_mesh() != nullptr);
   const unsigned count = static_cast<unsigned>(count_);
   const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
-  if (dt > 0)
-    p->propagated = launch_step(*k.propagate, linear, state_, count, static_cast<unsigned>(config_.seed & 0xffffffffu),
-                                static_cast<unsigned>(config_.seed >> 32), frame_,
-                                model::motion_params(model::motion_step(config_.motion, dt), centre_));
+  const unsigned seed_lo = static_cast<unsigned>(config_.seed & 0xffffffffu),
+                 seed_hi = static_cast<unsigned>(config_.seed >> 32);
+  const dt_motion motion = dt > 0 ? model::motion_params(model::motion_step(config_.motion, dt), centre_) : dt_motion{};
+  // render_weigh moves each particle itself (one launch fewer); its propagate_ms is then part of weigh_ms.
+  if (dt > 0 && !render_weigh_)
+    p->propagated = launch_step(*k.propagate, linear, state_, count, seed_lo, seed_hi, frame_, motion);
 
   if (!render_weigh_) p->rendered = render_atlas(p->timings);
 
@@ -478,7 +488,8 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
                     render_weigh_mesh_->vertex_count(), model::camera_params(camera_, config_), observed_, parents_,
                     occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(),
                     log_likelihood_, log_weight_, model::model_params(config_), static_cast<float>(time_), now_index,
-                    static_cast<float>(dt), atlas_, static_cast<unsigned>(keep_atlas_), window);
+                    static_cast<float>(dt), atlas_, static_cast<unsigned>(keep_atlas_), window,
+                    static_cast<unsigned>(dt > 0), seed_lo, seed_hi, frame_, motion);
   else
     p->weighed =
         launch_step(*k.weigh, per_particle_group, atlas_, observed_, parents_, occlusion_, occlusion_time_,
@@ -583,18 +594,26 @@ std::vector<compute::EventPtr> DeviceFilter::resample() {
   const dt_philox4 words = dt_random_words(config_.seed, 0u, frame_, DT_STREAM_RESAMPLE, 0u);
   const auto linear = compute::NdRange::linear(round_up(count_, kLinearGroup), kLinearGroup);
   const unsigned count = static_cast<unsigned>(count_);
-  std::vector<compute::EventPtr> events;
-  if (wide_)
-    events = wide_->prefix_sum(weights_, cumulative_, estimate_);
-  else
-    events.push_back(launch_step(*k.prefix_sum, compute::NdRange::linear(kGroupSize, kGroupSize), weights_, cumulative_,
-                                 count, estimate_));
+  const float u = dt_uniform01(words.v[0]);
   // With the refinement on, the children are moved by its correction as they are gathered.
   const Eigen::Vector3f centre = centre_.cast<float>();
-  events.push_back(launch_step(*k.resample_particles, linear, cumulative_, parents_, count, dt_uniform01(words.v[0]),
-                               estimate_, state_, scratch_state_, log_weight_,
-                               refiner_ ? refiner_->correction() : no_correction_, centre.x(), centre.y(), centre.z(),
-                               static_cast<unsigned>(refiner_ != nullptr)));
+  const compute::Buffer<float>& correction = refiner_ ? refiner_->correction() : no_correction_;
+  const unsigned shift = refiner_ != nullptr;
+  std::vector<compute::EventPtr> events;
+  if (k.resample_scanning) {
+    events.push_back(launch_step(*k.resample_scanning,
+                                 compute::NdRange::linear(round_up(count_, kGroupSize), kGroupSize), weights_, parents_,
+                                 count, u, estimate_, state_, scratch_state_, log_weight_, correction, centre.x(),
+                                 centre.y(), centre.z(), shift));
+  } else {
+    if (wide_)
+      events = wide_->prefix_sum(weights_, cumulative_, estimate_);
+    else
+      events.push_back(launch_step(*k.prefix_sum, compute::NdRange::linear(kGroupSize, kGroupSize), weights_,
+                                   cumulative_, count, estimate_));
+    events.push_back(launch_step(*k.resample_particles, linear, cumulative_, parents_, count, u, estimate_, state_,
+                                 scratch_state_, log_weight_, correction, centre.x(), centre.y(), centre.z(), shift));
+  }
   std::swap(state_, scratch_state_);
   return events;
 }
