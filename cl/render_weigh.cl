@@ -6,8 +6,10 @@
  * keeps, and the state window), the same sums in the same order as rasterize.cl + weigh.cl (the
  * atomic minimum does not depend on the order the triangles come in). With keep_atlas the tile is also
  * stored in the atlas (particle-major, as rasterize.cl writes it), for tests that compare it. With
- * propagate the group first moves its particle by the frame's motion step (dt_propagate.h, what
- * propagate.cl does; the frame then launches one kernel fewer).
+ * propagate, in a program compiled with DT_PROPAGATE_INSIDE=1 (small clouds: the host's
+ * kFusedLaunchParticles), the group first moves its particle by the frame's motion step (dt_propagate.h,
+ * what propagate.cl does; the frame then launches one kernel fewer); without the define the block is
+ * left out, as it costs NVRTC's register allocation spills.
  * Compile-time choices: DT_GROUP_SIZE (power of two), DT_OCCLUSION as weigh.cl, DT_TILE_PIXELS the
  * image's pixels (the tile's size in work-group memory: the host uses this kernel only where it fits),
  * DT_SHARED_POINTS the vertices whose projections the group keeps in work-group memory (the mesh's
@@ -18,6 +20,9 @@
 #include "dt_propagate.h"
 #include "dt_weigh.h"
 
+#ifndef DT_PROPAGATE_INSIDE
+#define DT_PROPAGATE_INSIDE 0
+#endif
 #define DT_DRAW_LIST 512u /* triangles listed per chunk (2 KB of work-group memory) */
 
 __kernel DT_RESIDENCY void render_weigh(__global float* states, __global const float* vertices,
@@ -39,10 +44,12 @@ __kernel DT_RESIDENCY void render_weigh(__global float* states, __global const f
 #endif
   const uint particle = get_group_id(0), lid = get_local_id(0), pixels = cam.width * cam.height;
   dt_weigh_begin(frame_times, now, now_index);
+#if DT_PROPAGATE_INSIDE
   if (propagate) { /* a kernel argument: every work-item meets the barrier */
     if (lid == 0) dt_propagate_particle(states, particle, seed_lo, seed_hi, frame, motion);
     barrier(CLK_GLOBAL_MEM_FENCE);
   }
+#endif
   /* Only the pose's box is cleared, drawn and weighed (no triangle draws outside it), with the state
    * window's pixels, whose state moves from the parent's row to the particle's own. */
   const dt_rigid pose = dt_particle_pose(states + DT_CAST(ulong, particle) * DT_STATE_STRIDE);

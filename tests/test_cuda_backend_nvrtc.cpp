@@ -69,14 +69,15 @@ TEST_CASE("The filter's kernels compile as CUDA for every occlusion variant", "[
     }
   }
   // Drawing inside weigh at 80x60: with and without the vertices kept in work-group memory, with and
-  // without the whole-image state index.
+  // without the whole-image state index, moving the particles first or not.
   for (const std::string points : {"0", "423"})
     for (const std::string whole : {"0", "1"}) {
       CAPTURE(points, whole);
-      const std::string ptx = cuda::compile_to_ptx(compute::kernel_source("render_weigh.cl"),
-                                                   {"DT_GROUP_SIZE=128", "DT_OCCLUSION=0", "DT_TILE_PIXELS=4800",
-                                                    "DT_SHARED_POINTS=" + points, "DT_WHOLE_IMAGE_STATE=" + whole},
-                                                   90);
+      const std::string ptx = cuda::compile_to_ptx(
+          compute::kernel_source("render_weigh.cl"),
+          {"DT_GROUP_SIZE=128", "DT_OCCLUSION=0", "DT_TILE_PIXELS=4800", "DT_SHARED_POINTS=" + points,
+           "DT_WHOLE_IMAGE_STATE=" + whole, "DT_PROPAGATE_INSIDE=" + whole},
+          90);
       CHECK(ptx.find(".entry render_weigh") != std::string::npos);
       CHECK(ptx.find(".minnctapersm") == std::string::npos);  // no residency asked for
     }

@@ -77,7 +77,8 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
     REQUIRE(points == mesh_buffers.vertex_count());
     auto fused_program = build("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=4800"});
     auto listed_program = build("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=4800",
-                                                    "DT_SHARED_POINTS=" + std::to_string(points)});
+                                                    "DT_SHARED_POINTS=" + std::to_string(points),
+                                                    "DT_PROPAGATE_INSIDE=1"});
     auto rasterize = raster_program->kernel("rasterize");
     auto weigh = weigh_program->kernel("weigh");
     // And with the host's promise that the state window is the whole image (DT_WHOLE_IMAGE_STATE).

@@ -124,9 +124,9 @@ TEST_CASE("A device tracker without step timings tracks the same and times only 
   timed.initialize(scene.frames[0].ground_truth);
   untimed.initialize(scene.frames[0].ground_truth);
   // Drawn inside weigh, the particles are moved there too (no propagate launch): its time is weigh's.
-  const bool weigh_propagates =
-      renders_inside_weigh(config.renderer, static_cast<size_t>(scene.synth.camera.pixel_count()),
-                           compute::open_device(test::device_selector())->info().local_memory);
+  const bool weigh_propagates = propagates_inside_weigh(
+      config.renderer, static_cast<size_t>(scene.synth.camera.pixel_count()),
+      compute::open_device(test::device_selector())->info().local_memory, static_cast<size_t>(config.particles));
   for (size_t i = 0; i < scene.frames.size(); ++i) {
     const SynthFrame& f = scene.frames[i];
     const Estimate a = timed.update(f.depth, f.timestamp), b = untimed.update(f.depth, f.timestamp);

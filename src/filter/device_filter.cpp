@@ -25,10 +25,6 @@ namespace depthtrack {
 namespace {
 constexpr size_t kGroupSize = 128;   // work-items per group in weigh, summarize and the per-pixel fills
 constexpr size_t kLinearGroup = 64;  // work-items per group in the per-particle kernels
-// Up to this many particles every resampling group scans the weights itself (resample_scanning: one
-// launch, not two). Each group repeats the scan, count^2 / kGroupSize adds in all: a GPU runs the groups
-// side by side, a CPU device one after another, where at 4,096 they cost about what the launch saves.
-constexpr size_t kScanningResampleParticles = 4096;
 
 // A run of launches' device time from its first event to its last, the gaps between them included
 // (the launches between are untimed); the events' own times added where the backend has no common clock.
@@ -77,6 +73,10 @@ size_t render_weigh_local_bytes(size_t pixels) {
 
 bool renders_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory) {
   return renderer == Renderer::Kernel && render_weigh_local_bytes(pixels) <= std::min(local_memory, kStaticLocalLimit);
+}
+
+bool propagates_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory, size_t particles) {
+  return particles <= kFusedLaunchParticles && renders_inside_weigh(renderer, pixels, local_memory);
 }
 
 namespace {
@@ -147,7 +147,7 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
     k.summarize = k.summarize_program->kernel("summarize");
     k.prefix_sum = k.resample_program->kernel("prefix_sum");
   }
-  if (count_ <= kScanningResampleParticles)
+  if (count_ <= kFusedLaunchParticles)
     k.resample_scanning = k.resample_program->kernel("resample_scanning");
   else
     k.resample_particles = k.resample_program->kernel("resample_particles");
@@ -172,12 +172,14 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   estimate_ = compute::Buffer<float>(q, DT_EST_SIZE);
   estimate_host_.resize(DT_EST_SIZE);
   if (renders_inside_weigh(config.renderer, pixels_, q.info().local_memory) && atlas_source_->device_mesh()) {
+    propagates_in_weigh_ = propagates_inside_weigh(config.renderer, pixels_, q.info().local_memory, count_);
     const size_t shared_points =
         render_weigh_shared_points(pixels_, atlas_source_->device_mesh()->vertex_count(), q.info().local_memory);
     render_weigh_ = device_->programs
                         .program("render_weigh.cl",
                                  {defines[0], defines[1], defines[2], "DT_TILE_PIXELS=" + std::to_string(pixels_),
                                   "DT_SHARED_POINTS=" + std::to_string(shared_points),
+                                  "DT_PROPAGATE_INSIDE=" + std::string(propagates_in_weigh_ ? "1" : "0"),
                                   "DT_RESIDENT_GROUPS=" +
                                       std::to_string(render_weigh_resident_groups(pixels_, shared_points, q.info()))})
                         ->kernel("render_weigh");
@@ -459,8 +461,9 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   const unsigned seed_lo = static_cast<unsigned>(config_.seed & 0xffffffffu),
                  seed_hi = static_cast<unsigned>(config_.seed >> 32);
   const dt_motion motion = dt > 0 ? model::motion_params(model::motion_step(config_.motion, dt), centre_) : dt_motion{};
-  // render_weigh moves each particle itself (one launch fewer); its propagate_ms is then part of weigh_ms.
-  if (dt > 0 && !render_weigh_)
+  // For a small cloud render_weigh moves each particle itself (one launch fewer); propagate_ms is then
+  // part of weigh_ms.
+  if (dt > 0 && !propagates_in_weigh_)
     p->propagated = launch_step(*k.propagate, linear, state_, count, seed_lo, seed_hi, frame_, motion);
 
   if (!render_weigh_) p->rendered = render_atlas(p->timings);
@@ -489,7 +492,7 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
                     occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(),
                     log_likelihood_, log_weight_, model::model_params(config_), static_cast<float>(time_), now_index,
                     static_cast<float>(dt), atlas_, static_cast<unsigned>(keep_atlas_), window,
-                    static_cast<unsigned>(dt > 0), seed_lo, seed_hi, frame_, motion);
+                    static_cast<unsigned>(dt > 0 && propagates_in_weigh_), seed_lo, seed_hi, frame_, motion);
   else
     p->weighed =
         launch_step(*k.weigh, per_particle_group, atlas_, observed_, parents_, occlusion_, occlusion_time_,

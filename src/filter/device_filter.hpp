@@ -32,6 +32,18 @@ double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bo
 // The one rule for the filter, its memory check and `depthtrack bench`.
 bool renders_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory);
 
+// Up to this many particles a frame is bound by its launches (each costs the host 5-18 us on NVIDIA's
+// OpenCL) more than by its kernels, so launches are folded together: render_weigh moves its particle
+// itself (no propagate launch; its program is compiled with DT_PROPAGATE_INSIDE) and every resampling
+// group scans the weights itself (resample_scanning, not prefix_sum + resample_particles; the groups
+// repeat the scan, count^2 / 128 adds in all, which a GPU runs side by side). Larger clouds keep the
+// separate kernels, and render_weigh its registers as before (the moving block costs it spills in
+// NVRTC's allocation).
+constexpr size_t kFusedLaunchParticles = 4096;
+
+// Whether render_weigh moves the particles (propagate.cl's step, cl/dt_propagate.h) for this cloud.
+bool propagates_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory, size_t particles);
+
 // How many vertices' projections render_weigh keeps in work-group memory beside the tile (its
 // DT_SHARED_POINTS): the mesh's vertex_count where they and the triangle list fit in what
 // renders_inside_weigh leaves, else 0 (each triangle then projects its own corners).
@@ -166,6 +178,7 @@ class DeviceFilter final : public FilterBackend {
   // source's mesh.
   std::unique_ptr<compute::Kernel> render_weigh_;
   const MeshBuffers* render_weigh_mesh_ = nullptr;
+  bool propagates_in_weigh_ = false;  // propagates_inside_weigh: no propagate launch
   bool keep_atlas_ = false;
   // Per-pixel occlusion state, double-buffered: weigh reads particle i's row parents_[i] of one and
   // writes row i of the other (cl/weigh.cl), so resampling copies no rows; parents_ is the identity
