@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# On the lent GPU machine, one call (about 6 minutes): the 2,000-particle frame (issue 12's 0.25 ms) and
+# three objects against one (issue 10's 1.5x) at this tree against an earlier commit, built side by side
+# and run alternately so that both see the same host: OLD (default fc655e9, before the small-cloud launch
+# folds of round 2, session 19). Then the kernels' and the filter's equivalence tests on each backend
+# with this tree (TESTS=0 leaves them out). 2,000 particles, 80x60, untimed steps as a tracker runs:
+# the handset and the YCB mug at the 0.5 mm default, REPS (default 3) alternations; the several-object
+# ratios at the 0.5 mm default. Carry .devdeps, .device and .devdata.
+set -uo pipefail
+source .device/enter .devdeps
+export DEPTHTRACK_DATA_DIR=$PWD/.devdata POCL_CACHE_DIR=/tmp/pocl-cache
+old_rev=${OLD:-fc655e9}
+flags=(-G Ninja -DCMAKE_BUILD_TYPE=Release -DDEPTHTRACK_SANITIZE_SUITE=OFF -DDEPTHTRACK_STATIC_PACKAGE_TEST=OFF
+  -DDEPTHTRACK_PYTHON=OFF)
+mkdir -p /tmp/old-tree && git archive "$old_rev" | tar -x -C /tmp/old-tree || exit 1
+cmake -S /tmp/old-tree -B /tmp/old-tree/build "${flags[@]}" -DDEPTHTRACK_BUILD_TESTS=OFF >/tmp/old-configure.log 2>&1 &&
+  cmake --build /tmp/old-tree/build -j"$(nproc)" --target depthtrack_bench >/tmp/old-build.log 2>&1 ||
+  { tail -20 /tmp/old-build.log; exit 1; }
+cmake -S . -B build-gpu "${flags[@]}" -DDEPTHTRACK_BUILD_TESTS=ON >/tmp/new-configure.log 2>&1 &&
+  cmake --build build-gpu -j"$(nproc)" --target depthtrack_bench depthtrack_tests >/tmp/new-build.log 2>&1 ||
+  { tail -20 /tmp/new-build.log; exit 1; }
+nvidia-smi --query-gpu=name,driver_version --format=csv,noheader
+echo "old $old_rev, new $(git log --oneline -1 2>/dev/null | cut -c1-7)"
+rows=',(total_ms|enqueue_ms|wait_ms),'
+for rep in $(seq "${REPS:-3}"); do
+  for b in cuda opencl:nvidia; do
+    for mesh in "" "--mesh .devdata/meshes/ycb/025_mug.obj --simplify-error 0.0005"; do
+      for tree in /tmp/old-tree/build build-gpu; do
+        echo "$b ${tree%%/build*} ${mesh:+mug}: $("$tree/depthtrack_bench" --backend "$b" --particles 2000 --frames 60 \
+          --no-global --untimed-steps $mesh | grep -E "$rows" | cut -d, -f6,8 | tr '\n' ' ')"
+      done
+    done
+  done
+done
+for b in cuda opencl:nvidia; do
+  for tree in /tmp/old-tree/build build-gpu; do
+    echo "$b ${tree%%/build*} three ycbv objects:"
+    "$tree/depthtrack_bench" --multi-objects --backend "$b" --particles 2000 --untimed-steps --simplify-error 0.0005 \
+      --frames 40 | grep -E "multi_object_ratio" | cut -d, -f5-
+  done
+done
+[[ ${TESTS:-1} == 1 ]] || exit 0
+for b in cuda opencl:nvidia; do
+  echo "== $b"
+  DEPTHTRACK_TEST_DEVICE=$b build-gpu/tests/depthtrack_tests "[kernels],[refine],[device],[multi]" 2>&1 |
+    grep -E "test cases|FAILED|failed" | head -20
+done
