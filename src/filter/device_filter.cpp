@@ -514,19 +514,28 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   // The refinement replaces the weighted mean's pose (it starts from the heaviest particle), so its
   // rotation mean is not iterated: 4 of the single group's 7 reductions, or 4 launches of the wide summary.
   const unsigned karcher_steps = refiner_ ? 0u : static_cast<unsigned>(DT_KARCHER_STEPS);
-  if (wide_)
+  // The one-launch fit summarizes in its own group first (one launch for both); a wide summary stays apart.
+  const bool fit_summarizes = refiner_ && !wide_ && refiner_->summarizes_first();
+  if (wide_) {
     p->summarized = wide_->summarize(state_, log_weight_, log_likelihood_, weights_, estimate_, cx, cy, cz,
                                      kl_threshold, karcher_steps);
-  else
+    batch.flush();
+  } else if (!fit_summarizes) {
     p->summarized = {launch_step(*k.summarize, compute::NdRange::linear(summary_group_, summary_group_), state_,
                                  log_weight_, log_likelihood_, weights_, estimate_, count, cx, cy, cz, kl_threshold,
                                  karcher_steps)};
-  batch.flush();
+    batch.flush();
+  }
   // Before resample() overwrites parents_ with this frame's choice.
-  if (refiner_)
-    p->refined =
-        refiner_->refine(estimate_, RefineInputs{state_, observed_, scratch_occlusion_, scratch_occlusion_time_,
-                                                 frame_times_->device(), parents_, window, time_, dt});
+  if (refiner_) {
+    const RefineInputs inputs{state_,   observed_, scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(),
+                              parents_, window,    time_,              dt};
+    p->refined = fit_summarizes ? refiner_->summarize_and_refine(
+                                      estimate_, inputs,
+                                      SummaryInputs{log_weight_, log_likelihood_, weights_, count,
+                                                    Eigen::Vector3f(cx, cy, cz), kl_threshold})
+                                : refiner_->refine(estimate_, inputs);
+  }
   // The estimate is complete: it goes to the host ahead of the resampling and the shift, which only the
   // next frame needs (they run while the host takes the estimate).
   estimate_.download_enqueued(std::span<float>(estimate_host_));

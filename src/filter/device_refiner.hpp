@@ -12,6 +12,7 @@
 #include <depthtrack/camera.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/tracker_config.hpp>
+#include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <vector>
@@ -39,6 +40,16 @@ struct RefineInputs {
   double dt;         // seconds since the frame before
 };
 
+// summarize.cl's inputs, for the one-launch fit that summarizes first (DeviceRefiner::summarizes_first).
+struct SummaryInputs {
+  const compute::Buffer<float>& log_weight;
+  const compute::Buffer<float>& log_likelihood;
+  compute::Buffer<float>& weights;  // the normalized weights, written
+  unsigned count;
+  Eigen::Vector3f centre;  // the mesh's, object frame
+  float kl_threshold;      // model::float_threshold of the resampling's
+};
+
 // The layout Auto picks: Spread for meshes of kSpreadTriangles triangles or more on every device, and
 // for smaller ones on CUDA and on GPUs over kOneLaunchGpuPixels; OneLaunch for smaller meshes elsewhere (measured on PoCL and NVIDIA's
 // CUDA and OpenCL: device_refiner.cpp); OneGroup on devices without 64-bit atomic min
@@ -61,6 +72,12 @@ class DeviceRefiner {
   // Enqueues the fit; estimate holds summarize's output and receives the refined pose. The events of
   // every kernel it enqueued, in order (their device times add up to the fit's).
   std::vector<compute::EventPtr> refine(compute::Buffer<float>& estimate, const RefineInputs& in);
+  // The same where summarizes_first(), with summarize.cl's work done first in the fit's own launch
+  // (refine_spread.cl's summarize_refine): estimate then needs no summary before.
+  std::vector<compute::EventPtr> summarize_and_refine(compute::Buffer<float>& estimate, const RefineInputs& in,
+                                                      const SummaryInputs& summary);
+  // Whether this layout can summarize in its own launch: one-launch (one group, as summarize.cl's).
+  bool summarizes_first() const { return layout_ == RefineLayout::OneLaunch; }
   // The twist that moves the heaviest particle onto the last fit's refined pose, about the mesh's
   // centre: resample_particles (cl/resample.cl) moves every particle by it.
   const compute::Buffer<float>& correction() const { return correction_; }
@@ -69,6 +86,7 @@ class DeviceRefiner {
   double radius() const { return radius_; }        // the mesh's (model::pose_covariance's pivot)
 
  private:
+  dt_refine_args frame_args(const RefineInputs& in) const;  // the fit's settings for this frame
   std::vector<compute::EventPtr> refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in,
                                                const dt_refine_args& args);
 
@@ -79,7 +97,7 @@ class DeviceRefiner {
   double radius_;
   RefineLayout layout_;
   std::shared_ptr<compute::Program> program_;
-  std::unique_ptr<compute::Kernel> refine_;
+  std::unique_ptr<compute::Kernel> refine_, summarize_refine_;  // summarize_refine_: one-launch only
   // The spread layout's kernels (cl/refine_spread.cl), its fit state, per-group partial sums and
   // the candidate's drawing (depth bits and triangle per pixel).
   std::unique_ptr<compute::Kernel> begin_, draw_, sums_;
