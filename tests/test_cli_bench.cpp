@@ -51,6 +51,10 @@ TEST_CASE("median, p95 and the bytes each step moves", "[bench]") {
   const auto inside = cli::step_bytes(10, 4800, OcclusionStorage::PerPixelTime, false, 0, true);
   CHECK(inside.render == 0);
   CHECK(inside.weigh == 10 * (2 * 4800 * 4 + 2 * 4800 * 2 + 12));
+  // A small cloud's weigh moves the particles too: the motion step's state read and write are its.
+  const auto moving = cli::step_bytes(10, 4800, OcclusionStorage::PerPixelTime, false, 0, true, std::nullopt, true);
+  CHECK(moving.propagate == 0);
+  CHECK(moving.weigh == inside.weigh + 10 * 2 * 64);
   CHECK(cli::step_bytes(10, 4800, OcclusionStorage::Off, true, 0).handoff == 10 * 4800 * 4 * 2);
   // DeviceFilter's buffers: 4 bytes x (4 per pixel: atlas, p twice, t twice in 16 bits; + 2 x 16 state + 6)
   // per particle; 3 per pixel where the atlas stays in work-group memory.

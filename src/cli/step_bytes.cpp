@@ -1,12 +1,14 @@
 #include "cli/step_bytes.hpp"
 
+#include <utility>
+
 #include "dt_state.h"
 #include "filter/device_filter.hpp"
 
 namespace depthtrack::cli {
 
 StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, bool gl_handoff, int refine_iterations,
-                     bool inside_weigh, std::optional<size_t> state_pixels) {
+                     bool inside_weigh, std::optional<size_t> state_pixels, bool weigh_propagates) {
   const double n = static_cast<double>(particles), px = static_cast<double>(pixels), f = sizeof(float);
   const double kept = static_cast<double>(state_pixels.value_or(pixels));       // the state window's
   const double state = DT_STATE_STRIDE * f;                                      // per particle
@@ -20,6 +22,7 @@ StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, boo
   b.weigh = n * (atlas + 2 * occlusion + 2 * times + 3 * f);  // atlas, parent's row read, own row written
   b.resample = n * (2 * state + 3 * f);                       // the kinematic gather (weigh gathers the rows)
   b.refine = refine_iterations * 3 * px * f;                  // one pose: its tile, depth, ids
+  if (weigh_propagates) b.weigh += std::exchange(b.propagate, 0.0);
   return b;
 }
 

@@ -17,9 +17,11 @@ struct StepBytes {
 
 // One frame of `particles` particles at `pixels` pixels each, keeping occlusion state for state_pixels
 // of them (the state window's; none given: all); handoff only for the GL renderer; with inside_weigh
-// (renders_inside_weigh) the tiles stay in work-group memory: no atlas written or read.
+// (renders_inside_weigh) the tiles stay in work-group memory: no atlas written or read; with
+// weigh_propagates (propagates_inside_weigh) the motion step's state read and write are weigh's.
 StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, bool gl_handoff, int refine_iterations,
-                     bool inside_weigh = false, std::optional<size_t> state_pixels = std::nullopt);
+                     bool inside_weigh = false, std::optional<size_t> state_pixels = std::nullopt,
+                     bool weigh_propagates = false);
 
 // Device memory the filter's buffers take without GL pages, MiB (device_filter_bytes_per_particle), with
 // the state window's rows as it needs them: an automatic window's buffers hold room for up to half as
