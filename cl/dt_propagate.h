@@ -3,10 +3,10 @@
  * group, which saves the frame a launch. */
 #ifndef DT_PROPAGATE_H
 #define DT_PROPAGATE_H
+#include "dt_params.h" /* dt_motion: the per-frame constants of the host's model::motion_step */
+#include "dt_pose_move.h"
 #include "dt_prelude.h"
 #include "philox.h"
-#include "dt_pose_move.h"
-#include "dt_params.h" /* dt_motion: the per-frame constants of the host's model::motion_step */
 
 DT_DEVICE_FN void dt_propagate_particle(__global float* state, uint i, uint seed_lo, uint seed_hi, uint frame,
                                         dt_motion m) {

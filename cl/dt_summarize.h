@@ -3,17 +3,17 @@
  * the caller's: scratch and scratch_index DT_GROUP_SIZE each, sums DT_GROUP_SUMS_SCRATCH(DT_WEIGHTED_SUMS). */
 #ifndef DT_SUMMARIZE_H
 #define DT_SUMMARIZE_H
-#include "dt_prelude.h"
 #include "dt_estimate.h"
 #include "dt_group.h"
+#include "dt_prelude.h"
 #include "dt_quaternion.h"
 #include "dt_state.h"
 #include "dt_summary.h" /* DT_KARCHER_STEPS */
 
 DT_DEVICE_FN void dt_summarize(__global const float* state, __global const float* log_weight,
-                               __global const float* log_likelihood, __global float* weights,
-                               __global float* estimate, uint count, dt_vec3 centre, float kl_threshold,
-                               uint karcher_steps, DT_LOCAL_PTR float* scratch, DT_LOCAL_PTR uint* scratch_index,
+                               __global const float* log_likelihood, __global float* weights, __global float* estimate,
+                               uint count, dt_vec3 centre, float kl_threshold, uint karcher_steps,
+                               DT_LOCAL_PTR float* scratch, DT_LOCAL_PTR uint* scratch_index,
                                DT_LOCAL_PTR float* sums) {
   const uint lid = get_local_id(0);
 

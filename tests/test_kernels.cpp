@@ -363,56 +363,56 @@ TEST_CASE("prefix-sum and resampling kernels choose the parents the reference do
   // Each count with weights spread over the cloud, and with all weight on two particles and exact zeros
   // elsewhere (an effective sample size near 1: flat runs of cumulative weights, ties everywhere).
   for (size_t count : {size_t{1}, size_t{5}, size_t{200}, size_t{2000}, size_t{5000}, size_t{40000}})
-  for (const bool degenerate : {false, true}) {
-    const bool wide = count >= kWideSummaryParticles;
-    INFO(count << " particles, " << (wide ? "many groups" : "one group") << (degenerate ? ", two heavy" : ""));
-    std::vector<double> w(count);
-    double sum = 0;
-    for (auto& x : w) sum += x = e(rng) * (e(rng) > 1.5 ? 20 : 1);  // a few heavy particles
-    if (degenerate) {
-      std::fill(w.begin(), w.end(), 0.0);
-      w[count / 3] = 0.7;
-      w[count - 1] += 0.3;
-      sum = 1.0;
+    for (const bool degenerate : {false, true}) {
+      const bool wide = count >= kWideSummaryParticles;
+      INFO(count << " particles, " << (wide ? "many groups" : "one group") << (degenerate ? ", two heavy" : ""));
+      std::vector<double> w(count);
+      double sum = 0;
+      for (auto& x : w) sum += x = e(rng) * (e(rng) > 1.5 ? 20 : 1);  // a few heavy particles
+      if (degenerate) {
+        std::fill(w.begin(), w.end(), 0.0);
+        w[count / 3] = 0.7;
+        w[count - 1] += 0.3;
+        sum = 1.0;
+      }
+      for (auto& x : w) x /= sum;
+      compute::Buffer<float> weights(*q, count), cumulative(*q, 2 * count), from(*q, count * DT_STATE_STRIDE),
+          to(*q, count * DT_STATE_STRIDE), log_weights(*q, count), no_correction(*q, 6);
+      compute::Buffer<unsigned> parents(*q, count);
+      compute::Buffer<float> decision(*q, DT_EST_SIZE);  // the estimate buffer, saying "resample"
+      std::vector<float> resample_flag(DT_EST_SIZE, 0.0f);
+      resample_flag[DT_EST_RESAMPLE] = 1.0f;
+      decision.upload(resample_flag);
+      // The reference gets the very floats the device sees, so only the arithmetic differs.
+      const std::vector<float> w_float(w.begin(), w.end());
+      weights.upload(w_float);
+      w.assign(w_float.begin(), w_float.end());
+      if (wide) {
+        WideSummary summary(*q, programs, "DT_OCCLUSION=0", count);
+        CHECK(summary.groups() > 1);
+        summary.prefix_sum(weights, cumulative, decision);
+      } else {
+        q->launch(*prefix, compute::NdRange::linear(kGroup, kGroup), weights, cumulative, static_cast<unsigned>(count),
+                  decision);
+      }
+      const float u = dt_uniform01(dt_random_words(4, 0, 1, DT_STREAM_RESAMPLE, 0).v[0]);
+      q->launch(*resample, compute::NdRange::linear((count + 63) / 64 * 64, 64), cumulative, parents,
+                static_cast<unsigned>(count), u, decision, from, to, log_weights, no_correction, 0.0f, 0.0f, 0.0f, 0u)
+          ->wait();
+      const auto got = parents.download();
+      const auto expected = reference::systematic_resample(w, u);
+      const auto cum = cumulative.download();
+      CHECK(cum[2 * count - 2] + cum[2 * count - 1] == Approx(1.0).epsilon(1e-5));
+      for (size_t j = 0; j < count; ++j) REQUIRE(static_cast<int>(got[j]) == expected[j]);
+      if (wide) continue;
+      // Every group scanning the weights itself (the filter's kernel for small clouds): the same parents.
+      parents.upload(std::vector<unsigned>(count, 12345u));
+      q->launch(*scanning, compute::NdRange::linear((count + kGroup - 1) / kGroup * kGroup, kGroup), weights, parents,
+                static_cast<unsigned>(count), u, decision, from, to, log_weights, no_correction, 0.0f, 0.0f, 0.0f, 0u)
+          ->wait();
+      const auto scanned = parents.download();
+      for (size_t j = 0; j < count; ++j) REQUIRE(static_cast<int>(scanned[j]) == expected[j]);
     }
-    for (auto& x : w) x /= sum;
-    compute::Buffer<float> weights(*q, count), cumulative(*q, 2 * count), from(*q, count * DT_STATE_STRIDE),
-        to(*q, count * DT_STATE_STRIDE), log_weights(*q, count), no_correction(*q, 6);
-    compute::Buffer<unsigned> parents(*q, count);
-    compute::Buffer<float> decision(*q, DT_EST_SIZE);  // the estimate buffer, saying "resample"
-    std::vector<float> resample_flag(DT_EST_SIZE, 0.0f);
-    resample_flag[DT_EST_RESAMPLE] = 1.0f;
-    decision.upload(resample_flag);
-    // The reference gets the very floats the device sees, so only the arithmetic differs.
-    const std::vector<float> w_float(w.begin(), w.end());
-    weights.upload(w_float);
-    w.assign(w_float.begin(), w_float.end());
-    if (wide) {
-      WideSummary summary(*q, programs, "DT_OCCLUSION=0", count);
-      CHECK(summary.groups() > 1);
-      summary.prefix_sum(weights, cumulative, decision);
-    } else {
-      q->launch(*prefix, compute::NdRange::linear(kGroup, kGroup), weights, cumulative, static_cast<unsigned>(count),
-                decision);
-    }
-    const float u = dt_uniform01(dt_random_words(4, 0, 1, DT_STREAM_RESAMPLE, 0).v[0]);
-    q->launch(*resample, compute::NdRange::linear((count + 63) / 64 * 64, 64), cumulative, parents,
-              static_cast<unsigned>(count), u, decision, from, to, log_weights, no_correction, 0.0f, 0.0f, 0.0f, 0u)
-        ->wait();
-    const auto got = parents.download();
-    const auto expected = reference::systematic_resample(w, u);
-    const auto cum = cumulative.download();
-    CHECK(cum[2 * count - 2] + cum[2 * count - 1] == Approx(1.0).epsilon(1e-5));
-    for (size_t j = 0; j < count; ++j) REQUIRE(static_cast<int>(got[j]) == expected[j]);
-    if (wide) continue;
-    // Every group scanning the weights itself (the filter's kernel for small clouds): the same parents.
-    parents.upload(std::vector<unsigned>(count, 12345u));
-    q->launch(*scanning, compute::NdRange::linear((count + kGroup - 1) / kGroup * kGroup, kGroup), weights, parents,
-              static_cast<unsigned>(count), u, decision, from, to, log_weights, no_correction, 0.0f, 0.0f, 0.0f, 0u)
-        ->wait();
-    const auto scanned = parents.download();
-    for (size_t j = 0; j < count; ++j) REQUIRE(static_cast<int>(scanned[j]) == expected[j]);
-  }
 }
 
 TEST_CASE("resampling kernels follow the decision in the estimate buffer: gather, or copy and keep",
@@ -429,34 +429,34 @@ TEST_CASE("resampling kernels follow the decision in the estimate buffer: gather
   const std::vector<float> cumulative_in = {1.0f, 0.0f, 1.0f, 0.0f, 1.0f, 0.0f},
                            weights_in = {1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
   for (const char* kernel : {"resample_particles", "resample_scanning"})
-  for (const bool resampling : {false, true}) {
-    INFO(kernel << (resampling ? ", resampling" : ", not resampling"));
-    auto resample = program->kernel(kernel);
-    const bool scanning = std::string(kernel) == "resample_scanning";
-    std::vector<float> flag(DT_EST_SIZE, 0.0f);
-    flag[DT_EST_RESAMPLE] = resampling ? 1.0f : 0.0f;
-    compute::Buffer<float> decision(*q, DT_EST_SIZE), from(*q, state.size()), to(*q, state.size()), weights(*q, count),
-        cumulative(*q, cumulative_in.size()), no_correction(*q, 6);
-    compute::Buffer<unsigned> parents(*q, count);
-    decision.upload(flag);
-    from.upload(state);
-    to.upload(std::vector<float>(state.size(), -1.0f));
-    weights.upload(std::vector<float>(count, 7.0f));
-    cumulative.upload(scanning ? weights_in : cumulative_in);
-    parents.upload(std::vector<unsigned>{2, 2, 2});  // overwritten
-    q->launch(*resample, compute::NdRange::linear(kGroup, kGroup), cumulative, parents, count, 0.5f, decision, from,
-              to, weights, no_correction, 0.0f, 0.0f, 0.0f, 0u);
-    // Without resampling each is its own parent: the next weigh reads every particle's own row.
-    const std::vector<unsigned> expected_parents =
-        resampling ? std::vector<unsigned>(count, 0u) : std::vector<unsigned>{0, 1, 2};
-    CHECK(parents.download() == expected_parents);
-    const auto got_state = to.download(), got_weights = weights.download();
-    for (unsigned child = 0; child < count; ++child) {
-      for (unsigned k = 0; k < DT_STATE_STRIDE; ++k)
-        REQUIRE(got_state[child * DT_STATE_STRIDE + k] == state[expected_parents[child] * DT_STATE_STRIDE + k]);
-      REQUIRE(got_weights[child] == (resampling ? 0.0f : 7.0f));
+    for (const bool resampling : {false, true}) {
+      INFO(kernel << (resampling ? ", resampling" : ", not resampling"));
+      auto resample = program->kernel(kernel);
+      const bool scanning = std::string(kernel) == "resample_scanning";
+      std::vector<float> flag(DT_EST_SIZE, 0.0f);
+      flag[DT_EST_RESAMPLE] = resampling ? 1.0f : 0.0f;
+      compute::Buffer<float> decision(*q, DT_EST_SIZE), from(*q, state.size()), to(*q, state.size()),
+          weights(*q, count), cumulative(*q, cumulative_in.size()), no_correction(*q, 6);
+      compute::Buffer<unsigned> parents(*q, count);
+      decision.upload(flag);
+      from.upload(state);
+      to.upload(std::vector<float>(state.size(), -1.0f));
+      weights.upload(std::vector<float>(count, 7.0f));
+      cumulative.upload(scanning ? weights_in : cumulative_in);
+      parents.upload(std::vector<unsigned>{2, 2, 2});  // overwritten
+      q->launch(*resample, compute::NdRange::linear(kGroup, kGroup), cumulative, parents, count, 0.5f, decision, from,
+                to, weights, no_correction, 0.0f, 0.0f, 0.0f, 0u);
+      // Without resampling each is its own parent: the next weigh reads every particle's own row.
+      const std::vector<unsigned> expected_parents =
+          resampling ? std::vector<unsigned>(count, 0u) : std::vector<unsigned>{0, 1, 2};
+      CHECK(parents.download() == expected_parents);
+      const auto got_state = to.download(), got_weights = weights.download();
+      for (unsigned child = 0; child < count; ++child) {
+        for (unsigned k = 0; k < DT_STATE_STRIDE; ++k)
+          REQUIRE(got_state[child * DT_STATE_STRIDE + k] == state[expected_parents[child] * DT_STATE_STRIDE + k]);
+        REQUIRE(got_weights[child] == (resampling ? 0.0f : 7.0f));
+      }
     }
-  }
 }
 
 // With the refinement on, every child is moved by its correction twist about the mesh's centre as it
@@ -492,21 +492,21 @@ TEST_CASE("the resampling kernels move each child by the refinement's correction
   correction.upload(twist_f);
   cumulative.upload(std::vector<float>(2 * count, 0.5f));  // resample_scanning reads weights here
   for (const char* kernel : {"resample_particles", "resample_scanning"}) {
-  INFO(kernel);
-  to.upload(std::vector<float>(state.size(), -1.0f));
-  q->launch(*program->kernel(kernel), compute::NdRange::linear(kGroup, kGroup), cumulative, parents, count, 0.5f,
-            decision, from, to, weights, correction, static_cast<float>(centre.x()), static_cast<float>(centre.y()),
-            static_cast<float>(centre.z()), 1u);
-  const auto got = to.download();
-  for (unsigned i = 0; i < count; ++i) {
-    const float* s = &got[i * DT_STATE_STRIDE];
-    const Pose moved({s[DT_TX], s[DT_TX + 1], s[DT_TX + 2]},
-                     Eigen::Quaterniond(s[DT_QW], s[DT_QW + 1], s[DT_QW + 2], s[DT_QW + 3]));
-    const Pose expected = reference::apply_twist(poses[i], centre, twist);
-    CHECK(translation_error(moved, expected) < 1e-6);
-    CHECK(rotation_error(moved, expected) < 1e-5);
-    CHECK(translation_error(moved, poses[i]) > 1e-3);  // it did move
-    for (int k = DT_VX; k < DT_STATE_STRIDE; ++k) REQUIRE(s[k] == state[i * DT_STATE_STRIDE + k]);
-  }
+    INFO(kernel);
+    to.upload(std::vector<float>(state.size(), -1.0f));
+    q->launch(*program->kernel(kernel), compute::NdRange::linear(kGroup, kGroup), cumulative, parents, count, 0.5f,
+              decision, from, to, weights, correction, static_cast<float>(centre.x()), static_cast<float>(centre.y()),
+              static_cast<float>(centre.z()), 1u);
+    const auto got = to.download();
+    for (unsigned i = 0; i < count; ++i) {
+      const float* s = &got[i * DT_STATE_STRIDE];
+      const Pose moved({s[DT_TX], s[DT_TX + 1], s[DT_TX + 2]},
+                       Eigen::Quaterniond(s[DT_QW], s[DT_QW + 1], s[DT_QW + 2], s[DT_QW + 3]));
+      const Pose expected = reference::apply_twist(poses[i], centre, twist);
+      CHECK(translation_error(moved, expected) < 1e-6);
+      CHECK(rotation_error(moved, expected) < 1e-5);
+      CHECK(translation_error(moved, poses[i]) > 1e-3);  // it did move
+      for (int k = DT_VX; k < DT_STATE_STRIDE; ++k) REQUIRE(s[k] == state[i * DT_STATE_STRIDE + k]);
+    }
   }
 }

@@ -76,9 +76,9 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
     const size_t points = render_weigh_shared_points(pixels, mesh_buffers.vertex_count(), 48 * 1024);
     REQUIRE(points == mesh_buffers.vertex_count());
     auto fused_program = build("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=4800"});
-    auto listed_program = build("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=4800",
-                                                    "DT_SHARED_POINTS=" + std::to_string(points),
-                                                    "DT_PROPAGATE_INSIDE=1"});
+    auto listed_program =
+        build("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=4800",
+                                  "DT_SHARED_POINTS=" + std::to_string(points), "DT_PROPAGATE_INSIDE=1"});
     auto rasterize = raster_program->kernel("rasterize");
     auto weigh = weigh_program->kernel("weigh");
     // And with the host's promise that the state window is the whole image (DT_WHOLE_IMAGE_STATE).
@@ -133,7 +133,7 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
                   static_cast<unsigned>(pixels), m, now, now_index, dt, layout.kernel_args(), win, boxes, boxed);
       }
       q->finish();
-      return Run{atlas.download(), ll.download(), lw.download(), occ_to.download(),
+      return Run{atlas.download(), ll.download(),     lw.download(),  occ_to.download(),
                  table.download(), states.download(), t_to.download()};
     };
     // The whole image's state, and a 16x12 state window (cutting the object) moved by (3, 2) since the rows were

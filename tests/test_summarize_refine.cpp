@@ -1,8 +1,8 @@
 // The one-launch fit that summarizes in its own launch (cl/refine_spread.cl's summarize_refine, the
 // filter's default on OpenCL below 2,048 triangles) against summarize.cl followed by refine_one_launch:
 // with both summaries over groups of the same size, the same estimate, weights and correction, bit for bit.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cstring>
 #include <depthtrack/pose.hpp>
 #include <random>
@@ -46,9 +46,9 @@ TEST_CASE("The one-launch fit's own summary equals summarize then the fit, bit f
   std::vector<model::ParticleState> particles(count);
   std::vector<float> log_weight(count), log_likelihood(count);
   for (size_t i = 0; i < count; ++i) {
-    particles[i].pose = model::move_about_centre(truth, Eigen::Vector3d::Zero(),
-                                                 Eigen::Vector3d(0.01 * normal(rng), 0.01 * normal(rng), 0.01 * normal(rng)),
-                                                 Eigen::Vector3d(0.05 * normal(rng), 0.05 * normal(rng), 0.05 * normal(rng)));
+    particles[i].pose = model::move_about_centre(
+        truth, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.01 * normal(rng), 0.01 * normal(rng), 0.01 * normal(rng)),
+        Eigen::Vector3d(0.05 * normal(rng), 0.05 * normal(rng), 0.05 * normal(rng)));
     particles[i].linear_velocity = Eigen::Vector3d(0.1 * normal(rng), 0.0, 0.05);
     log_likelihood[i] = static_cast<float>(-1000.0 + 3.0 * normal(rng));
     log_weight[i] = log_likelihood[i] + static_cast<float>(normal(rng));
@@ -83,7 +83,8 @@ TEST_CASE("The one-launch fit's own summary equals summarize then the fit, bit f
     occlusion_time.upload(std::vector<uint16_t>(count * pixels, 0));
     frame_times.upload(std::vector<float>(DT_TIME_TABLE, 0.0f));
     parent_buffer.upload(parents);
-    const RefineInputs inputs{states, obs, occlusion, occlusion_time, frame_times, parent_buffer, window, 0.1, 1.0 / 30};
+    const RefineInputs inputs{states,        obs,    occlusion, occlusion_time, frame_times,
+                              parent_buffer, window, 0.1,       1.0 / 30};
     if (own_summary) {
       refiner.summarize_and_refine(estimate, inputs,
                                    SummaryInputs{lw, ll, weights, static_cast<unsigned>(count), centre, kl_threshold});
@@ -107,8 +108,8 @@ TEST_CASE("The one-launch fit's own summary equals summarize then the fit, bit f
   CHECK(total == Approx(1.0).epsilon(1e-5));
   const std::vector<float>& e = together.estimate;
   CHECK(e[DT_EST_REFINE_ITERATIONS] >= 1);
-  const unsigned heaviest = static_cast<unsigned>(
-      std::max_element(log_weight.begin(), log_weight.end()) - log_weight.begin());
+  const unsigned heaviest =
+      static_cast<unsigned>(std::max_element(log_weight.begin(), log_weight.end()) - log_weight.begin());
   const Pose fitted({e[DT_EST_TX], e[DT_EST_TX + 1], e[DT_EST_TX + 2]},
                     Eigen::Quaterniond(e[DT_EST_QW], e[DT_EST_QW + 1], e[DT_EST_QW + 2], e[DT_EST_QW + 3]));
   CHECK(translation_error(fitted, truth) < 0.5 * translation_error(particles[heaviest].pose, truth));

@@ -19,8 +19,8 @@ namespace depthtrack {
 // and read device times from its events after it: propagate, weigh, resample (summarize and the resampling kernels,
 // run every frame, the refinement's cloud shift with them), refine (the fit; with the one-launch layout below 16,384
 // particles it summarizes in its own launch, so the summary's time is refine's there; where weigh draws the atlas
-// for up to 4,096 particles it moves them too, propagate then 0), render with renderer kernel, and with gl where GL has timer
-// queries (GL_TIME_ELAPSED; render_on_device says which). Host wall time: render with cpu, or gl without timer
+// for up to 4,096 particles it moves them too, propagate then 0), render with renderer kernel, and with gl where GL has
+// timer queries (GL_TIME_ELAPSED; render_on_device says which). Host wall time: render with cpu, or gl without timer
 // queries (around a glFinish), handoff (as far as the host waits for it; with gl and timer queries it includes the
 // wait for GL to finish the draw; 0 with kernel and on the reference), total_ms and search_ms.
 struct StepTimings {

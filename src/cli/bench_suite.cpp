@@ -104,11 +104,12 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
   // The occlusion state the filter kept: its (automatic) window at the last frame.
   const auto [window_width, window_height] = tracker.occlusion_window_size();
   const size_t state_pixels = static_cast<size_t>(window_width) * static_cast<size_t>(window_height);
-  const bool weigh_propagates = target.on_device && propagates_inside_weigh(config.renderer, pixels, target.local_memory,
-                                                                           static_cast<size_t>(c.particles));
-  const StepBytes b = step_bytes(static_cast<size_t>(c.particles), pixels, c.mode, target.on_device && renderer == "gl",
-                                 config.refine.enabled ? config.refine.iterations : 0, inside_weigh, state_pixels,
-                                 weigh_propagates);
+  const bool weigh_propagates =
+      target.on_device &&
+      propagates_inside_weigh(config.renderer, pixels, target.local_memory, static_cast<size_t>(c.particles));
+  const StepBytes b =
+      step_bytes(static_cast<size_t>(c.particles), pixels, c.mode, target.on_device && renderer == "gl",
+                 config.refine.enabled ? config.refine.iterations : 0, inside_weigh, state_pixels, weigh_propagates);
   const char* names[6] = {"propagate", "render", "handoff", "weigh", "resample", "refine"};
   const double bytes[6] = {b.propagate, b.render, b.handoff, b.weigh, b.resample, b.refine};
   for (int s = 0; s < 6; ++s) {

@@ -102,8 +102,7 @@ struct DeviceFilter::Kernels {
   std::shared_ptr<compute::Program> propagate_program, weigh_program, summarize_program, resample_program,
       initialize_program;
   std::unique_ptr<compute::Kernel> propagate, weigh, summarize, prefix_sum, resample_particles, resample_scanning,
-      identity_parents, fill,
-      initialize_particles, fill_per_particle, fill_time_indices, retire_time_indices;
+      identity_parents, fill, initialize_particles, fill_per_particle, fill_time_indices, retire_time_indices;
 };
 
 DeviceFilter::DeviceFilter(std::unique_ptr<compute::Queue> queue, const Mesh& mesh, const Camera& camera,
@@ -485,14 +484,13 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   window_ = next_window_;
   const auto per_particle_group = compute::NdRange::linear(count_ * kGroupSize, kGroupSize);
   if (render_weigh_)
-    p->weighed =
-        launch_step(*render_weigh_, per_particle_group, state_, render_weigh_mesh_->vertices,
-                    render_weigh_mesh_->triangles, render_weigh_mesh_->planes, render_weigh_mesh_->triangle_count(),
-                    render_weigh_mesh_->vertex_count(), model::camera_params(camera_, config_), observed_, parents_,
-                    occlusion_, occlusion_time_, scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(),
-                    log_likelihood_, log_weight_, model::model_params(config_), static_cast<float>(time_), now_index,
-                    static_cast<float>(dt), atlas_, static_cast<unsigned>(keep_atlas_), window,
-                    static_cast<unsigned>(dt > 0 && propagates_in_weigh_), seed_lo, seed_hi, frame_, motion);
+    p->weighed = launch_step(
+        *render_weigh_, per_particle_group, state_, render_weigh_mesh_->vertices, render_weigh_mesh_->triangles,
+        render_weigh_mesh_->planes, render_weigh_mesh_->triangle_count(), render_weigh_mesh_->vertex_count(),
+        model::camera_params(camera_, config_), observed_, parents_, occlusion_, occlusion_time_, scratch_occlusion_,
+        scratch_occlusion_time_, frame_times_->device(), log_likelihood_, log_weight_, model::model_params(config_),
+        static_cast<float>(time_), now_index, static_cast<float>(dt), atlas_, static_cast<unsigned>(keep_atlas_),
+        window, static_cast<unsigned>(dt > 0 && propagates_in_weigh_), seed_lo, seed_hi, frame_, motion);
   else
     p->weighed =
         launch_step(*k.weigh, per_particle_group, atlas_, observed_, parents_, occlusion_, occlusion_time_,
@@ -528,13 +526,14 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   }
   // Before resample() overwrites parents_ with this frame's choice.
   if (refiner_) {
-    const RefineInputs inputs{state_,   observed_, scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(),
-                              parents_, window,    time_,              dt};
-    p->refined = fit_summarizes ? refiner_->summarize_and_refine(
-                                      estimate_, inputs,
-                                      SummaryInputs{log_weight_, log_likelihood_, weights_, count,
-                                                    Eigen::Vector3f(cx, cy, cz), kl_threshold})
-                                : refiner_->refine(estimate_, inputs);
+    const RefineInputs inputs{
+        state_, observed_, scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(), parents_, window,
+        time_,  dt};
+    p->refined = fit_summarizes
+                     ? refiner_->summarize_and_refine(estimate_, inputs,
+                                                      SummaryInputs{log_weight_, log_likelihood_, weights_, count,
+                                                                    Eigen::Vector3f(cx, cy, cz), kl_threshold})
+                     : refiner_->refine(estimate_, inputs);
   }
   // The estimate is complete: it goes to the host ahead of the resampling and the shift, which only the
   // next frame needs (they run while the host takes the estimate).

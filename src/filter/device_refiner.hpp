@@ -9,10 +9,10 @@
 // convergence returning at once; it needs 64-bit atomics), or the spread layout's kernels as one
 // work-group's loop, one launch (refine_spread.cl's refine_one_launch; 64-bit atomics too). Its own program, built with
 // a larger work-group than the filter's kernels. Reference: reference::PoseRefiner and ReferenceFilter::refine.
+#include <Eigen/Core>
 #include <depthtrack/camera.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/tracker_config.hpp>
-#include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <vector>
