@@ -131,21 +131,14 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
                                             whole_image ? "DT_WHOLE_IMAGE_STATE=1" : "DT_WHOLE_IMAGE_STATE=0"};
   kernels_ = std::make_unique<Kernels>();
   Kernels& k = *kernels_;
-  k.propagate_program = device_->programs.program("propagate.cl", defines);
   k.resample_program = device_->programs.program("resample.cl", defines);
-  k.propagate = k.propagate_program->kernel("propagate");
-  // The summary and prefix sum: one group for a few thousand particles, many for large clouds.
-  if (count_ >= kWideSummaryParticles) {
+  // The summary and prefix sum: one group for a few thousand particles (the summary's kernel below),
+  // many for large clouds; a small cloud's resampling groups scan the weights themselves.
+  if (count_ >= kWideSummaryParticles)
     wide_ = std::make_unique<WideSummary>(*queue_, device_->programs,
                                           model::occlusion_definition(config.occlusion_storage), count_);
-  } else {
-    summary_group_ = summary_group_size(queue_->info());
-    std::vector<std::string> summary_defines = defines;
-    summary_defines.front() = "DT_GROUP_SIZE=" + std::to_string(summary_group_);
-    k.summarize_program = device_->programs.program("summarize.cl", summary_defines);
-    k.summarize = k.summarize_program->kernel("summarize");
+  else if (count_ > kFusedLaunchParticles)
     k.prefix_sum = k.resample_program->kernel("prefix_sum");
-  }
   if (count_ <= kFusedLaunchParticles)
     k.resample_scanning = k.resample_program->kernel("resample_scanning");
   else
@@ -166,7 +159,7 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   log_weight_ = compute::Buffer<float>(q, count_);
   log_likelihood_ = compute::Buffer<float>(q, count_);
   weights_ = compute::Buffer<float>(q, count_);
-  cumulative_ = compute::Buffer<float>(q, 2 * count_);  // float-float pairs
+  if (!kernels_->resample_scanning) cumulative_ = compute::Buffer<float>(q, 2 * count_);  // float-float pairs
   parents_ = compute::Buffer<unsigned>(q, count_);
   estimate_ = compute::Buffer<float>(q, DT_EST_SIZE);
   estimate_host_.resize(DT_EST_SIZE);
@@ -202,6 +195,18 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
                                                model::occlusion_definition(config.occlusion_storage));
   else
     no_correction_ = compute::Buffer<float>(q, 6);  // never read: resample_particles' shift is off
+  // Only the kernels the frame launches are built (a CPU device compiles each for a while).
+  if (!propagates_in_weigh_) {
+    k.propagate_program = device_->programs.program("propagate.cl", defines);
+    k.propagate = k.propagate_program->kernel("propagate");
+  }
+  if (!wide_ && !(refiner_ && refiner_->summarizes_first())) {  // else the fit summarizes in its own group
+    summary_group_ = summary_group_size(q.info());
+    std::vector<std::string> summary_defines = defines;
+    summary_defines.front() = "DT_GROUP_SIZE=" + std::to_string(summary_group_);
+    k.summarize_program = device_->programs.program("summarize.cl", summary_defines);
+    k.summarize = k.summarize_program->kernel("summarize");
+  }
 }
 
 struct DeviceFilter::Pending {
