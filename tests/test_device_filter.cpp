@@ -489,14 +489,18 @@ TEST_CASE("the spread refinement at 320x240 (more pixels than its groups' work-i
   }
 }
 
-TEST_CASE("a cloud large enough for the summary and prefix sum over many work-groups equals the reference",
+TEST_CASE("clouds past the small-cloud folds, the prefix sum over one work-group or many, equal the reference",
           "[device][kernels]") {
   if (!test::device_available()) return;
   // 40x30, so that the reference's 16,384 renderings a frame stay quick; the host rasterizer's atlas
-  // (renderer cpu) leaves only the device's float arithmetic to differ.
+  // (renderer cpu) leaves only the device's float arithmetic to differ. One particle more than
+  // kFusedLaunchParticles: the summary, prefix sum and resampling as separate one-group launches;
+  // kWideSummaryParticles: over many groups.
   const Scene scene = make_scene(3, 16);
+  for (const size_t particles : {kFusedLaunchParticles + 1, kWideSummaryParticles}) {
+  INFO(particles << " particles");
   TrackerConfig config;
-  config.particles = static_cast<int>(kWideSummaryParticles);
+  config.particles = static_cast<int>(particles);
   config.seed = 9;
   config.backend = test::device_selector();
   config.renderer = Renderer::Cpu;
@@ -527,6 +531,7 @@ TEST_CASE("a cloud large enough for the summary and prefix sum over many work-gr
           CHECK(differing <= expected.size() / 1000);
         }
       });
+  }
 }
 
 TEST_CASE("more particles than the device can hold is a clear error, not a crash, for every renderer",
