@@ -166,7 +166,8 @@ const char* const kUsage =
     "  --no-global            leave out the global initialization rows (box hint and no hint, 80x60)\n"
     "  --multi-objects        instead: one object against three in one process at 80x60 (ycbv-0000's, else\n"
     "                         the handset thrice), mutual occlusion off and on: multi_object_ratio rows (and\n"
-    "                         multi_object_ratio_to_mean, over the three objects alone);\n"
+    "                         multi_object_ratio_to_mean, over the three objects alone; --refine-layout as\n"
+    "                         for one object);\n"
     "                         --particles N each (default 2000); --frames N frames (ycbv-0000's ten-frame\n"
     "                         clip played forth and back); --untimed-steps as for one object\n"
     "Without --particles and --resolution: the reference at 80x60 (200 particles) and 640x480 (50).\n";
@@ -306,7 +307,8 @@ int main(int argc, char** argv) {
     try {
       bench::print_header();
       for (const int p : particle_counts.empty() ? std::vector<int>{2000} : particle_counts)
-        bench::run_multi_object_ratio(backend, renderer, p, std::max(frames, 4), simplify_error, step_timings);
+        bench::run_multi_object_ratio(backend, renderer, p, std::max(frames, 4), simplify_error, step_timings,
+                                      refine.layout);
       return 0;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "depthtrack_bench: %s\n", e.what());

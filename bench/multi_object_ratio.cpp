@@ -155,7 +155,7 @@ StageMedians median_frame(const Scene& scene, size_t first, size_t objects, bool
 }  // namespace
 
 void run_multi_object_ratio(const std::string& backend, const std::string& renderer, int particles, int frames,
-                            double simplify_error, bool step_timings) {
+                            double simplify_error, bool step_timings, RefineLayout refine_layout) {
   Scene scene;
   if (!load_ycbv(scene, frames)) synthetic(scene, frames);
   TrackerConfig config;
@@ -165,6 +165,7 @@ void run_multi_object_ratio(const std::string& backend, const std::string& rende
   config.width = 80;
   config.height = 60;
   config.simplify_error = simplify_error;
+  config.refine.layout = refine_layout;
   // Untimed as a tracker runs by default; timed, the steps' sums (steps_sum, render_sum) are device times.
   config.step_timings = step_timings;
   const bool host = backend == "reference" || backend == "cpu" || backend.rfind("cpu:", 0) == 0;
@@ -182,6 +183,7 @@ void run_multi_object_ratio(const std::string& backend, const std::string& rende
     const std::string test = (host ? "" : renderer + "_") + "multi_object_" + scene.name + "_80x60_" +
                              std::to_string(particles) + "p" +
                              (simplify_error > 0 ? "_simplify" + compact_number(simplify_error * 1e3) + "mm" : "") +
+                             (refine_layout != RefineLayout::Auto ? std::string("_") + to_string(refine_layout) : "") +
                              "_occlusion_" + (occlusion ? "on" : "off") + (step_timings ? "" : "_untimed");
     print_row({backend, platform, name, "-", test, "one_object_ms", "ms", one.frame});
     print_row({backend, platform, name, "-", test, "three_objects_ms", "ms", three.frame});

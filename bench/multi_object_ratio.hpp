@@ -1,6 +1,7 @@
 #pragma once
 // Several objects against one (issue 10: three objects x 2,000 particles at 80x60 in one process within
 // 1.5x one object's time): rows multi_object_ratio and the two medians it divides.
+#include <depthtrack/tracker_config.hpp>
 #include <string>
 
 namespace depthtrack::bench {
@@ -16,8 +17,9 @@ namespace depthtrack::bench {
 // (multi_object_ratio_to_mean);
 // the three objects' median again with their host steps on the calling thread alone (host_threads 1), then
 // the median of each of MultiTracker::update's stages (MultiStageTimings) for one object and three:
-// <one_object|three_objects>_<stage>_ms.
+// <one_object|three_objects>_<stage>_ms. A refinement layout other than Auto is named in the test column.
 void run_multi_object_ratio(const std::string& backend, const std::string& renderer, int particles, int frames,
-                            double simplify_error = 0, bool step_timings = true);
+                            double simplify_error = 0, bool step_timings = true,
+                            RefineLayout refine_layout = RefineLayout::Auto);
 
 }  // namespace depthtrack::bench

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# On the lent GPU machine, one call (about 6 minutes): the 2,000-particle frame (issue 12's 0.25 ms) and
+# On the lent GPU machine, one call (about 8 minutes): the 2,000-particle frame (issue 12's 0.25 ms) and
 # three objects against one (issue 10's 1.5x) at this tree against an earlier commit, built side by side
 # and run alternately so that both see the same host: OLD (default fc655e9, before the small-cloud launch
 # folds of round 2, session 19). Then the kernels' and the filter's equivalence tests on each backend
 # with this tree (TESTS=0 leaves them out). 2,000 particles, 80x60, untimed steps as a tracker runs:
 # the handset and the YCB mug at the 0.5 mm default, REPS (default 3) alternations; the several-object
-# ratios at the 0.5 mm default. Carry .devdeps, .device and .devdata.
+# ratios at the 0.5 mm default, and on NVIDIA OpenCL with every fit in one launch (the mug's too). Carry
+# .devdeps, .device and .devdata.
 set -uo pipefail
 source .device/enter .devdeps
 export DEPTHTRACK_DATA_DIR=$PWD/.devdata POCL_CACHE_DIR=/tmp/pocl-cache
@@ -39,6 +40,17 @@ for b in cuda opencl:nvidia; do
       --frames 40 | grep -E "multi_object_ratio" | cut -d, -f5-
   done
 done
+# The mug at 0.5 mm has 3,196 triangles, so auto spreads its fit (19 launches on OpenCL) where the other
+# two fit in one launch: its one-launch frame alone and the three objects with every fit in one launch.
+for rep in 1 2; do
+  for layout in spread one-launch; do
+    echo "opencl:nvidia mug $layout: $(build-gpu/depthtrack_bench --backend opencl:nvidia --particles 2000 --frames 60 \
+      --no-global --untimed-steps --mesh .devdata/meshes/ycb/025_mug.obj --simplify-error 0.0005 \
+      --refine-layout "$layout" | grep -E ',total_ms,' | cut -d, -f8)"
+  done
+done
+build-gpu/depthtrack_bench --multi-objects --backend opencl:nvidia --particles 2000 --untimed-steps \
+  --simplify-error 0.0005 --frames 40 --refine-layout one-launch | grep -E "multi_object_ratio" | cut -d, -f5-
 [[ ${TESTS:-1} == 1 ]] || exit 0
 for b in cuda opencl:nvidia; do
   echo "== $b"
