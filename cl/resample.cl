@@ -246,7 +246,7 @@ __kernel void resample_particles(__global const float* cumulative, __global uint
                     from, to, log_weight, correction, dt_vec3_make(centre_x, centre_y, centre_z), shift);
 }
 
-/* resample_particles for a cloud small enough (the host's kScanningResampleParticles) that every
+/* resample_particles for a cloud small enough (the host's kFusedLaunchParticles) that every
  * group of DT_GROUP_SIZE scans the weights itself: each group sums and scans their sub-chunks in
  * work-group memory (prefix_sum's first half), and each work-item walks its own sub-chunk from its
  * start to its last cumulative weight (prefix_sum's second half, not stored). The same parents as
