@@ -6,14 +6,19 @@
 # with this tree (TESTS=0 leaves them out). 2,000 particles, 80x60, untimed steps as a tracker runs:
 # the handset and the YCB mug at the 0.5 mm default, REPS (default 3) alternations; the several-object
 # ratios at the 0.5 mm default, and on NVIDIA OpenCL with every fit in one launch (the mug's too). Carry
-# .devdeps, .device and .devdata.
+# .devdeps, .device, .devdata and .devvariants (below).
 set -uo pipefail
 source .device/enter .devdeps
 export DEPTHTRACK_DATA_DIR=$PWD/.devdata POCL_CACHE_DIR=/tmp/pocl-cache
 old_rev=${OLD:-fc655e9}
 flags=(-G Ninja -DCMAKE_BUILD_TYPE=Release -DDEPTHTRACK_SANITIZE_SUITE=OFF -DDEPTHTRACK_STATIC_PACKAGE_TEST=OFF
   -DDEPTHTRACK_PYTHON=OFF)
-mkdir -p /tmp/old-tree && git archive "$old_rev" | tar -x -C /tmp/old-tree || exit 1
+# The old tree: .devvariants/old where it was carried (prepared beforehand with `mkdir -p .devvariants/old &&
+# git archive fc655e9 | tar -x -C .devvariants/old`, as the device's copy may hold no git history), else
+# from git here.
+mkdir -p /tmp/old-tree
+if [[ -d .devvariants/old ]]; then cp -r .devvariants/old/. /tmp/old-tree/ && old_rev="$old_rev (carried)"
+else git archive "$old_rev" | tar -x -C /tmp/old-tree || exit 1; fi
 cmake -S /tmp/old-tree -B /tmp/old-tree/build "${flags[@]}" -DDEPTHTRACK_BUILD_TESTS=OFF >/tmp/old-configure.log 2>&1 &&
   cmake --build /tmp/old-tree/build -j"$(nproc)" --target depthtrack_bench >/tmp/old-build.log 2>&1 ||
   { tail -20 /tmp/old-build.log; exit 1; }
