@@ -229,3 +229,15 @@ TEST_CASE(
   CHECK(rasterize_definitions(256, h200) == std::vector<std::string>{"DT_GROUP_SIZE=256", "DT_RESIDENT_GROUPS=4"});
   CHECK(rasterize_definitions(128, compute::DeviceInfo{}).back() == "DT_RESIDENT_GROUPS=0");
 }
+
+TEST_CASE("render_weigh moves the particles itself for small clouds drawn inside it only", "[render]") {
+  const size_t local = 48 * 1024;  // a GPU's work-group memory; 80x60's tile fits, 160x120's does not
+  CHECK(propagates_inside_weigh(Renderer::Kernel, 4800, local, 2000));
+  CHECK(propagates_inside_weigh(Renderer::Kernel, 4800, local, kFusedLaunchParticles));
+  // Larger clouds keep propagate.cl's launch and render_weigh without the moving block.
+  CHECK_FALSE(propagates_inside_weigh(Renderer::Kernel, 4800, local, kFusedLaunchParticles + 1));
+  // Drawn apart (the GL or host atlas, or a tile beyond work-group memory), weigh moves nothing.
+  CHECK_FALSE(propagates_inside_weigh(Renderer::Gl, 4800, local, 2000));
+  CHECK_FALSE(propagates_inside_weigh(Renderer::Cpu, 4800, local, 2000));
+  CHECK_FALSE(propagates_inside_weigh(Renderer::Kernel, 160 * 120, local, 2000));
+}
