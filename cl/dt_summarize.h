@@ -1,5 +1,5 @@
 /* summarize.cl's work as a function of one work-group of DT_GROUP_SIZE: summarize.cl's kernel calls
- * it, and refine_spread.cl's summarize_refine before the fit (one launch for both). The locals are
+ * it, and refine_spread.cl's refine_one_launch before the fit (one launch for both). The locals are
  * the caller's: scratch and scratch_index DT_GROUP_SIZE each, sums DT_GROUP_SUMS_SCRATCH(DT_WEIGHTED_SUMS). */
 #ifndef DT_SUMMARIZE_H
 #define DT_SUMMARIZE_H

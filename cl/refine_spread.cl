@@ -21,7 +21,7 @@
 #include "dt_refine.h"
 #include "dt_summarize.h"
 #if DT_WEIGHTED_SUMS > DT_REFINE_SUMS
-#error "summarize_refine's summary sums in the fit's scratch"
+#error "refine_one_launch's summary sums in the fit's scratch"
 #endif
 
 /* The fit's state at the frame's start: the start (the heaviest particle, which summarize found) is the
@@ -201,18 +201,32 @@ __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate,
  * evaluation's draw and sums as above, with the group's barriers where the spread layout has kernel
  * boundaries, and work-item 0 judging; it stops as soon as the fit does. One launch a frame instead of
  * 2 x (iterations + 1) + 1: on a driver whose launches cost the host several microseconds each (NVIDIA's
- * OpenCL) that outweighs spreading the draws and sums over the device. Same arguments as refine_begin
- * and refine_sums together; sums (DT_REFINE_SCRATCH floats) and active are the kernel's locals. */
-DT_DEVICE_FN void dt_refine_one_launch(__global dt_refine_state* s, __global float* estimate,
-                                       __global const float* states, __global const float* observed,
-                                       __global const float* occlusion, __global const dt_u16* occlusion_time,
-                                       __global const float* frame_times, __global const uint* parents,
-                                       __global const float* vertices, __global const uint* triangles,
-                                       __global const float* planes, uint triangle_count, dt_camera cam, dt_model m,
-                                       dt_refine_args args, dt_window win, __global dt_u64* nearest,
-                                       __global float* correction, DT_LOCAL_PTR float* sums,
-                                       DT_LOCAL_PTR int* active) {
+ * OpenCL) that outweighs spreading the draws and sums over the device. With summarize, the group first
+ * does summarize.cl's work (dt_summarize.h; the fit starts from the heaviest particle it finds), so a
+ * small cloud's summary and fit take one launch; its rotation mean is not iterated (the fit replaces
+ * the mean pose), and its sums run over this program's DT_GROUP_SIZE work-items, not summarize.cl's
+ * group: the same terms added in another order. Without it (a cloud summarized over many groups
+ * before) the summary's arguments are not read. Then the arguments of refine_begin and refine_sums. */
+__kernel void refine_one_launch(__global const float* log_weight, __global const float* log_likelihood,
+                                __global float* weights, uint count, float centre_x, float centre_y, float centre_z,
+                                float kl_threshold, uint summarize, __global dt_refine_state* s,
+                                __global float* estimate, __global const float* states, __global const float* observed,
+                                __global const float* occlusion, __global const dt_u16* occlusion_time,
+                                __global const float* frame_times, __global const uint* parents,
+                                __global const float* vertices, __global const uint* triangles,
+                                __global const float* planes, uint triangle_count, dt_camera cam, dt_model m,
+                                dt_refine_args args, dt_window win, __global dt_u64* nearest,
+                                __global float* correction) {
+  __local float scratch[DT_GROUP_SIZE];
+  __local uint scratch_index[DT_GROUP_SIZE];
+  __local float sums[DT_REFINE_SCRATCH]; /* the summary's DT_GROUP_SUMS_SCRATCH(DT_WEIGHTED_SUMS), then the fit's */
+  __local int active;
   const uint lid = get_local_id(0);
+  if (summarize) { /* a kernel argument: every work-item meets the summary's barriers */
+    dt_summarize(states, log_weight, log_likelihood, weights, estimate, count,
+                 dt_vec3_make(centre_x, centre_y, centre_z), kl_threshold, 0u, scratch, scratch_index, sums);
+    barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE); /* the estimate and weights written; sums free */
+  }
   if (lid == 0) dt_refine_start(s, estimate, states, args, win);
   barrier(CLK_GLOBAL_MEM_FENCE);
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
@@ -230,50 +244,11 @@ DT_DEVICE_FN void dt_refine_one_launch(__global dt_refine_state* s, __global flo
       float total[DT_REFINE_SUMS];
       for (int k = 0; k < DT_REFINE_SUMS; ++k) total[k] = sums[k];
       dt_refine_judge(s, estimate, states, total, args, correction);
-      *active = DT_CAST(int, s->active);
+      active = DT_CAST(int, s->active);
     }
     /* The next candidate (global) and the decision (local) seen by the whole group; every work-item
      * has read this evaluation's sums and reset its pixels. */
     barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
-    if (!*active) break;
+    if (!active) break;
   }
-}
-
-__kernel void refine_one_launch(__global dt_refine_state* s, __global float* estimate, __global const float* states,
-                                __global const float* observed, __global const float* occlusion,
-                                __global const dt_u16* occlusion_time, __global const float* frame_times,
-                                __global const uint* parents, __global const float* vertices,
-                                __global const uint* triangles, __global const float* planes, uint triangle_count,
-                                dt_camera cam, dt_model m, dt_refine_args args, dt_window win,
-                                __global dt_u64* nearest, __global float* correction) {
-  __local float sums[DT_REFINE_SCRATCH];
-  __local int active;
-  dt_refine_one_launch(s, estimate, states, observed, occlusion, occlusion_time, frame_times, parents, vertices,
-                       triangles, planes, triangle_count, cam, m, args, win, nearest, correction, sums, &active);
-}
-
-/* summarize.cl's work (dt_summarize.h) and then the fit, in the same work-group: one launch where the
- * one-launch layout's frame had two (the fit starts from the heaviest particle the summary finds). The
- * summary's rotation mean is not iterated (the fit replaces the mean pose), and its sums are over
- * this program's DT_GROUP_SIZE work-items, not summarize.cl's group: the same terms added in another
- * order. Its arguments: summarize's, then refine_one_launch's. */
-__kernel void summarize_refine(__global const float* log_weight, __global const float* log_likelihood,
-                               __global float* weights, uint count, float centre_x, float centre_y, float centre_z,
-                               float kl_threshold, __global dt_refine_state* s, __global float* estimate,
-                               __global const float* states, __global const float* observed,
-                               __global const float* occlusion, __global const dt_u16* occlusion_time,
-                               __global const float* frame_times, __global const uint* parents,
-                               __global const float* vertices, __global const uint* triangles,
-                               __global const float* planes, uint triangle_count, dt_camera cam, dt_model m,
-                               dt_refine_args args, dt_window win, __global dt_u64* nearest,
-                               __global float* correction) {
-  __local float scratch[DT_GROUP_SIZE];
-  __local uint scratch_index[DT_GROUP_SIZE];
-  __local float sums[DT_REFINE_SCRATCH]; /* the summary's DT_GROUP_SUMS_SCRATCH(DT_WEIGHTED_SUMS), then the fit's */
-  __local int active;
-  dt_summarize(states, log_weight, log_likelihood, weights, estimate, count,
-               dt_vec3_make(centre_x, centre_y, centre_z), kl_threshold, 0u, scratch, scratch_index, sums);
-  barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE); /* the estimate and weights written; sums free */
-  dt_refine_one_launch(s, estimate, states, observed, occlusion, occlusion_time, frame_times, parents, vertices,
-                       triangles, planes, triangle_count, cam, m, args, win, nearest, correction, sums, &active);
 }

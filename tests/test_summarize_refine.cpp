@@ -1,6 +1,7 @@
-// The one-launch fit that summarizes in its own launch (cl/refine_spread.cl's summarize_refine, the
-// filter's default on OpenCL below 2,048 triangles) against summarize.cl followed by refine_one_launch:
-// with both summaries over groups of the same size, the same estimate, weights and correction, bit for bit.
+// The one-launch fit that summarizes in its own launch (cl/refine_spread.cl's refine_one_launch with
+// summarize, the filter's default on OpenCL below 2,048 triangles) against summarize.cl followed by the
+// fit alone: with both summaries over groups of the same size, the same estimate, weights and
+// correction, bit for bit.
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstring>
@@ -60,7 +61,7 @@ TEST_CASE("The one-launch fit's own summary equals summarize then the fit, bit f
   const Eigen::Vector3f centre = mesh.centre();
 
   compute::ProgramCache programs(*q);
-  // summarize.cl over groups of the fit's size (256), as summarize_refine sums.
+  // summarize.cl over groups of the fit's size (256), as the one-launch fit's summary sums.
   auto summarize_program = programs.program("summarize.cl", {"DT_GROUP_SIZE=256", "DT_OCCLUSION=0"});
   auto summarize = summarize_program->kernel("summarize");
   struct Run {
@@ -86,8 +87,8 @@ TEST_CASE("The one-launch fit's own summary equals summarize then the fit, bit f
     const RefineInputs inputs{states,        obs,    occlusion, occlusion_time, frame_times,
                               parent_buffer, window, 0.1,       1.0 / 30};
     if (own_summary) {
-      refiner.summarize_and_refine(estimate, inputs,
-                                   SummaryInputs{lw, ll, weights, static_cast<unsigned>(count), centre, kl_threshold});
+      const SummaryInputs summary{lw, ll, weights, static_cast<unsigned>(count), centre, kl_threshold};
+      refiner.refine(estimate, inputs, &summary);
     } else {
       q->launch(*summarize, compute::NdRange::linear(256, 256), states, lw, ll, weights, estimate,
                 static_cast<unsigned>(count), centre.x(), centre.y(), centre.z(), kl_threshold, 0u);

@@ -534,11 +534,9 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
     const RefineInputs inputs{
         state_, observed_, scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(), parents_, window,
         time_,  dt};
-    p->refined = fit_summarizes
-                     ? refiner_->summarize_and_refine(estimate_, inputs,
-                                                      SummaryInputs{log_weight_, log_likelihood_, weights_, count,
-                                                                    Eigen::Vector3f(cx, cy, cz), kl_threshold})
-                     : refiner_->refine(estimate_, inputs);
+    const SummaryInputs summary{log_weight_, log_likelihood_, weights_, count, Eigen::Vector3f(cx, cy, cz),
+                                kl_threshold};
+    p->refined = refiner_->refine(estimate_, inputs, fit_summarizes ? &summary : nullptr);
   }
   // The estimate is complete: it goes to the host ahead of the resampling and the shift, which only the
   // next frame needs (they run while the host takes the estimate).

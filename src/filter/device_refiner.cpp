@@ -93,7 +93,6 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
   fit_state_.upload(std::vector<float>(fit_state_.size(), 0.0f));
   if (layout_ == RefineLayout::OneLaunch) {
     refine_ = program_->kernel("refine_one_launch");
-    summarize_refine_ = program_->kernel("summarize_refine");
   } else {
     begin_ = program_->kernel("refine_begin");
     draw_ = program_->kernel("refine_draw");
@@ -110,44 +109,35 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
   nearest_.upload(std::vector<uint64_t>(pixels, DT_NEAREST_EMPTY));
 }
 
-dt_refine_args DeviceRefiner::frame_args(const RefineInputs& in) const {
-  return model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time, in.dt,
-                              config_.loss.pixel_sigmas);
-}
-
-std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& estimate, const RefineInputs& in) {
-  const dt_refine_args args = frame_args(in);
+std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& estimate, const RefineInputs& in,
+                                                     const SummaryInputs* summary) {
+  if (summary && !summarizes_first())
+    throw std::logic_error("device refiner: the " + std::string(to_string(layout_)) + " layout does not summarize");
+  const dt_refine_args args = model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time,
+                                                   in.dt, config_.loss.pixel_sigmas);
   if (layout_ == RefineLayout::Spread) return refine_spread(estimate, in, args);
   const auto one_group = compute::NdRange::linear(kRefineGroup, kRefineGroup);
-  const compute::EventPtr fit =
-      layout_ == RefineLayout::OneLaunch
-          ? compute::launch_timed_if(config_.step_timings, queue_, *refine_, one_group, fit_state_, estimate, in.states,
-                                     in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.parents,
-                                     mesh_.vertices, mesh_.triangles, mesh_.planes, mesh_.triangle_count(),
-                                     model::camera_params(camera_, config_), model::model_params(config_), args,
-                                     in.window, nearest_, correction_)
-          : compute::launch_timed_if(config_.step_timings, queue_, *refine_, one_group, estimate, in.states,
-                                     in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.parents,
-                                     mesh_.vertices, mesh_.triangles, mesh_.planes, mesh_.triangle_count(),
-                                     model::camera_params(camera_, config_), model::model_params(config_), args, pose_,
-                                     tile_, ids_, correction_, in.window);
-  if (!fit) return {};
-  return {fit};
-}
-
-std::vector<compute::EventPtr> DeviceRefiner::summarize_and_refine(compute::Buffer<float>& estimate,
-                                                                   const RefineInputs& in,
-                                                                   const SummaryInputs& summary) {
-  if (!summarizes_first())
-    throw std::logic_error("device refiner: the " + std::string(to_string(layout_)) + " layout does not summarize");
-  const dt_refine_args args = frame_args(in);
-  const compute::EventPtr fit = compute::launch_timed_if(
-      config_.step_timings, queue_, *summarize_refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup),
-      summary.log_weight, summary.log_likelihood, summary.weights, summary.count, summary.centre.x(),
-      summary.centre.y(), summary.centre.z(), summary.kl_threshold, fit_state_, estimate, in.states, in.observed,
-      in.occlusion, in.occlusion_time, in.frame_times, in.parents, mesh_.vertices, mesh_.triangles, mesh_.planes,
-      mesh_.triangle_count(), model::camera_params(camera_, config_), model::model_params(config_), args, in.window,
-      nearest_, correction_);
+  const dt_camera cam = model::camera_params(camera_, config_);
+  const dt_model model = model::model_params(config_);
+  compute::EventPtr fit;
+  if (layout_ == RefineLayout::OneLaunch) {
+    // Without a summary to make, its buffers are not read: estimate stands in for them.
+    const compute::Buffer<float>& log_weight = summary ? summary->log_weight : estimate;
+    const compute::Buffer<float>& log_likelihood = summary ? summary->log_likelihood : estimate;
+    compute::Buffer<float>& weights = summary ? summary->weights : estimate;
+    const Eigen::Vector3f centre = summary ? summary->centre : Eigen::Vector3f::Zero();
+    fit = compute::launch_timed_if(config_.step_timings, queue_, *refine_, one_group, log_weight, log_likelihood,
+                                   weights, summary ? summary->count : 0u, centre.x(), centre.y(), centre.z(),
+                                   summary ? summary->kl_threshold : 0.0f, static_cast<unsigned>(summary != nullptr),
+                                   fit_state_, estimate, in.states, in.observed, in.occlusion, in.occlusion_time,
+                                   in.frame_times, in.parents, mesh_.vertices, mesh_.triangles, mesh_.planes,
+                                   mesh_.triangle_count(), cam, model, args, in.window, nearest_, correction_);
+  } else {
+    fit = compute::launch_timed_if(config_.step_timings, queue_, *refine_, one_group, estimate, in.states, in.observed,
+                                   in.occlusion, in.occlusion_time, in.frame_times, in.parents, mesh_.vertices,
+                                   mesh_.triangles, mesh_.planes, mesh_.triangle_count(), cam, model, args, pose_,
+                                   tile_, ids_, correction_, in.window);
+  }
   if (!fit) return {};
   return {fit};
 }

@@ -69,13 +69,12 @@ class DeviceRefiner {
   DeviceRefiner(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh, const Camera& camera,
                 const TrackerConfig& config, const std::string& occlusion_definition);
 
-  // Enqueues the fit; estimate holds summarize's output and receives the refined pose. The events of
-  // every kernel it enqueued, in order (their device times add up to the fit's).
-  std::vector<compute::EventPtr> refine(compute::Buffer<float>& estimate, const RefineInputs& in);
-  // The same where summarizes_first(), with summarize.cl's work done first in the fit's own launch
-  // (refine_spread.cl's summarize_refine): estimate then needs no summary before.
-  std::vector<compute::EventPtr> summarize_and_refine(compute::Buffer<float>& estimate, const RefineInputs& in,
-                                                      const SummaryInputs& summary);
+  // Enqueues the fit; estimate holds summarize's output and receives the refined pose. With summary
+  // (only where summarizes_first()), summarize.cl's work is done first in the fit's own launch and
+  // estimate needs no summary before. The events of every kernel it enqueued, in order (their device
+  // times add up to the fit's).
+  std::vector<compute::EventPtr> refine(compute::Buffer<float>& estimate, const RefineInputs& in,
+                                        const SummaryInputs* summary = nullptr);
   // Whether this layout can summarize in its own launch: one-launch (one group, as summarize.cl's).
   bool summarizes_first() const { return layout_ == RefineLayout::OneLaunch; }
   // The twist that moves the heaviest particle onto the last fit's refined pose, about the mesh's
@@ -86,7 +85,6 @@ class DeviceRefiner {
   double radius() const { return radius_; }        // the mesh's (model::pose_covariance's pivot)
 
  private:
-  dt_refine_args frame_args(const RefineInputs& in) const;  // the fit's settings for this frame
   std::vector<compute::EventPtr> refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in,
                                                const dt_refine_args& args);
 
@@ -97,7 +95,7 @@ class DeviceRefiner {
   double radius_;
   RefineLayout layout_;
   std::shared_ptr<compute::Program> program_;
-  std::unique_ptr<compute::Kernel> refine_, summarize_refine_;  // summarize_refine_: one-launch only
+  std::unique_ptr<compute::Kernel> refine_;
   // The spread layout's kernels (cl/refine_spread.cl), its fit state, per-group partial sums and
   // the candidate's drawing (depth bits and triangle per pixel).
   std::unique_ptr<compute::Kernel> begin_, draw_, sums_;
