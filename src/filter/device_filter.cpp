@@ -200,7 +200,9 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
     k.propagate_program = device_->programs.program("propagate.cl", defines);
     k.propagate = k.propagate_program->kernel("propagate");
   }
-  if (!wide_ && !(refiner_ && refiner_->summarizes_first())) {  // else the fit summarizes in its own group
+  // The one-launch fit summarizes in its own group first (one launch for both); a wide summary stays apart.
+  fit_summarizes_ = refiner_ && !wide_ && refiner_->summarizes_first();
+  if (!wide_ && !fit_summarizes_) {
     summary_group_ = summary_group_size(q.info());
     std::vector<std::string> summary_defines = defines;
     summary_defines.front() = "DT_GROUP_SIZE=" + std::to_string(summary_group_);
@@ -517,13 +519,11 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   // The refinement replaces the weighted mean's pose (it starts from the heaviest particle), so its
   // rotation mean is not iterated: 4 of the single group's 7 reductions, or 4 launches of the wide summary.
   const unsigned karcher_steps = refiner_ ? 0u : static_cast<unsigned>(DT_KARCHER_STEPS);
-  // The one-launch fit summarizes in its own group first (one launch for both); a wide summary stays apart.
-  const bool fit_summarizes = refiner_ && !wide_ && refiner_->summarizes_first();
   if (wide_) {
     p->summarized = wide_->summarize(state_, log_weight_, log_likelihood_, weights_, estimate_, cx, cy, cz,
                                      kl_threshold, karcher_steps);
     batch.flush();
-  } else if (!fit_summarizes) {
+  } else if (!fit_summarizes_) {
     p->summarized = {launch_step(*k.summarize, compute::NdRange::linear(summary_group_, summary_group_), state_,
                                  log_weight_, log_likelihood_, weights_, estimate_, count, cx, cy, cz, kl_threshold,
                                  karcher_steps)};
@@ -536,7 +536,7 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
         time_,  dt};
     const SummaryInputs summary{log_weight_, log_likelihood_, weights_, count, Eigen::Vector3f(cx, cy, cz),
                                 kl_threshold};
-    p->refined = refiner_->refine(estimate_, inputs, fit_summarizes ? &summary : nullptr);
+    p->refined = refiner_->refine(estimate_, inputs, fit_summarizes_ ? &summary : nullptr);
   }
   // The estimate is complete: it goes to the host ahead of the resampling and the shift, which only the
   // next frame needs (they run while the host takes the estimate).

@@ -179,6 +179,7 @@ class DeviceFilter final : public FilterBackend {
   std::unique_ptr<compute::Kernel> render_weigh_;
   const MeshBuffers* render_weigh_mesh_ = nullptr;
   bool propagates_in_weigh_ = false;  // propagates_inside_weigh: no propagate launch
+  bool fit_summarizes_ = false;       // the one-launch fit summarizes in its own launch: no summarize launch
   bool keep_atlas_ = false;
   // Per-pixel occlusion state, double-buffered: weigh reads particle i's row parents_[i] of one and
   // writes row i of the other (cl/weigh.cl), so resampling copies no rows; parents_ is the identity
