@@ -42,20 +42,31 @@ for b in cuda opencl:nvidia; do
   for tree in /tmp/old-tree/build build-gpu; do
     echo "$b ${tree%%/build*} three ycbv objects:"
     "$tree/depthtrack_bench" --multi-objects --backend "$b" --particles 2000 --untimed-steps --simplify-error 0.0005 \
-      --frames 40 | grep -E "multi_object_ratio" | cut -d, -f5-
+      --frames 40 | grep -E "multi_object_ratio|occlusion_off.*(one_object|three_objects)_(enqueue|collect|upload_sum|steps_sum)_ms" |
+      cut -d, -f5-
   done
+done
+# The new tree's device time per step (timed steps: each kernel's event), the handset.
+for b in cuda opencl:nvidia; do
+  echo "$b timed steps: $(build-gpu/depthtrack_bench --backend "$b" --particles 2000 --frames 60 --no-global |
+    grep -E ',(propagate|weigh|resample|refine|enqueue|wait|total)_ms,' | cut -d, -f6,8 | tr '\n' ' ')"
 done
 # The mug at 0.5 mm has 3,196 triangles, so auto spreads its fit (19 launches on OpenCL) where the other
 # two fit in one launch: its one-launch frame alone and the three objects with every fit in one launch.
 for rep in 1 2; do
   for layout in spread one-launch; do
+    echo "cuda handset $layout: $(build-gpu/depthtrack_bench --backend cuda --particles 2000 --frames 60 \
+      --no-global --untimed-steps --refine-layout "$layout" | grep -E ',total_ms,' | cut -d, -f8)"
     echo "opencl:nvidia mug $layout: $(build-gpu/depthtrack_bench --backend opencl:nvidia --particles 2000 --frames 60 \
       --no-global --untimed-steps --mesh .devdata/meshes/ycb/025_mug.obj --simplify-error 0.0005 \
       --refine-layout "$layout" | grep -E ',total_ms,' | cut -d, -f8)"
   done
 done
-build-gpu/depthtrack_bench --multi-objects --backend opencl:nvidia --particles 2000 --untimed-steps \
-  --simplify-error 0.0005 --frames 40 --refine-layout one-launch | grep -E "multi_object_ratio" | cut -d, -f5-
+for b in cuda opencl:nvidia; do
+  echo "$b three ycbv objects, every fit one-launch:"
+  build-gpu/depthtrack_bench --multi-objects --backend "$b" --particles 2000 --untimed-steps \
+    --simplify-error 0.0005 --frames 40 --refine-layout one-launch | grep -E "multi_object_ratio" | cut -d, -f5-
+done
 [[ ${TESTS:-1} == 1 ]] || exit 0
 for b in cuda opencl:nvidia; do
   echo "== $b"
