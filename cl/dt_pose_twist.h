@@ -29,28 +29,23 @@ DT_DEVICE_FN dt_pose dt_apply_twist(dt_pose p, dt_vec3 centre, const float* twis
   return r;
 }
 
-/* The pose's seven floats in dt_state.h's layout, stored and loaded through pointers into one address
- * space (OpenCL C 1.2 has no generic one): dt_store_pose / dt_load_pose for __global states,
- * dt_store_private_pose / dt_load_private_pose for a work-item's own (the refinement's fit state). */
-#define DT_POSE_ACCESSORS(store, load, SPACE)      \
-  DT_DEVICE_FN void store(SPACE float* s, dt_pose p) { \
-    s[DT_TX] = p.t.x;                               \
-    s[DT_TX + 1] = p.t.y;                           \
-    s[DT_TX + 2] = p.t.z;                           \
-    s[DT_QW] = p.q.w;                               \
-    s[DT_QW + 1] = p.q.x;                           \
-    s[DT_QW + 2] = p.q.y;                           \
-    s[DT_QW + 3] = p.q.z;                           \
-  }                                                 \
-  DT_DEVICE_FN dt_pose load(SPACE const float* s) { \
-    dt_pose p;                                      \
-    p.t = dt_vec3_make(s[DT_TX], s[DT_TX + 1], s[DT_TX + 2]); \
-    p.q.w = s[DT_QW];                               \
-    p.q.x = s[DT_QW + 1];                           \
-    p.q.y = s[DT_QW + 2];                           \
-    p.q.z = s[DT_QW + 3];                           \
-    return p;                                       \
-  }
-DT_POSE_ACCESSORS(dt_store_pose, dt_load_pose, __global)
-DT_POSE_ACCESSORS(dt_store_private_pose, dt_load_private_pose, )
+DT_DEVICE_FN void dt_store_pose(__global float* s, dt_pose p) {
+  s[DT_TX] = p.t.x;
+  s[DT_TX + 1] = p.t.y;
+  s[DT_TX + 2] = p.t.z;
+  s[DT_QW] = p.q.w;
+  s[DT_QW + 1] = p.q.x;
+  s[DT_QW + 2] = p.q.y;
+  s[DT_QW + 3] = p.q.z;
+}
+
+DT_DEVICE_FN dt_pose dt_load_pose(__global const float* s) {
+  dt_pose p;
+  p.t = dt_vec3_make(s[DT_TX], s[DT_TX + 1], s[DT_TX + 2]);
+  p.q.w = s[DT_QW];
+  p.q.x = s[DT_QW + 1];
+  p.q.y = s[DT_QW + 2];
+  p.q.z = s[DT_QW + 3];
+  return p;
+}
 #endif

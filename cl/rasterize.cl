@@ -66,8 +66,13 @@ DT_DEVICE_FN float dt_dot(dt_vec3 a, float x, float y, float z) {
   return a.x * x + a.y * y + a.z * z;
 }
 
-/* [R | t] of quaternion q (normalized here) and translation t, R as atlas.vert forms it. */
-DT_DEVICE_FN dt_rigid dt_rigid_of(dt_quat q, dt_vec3 t) {
+/* The particle's pose, R of the normalized quaternion as atlas.vert forms it. */
+DT_DEVICE_FN dt_rigid dt_particle_pose(__global const float* s) {
+  dt_quat q;
+  q.w = s[DT_QW];
+  q.x = s[DT_QW + 1];
+  q.y = s[DT_QW + 2];
+  q.z = s[DT_QW + 3];
   q = dt_quat_normalize(q);
   dt_rigid m;
   m.r0 = dt_vec3_make(1.0f - 2.0f * (q.y * q.y + q.z * q.z), 2.0f * (q.x * q.y - q.w * q.z),
@@ -76,18 +81,8 @@ DT_DEVICE_FN dt_rigid dt_rigid_of(dt_quat q, dt_vec3 t) {
                       2.0f * (q.y * q.z - q.w * q.x));
   m.r2 = dt_vec3_make(2.0f * (q.x * q.z - q.w * q.y), 2.0f * (q.y * q.z + q.w * q.x),
                       1.0f - 2.0f * (q.x * q.x + q.y * q.y));
-  m.t = t;
+  m.t = dt_vec3_make(s[DT_TX], s[DT_TX + 1], s[DT_TX + 2]);
   return m;
-}
-
-/* The particle's pose from its state (dt_state.h). */
-DT_DEVICE_FN dt_rigid dt_particle_pose(__global const float* s) {
-  dt_quat q;
-  q.w = s[DT_QW];
-  q.x = s[DT_QW + 1];
-  q.y = s[DT_QW + 2];
-  q.z = s[DT_QW + 3];
-  return dt_rigid_of(q, dt_vec3_make(s[DT_TX], s[DT_TX + 1], s[DT_TX + 2]));
 }
 
 /* Vertex i of the mesh in the camera frame. */

@@ -25,15 +25,13 @@
 #endif
 
 /* The fit's state at the frame's start: the start (the heaviest particle, which summarize found) is the
- * first candidate. Here and in dt_refine_judge the state is the work-item's own copy (private memory):
- * the spread layout copies it from and back to its buffer around each call, the one-launch group's
- * work-item 0 keeps it for the whole fit, so its judgements wait on no global memory. */
-DT_DEVICE_FN void dt_refine_start(dt_refine_state* s, __global const float* estimate, __global const float* states,
-                                  dt_refine_args args, dt_window win) {
+ * first candidate. */
+DT_DEVICE_FN void dt_refine_start(__global dt_refine_state* s, __global const float* estimate,
+                                  __global const float* states, dt_refine_args args, dt_window win) {
   s->args = args;
   s->win = win;
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
-  dt_store_private_pose(s->candidate, dt_load_pose(states + DT_CAST(ulong, heaviest) * DT_STATE_STRIDE));
+  dt_store_pose(s->candidate, dt_load_pose(states + DT_CAST(ulong, heaviest) * DT_STATE_STRIDE));
   s->active = 1;
   s->evaluation = 0;
   s->arrived = 0;
@@ -41,13 +39,10 @@ DT_DEVICE_FN void dt_refine_start(dt_refine_state* s, __global const float* esti
   s->lambda = args.damping;
 }
 
-/* One work-item: dt_refine_start (the stamp carried over from the frame before). */
+/* One work-item: dt_refine_start. */
 __kernel void refine_begin(__global dt_refine_state* s, __global const float* estimate, __global const float* states,
                            dt_refine_args args, dt_window win) {
-  if (get_global_id(0) != 0) return;
-  dt_refine_state state = *s;
-  dt_refine_start(&state, estimate, states, args, win);
-  *s = state;
+  if (get_global_id(0) == 0) dt_refine_start(s, estimate, states, args, win);
 }
 
 #define DT_REFINE_MAX_POLLS (1u << 20)
@@ -65,7 +60,7 @@ __kernel void refine_draw(__global const dt_refine_state* s, __global const floa
  * rejects the candidate (the start is kept) and, unless this was the last evaluation, solves the
  * next step from the best pose and makes it the candidate. With no next candidate the fit ends here:
  * results into estimate and correction (as refine.cl). */
-DT_DEVICE_FN void dt_refine_judge(dt_refine_state* s, __global float* estimate, __global const float* states,
+DT_DEVICE_FN void dt_refine_judge(__global dt_refine_state* s, __global float* estimate, __global const float* states,
                                   const float* sums, dt_refine_args args, __global float* correction) {
   const dt_vec3 centre = dt_vec3_make(args.centre_x, args.centre_y, args.centre_z);
   float lambda = s->lambda;
@@ -78,13 +73,13 @@ DT_DEVICE_FN void dt_refine_judge(dt_refine_state* s, __global float* estimate, 
   }
   float best_sums[DT_REFINE_SUMS];
   for (int k = 0; k < DT_REFINE_SUMS; ++k) best_sums[k] = s->best_sums[k];
-  const dt_pose best = dt_load_private_pose(s->best);
+  const dt_pose best = dt_load_pose(s->best);
   float step[6];
   const int proceed = DT_CAST(int, s->evaluation) < args.iterations && dt_refine_step(best_sums, lambda, args, step);
   s->evaluation += 1;
   s->lambda = lambda;
   if (proceed) {
-    dt_store_private_pose(s->candidate, dt_apply_twist(best, centre, step));
+    dt_store_pose(s->candidate, dt_apply_twist(best, centre, step));
     s->tried += 1;
     return;
   }
@@ -207,31 +202,27 @@ __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate,
   if (!last || lid != 0) return;
   float total[DT_REFINE_SUMS];
   for (int k = 0; k < DT_REFINE_SUMS; ++k) total[k] = sums[k];
-  dt_refine_state state = *s;
-  state.arrived = 0;
-  state.stamp = stamp + 1;
+  s->arrived = 0;
+  s->stamp = stamp + 1;
   /* A lost evaluation counts as a rejected candidate (the start as one without pixels: the fit ends there). */
   if (lost) total[DT_REFINE_PIXELS] = 0.0f, total[DT_REFINE_OBJECTIVE] = DT_LOWEST;
-  dt_refine_judge(&state, estimate, states, total, args, correction);
-  *s = state;
+  dt_refine_judge(s, estimate, states, total, args, correction);
 }
 
 /* The whole fit in one work-group and one launch (the one-launch layout): the start, then each
  * evaluation's draw and sums as above, with the group's barriers where the spread layout has kernel
  * boundaries, and work-item 0 judging; it stops as soon as the fit does. One launch a frame instead of
  * 2 x (iterations + 1) + 1: on a driver whose launches cost the host several microseconds each (NVIDIA's
- * OpenCL) that outweighs spreading the draws and sums over the device. Work-item 0 keeps the fit's state
- * in its own memory (no state buffer) and hands each candidate to the group in work-group memory. With
- * summarize, the group first does summarize.cl's work (dt_summarize.h; the fit starts from the heaviest
- * particle it finds), so a small cloud's summary and fit take one launch; its rotation mean is not
- * iterated (the fit replaces the mean pose), and its sums run over this program's DT_GROUP_SIZE
- * work-items, not summarize.cl's group: the same terms added in another order. Without it (a cloud
- * summarized over many groups before) the summary's arguments are not read. Then the arguments of
- * refine_begin and refine_sums. */
+ * OpenCL) that outweighs spreading the draws and sums over the device. With summarize, the group first
+ * does summarize.cl's work (dt_summarize.h; the fit starts from the heaviest particle it finds), so a
+ * small cloud's summary and fit take one launch; its rotation mean is not iterated (the fit replaces
+ * the mean pose), and its sums run over this program's DT_GROUP_SIZE work-items, not summarize.cl's
+ * group: the same terms added in another order. Without it (a cloud summarized over many groups
+ * before) the summary's arguments are not read. Then the arguments of refine_begin and refine_sums. */
 __kernel void refine_one_launch(__global const float* log_weight, __global const float* log_likelihood,
                                 __global float* weights, uint count, float centre_x, float centre_y, float centre_z,
-                                float kl_threshold, uint summarize, __global float* estimate,
-                                __global const float* states, __global const float* observed,
+                                float kl_threshold, uint summarize, __global dt_refine_state* s,
+                                __global float* estimate, __global const float* states, __global const float* observed,
                                 __global const float* occlusion, __global const dt_u16* occlusion_time,
                                 __global const float* frame_times, __global const uint* parents,
                                 __global const float* vertices, __global const uint* triangles,
@@ -241,7 +232,6 @@ __kernel void refine_one_launch(__global const float* log_weight, __global const
   __local float scratch[DT_GROUP_SIZE];
   __local uint scratch_index[DT_GROUP_SIZE];
   __local float sums[DT_REFINE_SCRATCH]; /* the summary's DT_GROUP_SUMS_SCRATCH(DT_WEIGHTED_SUMS), then the fit's */
-  __local dt_rigid candidate;            /* the pose the group draws next */
   __local int active;
   const uint lid = get_local_id(0);
   if (summarize) { /* a kernel argument: every work-item meets the summary's barriers */
@@ -249,17 +239,12 @@ __kernel void refine_one_launch(__global const float* log_weight, __global const
                  dt_vec3_make(centre_x, centre_y, centre_z), kl_threshold, 0u, scratch, scratch_index, sums);
     barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE); /* the estimate and weights written; sums free */
   }
-  dt_refine_state fit; /* work-item 0's alone */
-  if (lid == 0) {
-    dt_refine_start(&fit, estimate, states, args, win);
-    const dt_pose first = dt_load_private_pose(fit.candidate);
-    candidate = dt_rigid_of(first.q, first.t);
-  }
-  barrier(CLK_LOCAL_MEM_FENCE);
+  if (lid == 0) dt_refine_start(s, estimate, states, args, win);
+  barrier(CLK_GLOBAL_MEM_FENCE);
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
   const dt_refine_offsets at = dt_refine_map_offsets(parents[heaviest], win);
   for (;;) {
-    const dt_rigid pose = candidate;
+    const dt_rigid pose = dt_particle_pose(s->candidate);
     for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
       dt_draw_triangle(pose, vertices, triangles, planes, t, cam, 0, 0, nearest, 0);
     barrier(CLK_GLOBAL_MEM_FENCE);
@@ -270,13 +255,11 @@ __kernel void refine_one_launch(__global const float* log_weight, __global const
     if (lid == 0) {
       float total[DT_REFINE_SUMS];
       for (int k = 0; k < DT_REFINE_SUMS; ++k) total[k] = sums[k];
-      dt_refine_judge(&fit, estimate, states, total, args, correction);
-      active = DT_CAST(int, fit.active);
-      const dt_pose next = dt_load_private_pose(fit.candidate);
-      candidate = dt_rigid_of(next.q, next.t);
+      dt_refine_judge(s, estimate, states, total, args, correction);
+      active = DT_CAST(int, s->active);
     }
-    /* The next candidate and the decision seen by the whole group; every work-item has read this
-     * evaluation's sums and reset its pixels. */
+    /* The next candidate (global) and the decision (local) seen by the whole group; every work-item
+     * has read this evaluation's sums and reset its pixels. */
     barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
     if (!active) break;
   }

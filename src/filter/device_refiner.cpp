@@ -89,11 +89,11 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
     return;
   }
   const size_t pixels = static_cast<size_t>(camera.pixel_count());
+  fit_state_ = compute::Buffer<float>(queue, sizeof(dt_refine_state) / sizeof(float));
+  fit_state_.upload(std::vector<float>(fit_state_.size(), 0.0f));
   if (layout_ == RefineLayout::OneLaunch) {
-    refine_ = program_->kernel("refine_one_launch");  // its fit state stays in a work-item's own memory
+    refine_ = program_->kernel("refine_one_launch");
   } else {
-    fit_state_ = compute::Buffer<float>(queue, sizeof(dt_refine_state) / sizeof(float));
-    fit_state_.upload(std::vector<float>(fit_state_.size(), 0.0f));
     begin_ = program_->kernel("refine_begin");
     draw_ = program_->kernel("refine_draw");
     sums_ = program_->kernel("refine_sums");
@@ -129,7 +129,7 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
     fit = compute::launch_timed_if(config_.step_timings, queue_, *refine_, one_group, log_weight, log_likelihood,
                                    weights, summary ? summary->count : 0u, centre.x(), centre.y(), centre.z(),
                                    summary ? summary->kl_threshold : 0.0f, static_cast<unsigned>(summary != nullptr),
-                                   estimate, in.states, in.observed, in.occlusion, in.occlusion_time,
+                                   fit_state_, estimate, in.states, in.observed, in.occlusion, in.occlusion_time,
                                    in.frame_times, in.parents, mesh_.vertices, mesh_.triangles, mesh_.planes,
                                    mesh_.triangle_count(), cam, model, args, in.window, nearest_, correction_);
   } else {
