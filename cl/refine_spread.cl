@@ -91,32 +91,20 @@ DT_DEVICE_FN void dt_refine_judge(__global dt_refine_state* s, __global float* e
 
 /* The normal equations' sums of the pixels first, first + stride, ... that the candidate drew, into
  * acc (DT_REFINE_SUMS, zeroed here), each pixel read reset for the next evaluation: refine_sums strides
- * over the grid, refine_one_launch over its one group. The words of DT_REFINE_PIXELS_AT_ONCE pixels are
- * loaded before any is looked at, so that their loads are in flight together (most pixels are empty,
- * and one load after another left the one-launch group's 19 pixels a work-item at 80x60 waiting on
- * each); the pixels are still summed in the same order. */
-#define DT_REFINE_PIXELS_AT_ONCE 4
+ * over the grid, refine_one_launch over its one group. */
 DT_DEVICE_FN void dt_refine_sum_drawn(float* acc, uint first, uint stride, __global dt_u64* nearest, dt_rigid pose,
                                       dt_refine_args args, __global const float* observed,
                                       __global const float* occlusion, __global const dt_u16* occlusion_time,
                                       __global const float* frame_times, dt_refine_offsets at,
                                       __global const float* planes, uint triangle_count, dt_camera cam, dt_model m) {
   const dt_vec3 centre = dt_vertex_at(pose, args.centre_x, args.centre_y, args.centre_z);
-  const uint pixels = cam.width * cam.height;
   for (int k = 0; k < DT_REFINE_SUMS; ++k) acc[k] = 0.0f;
-  for (uint k0 = first; k0 < pixels; k0 += DT_REFINE_PIXELS_AT_ONCE * stride) {
-    dt_u64 drawn[DT_REFINE_PIXELS_AT_ONCE];
-    for (uint i = 0; i < DT_REFINE_PIXELS_AT_ONCE; ++i) {
-      const uint k = k0 + i * stride;
-      drawn[i] = k < pixels ? nearest[k] : DT_NEAREST_EMPTY;
-    }
-    for (uint i = 0; i < DT_REFINE_PIXELS_AT_ONCE; ++i) {
-      if (drawn[i] == DT_NEAREST_EMPTY) continue; /* nothing drawn (or past the image): nothing to reset or sum */
-      const uint k = k0 + i * stride;
-      nearest[k] = DT_NEAREST_EMPTY;
-      dt_refine_pixel(acc, k, DT_CAST(uint, drawn[i] >> 32), DT_CAST(uint, drawn[i] & 0xffffffffu), pose, centre,
-                      observed, occlusion, occlusion_time, frame_times, at, planes, triangle_count, cam, m, args);
-    }
+  for (uint k = first; k < cam.width * cam.height; k += stride) {
+    const dt_u64 drawn = nearest[k];
+    if (drawn == DT_NEAREST_EMPTY) continue; /* nothing drawn: nothing to reset or sum */
+    nearest[k] = DT_NEAREST_EMPTY;
+    dt_refine_pixel(acc, k, DT_CAST(uint, drawn >> 32), DT_CAST(uint, drawn & 0xffffffffu), pose, centre, observed,
+                    occlusion, occlusion_time, frame_times, at, planes, triangle_count, cam, m, args);
   }
 }
 
