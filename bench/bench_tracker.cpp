@@ -68,7 +68,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
   tracker.initialize(scene.ground_truth(0.0));
   const double startup_ms = startup.elapsed_ms();
   const double startup_peak_mib = peak_known ? bench::peak_resident_mib() : NAN;
-  std::vector<double> propagate, render, handoff, weigh, resample, refined, confidence, enqueue, wait, total,
+  std::vector<double> propagate, render, handoff, weigh, resample, refined, confidence, upload, enqueue, wait, total,
       refine_steps;
   for (int i = 0; i < frames; ++i) {
     const SynthFrame f = scene.frame(i);
@@ -82,6 +82,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
     refined.push_back(e.timings.refine_ms);
     refine_steps.push_back(e.refine_iterations);
     confidence.push_back(e.timings.confidence_ms);
+    upload.push_back(e.timings.upload_ms);
     enqueue.push_back(e.timings.enqueue_ms);
     wait.push_back(e.timings.wait_ms);
     total.push_back(e.timings.total_ms);
@@ -108,6 +109,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
                                         {"resample", &resample},
                                         {"refine", &refined},
                                         {"confidence", &confidence},
+                                        {"upload", &upload},
                                         {"enqueue", &enqueue},
                                         {"wait", &wait},
                                         {"total", &total}}) {

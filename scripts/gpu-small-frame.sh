@@ -27,7 +27,7 @@ cmake -S . -B build-gpu "${flags[@]}" -DDEPTHTRACK_BUILD_TESTS=ON >/tmp/new-conf
   { tail -20 /tmp/new-build.log; exit 1; }
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader
 echo "old $old_rev, new $(git log --oneline -1 2>/dev/null | cut -c1-7)"
-rows=',(total_ms|enqueue_ms|wait_ms),'
+rows=',(total_ms|upload_ms|enqueue_ms|wait_ms),'
 for rep in $(seq "${REPS:-3}"); do
   for b in cuda opencl:nvidia; do
     for mesh in "" "--mesh .devdata/meshes/ycb/025_mug.obj --simplify-error 0.0005"; do
@@ -49,7 +49,7 @@ done
 # The new tree's device time per step (timed steps: each kernel's event), the handset.
 for b in cuda opencl:nvidia; do
   echo "$b timed steps: $(build-gpu/depthtrack_bench --backend "$b" --particles 2000 --frames 60 --no-global |
-    grep -E ',(propagate|weigh|resample|refine|enqueue|wait|total)_ms,' | cut -d, -f6,8 | tr '\n' ' ')"
+    grep -E ',(propagate|weigh|resample|refine|upload|enqueue|wait|total)_ms,' | cut -d, -f6,8 | tr '\n' ' ')"
 done
 # The mug at 0.5 mm has 3,196 triangles, so auto spreads its fit (19 launches on OpenCL) where the other
 # two fit in one launch: its one-launch frame alone and the three objects with every fit in one launch.
