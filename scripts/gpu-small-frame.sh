@@ -46,6 +46,13 @@ for b in cuda opencl:nvidia; do
       cut -d, -f5-
   done
 done
+# CUDA's streams at one priority (as before round 2, session 20) against the queues' ranked priorities.
+for priorities in off on; do
+  echo "cuda three ycbv objects, stream priorities $priorities:"
+  DEPTHTRACK_CUDA_STREAM_PRIORITIES=$priorities build-gpu/depthtrack_bench --multi-objects --backend cuda \
+    --particles 2000 --untimed-steps --simplify-error 0.0005 --frames 40 |
+    grep -E "multi_object_ratio|occlusion_off.*three_objects_(enqueue|collect)_ms" | cut -d, -f5-
+done
 # The new tree's device time per step (timed steps: each kernel's event), the handset.
 for b in cuda opencl:nvidia; do
   echo "$b timed steps: $(build-gpu/depthtrack_bench --backend "$b" --particles 2000 --frames 60 --no-global |

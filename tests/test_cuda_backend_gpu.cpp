@@ -2,6 +2,7 @@
 // for bit, work-group memory and barriers work, arguments are checked, and objects may outlive
 // the queue that made them. The general [compute] tests cover the rest with DEPTHTRACK_TEST_DEVICE=cuda.
 #if defined(DEPTHTRACK_WITH_CUDA)
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdint>
 #include <depthtrack/error.hpp>
@@ -12,6 +13,7 @@
 
 #include "compute/buffer.hpp"
 #include "compute/cuda/cuda_backend.hpp"
+#include "compute/cuda/cuda_driver_api.hpp"
 #include "compute/cuda/cuda_queue.hpp"
 #include "compute/kernel_sources.hpp"
 #include "philox.h"
@@ -130,6 +132,30 @@ TEST_CASE("CUDA copies, shared memory between queues, and objects outliving thei
   program.reset();
   queue.reset();  // the context lives on in the memory, kernel and the other queue
   other->launch(*kernel, compute::NdRange::linear(16, 16), *memory, std::uint64_t{1}, 0u)->wait();
+}
+
+// The filters' own queues (Queue::another_queue, one per object of a MultiTracker) get streams of
+// falling urgency in the order they were made, where the driver offers more than one priority.
+TEST_CASE("A CUDA device's queues get stream priorities in the order they were made", "[cuda]") {
+  auto queue = cuda_queue();
+  if (!queue) return;
+  const auto& api = compute::cuda::require_driver();
+  int least = 0, greatest = 0;
+  if (!api.cuStreamGetPriority || !api.cuCtxGetStreamPriorityRange ||
+      api.cuCtxGetStreamPriorityRange(&least, &greatest) != CUDA_SUCCESS || greatest >= least) {
+    std::cout << "SKIPPED: this driver offers one stream priority\n";
+    return;
+  }
+  auto first = queue->another_queue(), second = queue->another_queue();
+  const auto priority = [&](const compute::Queue& q) {
+    int p = 0;
+    REQUIRE(api.cuStreamGetPriority(dynamic_cast<const compute::cuda::CudaQueue&>(q).stream(), &p) == CUDA_SUCCESS);
+    return p;
+  };
+  INFO("priority range [" << greatest << ", " << least << "]");
+  CHECK(priority(*queue) == greatest);
+  CHECK(priority(*first) == greatest + 1);
+  CHECK(priority(*second) == std::min(greatest + 2, least));
 }
 
 TEST_CASE("A CUDA allocation beyond free memory names both sizes", "[cuda]") {

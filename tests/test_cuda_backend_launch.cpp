@@ -4,6 +4,7 @@
 #include <depthtrack/error.hpp>
 
 #include "compute/cuda/cuda_launch.hpp"
+#include "compute/cuda/cuda_stream.hpp"
 
 using namespace depthtrack;
 namespace cuda = depthtrack::compute::cuda;
@@ -55,4 +56,15 @@ TEST_CASE("Malformed CUDA launches are input errors, oversized ones backend erro
   }
 }
 
+// A context's queues take stream priorities in the order they were made, the first the most urgent
+// (CUDA: lower numbers, within a range such as [-5, 0]), and share the least urgent once it runs out.
+TEST_CASE("A CUDA context's queues take priorities in the order they were made", "[cuda]") {
+  CHECK(cuda::ranked_stream_priority(0, 0, -5) == -5);
+  CHECK(cuda::ranked_stream_priority(1, 0, -5) == -4);
+  CHECK(cuda::ranked_stream_priority(4, 0, -5) == -1);
+  CHECK(cuda::ranked_stream_priority(5, 0, -5) == 0);
+  CHECK(cuda::ranked_stream_priority(4000000000u, 0, -5) == 0);
+  CHECK(cuda::ranked_stream_priority(2, 3, 1) == 3);  // a range of 1 .. 3 (most urgent 1)
+  CHECK(cuda::ranked_stream_priority(0, 0, 0) == 0);  // one level: every stream the default
+}
 #endif

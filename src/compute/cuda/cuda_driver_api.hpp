@@ -26,8 +26,8 @@ namespace depthtrack::compute::cuda {
 // clang-format on
 
 // Functions the backend uses when the driver has them (cuFuncGetParamInfo: CUDA 12.4+), and those
-// of graphics interop, exportable memory and graphs (cuGraphAddKernelNode_v2: CUDA 12.0+), which a driver
-// may lack.
+// of graphics interop, exportable memory, graphs (cuGraphAddKernelNode_v2: CUDA 12.0+) and stream
+// priorities, which a driver may lack.
 // clang-format off
 #define DT_CUDA_DRIVER_OPTIONAL_FUNCTIONS(X)                                                           \
   X(cuFuncGetParamInfo) X(cuDeviceGetUuid)                                                             \
@@ -35,7 +35,8 @@ namespace depthtrack::compute::cuda {
   X(cuGraphicsSubResourceGetMappedArray) X(cuGraphicsResourceGetMappedPointer) X(cuMemcpy2DAsync)          \
   X(cuMemGetAllocationGranularity) X(cuMemCreate) X(cuMemExportToShareableHandle) X(cuMemRelease)          \
   X(cuGraphCreate) X(cuGraphDestroy) X(cuGraphAddKernelNode) X(cuGraphAddEventRecordNode)              \
-  X(cuGraphInstantiate) X(cuGraphExecDestroy) X(cuGraphExecKernelNodeSetParams) X(cuGraphLaunch)
+  X(cuGraphInstantiate) X(cuGraphExecDestroy) X(cuGraphExecKernelNodeSetParams) X(cuGraphLaunch)          \
+  X(cuStreamCreateWithPriority) X(cuCtxGetStreamPriorityRange) X(cuStreamGetPriority)
 // clang-format on
 
 struct DriverApi {

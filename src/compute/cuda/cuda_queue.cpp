@@ -10,16 +10,18 @@
 #include "compute/cuda/cuda_memory.hpp"
 #include "compute/cuda/cuda_module.hpp"
 #include "compute/cuda/cuda_program.hpp"
+#include "compute/cuda/cuda_stream.hpp"
 
 namespace depthtrack::compute::cuda {
 
-CudaQueue::CudaQueue(int ordinal) : CudaQueue(std::make_shared<const Context>(ordinal)) {}
+CudaQueue::CudaQueue(int ordinal)
+    : CudaQueue(std::make_shared<const Context>(ordinal), std::make_shared<std::atomic<unsigned>>(1u), 0) {}
 
-CudaQueue::CudaQueue(std::shared_ptr<const Context> context) : context_(std::move(context)) {
+CudaQueue::CudaQueue(std::shared_ptr<const Context> context, std::shared_ptr<std::atomic<unsigned>> queues_made,
+                     unsigned rank)
+    : context_(std::move(context)), queues_made_(std::move(queues_made)) {
   context_->make_current();
-  // A blocking stream (not CU_STREAM_NON_BLOCKING) also orders against work that other code, such
-  // as GL interop, puts on the legacy default stream.
-  context_->check(context_->api().cuStreamCreate(&stream_, CU_STREAM_DEFAULT), "cuStreamCreate");
+  stream_ = create_ranked_stream(*context_, rank);
   const char* graphs = std::getenv("DEPTHTRACK_CUDA_GRAPHS");
   const bool turned_off = graphs && (std::strcmp(graphs, "0") == 0 || std::strcmp(graphs, "off") == 0);
   if (!turned_off && LaunchGraphs::supported(context_->api())) graphs_ = std::make_unique<LaunchGraphs>(context_);
@@ -211,7 +213,7 @@ EventPtr CudaQueue::enqueue(Kernel& kernel, const NdRange& range, bool timed) {
 }
 
 std::unique_ptr<Queue> CudaQueue::another_queue() {
-  return std::unique_ptr<Queue>(new CudaQueue(context_));
+  return std::unique_ptr<Queue>(new CudaQueue(context_, queues_made_, queues_made_->fetch_add(1)));
 }
 
 void CudaQueue::finish() {

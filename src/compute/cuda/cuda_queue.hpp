@@ -1,6 +1,7 @@
 #pragma once
 // The CUDA Queue: one device's primary context and one in-order stream. Copies to and from the
 // host block; launches and device copies are enqueued on the stream in order.
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -46,7 +47,8 @@ class CudaQueue final : public Queue {
   void end_batch() override;
   void flush_batch() override { hand_over_batch(); }
   const LaunchGraphs* graphs() const { return graphs_.get(); }  // null without graphs; for tests
-  // A stream of its own in this queue's context.
+  // A stream of its own in this queue's context, at the priority of the next rank there
+  // (compute/cuda/cuda_stream.hpp: the queues made first run ahead).
   std::unique_ptr<Queue> another_queue() override;
 
   // For interop code that enqueues its own work in order with the queue's.
@@ -57,8 +59,10 @@ class CudaQueue final : public Queue {
   EventPtr enqueue(Kernel& kernel, const NdRange& range, bool timed);
   // Launches what a batch holds so far, so that the operation that follows keeps its place in order.
   void hand_over_batch();
-  // A new stream in `context`.
-  explicit CudaQueue(std::shared_ptr<const Context> context);
+  // A new stream in `context`, for the queue made `rank`-th there; queues_made counts them (shared by
+  // every queue of the context).
+  CudaQueue(std::shared_ptr<const Context> context, std::shared_ptr<std::atomic<unsigned>> queues_made,
+            unsigned rank);
 
   CUdeviceptr write_target(DeviceMemory& memory, size_t offset, const void* source, size_t bytes);
   CUdeviceptr read_source(const DeviceMemory& memory, size_t offset, const void* destination, size_t bytes);
@@ -66,6 +70,7 @@ class CudaQueue final : public Queue {
   const CudaMemory& checked(const DeviceMemory& memory, size_t offset, size_t bytes, const char* what) const;
 
   std::shared_ptr<const Context> context_;
+  std::shared_ptr<std::atomic<unsigned>> queues_made_;
   CUstream stream_ = nullptr;
   std::unique_ptr<LaunchGraphs> graphs_;  // null where graphs are off
   std::unique_ptr<PinnedStaging> staging_;       // write_enqueued's, made at its first use
