@@ -61,8 +61,7 @@ class CudaQueue final : public Queue {
   void hand_over_batch();
   // A new stream in `context`, for the queue made `rank`-th there; queues_made counts them (shared by
   // every queue of the context).
-  CudaQueue(std::shared_ptr<const Context> context, std::shared_ptr<std::atomic<unsigned>> queues_made,
-            unsigned rank);
+  CudaQueue(std::shared_ptr<const Context> context, std::shared_ptr<std::atomic<unsigned>> queues_made, unsigned rank);
 
   CUdeviceptr write_target(DeviceMemory& memory, size_t offset, const void* source, size_t bytes);
   CUdeviceptr read_source(const DeviceMemory& memory, size_t offset, const void* destination, size_t bytes);
