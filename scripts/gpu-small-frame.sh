@@ -1,37 +1,39 @@
 #!/usr/bin/env bash
 # On the lent GPU machine, one call (about 8 minutes): the 2,000-particle frame (issue 12's 0.25 ms) and
-# three objects against one (issue 10's 1.5x) at this tree against an earlier commit, built side by side
-# and run alternately so that both see the same host: OLD (default fc655e9, before the small-cloud launch
-# folds of round 2, session 19). Then the kernels' and the filter's equivalence tests on each backend
-# with this tree (TESTS=0 leaves them out). 2,000 particles, 80x60, untimed steps as a tracker runs:
-# the handset and the YCB mug at the 0.5 mm default, REPS (default 3) alternations; the several-object
-# ratios at the 0.5 mm default, and on NVIDIA OpenCL with every fit in one launch (the mug's too). Carry
-# .devdeps, .device, .devdata and .devvariants (below).
+# three objects against one (issue 10's 1.5x), then the kernels' and the filter's equivalence tests on each
+# backend (TESTS=0 leaves them out), after where a single frame's enqueue goes (scripts/gpu-enqueue-profile.sh;
+# PROFILE=0 leaves it out). OLD=<commit> also builds that commit and alternates it with this tree, so both
+# see the same host (its tree from .devvariants/old where carried, prepared with `mkdir -p .devvariants/old
+# && git archive <commit> | tar -x -C .devvariants/old`, as the device's copy may hold no git history; else
+# from git there). 2,000 particles, 80x60, untimed steps as a tracker runs: the handset and the YCB mug at
+# the 0.5 mm default, REPS (default 2) repetitions; the several-object ratios at the 0.5 mm default, also
+# with every fit in one launch and, on CUDA, with the streams at one priority. Carry .devdeps, .device,
+# .devdata (and .devvariants with OLD).
 set -uo pipefail
 source .device/enter .devdeps
 export DEPTHTRACK_DATA_DIR=$PWD/.devdata POCL_CACHE_DIR=/tmp/pocl-cache
-old_rev=${OLD:-fc655e9}
 flags=(-G Ninja -DCMAKE_BUILD_TYPE=Release -DDEPTHTRACK_SANITIZE_SUITE=OFF -DDEPTHTRACK_STATIC_PACKAGE_TEST=OFF
   -DDEPTHTRACK_PYTHON=OFF)
-# The old tree: .devvariants/old where it was carried (prepared beforehand with `mkdir -p .devvariants/old &&
-# git archive fc655e9 | tar -x -C .devvariants/old`, as the device's copy may hold no git history), else
-# from git here.
-mkdir -p /tmp/old-tree
-if [[ -d .devvariants/old ]]; then cp -r .devvariants/old/. /tmp/old-tree/ && old_rev="$old_rev (carried)"
-else git archive "$old_rev" | tar -x -C /tmp/old-tree || exit 1; fi
-cmake -S /tmp/old-tree -B /tmp/old-tree/build "${flags[@]}" -DDEPTHTRACK_BUILD_TESTS=OFF >/tmp/old-configure.log 2>&1 &&
-  cmake --build /tmp/old-tree/build -j"$(nproc)" --target depthtrack_bench >/tmp/old-build.log 2>&1 ||
-  { tail -20 /tmp/old-build.log; exit 1; }
+trees=(build-gpu)
+if [[ -n ${OLD:-} ]]; then
+  mkdir -p /tmp/old-tree
+  if [[ -d .devvariants/old ]]; then cp -r .devvariants/old/. /tmp/old-tree/
+  else git archive "$OLD" | tar -x -C /tmp/old-tree || exit 1; fi
+  cmake -S /tmp/old-tree -B /tmp/old-tree/build "${flags[@]}" -DDEPTHTRACK_BUILD_TESTS=OFF >/tmp/old-configure.log 2>&1 &&
+    cmake --build /tmp/old-tree/build -j"$(nproc)" --target depthtrack_bench >/tmp/old-build.log 2>&1 ||
+    { tail -20 /tmp/old-build.log; exit 1; }
+  trees=(/tmp/old-tree/build build-gpu)
+fi
 cmake -S . -B build-gpu "${flags[@]}" -DDEPTHTRACK_BUILD_TESTS=ON >/tmp/new-configure.log 2>&1 &&
   cmake --build build-gpu -j"$(nproc)" --target depthtrack_bench depthtrack_tests >/tmp/new-build.log 2>&1 ||
   { tail -20 /tmp/new-build.log; exit 1; }
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader
-echo "old $old_rev, new $(git log --oneline -1 2>/dev/null | cut -c1-7)"
+echo "${OLD:+old $OLD, }new $(git log --oneline -1 2>/dev/null | cut -c1-7)"
 rows=',(total_ms|upload_ms|enqueue_ms|wait_ms),'
-for rep in $(seq "${REPS:-3}"); do
+for rep in $(seq "${REPS:-2}"); do
   for b in cuda opencl:nvidia; do
     for mesh in "" "--mesh .devdata/meshes/ycb/025_mug.obj --simplify-error 0.0005"; do
-      for tree in /tmp/old-tree/build build-gpu; do
+      for tree in "${trees[@]}"; do
         echo "$b ${tree%%/build*} ${mesh:+mug}: $("$tree/depthtrack_bench" --backend "$b" --particles 2000 --frames 60 \
           --no-global --untimed-steps $mesh | grep -E "$rows" | cut -d, -f6,8 | tr '\n' ' ')"
       done
@@ -39,7 +41,7 @@ for rep in $(seq "${REPS:-3}"); do
   done
 done
 for b in cuda opencl:nvidia; do
-  for tree in /tmp/old-tree/build build-gpu; do
+  for tree in "${trees[@]}"; do
     echo "$b ${tree%%/build*} three ycbv objects:"
     "$tree/depthtrack_bench" --multi-objects --backend "$b" --particles 2000 --untimed-steps --simplify-error 0.0005 \
       --frames 40 | grep -E "multi_object_ratio|occlusion_off.*(one_object|three_objects)_(enqueue|collect|upload_sum|steps_sum)_ms" |
@@ -74,9 +76,12 @@ for b in cuda opencl:nvidia; do
   build-gpu/depthtrack_bench --multi-objects --backend "$b" --particles 2000 --untimed-steps \
     --simplify-error 0.0005 --frames 40 --refine-layout one-launch | grep -E "multi_object_ratio" | cut -d, -f5-
 done
+if [[ ${PROFILE:-1} == 1 ]]; then bash scripts/gpu-enqueue-profile.sh; fi
 [[ ${TESTS:-1} == 1 ]] || exit 0
 for b in cuda opencl:nvidia; do
   echo "== $b"
-  DEPTHTRACK_TEST_DEVICE=$b build-gpu/tests/depthtrack_tests "[kernels],[refine],[device],[multi]" 2>&1 |
-    grep -E "test cases|FAILED|failed" | head -20
+  # A failure's expansion and its INFO (scene, mode, frame) as well as the counts.
+  DEPTHTRACK_TEST_DEVICE=$b build-gpu/tests/depthtrack_tests "[kernels],[refine],[device],[multi]" >/tmp/tests.log 2>&1
+  grep -E -A8 "FAILED" /tmp/tests.log | head -60
+  grep -E "test cases|assertions" /tmp/tests.log
 done
