@@ -12,6 +12,7 @@
 // 80x60 (from the object's box, and from no hint), unless --no-global: the tracker's construction (every
 // program built, the search's among them), the first search and the same search again.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -21,6 +22,7 @@
 #include <depthtrack/tracker.hpp>
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "bench_args.hpp"
@@ -43,9 +45,11 @@ bool host_backend(const std::string& backend) {
 }
 
 // Prints the case's rows; returns its median frame time (ms).
+// pace_ms > 0: each frame is handed over that long after the one before returned, as a sensor stream
+// leaves the device idle between frames (back to back, a frame's calls meet the last one's tail).
 double run(const Mesh& mesh, const std::string& mesh_name, const std::string& backend, const std::string& renderer,
            const Refinement& refine, const Case& c, int frames, const OcclusionWindow& window, double simplify_error,
-           bool step_timings) {
+           bool step_timings, double pace_ms) {
   SynthConfig synth;
   synth.frames = frames;
   synth.occluder_fraction = 0.3;
@@ -73,6 +77,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
   for (int i = 0; i < frames; ++i) {
     const SynthFrame f = scene.frame(i);
     const Estimate e = tracker.update(f.depth, f.timestamp);
+    if (pace_ms > 0) std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(pace_ms));
     if (i < 2) continue;  // warm-up: caches, first-frame propagation skipped
     propagate.push_back(e.timings.propagate_ms);
     render.push_back(e.timings.render_ms);
@@ -99,7 +104,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
            ? "_window" + std::to_string(window.width) + "x" + std::to_string(window.height)
            : std::string("_windowfull")) +
       (simplify_error > 0 ? "_simplify" + bench::compact_number(simplify_error * 1e3) + "mm" : std::string()) +
-      (step_timings ? "" : "_untimed");
+      (step_timings ? "" : "_untimed") + (pace_ms > 0 ? "_paced" + bench::compact_number(pace_ms) + "ms" : "");
   const std::string platform = host_backend(backend) ? "cpu" : backend;
   const std::string name = host_backend(backend) ? bench::cpu_name() : device;
   for (const auto& [metric, samples] : {std::pair{"propagate", &propagate},
@@ -136,7 +141,7 @@ const char* const kUsage =
     "usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] "
     "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N] [--refine-converged M]\n"
     "       [--refine-layout auto|one-group|spread|one-launch] [--occlusion-window auto|full|WxH]\n"
-    "       [--simplify-error M] [--mesh FILE] [--no-global] [--multi-objects] [--untimed-steps]\n"
+    "       [--simplify-error M] [--mesh FILE] [--no-global] [--multi-objects] [--untimed-steps] [--pace MS]\n"
     "Times tracker frames on a synthetic occluded handset sequence, split into propagate / render / hand-off /\n"
     "weigh / resample, start-up (construction + initialize) with its peak host memory, and the off-screen start\n"
     "(one particle 10,000 km to the side, 5 frames); prints CSV rows\n"
@@ -165,6 +170,10 @@ const char* const kUsage =
     "  --untimed-steps        as a tracker runs by default: the device does not time each step\n"
     "                         (TrackerConfig::step_timings off: the steps' rows read 0, total_ms without the\n"
     "                         timing records), named in the test column; otherwise every step is timed\n"
+    "  --pace MS              hand each frame over MS milliseconds after the last one returned, as a sensor\n"
+    "                         stream does (the device idles between frames; back to back, each frame's calls\n"
+    "                         meet the last one's work still running): total_ms is then the latency a tracker\n"
+    "                         fed at sensor rate sees; named in the test column\n"
     "  --no-global            leave out the global initialization rows (box hint and no hint, 80x60)\n"
     "  --multi-objects        instead: one object against three in one process at 80x60 (ycbv-0000's, else\n"
     "                         the handset thrice), mutual occlusion off and on: multi_object_ratio rows (and\n"
@@ -258,6 +267,7 @@ int main(int argc, char** argv) {
   // triangle counts are what they time; --simplify-error times the tracker's default.
   double simplify_error = 0;
   bool global = true, multi_objects = false, step_timings = true;
+  double pace_ms = 0;
   std::string mesh_file;
   const auto option = [&](const std::string& arg, bench::ArgReader& args) {
     if (arg == "--backend")
@@ -298,6 +308,8 @@ int main(int argc, char** argv) {
       global = false;
     else if (arg == "--untimed-steps")
       step_timings = false;
+    else if (arg == "--pace")
+      pace_ms = bench::parse_nonnegative_double(args.value(), arg);
     else if (arg == "--multi-objects")
       multi_objects = true;
     else
@@ -337,12 +349,13 @@ int main(int argc, char** argv) {
       // the others still run.
       try {
         const double ms =
-            run(mesh, name, backend, renderer, refine, c, std::max(frames, 4), window, simplify_error, step_timings);
+            run(mesh, name, backend, renderer, refine, c, std::max(frames, 4), window, simplify_error, step_timings,
+                pace_ms);
         // The threaded CPU path is worth its name only against the sequential reference, measured
         // here in the same run on the same case: the speedup row.
         if (backend != "reference" && host_backend(backend)) {
           const double reference_ms = run(mesh, name, "reference", renderer, refine, c, std::max(frames, 4), window,
-                                          simplify_error, step_timings);
+                                          simplify_error, step_timings, pace_ms);
           const std::string test = name + "_" + std::to_string(c.width) + "x" + std::to_string(c.height) + "_" +
                                    std::to_string(c.particles) + "p";
           bench::print_row(

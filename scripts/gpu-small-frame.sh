@@ -40,6 +40,12 @@ for rep in $(seq "${REPS:-2}"); do
     done
   done
 done
+# The handset's frames handed over 5 ms apart, as a sensor stream leaves the device idle between frames
+# (back to back, each frame's calls meet the last one's work: round 2, session 20's enqueue profile).
+for b in cuda opencl:nvidia; do
+  echo "$b handset paced 5 ms: $(build-gpu/depthtrack_bench --backend "$b" --particles 2000 --frames 60 --no-global \
+    --untimed-steps --pace 5 | grep -E "$rows" | cut -d, -f6,8 | tr '\n' ' ')"
+done
 for b in cuda opencl:nvidia; do
   for tree in "${trees[@]}"; do
     echo "$b ${tree%%/build*} three ycbv objects:"

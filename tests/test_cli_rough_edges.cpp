@@ -139,6 +139,7 @@ TEST_CASE("the benchmarks answer --help and refuse malformed numbers", "[cli][be
       {"depthtrack_bench", "--resolution 80by60", "is not of the form WxH"},
       {"depthtrack_bench", "--frames", "--frames needs a value"},
       {"depthtrack_bench", "--fast", "unknown option '--fast'"},
+      {"depthtrack_bench", "--pace -1", "--pace: '-1' is not a number >= 0"},
       {"depthtrack_bench", "--refine-layout wide",
        "unknown refinement layout 'wide' (choose auto, one-group, spread or one-launch)"},
       {"depthtrack_bench_atlas", "--repeats 0", "--repeats: '0' is not a positive integer"},
