@@ -9,6 +9,8 @@
 #include <iterator>
 #include <system_error>
 
+#include "compute/environment_switch.hpp"
+
 namespace depthtrack::compute {
 
 namespace {
@@ -41,15 +43,10 @@ bool get_u64(const std::string& in, size_t& offset, uint64_t& value) {
   return true;
 }
 
-bool turned_off(const char* setting) {
-  if (!setting) return false;
-  const std::string value(setting);
-  return value == "off" || value == "0" || value == "OFF" || value == "no";
-}
 }  // namespace
 
 std::optional<ProgramBinaryCache> ProgramBinaryCache::from_environment() {
-  if (turned_off(std::getenv("DEPTHTRACK_PROGRAM_CACHE"))) return std::nullopt;
+  if (turned_off_by_environment("DEPTHTRACK_PROGRAM_CACHE")) return std::nullopt;
   const char* xdg = std::getenv("XDG_CACHE_HOME");
   if (xdg && *xdg) return ProgramBinaryCache(std::filesystem::path(xdg) / "depthtrack" / "programs");
   const char* home = std::getenv("HOME");

@@ -2,6 +2,7 @@
 // One device's primary context, shared (std::shared_ptr) by the queue and everything made from it,
 // memory, programs, kernels and events, so that it is released only after the last of them.
 // The primary context is the one the CUDA runtime and CUDA-GL interop use too.
+#include <atomic>
 #include <memory>
 #include <string>
 
@@ -35,6 +36,9 @@ class Context {
   bool try_make_current() const noexcept { return api_.cuCtxSetCurrent(context_) == CUDA_SUCCESS; }
   // check() naming this device.
   void check(CUresult status, const char* call) const;
+  // The next queue's rank in this context (0 for the first made): its stream's priority
+  // (compute/cuda/cuda_stream.hpp).
+  unsigned take_queue_rank() const { return queues_made_.fetch_add(1); }
 
  private:
   const DriverApi& api_;
@@ -44,6 +48,7 @@ class Context {
   int compute_capability_ = 0;
   LaunchLimits limits_;
   std::string where_;
+  mutable std::atomic<unsigned> queues_made_{0};
 };
 
 }  // namespace depthtrack::compute::cuda

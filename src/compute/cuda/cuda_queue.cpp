@@ -1,7 +1,5 @@
 #include "compute/cuda/cuda_queue.hpp"
 
-#include <cstdlib>
-#include <cstring>
 #include <depthtrack/error.hpp>
 
 #include "compute/cuda/cuda_cached_build.hpp"
@@ -11,20 +9,17 @@
 #include "compute/cuda/cuda_module.hpp"
 #include "compute/cuda/cuda_program.hpp"
 #include "compute/cuda/cuda_stream.hpp"
+#include "compute/environment_switch.hpp"
 
 namespace depthtrack::compute::cuda {
 
-CudaQueue::CudaQueue(int ordinal)
-    : CudaQueue(std::make_shared<const Context>(ordinal), std::make_shared<std::atomic<unsigned>>(1u), 0) {}
+CudaQueue::CudaQueue(int ordinal) : CudaQueue(std::make_shared<const Context>(ordinal)) {}
 
-CudaQueue::CudaQueue(std::shared_ptr<const Context> context, std::shared_ptr<std::atomic<unsigned>> queues_made,
-                     unsigned rank)
-    : context_(std::move(context)), queues_made_(std::move(queues_made)) {
+CudaQueue::CudaQueue(std::shared_ptr<const Context> context) : context_(std::move(context)) {
   context_->make_current();
-  stream_ = create_ranked_stream(*context_, rank);
-  const char* graphs = std::getenv("DEPTHTRACK_CUDA_GRAPHS");
-  const bool turned_off = graphs && (std::strcmp(graphs, "0") == 0 || std::strcmp(graphs, "off") == 0);
-  if (!turned_off && LaunchGraphs::supported(context_->api())) graphs_ = std::make_unique<LaunchGraphs>(context_);
+  stream_ = create_ranked_stream(*context_, context_->take_queue_rank());
+  if (!turned_off_by_environment("DEPTHTRACK_CUDA_GRAPHS") && LaunchGraphs::supported(context_->api()))
+    graphs_ = std::make_unique<LaunchGraphs>(context_);
 }
 
 CudaQueue::~CudaQueue() {
@@ -213,7 +208,7 @@ EventPtr CudaQueue::enqueue(Kernel& kernel, const NdRange& range, bool timed) {
 }
 
 std::unique_ptr<Queue> CudaQueue::another_queue() {
-  return std::unique_ptr<Queue>(new CudaQueue(context_, queues_made_, queues_made_->fetch_add(1)));
+  return std::unique_ptr<Queue>(new CudaQueue(context_));
 }
 
 void CudaQueue::finish() {

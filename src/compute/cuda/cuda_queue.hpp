@@ -1,7 +1,6 @@
 #pragma once
 // The CUDA Queue: one device's primary context and one in-order stream. Copies to and from the
 // host block; launches and device copies are enqueued on the stream in order.
-#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -42,7 +41,8 @@ class CudaQueue final : public Queue {
   void launch_untimed(Kernel& kernel, const NdRange& range) override;
   void finish() override;
   // A batch becomes a CUDA graph (compute/cuda/cuda_launch_graph.hpp) where the driver has graphs and
-  // DEPTHTRACK_CUDA_GRAPHS is not "0" or "off" (the environment is read when the queue is made).
+  // DEPTHTRACK_CUDA_GRAPHS does not turn them off (compute/environment_switch.hpp; read when the queue is
+  // made).
   void begin_batch() override;
   void end_batch() override;
   void flush_batch() override { hand_over_batch(); }
@@ -59,9 +59,8 @@ class CudaQueue final : public Queue {
   EventPtr enqueue(Kernel& kernel, const NdRange& range, bool timed);
   // Launches what a batch holds so far, so that the operation that follows keeps its place in order.
   void hand_over_batch();
-  // A new stream in `context`, for the queue made `rank`-th there; queues_made counts them (shared by
-  // every queue of the context).
-  CudaQueue(std::shared_ptr<const Context> context, std::shared_ptr<std::atomic<unsigned>> queues_made, unsigned rank);
+  // A new stream in `context`, at the priority of the next queue rank there (Context::take_queue_rank).
+  explicit CudaQueue(std::shared_ptr<const Context> context);
 
   CUdeviceptr write_target(DeviceMemory& memory, size_t offset, const void* source, size_t bytes);
   CUdeviceptr read_source(const DeviceMemory& memory, size_t offset, const void* destination, size_t bytes);
@@ -69,7 +68,6 @@ class CudaQueue final : public Queue {
   const CudaMemory& checked(const DeviceMemory& memory, size_t offset, size_t bytes, const char* what) const;
 
   std::shared_ptr<const Context> context_;
-  std::shared_ptr<std::atomic<unsigned>> queues_made_;
   CUstream stream_ = nullptr;
   std::unique_ptr<LaunchGraphs> graphs_;  // null where graphs are off
   std::unique_ptr<PinnedStaging> staging_;       // write_enqueued's, made at its first use
