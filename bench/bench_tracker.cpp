@@ -348,9 +348,8 @@ int main(int argc, char** argv) {
       // A case the device cannot run (too many particles for its memory) gets a status row, and
       // the others still run.
       try {
-        const double ms =
-            run(mesh, name, backend, renderer, refine, c, std::max(frames, 4), window, simplify_error, step_timings,
-                pace_ms);
+        const double ms = run(mesh, name, backend, renderer, refine, c, std::max(frames, 4), window, simplify_error,
+                              step_timings, pace_ms);
         // The threaded CPU path is worth its name only against the sequential reference, measured
         // here in the same run on the same case: the speedup row.
         if (backend != "reference" && host_backend(backend)) {

@@ -498,39 +498,40 @@ TEST_CASE("clouds past the small-cloud folds, the prefix sum over one work-group
   // kWideSummaryParticles: over many groups.
   const Scene scene = make_scene(3, 16);
   for (const size_t particles : {kFusedLaunchParticles + 1, kWideSummaryParticles}) {
-  INFO(particles << " particles");
-  TrackerConfig config;
-  config.particles = static_cast<int>(particles);
-  config.seed = 9;
-  config.backend = test::device_selector();
-  config.renderer = Renderer::Cpu;
-  config.refine.enabled = false;
-  each_frame_from_common_state(
-      scene, config,
-      [&](size_t f, const Estimate& a, const Estimate& b, reference::ReferenceFilter& reference, DeviceFilter& device) {
-        CHECK(translation_error(a.pose, b.pose) <= 1e-5);
-        CHECK(rotation_error(a.pose, b.pose) <= 1e-4);
-        CHECK(b.effective_sample_size == Approx(a.effective_sample_size).epsilon(1e-3).margin(1e-3));
-        REQUIRE(a.resampled == b.resampled);
-        if (a.resampled) {
-          // Ancestry from the prefix sum over many groups: the reference's resampling of the device's own
-          // likelihoods (with 16,384 children some points lie within the likelihoods' float rounding of a
-          // boundary), but for children within the float log weights' rounding of one (log weights of
-          // hundreds of nats carry ~3e-5 of it: 1-3 children a frame here, as many with one group at 16,383
-          // particles). The prefix sum itself is held to exact ancestry on given weights (test_kernels.cpp).
-          std::vector<double> w = reference.last_normalized_weights();
-          const auto ll_ref = reference.last_log_likelihoods(), ll_dev = device.last_log_likelihoods();
-          double sum = 0;
-          for (size_t i = 0; i < w.size(); ++i) sum += w[i] *= std::exp(ll_dev[i] - ll_ref[i]);
-          for (double& x : w) x /= sum;
-          const double u =
-              dt_uniform01(dt_random_words(config.seed, 0u, static_cast<dt_u32>(f), DT_STREAM_RESAMPLE, 0u).v[0]);
-          const auto expected = reference::systematic_resample(w, u), got = device.last_parents();
-          size_t differing = 0;
-          for (size_t i = 0; i < expected.size(); ++i) differing += expected[i] != got[i];
-          CHECK(differing <= expected.size() / 1000);
-        }
-      });
+    INFO(particles << " particles");
+    TrackerConfig config;
+    config.particles = static_cast<int>(particles);
+    config.seed = 9;
+    config.backend = test::device_selector();
+    config.renderer = Renderer::Cpu;
+    config.refine.enabled = false;
+    each_frame_from_common_state(
+        scene, config,
+        [&](size_t f, const Estimate& a, const Estimate& b, reference::ReferenceFilter& reference,
+            DeviceFilter& device) {
+          CHECK(translation_error(a.pose, b.pose) <= 1e-5);
+          CHECK(rotation_error(a.pose, b.pose) <= 1e-4);
+          CHECK(b.effective_sample_size == Approx(a.effective_sample_size).epsilon(1e-3).margin(1e-3));
+          REQUIRE(a.resampled == b.resampled);
+          if (a.resampled) {
+            // Ancestry from the prefix sum (one group or many): the reference's resampling of the device's own
+            // likelihoods (with 16,384 children some points lie within the likelihoods' float rounding of a
+            // boundary), but for children within the float log weights' rounding of one (log weights of
+            // hundreds of nats carry ~3e-5 of it: 1-3 children a frame here, as many with one group at 16,383
+            // particles). The prefix sum itself is held to exact ancestry on given weights (test_kernels.cpp).
+            std::vector<double> w = reference.last_normalized_weights();
+            const auto ll_ref = reference.last_log_likelihoods(), ll_dev = device.last_log_likelihoods();
+            double sum = 0;
+            for (size_t i = 0; i < w.size(); ++i) sum += w[i] *= std::exp(ll_dev[i] - ll_ref[i]);
+            for (double& x : w) x /= sum;
+            const double u =
+                dt_uniform01(dt_random_words(config.seed, 0u, static_cast<dt_u32>(f), DT_STREAM_RESAMPLE, 0u).v[0]);
+            const auto expected = reference::systematic_resample(w, u), got = device.last_parents();
+            size_t differing = 0;
+            for (size_t i = 0; i < expected.size(); ++i) differing += expected[i] != got[i];
+            CHECK(differing <= expected.size() / 1000);
+          }
+        });
   }
 }
 

@@ -106,7 +106,8 @@ TEST_CASE("a second Tracker loads every program from the binary cache and tracks
   Tracker compiled(compiled_device, mesh, synth.camera, config);
   const auto& compiled_programs = compiled_device->context()->programs;
   // Eight programs but those whose work is folded into others here (test::programs_folded_away).
-  const size_t programs = 8 - test::programs_folded_away(*compiled_device->context()->queue, mesh, synth.camera, config);
+  const size_t programs =
+      8 - test::programs_folded_away(*compiled_device->context()->queue, mesh, synth.camera, config);
   REQUIRE(compiled_programs.builds() == programs);
   CHECK(compiled_programs.loaded_from_disk() == 0);
   REQUIRE(files_in(folder) == programs);

@@ -11,8 +11,8 @@
 #include "compute/program_cache.hpp"
 #include "compute/queue.hpp"
 #include "device_support.hpp"
-#include "folded_programs.hpp"
 #include "filter/device_filter.hpp"
+#include "folded_programs.hpp"
 #include "same_estimate.hpp"
 #include "synth_frames.hpp"
 
