@@ -39,17 +39,24 @@ struct Case {
   int width, height, particles;
 };
 
+// How frames reach the tracker. Synthesized before the timed loop by default: drawing a frame between
+// two updates is not the tracker's time, and it leaves the host's caches cold for the driver's calls.
+struct Feed {
+  double pace_ms = 0;             // > 0: each frame handed over this long after the last returned
+  bool synthesize_inline = false;  // each frame drawn just before its update (as before round 2, session 21)
+};
+
 // The reference filter and its threaded form (cpu, cpu:N) run on the host: no renderer, the CPU's name.
 bool host_backend(const std::string& backend) {
   return backend == "reference" || backend == "cpu" || backend.rfind("cpu:", 0) == 0;
 }
 
 // Prints the case's rows; returns its median frame time (ms).
-// pace_ms > 0: each frame is handed over that long after the one before returned, as a sensor stream
+// feed.pace_ms > 0: each frame is handed over that long after the one before returned, as a sensor stream
 // leaves the device idle between frames (back to back, a frame's calls meet the last one's tail).
 double run(const Mesh& mesh, const std::string& mesh_name, const std::string& backend, const std::string& renderer,
            const Refinement& refine, const Case& c, int frames, const OcclusionWindow& window, double simplify_error,
-           bool step_timings, double pace_ms) {
+           bool step_timings, const Feed& feed) {
   SynthConfig synth;
   synth.frames = frames;
   synth.occluder_fraction = 0.3;
@@ -73,11 +80,19 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
   const double startup_ms = startup.elapsed_ms();
   const double startup_peak_mib = peak_known ? bench::peak_resident_mib() : NAN;
   std::vector<double> propagate, render, handoff, weigh, resample, refined, confidence, upload, enqueue, wait, total,
-      refine_steps;
+      update, refine_steps;
+  // Frames beyond 1 GiB of depth are drawn as they go (a long run at a high resolution).
+  const bool inline_synthesis =
+      feed.synthesize_inline || static_cast<double>(frames) * synth.camera.width * synth.camera.height * 4 > 0x1p30;
+  std::vector<SynthFrame> prepared;
+  if (!inline_synthesis)
+    for (int i = 0; i < frames; ++i) prepared.push_back(scene.frame(i));
   for (int i = 0; i < frames; ++i) {
-    const SynthFrame f = scene.frame(i);
+    const SynthFrame f = inline_synthesis ? scene.frame(i) : std::move(prepared[static_cast<size_t>(i)]);
+    const Stopwatch update_clock;
     const Estimate e = tracker.update(f.depth, f.timestamp);
-    if (pace_ms > 0) std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(pace_ms));
+    const double update_ms = update_clock.elapsed_ms();
+    if (feed.pace_ms > 0) std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(feed.pace_ms));
     if (i < 2) continue;  // warm-up: caches, first-frame propagation skipped
     propagate.push_back(e.timings.propagate_ms);
     render.push_back(e.timings.render_ms);
@@ -91,6 +106,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
     enqueue.push_back(e.timings.enqueue_ms);
     wait.push_back(e.timings.wait_ms);
     total.push_back(e.timings.total_ms);
+    update.push_back(update_ms);
   }
   const std::string device = tracker.backend_description();
   const std::string test =
@@ -104,7 +120,8 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
            ? "_window" + std::to_string(window.width) + "x" + std::to_string(window.height)
            : std::string("_windowfull")) +
       (simplify_error > 0 ? "_simplify" + bench::compact_number(simplify_error * 1e3) + "mm" : std::string()) +
-      (step_timings ? "" : "_untimed") + (pace_ms > 0 ? "_paced" + bench::compact_number(pace_ms) + "ms" : "");
+      (step_timings ? "" : "_untimed") + (feed.pace_ms > 0 ? "_paced" + bench::compact_number(feed.pace_ms) + "ms" : "") +
+      (inline_synthesis ? "_inline" : "");
   const std::string platform = host_backend(backend) ? "cpu" : backend;
   const std::string name = host_backend(backend) ? bench::cpu_name() : device;
   for (const auto& [metric, samples] : {std::pair{"propagate", &propagate},
@@ -117,7 +134,8 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
                                         {"upload", &upload},
                                         {"enqueue", &enqueue},
                                         {"wait", &wait},
-                                        {"total", &total}}) {
+                                        {"total", &total},
+                                        {"update", &update}}) {
     const double ms = bench::median(*samples);
     bench::print_row({backend, platform, name, "-", test, std::string(metric) + "_ms", "ms", ms});
     bench::print_row(
@@ -142,10 +160,12 @@ const char* const kUsage =
     "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N] [--refine-converged M]\n"
     "       [--refine-layout auto|one-group|spread|one-launch] [--occlusion-window auto|full|WxH]\n"
     "       [--simplify-error M] [--mesh FILE] [--no-global] [--multi-objects] [--untimed-steps] [--pace MS]\n"
+    "       [--synthesize-inline]\n"
     "Times tracker frames on a synthetic occluded handset sequence, split into propagate / render / hand-off /\n"
     "weigh / resample, start-up (construction + initialize) with its peak host memory, and the off-screen start\n"
     "(one particle 10,000 km to the side, 5 frames); prints CSV rows\n"
-    "backend,platform,device,driver,test,metric,unit,value.\n"
+    "backend,platform,device,driver,test,metric,unit,value. update_ms is depth in to pose out as the caller\n"
+    "sees Tracker::update (the 640x480 frame's check and decimation included), total_ms the filter's frame.\n"
     "  --backend NAME         reference (default), cpu, cpu:N, opencl, opencl:pocl, cuda, ... (`depthtrack info`);\n"
     "                         cpu and cpu:N also time the reference on each case: speedup_over_reference\n"
     "  --renderer NAME        atlas renderer of device backends: kernel (default), gl, cpu\n"
@@ -174,6 +194,8 @@ const char* const kUsage =
     "                         stream does (the device idles between frames; back to back, each frame's calls\n"
     "                         meet the last one's work still running): total_ms is then the latency a tracker\n"
     "                         fed at sensor rate sees; named in the test column\n"
+    "  --synthesize-inline    draw each synthetic frame just before its update (as the bench did before round 2,\n"
+    "                         session 21), not all before the timed frames; named in the test column\n"
     "  --no-global            leave out the global initialization rows (box hint and no hint, 80x60)\n"
     "  --multi-objects        instead: one object against three in one process at 80x60 (ycbv-0000's, else\n"
     "                         the handset thrice), mutual occlusion off and on: multi_object_ratio rows (and\n"
@@ -267,7 +289,7 @@ int main(int argc, char** argv) {
   // triangle counts are what they time; --simplify-error times the tracker's default.
   double simplify_error = 0;
   bool global = true, multi_objects = false, step_timings = true;
-  double pace_ms = 0;
+  Feed feed;
   std::string mesh_file;
   const auto option = [&](const std::string& arg, bench::ArgReader& args) {
     if (arg == "--backend")
@@ -309,7 +331,9 @@ int main(int argc, char** argv) {
     else if (arg == "--untimed-steps")
       step_timings = false;
     else if (arg == "--pace")
-      pace_ms = bench::parse_nonnegative_double(args.value(), arg);
+      feed.pace_ms = bench::parse_nonnegative_double(args.value(), arg);
+    else if (arg == "--synthesize-inline")
+      feed.synthesize_inline = true;
     else if (arg == "--multi-objects")
       multi_objects = true;
     else
@@ -349,12 +373,12 @@ int main(int argc, char** argv) {
       // the others still run.
       try {
         const double ms = run(mesh, name, backend, renderer, refine, c, std::max(frames, 4), window, simplify_error,
-                              step_timings, pace_ms);
+                              step_timings, feed);
         // The threaded CPU path is worth its name only against the sequential reference, measured
         // here in the same run on the same case: the speedup row.
         if (backend != "reference" && host_backend(backend)) {
           const double reference_ms = run(mesh, name, "reference", renderer, refine, c, std::max(frames, 4), window,
-                                          simplify_error, step_timings, pace_ms);
+                                          simplify_error, step_timings, feed);
           const std::string test = name + "_" + std::to_string(c.width) + "x" + std::to_string(c.height) + "_" +
                                    std::to_string(c.particles) + "p";
           bench::print_row(

@@ -99,7 +99,20 @@ TEST_CASE("bench writes results.json with every column and the four figures", "[
   const auto* render = find_row(rows, "reference", test, "render_bytes");
   REQUIRE(render);
   CHECK((*render)["median"].get<double>() == Approx(10 * 4800 * 4 / 1e6));
-  for (const char* sweep : {"resolution_", "triangles_", "occlusion_"}) {
+  // The latency case runs untimed, as a tracker does; its latency is Tracker::update as the caller waits for
+  // it, which holds the filter's frame, so on each frame, and so in the median, at least the frame time.
+  const std::string latency_test = "latency_" + mesh + "_80x60_10p_per-pixel-time_untimed";
+  for (const char* backend : {"reference", "cpu:2"}) {
+    const auto* latency = find_row(rows, backend, latency_test, "latency_ms");
+    const auto* latency_frame = find_row(rows, backend, latency_test, "frame_ms");
+    REQUIRE(latency);
+    REQUIRE(latency_frame);
+    CHECK(latency->at("median").get<double>() >= latency_frame->at("median").get<double>());
+  }
+  const auto* timed_latency = find_row(rows, "reference", test, "latency_ms");
+  REQUIRE(timed_latency);
+  CHECK(timed_latency->at("median").get<double>() >= frame->at("median").get<double>());
+  for (const char* sweep : {"resolution_", "triangles_", "occlusion_", "latency_"}) {
     bool found = false;
     for (const auto& r : rows) found |= r["test"].get<std::string>().rfind(sweep, 0) == 0;
     CHECK(found);

@@ -6,6 +6,7 @@
 #include "bench_rows.hpp"
 #include "cli/environment_defaults.hpp"
 #include "cli/step_bytes.hpp"
+#include "core/stopwatch.hpp"
 #include "compute/queue.hpp"
 #include "filter/device_filter.hpp"
 #include "tracker/make_filter_backend.hpp"
@@ -13,22 +14,24 @@
 namespace depthtrack::cli {
 
 BenchGrid quick_grid() {
-  return {{50, 200, 800}, {{80, 60}, {160, 120}, {320, 240}, {640, 480}}, 20, 50, 200, 12, 1e7};
+  return {{50, 200, 800}, {{80, 60}, {160, 120}, {320, 240}, {640, 480}}, 20, 50, 200, 200, 12, 1e7};
 }
 
 BenchGrid full_grid() {
-  // 200 and 2000 particles are where the reference also runs (the speedup); 1,500,000 is issue 12's aim.
+  // 200 and 2000 particles are where the reference also runs (the speedup); 1,500,000 and the latency
+  // at 2,000 are issue 12's aims.
   return {{200, 2000, 10000, 100000, 300000, 1000000, 1500000},
           {{80, 60}, {160, 120}, {320, 240}, {640, 480}},
           10000,
           10000,
           100000,
+          2000,
           20,
           2e7};
 }
 
 BenchGrid test_grid() {
-  return {{10, 30}, {{80, 60}, {160, 120}}, 10, 10, 10, 3, 1e6};
+  return {{10, 30}, {{80, 60}, {160, 120}}, 10, 10, 10, 10, 3, 1e6};
 }
 
 BenchMesh make_bench_mesh(const std::string& name, Mesh mesh, int frames) {
@@ -54,7 +57,7 @@ BenchTarget describe_target(const std::string& backend) {
 
 std::string BenchCase::test() const {
   return sweep + "_" + mesh->name + "_" + std::to_string(width) + "x" + std::to_string(height) + "_" +
-         std::to_string(particles) + "p_" + to_string(mode);
+         std::to_string(particles) + "p_" + to_string(mode) + (step_timings ? "" : "_untimed");
 }
 
 std::vector<BenchCase> grid_cases(const BenchGrid& grid, const std::vector<BenchMesh>& meshes) {
@@ -66,13 +69,14 @@ std::vector<BenchCase> grid_cases(const BenchGrid& grid, const std::vector<Bench
   for (const BenchMesh& m : meshes) cases.push_back({"triangles", &m, 80, 60, grid.particles_at_triangles});
   for (const auto mode : {OcclusionStorage::PerPixelTime, OcclusionStorage::GlobalTime, OcclusionStorage::Off})
     cases.push_back({"occlusion", first, 80, 60, grid.particles_at_occlusion, mode});
+  cases.push_back({"latency", first, 80, 60, grid.particles_at_latency, OcclusionStorage::PerPixelTime, false});
   return cases;
 }
 
 CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::string& renderer, int frames,
                     const std::string& commit, double reference_ms, std::vector<BenchRow>& rows) {
   TrackerConfig config;
-  config.step_timings = true;  // the per-step split is what this suite prints
+  config.step_timings = c.step_timings;  // the per-step split is what the sweeps print
   config.backend = target.backend;
   config.renderer = renderer_from_string(renderer);
   config.gl_path = gl_path_from_environment();  // as demo and track take it (the library reads no environment)
@@ -84,10 +88,13 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
   const auto& seq = c.mesh->frames;
   Tracker tracker(c.mesh->mesh, Camera::make(640, 480, 525.0, 525.0, 319.5, 239.5), config);
   tracker.initialize(seq.front().ground_truth);
-  std::vector<double> steps[6], total;
+  std::vector<double> steps[6], total, latency;
   for (int i = 0; i < frames && i < static_cast<int>(seq.size()); ++i) {
+    const Stopwatch update;
     const Estimate e = tracker.update(seq[static_cast<size_t>(i)].depth, seq[static_cast<size_t>(i)].timestamp);
+    const double update_ms = update.elapsed_ms();
     if (i < 2) continue;  // warm-up: caches, and the first frame has no propagation
+    latency.push_back(update_ms);
     const StepTimings& t = e.timings;
     const double ms[6] = {t.propagate_ms, t.render_ms, t.handoff_ms, t.weigh_ms, t.resample_ms, t.refine_ms};
     for (int s = 0; s < 6; ++s) steps[s].push_back(ms[s]);
@@ -121,6 +128,7 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
   const double frame_ms = median_of(total), frame_p95 = p95_of(total);
   row("frame_ms", "ms", frame_ms, frame_p95, total.size());
   row("frames_per_second", "Hz", 1000 / frame_ms, 1000 / frame_p95, total.size());
+  row("latency_ms", "ms", median_of(latency), p95_of(latency), latency.size());
   CaseResult result{c, target.backend, frame_ms, NAN};
   if (target.on_device) {
     result.memory_mib = filter_memory_mib(static_cast<size_t>(c.particles), pixels, c.mode, !inside_weigh, state_pixels);

@@ -17,6 +17,7 @@ struct BenchGrid {
   std::vector<int> particle_counts;  // the particles sweep, at 80x60
   std::vector<std::pair<int, int>> resolutions;
   int particles_at_resolution = 0, particles_at_triangles = 0, particles_at_occlusion = 0;
+  int particles_at_latency = 0;  // the latency case: 80x60, steps untimed, as a tracker runs
   int frames = 0;           // per case, the first two not timed
   double cpu_max_work = 0;  // particles x pixels above which the reference and CPU devices skip a case
 };
@@ -45,13 +46,16 @@ struct BenchTarget {
 BenchTarget describe_target(const std::string& backend);
 
 struct BenchCase {
-  std::string sweep;  // particles, resolution, triangles, occlusion
+  std::string sweep;  // particles, resolution, triangles, occlusion, latency
   const BenchMesh* mesh = nullptr;
   int width = 80, height = 60, particles = 0;
   OcclusionStorage mode = OcclusionStorage::PerPixelTime;
-  std::string test() const;  // e.g. "particles_handset_80x60_200p_per-pixel-time"
+  // Each step's device time recorded (the split the sweeps print); off, the frame runs as a tracker's
+  // does, without the timing records.
+  bool step_timings = true;
+  std::string test() const;  // e.g. "particles_handset_80x60_200p_per-pixel-time"; "_untimed" when so
 };
-// The cases of a grid: particles, resolution and occlusion on the first mesh, triangles on each.
+// The cases of a grid: particles, resolution, occlusion and latency on the first mesh, triangles on each.
 std::vector<BenchCase> grid_cases(const BenchGrid& grid, const std::vector<BenchMesh>& meshes);
 
 // One case's outcome, for the rows and the figures.
@@ -62,7 +66,8 @@ struct CaseResult {
 };
 
 // Tracks the case's sequence on target and appends its rows (per step: time, bytes, GB/s; frame time,
-// frames per second, device memory; speedup when reference_ms is finite). Error when it cannot run.
+// frames per second, latency (Tracker::update as its caller waits: the 640x480 frame's check and
+// decimation too), device memory; speedup when reference_ms is finite). Error when it cannot run.
 CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::string& renderer, int frames,
                     const std::string& commit, double reference_ms, std::vector<BenchRow>& rows);
 
