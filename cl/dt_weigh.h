@@ -30,11 +30,11 @@ DT_DEVICE_FN dt_pixel_box dt_weigh_box(dt_pixel_box box, dt_window win) {
 
 /* The group's sum of its particle's pixel terms: the particle's log-likelihood, added to its weight. */
 DT_DEVICE_FN void dt_weigh_end(DT_LOCAL_PTR float* scratch, float sum, __global float* log_likelihood,
-                               __global float* log_weight) {
+                               __global float* log_weight, uint particle) {
   sum = dt_group_sum(scratch, sum);
   if (get_local_id(0) == 0) {
-    log_likelihood[get_group_id(0)] = sum;
-    log_weight[get_group_id(0)] += sum;
+    log_likelihood[particle] = sum;
+    log_weight[particle] += sum;
   }
 }
 

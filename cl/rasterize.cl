@@ -310,7 +310,9 @@ DT_DEVICE_FN uint dt_box_pixel(dt_pixel_box box, uint k, dt_camera cam) {
 }
 
 /* vertices: 3 floats each, object frame; triangles: 3 vertex indices each; planes: object-frame
- * unit normal and offset (n . x = d) of each triangle. The atlas is written as the floats' bits. With
+ * unit normal and offset (n . x = d) of each triangle. Group g draws particle first + g into tile g:
+ * an atlas of fewer tiles than particles is drawn (and weighed) in turns (TrackerConfig::atlas_particles).
+ * The atlas is written as the floats' bits. With
  * boxed, only the pose's box (dt_pose_box) of each tile is cleared and written, and the box goes to
  * boxes (4 per particle: u0, v0, width, height): the rest of the tile is left as it was, and whoever
  * reads the tile takes pixels outside the box as empty (weigh.cl, DeviceFilter::last_atlas). At 640x480
@@ -318,9 +320,9 @@ DT_DEVICE_FN uint dt_box_pixel(dt_pixel_box box, uint k, dt_camera cam) {
 __kernel DT_RESIDENCY void rasterize(__global const float* states, __global const float* vertices,
                                      __global const uint* triangles, __global const float* planes, uint triangle_count,
                                      uint vertex_count, dt_camera cam, dt_atlas_layout layout, __global uint* atlas,
-                                     __global uint* boxes, uint boxed) {
+                                     __global uint* boxes, uint boxed, uint first) {
   __local float scratch[5 * DT_GROUP_SIZE];
-  const uint particle = get_group_id(0), lid = get_local_id(0);
+  const uint particle = first + get_group_id(0), lid = get_local_id(0);
   const dt_rigid pose = dt_particle_pose(states + DT_CAST(ulong, particle) * DT_STATE_STRIDE);
   /* dt_pose_box's barriers are met by every work-item whatever `boxed` says (PoCL faults on barriers
    * under a branch, even a uniform one). */
@@ -330,7 +332,7 @@ __kernel DT_RESIDENCY void rasterize(__global const float* states, __global cons
   const dt_pixel_box box = boxed ? pose_box : dt_box_make(0, 0, cam.width, cam.height);
   /* One tile per atlas row (particle-major, dt_atlas.h): the tile's pixels are contiguous, so plain
    * loops clear and finish it (stepping by rows of the page took 1.8 times as long on PoCL). */
-  __global uint* tile = atlas + dt_atlas_tile_start(layout, particle);
+  __global uint* tile = atlas + dt_atlas_tile_start(layout, get_group_id(0));
   const uint boxed_pixels = box.width * box.height;
   for (uint b = lid; b < boxed_pixels; b += DT_GROUP_SIZE) tile[dt_box_pixel(box, b, cam)] = DT_NO_SURFACE;
   barrier(CLK_GLOBAL_MEM_FENCE);

@@ -109,5 +109,5 @@ __kernel DT_RESIDENCY void render_weigh(__global float* states, __global const f
     sum += dt_weigh_image_pixel(k, u, v, dt_as_float(bits), observed, win, from, to, occlusion_from, time_from,
                                 occlusion_to, time_to, frame_times, m, now, now_index, dt);
   }
-  dt_weigh_end(scratch, sum, log_likelihood, log_weight);
+  dt_weigh_end(scratch, sum, log_likelihood, log_weight, particle);
 }

@@ -14,6 +14,8 @@
  * The rows hold the state window's pixels (dt_window.h; the whole image by default); a group visits
  * only the rectangle around its tile's box (rasterize.cl's boxes, where it wrote them) and the
  * window, its pixels handed to the work-items in turn (as render_weigh.cl: the same sums).
+ * Group g weighs particle first + g against tile g (an atlas of fewer tiles than particles is drawn and
+ * weighed in turns: TrackerConfig::atlas_particles); boxes are the particles'.
  * Reference: ReferenceFilter::weigh_particle (and its resampling's gather). */
 #include "dt_prelude.h"
 #include "dt_atlas.h"
@@ -24,16 +26,16 @@ __kernel void weigh(__global const float* atlas, __global const float* observed,
                     __global float* occlusion_to, __global dt_u16* time_to, __global float* frame_times,
                     __global float* log_likelihood, __global float* log_weight, uint pixels, dt_model m, float now,
                     uint now_index, float dt, dt_atlas_layout layout, dt_window win, __global const uint* boxes,
-                    uint boxed) {
+                    uint boxed, uint first) {
   __local float scratch[DT_GROUP_SIZE];
-  const uint particle = get_group_id(0), lid = get_local_id(0), width = win.image_width;
+  const uint particle = first + get_group_id(0), lid = get_local_id(0), width = win.image_width;
   dt_weigh_begin(frame_times, now, now_index);
   /* The tile's box (rasterize.cl with boxed: nothing is drawn outside it, and it is not cleared there)
    * and the state window's pixels; the whole image without boxes. */
   const dt_pixel_box box = boxed ? dt_box_load(boxes, particle) : dt_box_make(0, 0, width, pixels / width);
   const ulong from = DT_CAST(ulong, parents[particle]) * dt_window_last_row(win),
               to = DT_CAST(ulong, particle) * dt_window_row(win);
-  const ulong tile = dt_atlas_tile_start(layout, particle);
+  const ulong tile = dt_atlas_tile_start(layout, get_group_id(0));
   const dt_pixel_box visited = dt_weigh_box(box, win);
   float sum = 0.0f;
   /* The rectangle's pixels to the work-items in turn, as the whole image's in a plain loop. */
@@ -47,5 +49,5 @@ __kernel void weigh(__global const float* atlas, __global const float* observed,
     sum += dt_weigh_image_pixel(k, u, v, y_hat, observed, win, from, to, occlusion_from, time_from, occlusion_to,
                                 time_to, frame_times, m, now, now_index, dt);
   }
-  dt_weigh_end(scratch, sum, log_likelihood, log_weight);
+  dt_weigh_end(scratch, sum, log_likelihood, log_weight, particle);
 }

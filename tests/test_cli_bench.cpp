@@ -61,12 +61,15 @@ TEST_CASE("median, p95 and the bytes each step moves", "[bench]") {
   CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::PerPixelTime) == Approx(769520.0 / (1 << 20)));
   CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::GlobalTime) == Approx(577520.0 / (1 << 20)));
   CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::Off) == Approx(193520.0 / (1 << 20)));
-  CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::PerPixelTime, false) == Approx(577520.0 / (1 << 20)));
+  CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::PerPixelTime, 0) == Approx(577520.0 / (1 << 20)));
+  // An atlas of 4 tiles drawn in turns: 6 tiles' depths (4800 floats each) fewer than every particle's.
+  CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::PerPixelTime, 4) ==
+        Approx((769520.0 - 6 * 4800 * 4) / (1 << 20)));
   // A state window of 600 pixels: the rows (p and t, read and written; in memory p twice and t twice in
   // 16 bits) shrink to it, the atlas stays the image's.
   CHECK(cli::step_bytes(10, 4800, OcclusionStorage::PerPixelTime, false, 0, false, 600).weigh ==
         10 * (4800 * 4 + 2 * 600 * 4 + 2 * 600 * 2 + 12));
-  CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::PerPixelTime, true, 600) ==
+  CHECK(cli::filter_memory_mib(10, 4800, OcclusionStorage::PerPixelTime, std::nullopt, 600) ==
         Approx(10 * 4 * (4800 + 3 * 600 + 38) / double(1 << 20)));
 }
 

@@ -561,3 +561,48 @@ TEST_CASE("more particles than the device can hold is a clear error, not a crash
                                              Catch::Contains("particles fit"));
   }
 }
+
+TEST_CASE("the atlas' tiles: every particle's, at most atlas_particles and what one buffer holds", "[device][atlas]") {
+  CHECK(kernel_atlas_tiles(30, 4800, 0, 0) == 30);
+  CHECK(kernel_atlas_tiles(30, 4800, 7, 0) == 7);
+  CHECK(kernel_atlas_tiles(30, 4800, 70, 0) == 30);
+  // 30,000 particles at 640x480 on an H100's NVIDIA OpenCL (19.8 GiB in one buffer): 1,228,800 bytes a tile.
+  CHECK(kernel_atlas_tiles(30000, 640 * 480, 0, 21254373376) == 17296);
+  CHECK(kernel_atlas_tiles(5, 100, 0, 100) == 1);  // a buffer smaller than one tile: one tile, refused by its allocation
+}
+
+TEST_CASE("an atlas of fewer tiles than particles, drawn and weighed in turns, gives the same frames",
+          "[device][kernel][atlas]") {
+  if (!test::device_available()) return;
+  // 160x120: the tile does not fit in work-group memory, so the kernel renderer draws a separate atlas.
+  const Scene scene = make_scene(4, 4);
+  TrackerConfig config;
+  config.particles = 30;
+  config.seed = 3;
+  config.backend = test::device_selector();
+  TrackerConfig turns = config;
+  turns.atlas_particles = 7;  // four turns of 7 and one of 2
+  DeviceFilter whole(compute::open_device(config.backend), scene.mesh, scene.working, config);
+  DeviceFilter chunked(compute::open_device(config.backend), scene.mesh, scene.working, turns);
+  const InitialSpread spread{0.01, 0.05};
+  whole.initialize(scene.frames[0].ground_truth, spread);
+  chunked.initialize(scene.frames[0].ground_truth, spread);
+  for (size_t f = 0; f < scene.frames.size(); ++f) {
+    INFO(scene.name << ", frame " << f);
+    const double dt = frame_dt(scene, f);
+    const Estimate a = whole.update(scene.frames[f].depth, dt);
+    const Estimate b = chunked.update(scene.frames[f].depth, dt);
+    // The same kernels on the same tiles, only launched in turns: the same numbers, bit for bit.
+    CHECK(whole.last_log_likelihoods() == chunked.last_log_likelihoods());
+    CHECK(whole.last_parents() == chunked.last_parents());
+    CHECK(a.pose.translation == b.pose.translation);
+    CHECK(a.pose.rotation.coeffs() == b.pose.rotation.coeffs());
+    CHECK(a.refine_iterations == b.refine_iterations);
+  }
+  CHECK_THROWS_WITH(chunked.last_atlas(), Catch::Contains("drawn in turns"));
+  // And against the reference, as every layout is.
+  each_frame_from_common_state(scene, turns, [&](size_t, const Estimate& a, const Estimate& b, auto&, auto&) {
+    CHECK(translation_error(a.pose, b.pose) <= 1e-5);
+    CHECK(rotation_error(a.pose, b.pose) <= 1e-4);
+  });
+}

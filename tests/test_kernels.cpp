@@ -176,7 +176,7 @@ TEST_CASE("weigh kernel equals the reference per-pixel sum and occlusion updates
     lw.upload(std::vector<float>(count, 1.0f));
     q->launch(*kernel, compute::NdRange::linear(count * kGroup, kGroup), a, o, parent_buffer, occ, tim, occ_to, tim_to,
               table, ll, lw, static_cast<unsigned>(pixels), model_args(), static_cast<float>(now), now_index,
-              static_cast<float>(dt), layout, win, no_boxes, 0u)
+              static_cast<float>(dt), layout, win, no_boxes, 0u, 0u)
         ->wait();
     const auto got_ll = ll.download(), got_lw = lw.download(), got_occ = occ_to.download();
     const auto got_index = tim_to.download();
@@ -254,7 +254,7 @@ TEST_CASE("weigh kernel stays finite and equal to the reference for observations
   q->launch(*kernel, compute::NdRange::linear(kGroup, kGroup), a, o, parents, occ, tim, occ_to, tim_to, table, ll, lw,
             static_cast<unsigned>(pixels), model_args(), 0.0f, 0u, 0.0f,
             dt_atlas_layout{static_cast<dt_u32>(pixels), 1, 1, 1},
-            dt_window{0, 0, 0, 0, static_cast<dt_u32>(pixels), 1, static_cast<dt_u32>(pixels), 1, static_cast<dt_u32>(pixels), 0.1f}, no_boxes, 0u)
+            dt_window{0, 0, 0, 0, static_cast<dt_u32>(pixels), 1, static_cast<dt_u32>(pixels), 1, static_cast<dt_u32>(pixels), 0.1f}, no_boxes, 0u, 0u)
       ->wait();
   double expected = 0;
   for (size_t k = 0; k < pixels; ++k) {

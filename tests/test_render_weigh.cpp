@@ -128,9 +128,9 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
       } else {
         q->launch(*rasterize, range, states, mesh_buffers.vertices, mesh_buffers.triangles, mesh_buffers.planes,
                   mesh_buffers.triangle_count(), mesh_buffers.vertex_count(), cam, layout.kernel_args(), atlas, boxes,
-                  boxed);
+                  boxed, 0u);
         q->launch(*weigh, range, atlas, obs, parent_buffer, occ_from, t_from, occ_to, t_to, table, ll, lw,
-                  static_cast<unsigned>(pixels), m, now, now_index, dt, layout.kernel_args(), win, boxes, boxed);
+                  static_cast<unsigned>(pixels), m, now, now_index, dt, layout.kernel_args(), win, boxes, boxed, 0u);
       }
       q->finish();
       return Run{atlas.download(), ll.download(),     lw.download(),  occ_to.download(),

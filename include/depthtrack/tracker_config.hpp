@@ -132,6 +132,12 @@ struct TrackerConfig {
   // exact synthetic depth of a fine mesh, where the fit resolves tenths of a millimetre.
   double simplify_error = 0.0005;
   int particles = 200;
+  // Device backends with the kernel renderer, where a tile does not fit in work-group memory (above
+  // 80x60): the pose atlas holds at most this many particles' tiles (particles x pixels floats in all:
+  // 37 GB for 30,000 particles at 640x480), drawn and weighed in turns, the same numbers as all at once.
+  // 0: as many as one buffer of the device holds (its largest allocation: a quarter of the memory on
+  // NVIDIA's OpenCL). The GL and cpu renderers keep every tile.
+  int atlas_particles = 0;
   int width = 80;  // working resolution: the sensor image is decimated to it
   int height = 60;
   double resample_kl_threshold = 2.0;  // resample when log N - H(w) exceeds this

@@ -23,6 +23,12 @@ AtlasLayout AtlasLayout::make(int tiles, int tile_width, int tile_height, int ma
   return layout;
 }
 
+size_t AtlasLayout::tiles() const {
+  size_t n = 0;
+  for (const AtlasPageLayout& page : pages) n += static_cast<size_t>(page.tile_count);
+  return n;
+}
+
 AtlasLayout AtlasLayout::particle_major(int tiles, int tile_width, int tile_height) {
   AtlasLayout layout;
   layout.tile_width = tile_width;

@@ -26,6 +26,8 @@ struct AtlasLayout {
   static AtlasLayout particle_major(int tiles, int tile_width, int tile_height);
   // Floats of a buffer holding every page back to back (page p starts at p * tiles_per_page tiles).
   size_t floats() const;
+  // Tiles over all pages.
+  size_t tiles() const;
   // Index of page p's first float in that buffer.
   size_t page_offset(size_t p) const;
   // This layout as the kernels take it (cl/dt_atlas.h).

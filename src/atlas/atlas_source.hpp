@@ -19,7 +19,8 @@ namespace depthtrack {
 class AtlasSource {
  public:
   virtual ~AtlasSource() = default;
-  // Fixed for the source's life: config.particles tiles.
+  // Fixed for the source's life: config.particles tiles, or fewer where the source draws in turns
+  // (the kernel source: kernel_atlas_tiles).
   virtual const render::AtlasLayout& layout() const = 0;
   // Draws particle i of `states` (DT_STATE_STRIDE floats each, cl/dt_state.h) into tile i of
   // `atlas` (layout().floats() floats). Drawing on the compute queue enqueues and returns its event
@@ -28,6 +29,11 @@ class AtlasSource {
   // enqueued, to `timings` and returns nullptr.
   virtual compute::EventPtr draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas,
                                  StepTimings& timings) = 0;
+  // Draws particles [first, first + count) of `states` into tiles 0 .. count - 1, enqueued as draw() is:
+  // for a layout of fewer tiles than particles, drawn and weighed in turns. Only the kernel source
+  // draws so; the others hold every particle's tile (InputError here).
+  virtual compute::EventPtr draw_range(const compute::Buffer<float>& states, compute::Buffer<float>& atlas,
+                                       size_t first, size_t count);
   // e.g. "GL (EGL device 0: ...); hand-off: CUDA-GL interop (zero-copy)".
   virtual std::string description() const = 0;
   // The mesh as the compute kernels draw it, where this source keeps it on the filter's device (the
@@ -39,6 +45,10 @@ class AtlasSource {
   virtual void draw_boxed() {}
   virtual const compute::Buffer<unsigned>* tile_boxes() const { return nullptr; }
 };
+
+// The kernel source's tiles: every particle's, or at most atlas_particles (TrackerConfig; 0: no limit) and
+// at most what one buffer of max_allocation bytes holds (0: unknown), at least one.
+size_t kernel_atlas_tiles(size_t particles, size_t pixels, int atlas_particles, size_t max_allocation);
 
 struct GlAtlasDevice;  // atlas/gl_atlas_device.hpp
 

@@ -1,5 +1,6 @@
 // The atlas rasterized on the filter's own compute device by cl/rasterize.cl: the kernel reads the
 // particle states where they are and writes the atlas in place, so nothing crosses to the host.
+#include <algorithm>
 #include <depthtrack/error.hpp>
 #include <string>
 #include <vector>
@@ -22,8 +23,12 @@ class KernelAtlasSource final : public AtlasSource {
   KernelAtlasSource(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh, const Camera& camera,
                     const TrackerConfig& config)
       : queue_(queue),
+        particles_(static_cast<size_t>(config.particles)),
         // Particle-major: cl/rasterize.cl writes each tile as one contiguous block.
-        layout_(render::AtlasLayout::particle_major(config.particles, camera.width, camera.height)),
+        layout_(render::AtlasLayout::particle_major(
+            static_cast<int>(kernel_atlas_tiles(particles_, static_cast<size_t>(camera.pixel_count()),
+                                                config.atlas_particles, queue.info().max_allocation)),
+            camera.width, camera.height)),
         camera_(model::camera_params(camera, config)),
         program_(programs.program("rasterize.cl", rasterize_definitions(kGroupSize, queue.info()))),
         kernel_(program_->kernel("rasterize")),
@@ -33,21 +38,32 @@ class KernelAtlasSource final : public AtlasSource {
 
   // Enqueued on the filter's queue: its event times it (render_ms), nothing waits here.
   compute::EventPtr draw(const compute::Buffer<float>& states, compute::Buffer<float>& atlas, StepTimings&) override {
-    const size_t particles = static_cast<size_t>(layout_.tiles_per_page);  // one page of them all
-    if (states.size() < particles * DT_STATE_STRIDE || atlas.size() < layout_.floats())
-      throw InputError("kernel atlas source: the state or atlas buffer is smaller than " + std::to_string(particles) +
-                       " particles need");
+    if (layout_.tiles() < particles_)
+      throw InputError("kernel atlas source: " + std::to_string(particles_) + " particles in an atlas of " +
+                       std::to_string(layout_.tiles()) + " tiles are drawn in turns (draw_range)");
+    return draw_range(states, atlas, 0, particles_);
+  }
+
+  compute::EventPtr draw_range(const compute::Buffer<float>& states, compute::Buffer<float>& atlas, size_t first,
+                               size_t count) override {
+    if (count == 0 || count > layout_.tiles() || first + count > particles_ ||
+        states.size() < particles_ * DT_STATE_STRIDE || atlas.size() < layout_.floats())
+      throw InputError("kernel atlas source: particles " + std::to_string(first) + " to " +
+                       std::to_string(first + count) + " do not fit its " + std::to_string(particles_) +
+                       " particles, its atlas of " + std::to_string(layout_.tiles()) +
+                       " tiles, or the state or atlas buffer given");
     // The atlas is written as the depths' bits.
-    return queue_.launch(*kernel_, compute::NdRange::linear(particles * kGroupSize, kGroupSize), states, mesh_.vertices,
+    return queue_.launch(*kernel_, compute::NdRange::linear(count * kGroupSize, kGroupSize), states, mesh_.vertices,
                          mesh_.triangles, mesh_.planes, mesh_.triangle_count(), mesh_.vertex_count(), camera_,
-                         layout_.kernel_args(), atlas, boxes_, static_cast<unsigned>(boxed_));
+                         layout_.kernel_args(), atlas, boxes_, static_cast<unsigned>(boxed_),
+                         static_cast<unsigned>(first));
   }
 
   const MeshBuffers* device_mesh() const override { return &mesh_; }
 
   void draw_boxed() override {
     boxed_ = true;
-    boxes_ = compute::Buffer<unsigned>(queue_, 4 * static_cast<size_t>(layout_.tiles_per_page));
+    boxes_ = compute::Buffer<unsigned>(queue_, 4 * particles_);  // by particle, whichever tile it is drawn in
   }
   const compute::Buffer<unsigned>* tile_boxes() const override { return boxed_ ? &boxes_ : nullptr; }
 
@@ -57,6 +73,7 @@ class KernelAtlasSource final : public AtlasSource {
 
  private:
   compute::Queue& queue_;
+  size_t particles_;
   render::AtlasLayout layout_;
   dt_camera camera_;
   std::shared_ptr<compute::Program> program_;
@@ -66,6 +83,18 @@ class KernelAtlasSource final : public AtlasSource {
   compute::Buffer<unsigned> boxes_{queue_, 4};  // one box's worth until draw_boxed()
 };
 }  // namespace
+
+size_t kernel_atlas_tiles(size_t particles, size_t pixels, int atlas_particles, size_t max_allocation) {
+  size_t tiles = particles;
+  if (atlas_particles > 0) tiles = std::min(tiles, static_cast<size_t>(atlas_particles));
+  const size_t tile_bytes = pixels * sizeof(float);
+  if (max_allocation > 0 && tile_bytes > 0) tiles = std::min(tiles, max_allocation / tile_bytes);
+  return std::max<size_t>(tiles, 1);
+}
+
+compute::EventPtr AtlasSource::draw_range(const compute::Buffer<float>&, compute::Buffer<float>&, size_t, size_t) {
+  throw InputError("this atlas source draws every particle's tile at once, not in turns");
+}
 
 std::unique_ptr<AtlasSource> make_kernel_atlas_source(compute::Queue& queue, compute::ProgramCache& programs,
                                                       const Mesh& mesh, const Camera& camera,

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <depthtrack/tracker.hpp>
 
+#include "atlas/atlas_source.hpp"
 #include "bench_rows.hpp"
 #include "cli/environment_defaults.hpp"
 #include "cli/step_bytes.hpp"
@@ -52,7 +53,7 @@ BenchTarget describe_target(const std::string& backend) {
             true, false};
   const auto queue = compute::open_device(backend);
   const compute::DeviceInfo& info = queue->info();
-  return {backend, info.platform, info.name, info.driver, !info.is_gpu, true, info.local_memory};
+  return {backend, info.platform, info.name, info.driver, !info.is_gpu, true, info.local_memory, info.max_allocation};
 }
 
 std::string BenchCase::test() const {
@@ -131,7 +132,13 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
   row("latency_ms", "ms", median_of(latency), p95_of(latency), latency.size());
   CaseResult result{c, target.backend, frame_ms, NAN};
   if (target.on_device) {
-    result.memory_mib = filter_memory_mib(static_cast<size_t>(c.particles), pixels, c.mode, !inside_weigh, state_pixels);
+    // The kernel renderer's atlas (where it is not drawn inside weigh) holds as many tiles as one buffer can.
+    const size_t particles = static_cast<size_t>(c.particles);
+    const size_t atlas_tiles =
+        inside_weigh ? 0
+        : renderer == "kernel" ? kernel_atlas_tiles(particles, pixels, config.atlas_particles, target.max_allocation)
+                               : particles;
+    result.memory_mib = filter_memory_mib(particles, pixels, c.mode, atlas_tiles, state_pixels);
     row("device_memory", "MiB", result.memory_mib, result.memory_mib, 1);
     row("state_window_pixels", "pixels", static_cast<double>(state_pixels), static_cast<double>(state_pixels), 1);
   }

@@ -40,6 +40,7 @@ struct BenchTarget {
   bool cpu = true;          // the reference or a CPU device: cases beyond cpu_max_work are skipped
   bool on_device = false;   // a compute device's filter: device_memory is reported
   size_t local_memory = 0;  // its bytes per work-group: whether the kernel renderer draws inside weigh
+  size_t max_allocation = 0;  // its largest buffer: how many tiles the kernel renderer's atlas holds
 };
 // Opens each device once (InputError from the compute layer for an unknown or absent one; cpu:N
 // with an impossible N).

@@ -26,9 +26,11 @@ StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, boo
   return b;
 }
 
-double filter_memory_mib(size_t particles, size_t pixels, OcclusionStorage mode, bool atlas,
+double filter_memory_mib(size_t particles, size_t pixels, OcclusionStorage mode, std::optional<size_t> atlas_tiles,
                          std::optional<size_t> state_pixels) {
-  return device_filter_bytes_per_particle(pixels, mode, false, atlas, state_pixels) * static_cast<double>(particles) /
+  const double tiles = static_cast<double>(atlas_tiles.value_or(particles));
+  return (device_filter_bytes_per_particle(pixels, mode, false, false, state_pixels) * static_cast<double>(particles) +
+          tiles * static_cast<double>(pixels) * sizeof(float)) /
          (1 << 20);
 }
 

@@ -92,6 +92,8 @@ std::string TrackerConfig::resolved_backend() const {
 
 void TrackerConfig::validate() const {
   require(particles > 0, "particle count " + std::to_string(particles) + " must be at least 1");
+  require(atlas_particles >= 0,
+          "atlas particles " + std::to_string(atlas_particles) + " must not be negative (0: as many as fit)");
   require(std::isfinite(simplify_error) && simplify_error >= 0 && simplify_error <= 1,
           "mesh simplification error must be in [0, 1] metres (0: the mesh as given)");
   require(width > 0 && height > 0, "working resolution must be positive");

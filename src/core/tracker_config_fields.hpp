@@ -138,6 +138,9 @@ inline auto fields_of(const TrackerConfig*) {
             "the mesh is drawn simplified to within this distance of its surface (m; at most 2 % of its radius); "
             "0: as given"),
       field("particles", &S::particles, "number of particles"),
+      field("atlas_particles", &S::atlas_particles,
+            "kernel renderer above 80x60: the pose atlas holds at most this many tiles, drawn and weighed in "
+            "turns; 0: as many as one device buffer holds"),
       field("width", &S::width, "working resolution: the sensor image is decimated to it"),
       field("height", &S::height, "working resolution height"),
       field("resample_kl_threshold", &S::resample_kl_threshold, "resample when log N - H(w) exceeds this"),

@@ -214,7 +214,8 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
 struct DeviceFilter::Pending {
   Stopwatch clock;
   StepTimings timings;  // the atlas source's host part
-  compute::EventPtr propagated, rendered, weighed;
+  compute::EventPtr propagated;
+  std::vector<compute::EventPtr> rendered, weighed;  // one each per turn of the atlas' tiles
   std::vector<compute::EventPtr> summarized, refined, resampling;
 };
 
@@ -228,10 +229,21 @@ DeviceFilter::~DeviceFilter() {
 }
 
 double DeviceFilter::bytes_per_particle(size_t state_pixels) const {
-  // GL's pages sit on the same GPU; the kernel renderer's atlas stays in work-group memory where it fits.
-  return device_filter_bytes_per_particle(
-      pixels_, config_.occlusion_storage, config_.renderer == Renderer::Gl && queue_->info().is_gpu,
-      !renders_inside_weigh(config_.renderer, pixels_, queue_->info().local_memory), state_pixels);
+  // GL's pages sit on the same GPU; the kernel renderer's atlas is counted apart (atlas_bytes).
+  return device_filter_bytes_per_particle(pixels_, config_.occlusion_storage,
+                                          config_.renderer == Renderer::Gl && queue_->info().is_gpu,
+                                          config_.renderer != Renderer::Kernel, state_pixels);
+}
+
+// The kernel renderer's atlas: none where it draws inside weigh (the tile stays in work-group memory),
+// else as many tiles as kernel_atlas_tiles allows, drawn and weighed in turns.
+double DeviceFilter::atlas_bytes() const {
+  const auto& info = queue_->info();
+  if (config_.renderer != Renderer::Kernel || renders_inside_weigh(config_.renderer, pixels_, info.local_memory))
+    return 0;
+  const size_t tiles = kernel_atlas_tiles(static_cast<size_t>(config_.particles), pixels_, config_.atlas_particles,
+                                          info.max_allocation);
+  return static_cast<double>(tiles) * static_cast<double>(pixels_) * sizeof(float);
 }
 
 // An automatic window has no size before the start: checked without its rows here, and again by
@@ -242,15 +254,17 @@ size_t DeviceFilter::checked_particle_count() const {
 }
 
 void DeviceFilter::check_state_memory(const model::StateWindow& window) const {
-  const double per_particle = bytes_per_particle(window.pixels());
-  const double needed = per_particle * static_cast<double>(config_.particles);
+  const double per_particle = bytes_per_particle(window.pixels()), atlas = atlas_bytes();
+  const double needed = per_particle * static_cast<double>(config_.particles) + atlas;
   const auto& info = queue_->info();
   if (info.global_memory > 0 && needed > 0.9 * static_cast<double>(info.global_memory)) {
     std::ostringstream m;
     m.precision(3);
-    m << model::particles_and_window(config_, camera_, window) << " need " << needed / (1 << 30) << " GiB of device memory but " << info.name << " has "
-      << static_cast<double>(info.global_memory) / (1 << 30) << " GiB; at most about "
-      << static_cast<long long>(0.9 * static_cast<double>(info.global_memory) / per_particle) << " particles fit";
+    m << model::particles_and_window(config_, camera_, window) << " need " << needed / (1 << 30)
+      << " GiB of device memory but " << info.name << " has " << static_cast<double>(info.global_memory) / (1 << 30)
+      << " GiB; at most about "
+      << static_cast<long long>(std::max(0.0, 0.9 * static_cast<double>(info.global_memory) - atlas) / per_particle)
+      << " particles fit" << (atlas > 0 ? " beside the atlas (TrackerConfig::atlas_particles makes it smaller)" : "");
     throw InputError(m.str());
   }
 }
@@ -260,7 +274,7 @@ size_t DeviceFilter::state_pixel_limit() const {
   const double memory = static_cast<double>(queue_->info().global_memory);
   const double per_pixel = bytes_per_particle(1) - bytes_per_particle(0);
   if (!(memory > 0) || per_pixel == 0) return 0;
-  const double share = 0.9 * memory / static_cast<double>(count_) - bytes_per_particle(0);
+  const double share = (0.9 * memory - atlas_bytes()) / static_cast<double>(count_) - bytes_per_particle(0);
   return share < per_pixel ? 1 : static_cast<size_t>(share / per_pixel);
 }
 
@@ -421,6 +435,9 @@ compute::EventPtr DeviceFilter::render_atlas(StepTimings& timings) {
 std::vector<float> DeviceFilter::last_atlas() const {
   if (render_weigh_ && !keep_atlas_)
     throw InputError("device filter: the atlas is drawn inside weigh and not kept (keep_atlas(true) keeps it)");
+  if (atlas_source_->layout().tiles() < count_)
+    throw InputError("device filter: the atlas holds " + std::to_string(atlas_source_->layout().tiles()) +
+                     " tiles, drawn in turns: only the last turn's are left");
   std::vector<float> tiles = atlas_source_->layout().tiles_in_order(atlas_.download(), count_);
   if (const compute::Buffer<unsigned>* boxes = atlas_source_->tile_boxes()) {
     // Drawn only inside each pose's box: the rest of its tile is stale, and empty to weigh.
@@ -436,6 +453,10 @@ std::vector<float> DeviceFilter::last_atlas() const {
 }
 
 void DeviceFilter::keep_atlas(bool keep) {
+  // render_weigh writes particle i's tile at i: the layout must hold them all.
+  if (keep && render_weigh_ && atlas_source_->layout().tiles() < count_)
+    throw InputError("device filter: an atlas of " + std::to_string(atlas_source_->layout().tiles()) +
+                     " tiles cannot keep " + std::to_string(count_) + " particles' (TrackerConfig::atlas_particles)");
   keep_atlas_ = keep;
   if (render_weigh_) atlas_ = compute::Buffer<float>(*queue_, keep ? atlas_source_->layout().floats() : 1);
 }
@@ -472,8 +493,6 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   if (dt > 0 && !propagates_in_weigh_)
     p->propagated = launch_step(*k.propagate, linear, state_, count, seed_lo, seed_hi, frame_, motion);
 
-  if (!render_weigh_) p->rendered = render_atlas(p->timings);
-
   unsigned now_index = 0;
   if (config_.occlusion_storage == OcclusionStorage::PerPixelTime) {
     now_index = frame_times_->begin_frame(static_cast<float>(time_));
@@ -491,21 +510,27 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   window_ = next_window_;
   const auto per_particle_group = compute::NdRange::linear(count_ * kGroupSize, kGroupSize);
   if (render_weigh_)
-    p->weighed = launch_step(
+    p->weighed.push_back(launch_step(
         *render_weigh_, per_particle_group, state_, render_weigh_mesh_->vertices, render_weigh_mesh_->triangles,
         render_weigh_mesh_->planes, render_weigh_mesh_->triangle_count(), render_weigh_mesh_->vertex_count(),
         model::camera_params(camera_, config_), observed_, parents_, occlusion_, occlusion_time_, scratch_occlusion_,
         scratch_occlusion_time_, frame_times_->device(), log_likelihood_, log_weight_, model::model_params(config_),
         static_cast<float>(time_), now_index, static_cast<float>(dt), atlas_, static_cast<unsigned>(keep_atlas_),
-        window, static_cast<unsigned>(dt > 0 && propagates_in_weigh_), seed_lo, seed_hi, frame_, motion);
+        window, static_cast<unsigned>(dt > 0 && propagates_in_weigh_), seed_lo, seed_hi, frame_, motion));
   else
-    p->weighed =
-        launch_step(*k.weigh, per_particle_group, atlas_, observed_, parents_, occlusion_, occlusion_time_,
-                    scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(), log_likelihood_, log_weight_,
-                    static_cast<unsigned>(pixels_), model::model_params(config_), static_cast<float>(time_), now_index,
-                    static_cast<float>(dt), atlas_source_->layout().kernel_args(), window,
-                    atlas_source_->tile_boxes() ? *atlas_source_->tile_boxes() : unused_boxes_,
-                    static_cast<unsigned>(atlas_source_->tile_boxes() != nullptr));
+    // The atlas' tiles drawn and weighed in turns where it holds fewer than the particles.
+    for (size_t first = 0, tiles = atlas_source_->layout().tiles(); first < count_; first += tiles) {
+      const size_t n = std::min(tiles, count_ - first);
+      p->rendered.push_back(tiles >= count_ ? render_atlas(p->timings)
+                                            : atlas_source_->draw_range(state_, atlas_, first, n));
+      p->weighed.push_back(launch_step(
+          *k.weigh, compute::NdRange::linear(n * kGroupSize, kGroupSize), atlas_, observed_, parents_, occlusion_,
+          occlusion_time_, scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(), log_likelihood_,
+          log_weight_, static_cast<unsigned>(pixels_), model::model_params(config_), static_cast<float>(time_),
+          now_index, static_cast<float>(dt), atlas_source_->layout().kernel_args(), window,
+          atlas_source_->tile_boxes() ? *atlas_source_->tile_boxes() : unused_boxes_,
+          static_cast<unsigned>(atlas_source_->tile_boxes() != nullptr), static_cast<unsigned>(first)));
+    }
   // The device starts on propagate and weigh (most of a small frame's first half) while the host
   // records the summary, and the summary while it records the refinement (on a slow host the device
   // had waited for the refinement's 19 launches to be recorded). The estimate's read hands over the
@@ -587,11 +612,12 @@ Estimate DeviceFilter::collect() {
 // The steps' device times from their events, once the frame is done.
 void DeviceFilter::read_step_times(Pending& p, StepTimings& timings) const {
   if (p.propagated) timings.propagate_ms = p.propagated->elapsed_ms();
-  if (p.rendered) {
-    timings.render_ms += p.rendered->elapsed_ms();
-    timings.render_on_device = true;
-  }
-  timings.weigh_ms = p.weighed->elapsed_ms();
+  for (const auto& event : p.rendered)
+    if (event) {
+      timings.render_ms += event->elapsed_ms();
+      timings.render_on_device = true;
+    }
+  for (const auto& event : p.weighed) timings.weigh_ms += event->elapsed_ms();
   timings.resample_ms += device_span_ms(p.summarized);
   for (const auto& event : p.resampling) timings.resample_ms += event->elapsed_ms();
   // The fit's launches as one span on the device (the spread layout enqueues dozens); the cloud's shift

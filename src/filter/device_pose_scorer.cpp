@@ -73,7 +73,7 @@ std::vector<double> DevicePoseScorer::score(std::span<const Pose> poses, const D
     states_.upload(std::span<const float>(packed.data(), n * DT_STATE_STRIDE));
     queue_.launch(*rasterize_, compute::NdRange::linear(n * kRasterizeGroup, kRasterizeGroup), states_, mesh_.vertices,
                   mesh_.triangles, mesh_.planes, mesh_.triangle_count(), mesh_.vertex_count(), camera_,
-                  layout_.kernel_args(), atlas_, unused_boxes_, 0u);
+                  layout_.kernel_args(), atlas_, unused_boxes_, 0u, 0u);
     queue_.launch(*score_, compute::NdRange::linear(n * kScoreGroup, kScoreGroup), atlas_, observed_, scores_,
                   static_cast<unsigned>(pixels_), model, p, layout_.kernel_args());
     scores_.download(std::span<float>(scores.data(), n));
