@@ -42,7 +42,7 @@ struct Case {
 // How frames reach the tracker. Synthesized before the timed loop by default: drawing a frame between
 // two updates is not the tracker's time, and it leaves the host's caches cold for the driver's calls.
 struct Feed {
-  double pace_ms = 0;             // > 0: each frame handed over this long after the last returned
+  double pace_ms = 0;              // > 0: each frame handed over this long after the last returned
   bool synthesize_inline = false;  // each frame drawn just before its update (as before round 2, session 21)
 };
 
@@ -120,7 +120,8 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
            ? "_window" + std::to_string(window.width) + "x" + std::to_string(window.height)
            : std::string("_windowfull")) +
       (simplify_error > 0 ? "_simplify" + bench::compact_number(simplify_error * 1e3) + "mm" : std::string()) +
-      (step_timings ? "" : "_untimed") + (feed.pace_ms > 0 ? "_paced" + bench::compact_number(feed.pace_ms) + "ms" : "") +
+      (step_timings ? "" : "_untimed") +
+      (feed.pace_ms > 0 ? "_paced" + bench::compact_number(feed.pace_ms) + "ms" : "") +
       (inline_synthesis ? "_inline" : "");
   const std::string platform = host_backend(backend) ? "cpu" : backend;
   const std::string name = host_backend(backend) ? bench::cpu_name() : device;

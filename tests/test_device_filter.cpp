@@ -568,7 +568,8 @@ TEST_CASE("the atlas' tiles: every particle's, at most atlas_particles and what 
   CHECK(kernel_atlas_tiles(30, 4800, 70, 0) == 30);
   // 30,000 particles at 640x480 on an H100's NVIDIA OpenCL (19.8 GiB in one buffer): 1,228,800 bytes a tile.
   CHECK(kernel_atlas_tiles(30000, 640 * 480, 0, 21254373376) == 17296);
-  CHECK(kernel_atlas_tiles(5, 100, 0, 100) == 1);  // a buffer smaller than one tile: one tile, refused by its allocation
+  CHECK(kernel_atlas_tiles(5, 100, 0, 100) ==
+        1);  // a buffer smaller than one tile: one tile, refused by its allocation
 }
 
 TEST_CASE("an atlas of fewer tiles than particles, drawn and weighed in turns, gives the same frames",

@@ -254,7 +254,9 @@ TEST_CASE("weigh kernel stays finite and equal to the reference for observations
   q->launch(*kernel, compute::NdRange::linear(kGroup, kGroup), a, o, parents, occ, tim, occ_to, tim_to, table, ll, lw,
             static_cast<unsigned>(pixels), model_args(), 0.0f, 0u, 0.0f,
             dt_atlas_layout{static_cast<dt_u32>(pixels), 1, 1, 1},
-            dt_window{0, 0, 0, 0, static_cast<dt_u32>(pixels), 1, static_cast<dt_u32>(pixels), 1, static_cast<dt_u32>(pixels), 0.1f}, no_boxes, 0u, 0u)
+            dt_window{0, 0, 0, 0, static_cast<dt_u32>(pixels), 1, static_cast<dt_u32>(pixels), 1,
+                      static_cast<dt_u32>(pixels), 0.1f},
+            no_boxes, 0u, 0u)
       ->wait();
   double expected = 0;
   for (size_t k = 0; k < pixels; ++k) {

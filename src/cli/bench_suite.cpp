@@ -7,8 +7,8 @@
 #include "bench_rows.hpp"
 #include "cli/environment_defaults.hpp"
 #include "cli/step_bytes.hpp"
-#include "core/stopwatch.hpp"
 #include "compute/queue.hpp"
+#include "core/stopwatch.hpp"
 #include "filter/device_filter.hpp"
 #include "tracker/make_filter_backend.hpp"
 
@@ -135,7 +135,7 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
     // The kernel renderer's atlas (where it is not drawn inside weigh) holds as many tiles as one buffer can.
     const size_t particles = static_cast<size_t>(c.particles);
     const size_t atlas_tiles =
-        inside_weigh ? 0
+        inside_weigh           ? 0
         : renderer == "kernel" ? kernel_atlas_tiles(particles, pixels, config.atlas_particles, target.max_allocation)
                                : particles;
     result.memory_mib = filter_memory_mib(particles, pixels, c.mode, atlas_tiles, state_pixels);

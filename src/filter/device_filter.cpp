@@ -241,8 +241,8 @@ double DeviceFilter::atlas_bytes() const {
   const auto& info = queue_->info();
   if (config_.renderer != Renderer::Kernel || renders_inside_weigh(config_.renderer, pixels_, info.local_memory))
     return 0;
-  const size_t tiles = kernel_atlas_tiles(static_cast<size_t>(config_.particles), pixels_, config_.atlas_particles,
-                                          info.max_allocation);
+  const size_t tiles =
+      kernel_atlas_tiles(static_cast<size_t>(config_.particles), pixels_, config_.atlas_particles, info.max_allocation);
   return static_cast<double>(tiles) * static_cast<double>(pixels_) * sizeof(float);
 }
 

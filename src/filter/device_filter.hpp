@@ -128,7 +128,7 @@ class DeviceFilter final : public FilterBackend {
   size_t checked_particle_count() const;
   void check_state_memory(const model::StateWindow& window) const;
   double bytes_per_particle(size_t state_pixels) const;
-  double atlas_bytes() const;  // the kernel renderer's atlas, apart from the particles' bytes
+  double atlas_bytes() const;        // the kernel renderer's atlas, apart from the particles' bytes
   size_t state_pixel_limit() const;  // computed once, into state_pixel_limit_
   void reserve_state_rows(compute::Buffer<float>& occlusion, compute::Buffer<uint16_t>& times,
                           const model::StateWindow& window);
