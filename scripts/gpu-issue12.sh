@@ -6,7 +6,9 @@
 #   - the 2,000-particle frame, depth in to pose out (update_ms), back to back and paced 5 ms apart, three times;
 #   - 100,000 and 1,500,000 particles at 80x60 and 30,000 at 640x480 (timed steps, as the bars were);
 #   - `track` with 1,000,000 particles at 80x60 on a synthesized handset sequence: wall time, peak resident
-#     memory (/usr/bin/time -v), latency_ms against the bench's frame.
+#     memory (/usr/bin/time -v), latency_ms against the bench's frame;
+#   - three ycbv-0000 objects against one (issue 10);
+#   - with depthtrack_tests in BIN (or TESTS=1 when building), [device],[atlas],[kernels],[refine] on both.
 # BIN=<folder> holds depthtrack, depthtrack_bench and libdepthtrack.so.0 built elsewhere (the design notes,
 # "A short device budget"); without it this tree is built in build-gpu. Carry .devdeps, .device, .devdata.
 set -uo pipefail
@@ -20,9 +22,11 @@ if [[ -n ${BIN:-} ]]; then
 else
   cmake -S . -B build-gpu -G Ninja -DCMAKE_BUILD_TYPE=Release -DDEPTHTRACK_BUILD_TESTS=OFF -DDEPTHTRACK_PYTHON=OFF \
     >"$out/configure.log" 2>&1 &&
-    cmake --build build-gpu -j"$(nproc)" --target depthtrack_cli depthtrack_bench >"$out/build.log" 2>&1 ||
+    cmake --build build-gpu -j"$(nproc)" --target depthtrack_cli depthtrack_bench \
+      $([[ ${TESTS:-0} == 1 ]] && echo depthtrack_tests) >"$out/build.log" 2>&1 ||
     { tail -20 "$out/build.log"; exit 1; }
   bin=$PWD/build-gpu
+  [[ -x $bin/tests/depthtrack_tests ]] && ln -sf "$bin/tests/depthtrack_tests" "$bin/depthtrack_tests"
 fi
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader
 rows() { grep -E ",($1)," | cut -d, -f6,8 | tr '\n' ' '; }
@@ -69,3 +73,17 @@ for b in cuda opencl:nvidia; do
     grep -E ',(total_ms|startup_ms|startup_host_peak),' | cut -d, -f6,8 | tr '\n' ' '
   echo
 done
+echo "== three ycbv objects against one"
+for b in cuda opencl:nvidia; do
+  echo "$b: $("$bin/depthtrack_bench" --multi-objects --backend "$b" --particles 2000 --untimed-steps \
+    --simplify-error 0.0005 --frames 40 | grep -oE 'occlusion_(off|on)_untimed,multi_object_ratio_to_mean,x,[0-9.]+' |
+    tr '\n' ' ')"
+done
+if [[ -x $bin/depthtrack_tests ]]; then
+  for b in cuda opencl:nvidia; do
+    echo "== tests on $b"
+    DEPTHTRACK_TEST_DEVICE=$b "$bin/depthtrack_tests" "[device],[atlas],[kernels],[refine]" >/tmp/tests.log 2>&1
+    grep -E -A8 "FAILED" /tmp/tests.log | head -40
+    grep -E "test cases|assertions" /tmp/tests.log
+  done
+fi
