@@ -29,9 +29,5 @@ for b in cuda opencl:nvidia; do
     done
   done
 done
-for b in cuda opencl:nvidia; do
-  echo "== tests on $b"
-  DEPTHTRACK_TEST_DEVICE=$b build-gpu/tests/depthtrack_tests "[device],[atlas],[kernels],[refine]" >/tmp/tests.log 2>&1
-  grep -E -A8 "FAILED" /tmp/tests.log | head -40
-  grep -E "test cases|assertions" /tmp/tests.log
-done
+source scripts/lib/device-tests.sh
+device_tests build-gpu/tests/depthtrack_tests "[device],[atlas],[kernels],[refine]"

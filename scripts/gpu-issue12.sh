@@ -79,11 +79,5 @@ for b in cuda opencl:nvidia; do
     --simplify-error 0.0005 --frames 40 | grep -oE 'occlusion_(off|on)_untimed,multi_object_ratio_to_mean,x,[0-9.]+' |
     tr '\n' ' ')"
 done
-if [[ -x $bin/depthtrack_tests ]]; then
-  for b in cuda opencl:nvidia; do
-    echo "== tests on $b"
-    DEPTHTRACK_TEST_DEVICE=$b "$bin/depthtrack_tests" "[device],[atlas],[kernels],[refine]" >/tmp/tests.log 2>&1
-    grep -E -A8 "FAILED" /tmp/tests.log | head -40
-    grep -E "test cases|assertions" /tmp/tests.log
-  done
-fi
+source scripts/lib/device-tests.sh
+[[ -x $bin/depthtrack_tests ]] && device_tests "$bin/depthtrack_tests" "[device],[atlas],[kernels],[refine]"

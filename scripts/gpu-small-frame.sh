@@ -84,10 +84,5 @@ for b in cuda opencl:nvidia; do
 done
 if [[ ${PROFILE:-1} == 1 ]]; then bash scripts/gpu-enqueue-profile.sh; fi
 [[ ${TESTS:-1} == 1 ]] || exit 0
-for b in cuda opencl:nvidia; do
-  echo "== $b"
-  # A failure's expansion and its INFO (scene, mode, frame) as well as the counts.
-  DEPTHTRACK_TEST_DEVICE=$b build-gpu/tests/depthtrack_tests "[kernels],[refine],[device],[multi]" >/tmp/tests.log 2>&1
-  grep -E -A8 "FAILED" /tmp/tests.log | head -60
-  grep -E "test cases|assertions" /tmp/tests.log
-done
+source scripts/lib/device-tests.sh
+device_tests build-gpu/tests/depthtrack_tests "[kernels],[refine],[device],[multi]"
