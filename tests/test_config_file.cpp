@@ -165,6 +165,9 @@ TEST_CASE("A partial file overrides only its keys; bad keys, types and values na
   CHECK(tracker_config_from_json(R"({"refine": {"layout": "one-group"}})").refine.layout == RefineLayout::OneGroup);
   CHECK_THROWS_WITH(tracker_config_from_json(R"([1, 2])"), Contains("must be an object, got an array"));
   CHECK_THROWS_WITH(tracker_config_from_json(R"({"particles": 0})"), Contains("particle count 0 must be at least 1"));
+  CHECK_THROWS_WITH(tracker_config_from_json(R"({"atlas_particles": -3})"),
+                    Contains("atlas particles -3 must not be negative"));
+  CHECK(tracker_config_from_json(R"({"atlas_particles": 500})").atlas_particles == 500);
   CHECK_THROWS_WITH(tracker_config_from_json("{\"particles\": 5,"), Contains("not valid JSON"));
   CHECK_THROWS_WITH(load_tracker_config("/nonexistent/c.json"),
                     Contains("cannot open configuration file '/nonexistent/c.json'"));
