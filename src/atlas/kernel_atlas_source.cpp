@@ -92,10 +92,6 @@ size_t kernel_atlas_tiles(size_t particles, size_t pixels, int atlas_particles, 
   return std::max<size_t>(tiles, 1);
 }
 
-compute::EventPtr AtlasSource::draw_range(const compute::Buffer<float>&, compute::Buffer<float>&, size_t, size_t) {
-  throw InputError("this atlas source draws every particle's tile at once, not in turns");
-}
-
 std::unique_ptr<AtlasSource> make_kernel_atlas_source(compute::Queue& queue, compute::ProgramCache& programs,
                                                       const Mesh& mesh, const Camera& camera,
                                                       const TrackerConfig& config) {

@@ -25,6 +25,10 @@ std::unique_ptr<AtlasSource> make_kernel_atlas_source(compute::Queue& queue, com
                                                       const Mesh& mesh, const Camera& camera,
                                                       const TrackerConfig& config);
 
+compute::EventPtr AtlasSource::draw_range(const compute::Buffer<float>&, compute::Buffer<float>&, size_t, size_t) {
+  throw InputError("this atlas source draws every particle's tile at once, not in turns");
+}
+
 std::unique_ptr<AtlasSource> make_atlas_source(compute::ProgramCache& programs, const Mesh& mesh, const Camera& camera,
                                                const TrackerConfig& config) {
   return make_atlas_source(programs.queue(), programs, mesh, camera, config);

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <depthtrack/tracker.hpp>
 
-#include "atlas/atlas_source.hpp"
 #include "bench_rows.hpp"
 #include "cli/environment_defaults.hpp"
 #include "cli/step_bytes.hpp"
@@ -132,12 +131,12 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
   row("latency_ms", "ms", median_of(latency), p95_of(latency), latency.size());
   CaseResult result{c, target.backend, frame_ms, NAN};
   if (target.on_device) {
-    // The kernel renderer's atlas (where it is not drawn inside weigh) holds as many tiles as one buffer can.
+    // The kernel renderer's atlas as the filter sizes it; the GL and cpu renderers' holds every particle's tile.
     const size_t particles = static_cast<size_t>(c.particles);
     const size_t atlas_tiles =
-        inside_weigh           ? 0
-        : renderer == "kernel" ? kernel_atlas_tiles(particles, pixels, config.atlas_particles, target.max_allocation)
-                               : particles;
+        config.renderer == Renderer::Kernel
+            ? kernel_renderer_atlas_tiles(config, pixels, target.local_memory, target.max_allocation)
+            : particles;
     result.memory_mib = filter_memory_mib(particles, pixels, c.mode, atlas_tiles, state_pixels);
     row("device_memory", "MiB", result.memory_mib, result.memory_mib, 1);
     row("state_window_pixels", "pixels", static_cast<double>(state_pixels), static_cast<double>(state_pixels), 1);

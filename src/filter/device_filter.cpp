@@ -75,6 +75,12 @@ bool renders_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory)
   return renderer == Renderer::Kernel && render_weigh_local_bytes(pixels) <= std::min(local_memory, kStaticLocalLimit);
 }
 
+size_t kernel_renderer_atlas_tiles(const TrackerConfig& config, size_t pixels, size_t local_memory,
+                                   size_t max_allocation) {
+  if (renders_inside_weigh(Renderer::Kernel, pixels, local_memory)) return 0;
+  return kernel_atlas_tiles(static_cast<size_t>(config.particles), pixels, config.atlas_particles, max_allocation);
+}
+
 bool propagates_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory, size_t particles) {
   return particles <= kFusedLaunchParticles && renders_inside_weigh(renderer, pixels, local_memory);
 }
@@ -235,15 +241,12 @@ double DeviceFilter::bytes_per_particle(size_t state_pixels) const {
                                           config_.renderer != Renderer::Kernel, state_pixels);
 }
 
-// The kernel renderer's atlas: none where it draws inside weigh (the tile stays in work-group memory),
-// else as many tiles as kernel_atlas_tiles allows, drawn and weighed in turns.
+// The kernel renderer's atlas (kernel_renderer_atlas_tiles); the other renderers' is counted per particle.
 double DeviceFilter::atlas_bytes() const {
+  if (config_.renderer != Renderer::Kernel) return 0;
   const auto& info = queue_->info();
-  if (config_.renderer != Renderer::Kernel || renders_inside_weigh(config_.renderer, pixels_, info.local_memory))
-    return 0;
-  const size_t tiles =
-      kernel_atlas_tiles(static_cast<size_t>(config_.particles), pixels_, config_.atlas_particles, info.max_allocation);
-  return static_cast<double>(tiles) * static_cast<double>(pixels_) * sizeof(float);
+  return static_cast<double>(kernel_renderer_atlas_tiles(config_, pixels_, info.local_memory, info.max_allocation)) *
+         static_cast<double>(pixels_) * sizeof(float);
 }
 
 // An automatic window has no size before the start: checked without its rows here, and again by

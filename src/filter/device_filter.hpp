@@ -32,6 +32,12 @@ double device_filter_bytes_per_particle(size_t pixels, OcclusionStorage mode, bo
 // The one rule for the filter, its memory check and `depthtrack bench`.
 bool renders_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory);
 
+// Tiles of the separate atlas the kernel renderer draws and weighs in turns: none where it draws inside
+// weigh, else kernel_atlas_tiles (config.atlas_particles, one buffer of max_allocation bytes). The one rule
+// for the filter, its memory check and `depthtrack bench`'s device_memory.
+size_t kernel_renderer_atlas_tiles(const TrackerConfig& config, size_t pixels, size_t local_memory,
+                                   size_t max_allocation);
+
 // Up to this many particles a frame is bound by its launches (each costs the host 5-18 us on NVIDIA's
 // OpenCL) more than by its kernels, so launches are folded together: render_weigh moves its particle
 // itself (no propagate launch; its program is compiled with DT_PROPAGATE_INSIDE) and every resampling
