@@ -31,6 +31,7 @@
 #include <random>
 #include <sstream>
 
+#include "peer_run.hpp"
 #include "reference/rasterizer.hpp"
 
 using namespace depthtrack;
@@ -108,16 +109,6 @@ class NanoflannSearch : public pcl::search::Search<Point> {
   Adaptor adaptor_;
   std::unique_ptr<Tree> tree_;
 };
-
-std::vector<double> numbers(const std::string& text, size_t n, const std::string& option) {
-  std::istringstream in(text);
-  std::vector<double> v;
-  double x = 0;
-  while (in >> x) v.push_back(x);
-  if (!in.eof() || v.size() != n)
-    throw InputError(option + " takes " + std::to_string(n) + " numbers, got '" + text + "'");
-  return v;
-}
 
 // Area-weighted samples of the mesh surface in the object frame, each with its face's normal.
 Cloud sample_surface(const Mesh& mesh, int count, uint64_t seed) {
@@ -222,8 +213,8 @@ Pose to_pose(const Eigen::Affine3f& a) {
 
 std::shared_ptr<PclTracker> make_tracker(const Options& o, const Pose& start_about_centre) {
   auto tracker = std::make_shared<PclTracker>(o.threads);
-  const auto noise = numbers(o.step_noise, 2, "--step-noise");
-  const auto spread = numbers(o.init_spread, 2, "--init-spread");
+  const auto noise = peers::parse_numbers(o.step_noise, 2, "--step-noise");
+  const auto spread = peers::parse_numbers(o.init_spread, 2, "--init-spread");
   const double sm = noise[0] * noise[0], sr = std::pow(noise[1] * kDegree, 2);
   const double im = spread[0] * spread[0], ir = std::pow(spread[1] * kDegree, 2);
   // PCL's "covariances" are per-axis variances (its sampler takes their square roots).
@@ -290,25 +281,19 @@ void run(const Options& o) {
   if (o.particles < 1 || o.max_particles < o.particles)
     throw InputError("--particles must be >= 1 and <= --max-particles");
   if (o.samples < 10) throw InputError("--samples must be at least 10");
-  const Mesh mesh = Mesh::load(o.mesh);
-  const Sequence seq = load_sequence(o.sequence, o.object);
-  if (seq.frames.empty() || !seq.frames.front().ground_truth)
-    throw InputError("'" + o.sequence + "' has no ground truth for its first frame: the start needs it");
-  int width = 0, height = 0;
-  char x = 0;
-  if (std::istringstream in(o.resolution); !(in >> width >> x >> height) || x != 'x')
-    throw InputError("--resolution '" + o.resolution + "' is not WxH");
-  const int factor = seq.camera.decimation_factor_for(width, height);
-  const Camera cam = seq.camera.decimated(factor);
+  const peers::PeerInput in =
+      peers::load_peer_input(o.mesh, o.sequence, o.object, o.resolution, o.init_perturb, o.seed);
+  const Mesh& mesh = in.mesh;
+  const Sequence& seq = in.sequence;
+  const int factor = in.factor;
+  const Camera& cam = in.camera;
   // Visibility is decided at twice the working resolution where the sensor allows it.
   const Camera vis_cam = seq.camera.decimated(factor % 2 == 0 ? factor / 2 : factor);
   const reference::Rasterizer rasterizer(mesh, vis_cam, 0.05, 6.0);
   std::vector<float> vis_depth(static_cast<size_t>(vis_cam.pixel_count()));
 
   const Eigen::Vector3f centre = mesh.centre();
-  const auto perturb = numbers(o.init_perturb, 2, "--init-perturb");
-  const Pose start =
-      perturb_pose(*seq.frames.front().ground_truth, centre.cast<double>(), perturb[0], perturb[1], o.seed);
+  const Pose& start = in.start;
   const Pose centre_offset(centre.cast<double>(), Eigen::Quaterniond::Identity());
   auto tracker = make_tracker(o, start * centre_offset);
   const Cloud samples = sample_surface(mesh, o.samples, o.seed);
@@ -333,24 +318,12 @@ void run(const Options& o) {
       tracker->compute();
       estimate = to_pose(tracker->toEigenMatrix(tracker->getResult())) * centre_offset.inverse();
     }
-    TrackedFrame f;
-    f.name = seq.frames[i].name;
-    f.timestamp = seq.frames[i].timestamp;
-    f.estimate.pose = estimate;
-    f.estimate.effective_sample_size = tracker->getParticles() ? effective_sample_size(*tracker->getParticles()) : 0;
-    f.ground_truth = seq.frames[i].ground_truth;
-    if (f.ground_truth) {
-      f.translation_error = translation_error(estimate, *f.ground_truth);
-      f.rotation_error = rotation_error(estimate, *f.ground_truth);
-    }
+    frames.push_back(peers::tracked_frame(
+        seq.frames[i], estimate, tracker->getParticles() ? effective_sample_size(*tracker->getParticles()) : 0));
     particle_sum += tracker->getParticles() ? static_cast<double>(tracker->getParticles()->size()) : 0;
-    frames.push_back(f);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-  write_tracking_csv(o.out, frames);
-  // The same summary line as `depthtrack track`, which compare-peers.sh reads the time from.
-  std::printf("%zu frames in %.2f s: %.1f frames per second\n", frames.size(), seconds,
-              static_cast<double>(frames.size()) / seconds);
+  peers::write_peer_result(o.out, frames, seconds);
   std::printf("mean particles %.0f (KLD-adaptive, %d..%d), %zu model samples\n",
               particle_sum / static_cast<double>(frames.size()), o.particles, o.max_particles, samples.size());
   std::printf("wrote %s\n", o.out.c_str());

@@ -1,0 +1,44 @@
+// Converts one of ViSP's simulated depth sequences (Depth/Depth_NNNN.bin, CameraPose/Camera_NNN.txt,
+// Config/*_depth.xml; the castle in ../shared/data/sequences/visp-castle-simu) into depthtrack's layout
+// (16-bit PNGs + sequence.json), which `depthtrack track`, the tests and the peer runners read.
+//
+//   depthtrack_import_visp_simulated --in DIR --out DIR [--depth-from-colour "-0.05 0 0"] [--rate 30]
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "io/visp_simulated_sequence.hpp"
+
+using namespace depthtrack;
+
+int main(int argc, char** argv) {
+  std::string in, out, offset = "-0.05 0 0";
+  io::VispSimulatedImport options;
+  CLI::App app("Convert a ViSP simulated depth sequence into depthtrack's sequence layout");
+  app.add_option("--in", in, "The ViSP sequence folder (Depth/, CameraPose/, Config/)")->required();
+  app.add_option("--out", out, "Folder to write the PNGs and sequence.json into")->required();
+  app.add_option("--depth-from-colour", offset,
+                 "Translation \"X Y Z\" (metres) from the colour camera, whose poses the files hold, to the depth "
+                 "camera's (the castle's: -0.05 0 0)")
+      ->capture_default_str();
+  app.add_option("--rate", options.rate, "Frames per second (the files carry no timestamps)")->capture_default_str();
+  try {
+    app.parse(argc, argv);
+    std::istringstream text(offset);
+    Eigen::Vector3d t;
+    std::string rest;
+    if (!(text >> t.x() >> t.y() >> t.z()) || (text >> rest))
+      throw std::invalid_argument("--depth-from-colour takes three numbers, got '" + offset + "'");
+    options.depth_from_colour = Pose(t, Eigen::Quaterniond::Identity());
+    const Sequence sequence = io::import_visp_simulated_sequence(in, out, options);
+    std::printf("wrote %zu frames (%dx%d, fx %.1f) into %s\n", sequence.frames.size(), sequence.camera.width,
+                sequence.camera.height, sequence.camera.fx, out.c_str());
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << "import_visp_simulated: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

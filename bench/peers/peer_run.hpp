@@ -1,0 +1,36 @@
+// What every peer runner (bench/peers/*_tracking.cpp) shares, so that each sees exactly what
+// `depthtrack track` sees: the sequence, mesh and intrinsics loaded by depthtrack's library, the depth
+// decimated to the same working resolution, the start moved from ground truth by perturb_pose with the
+// same seed as `--init-perturb`, and the result written as the CSV `depthtrack track` writes with the
+// "N frames in S s" line compare-peers.sh reads.
+#pragma once
+
+#include <cstdint>
+#include <depthtrack/evaluation.hpp>
+#include <string>
+#include <vector>
+
+namespace depthtrack::peers {
+
+// "0.01 5" -> {0.01, 5}: exactly n numbers, or an InputError naming the option.
+std::vector<double> parse_numbers(const std::string& text, size_t n, const std::string& option);
+
+struct PeerInput {
+  Mesh mesh;
+  Sequence sequence;
+  int factor = 1;  // the sensor image decimated by this
+  Camera camera;   // at the working resolution
+  Pose start;      // ground truth of the first frame moved by exactly init_perturb
+};
+
+// Loads and checks everything a run needs; resolution "WxH", init_perturb "METRES DEGREES".
+PeerInput load_peer_input(const std::string& mesh, const std::string& sequence, const std::string& object,
+                          const std::string& resolution, const std::string& init_perturb, uint64_t seed);
+
+// The frame's row: the estimate, and its errors where the frame has ground truth.
+TrackedFrame tracked_frame(const SequenceFrame& frame, const Pose& estimate, double effective_sample_size);
+
+// Writes the CSV and prints "N frames in S s: F frames per second".
+void write_peer_result(const std::string& out, const std::vector<TrackedFrame>& frames, double seconds);
+
+}  // namespace depthtrack::peers

@@ -1,0 +1,39 @@
+#pragma once
+// ViSP's simulated depth sequences (the castle its model-based tracker's depth tutorials track, which
+// issue 8's precision figures were first measured on), converted into depthtrack's own layout so that
+// every tool reads them as it reads a synthesized sequence:
+//   Depth/Depth_NNNN.bin       uint32 height, uint32 width, then height * width uint16, all little-endian;
+//                              metres = value * metres_per_unit, 0 = background (no measurement)
+//   CameraPose/Camera_NNN.txt  the colour camera's pose cMo (4x4, metres), NNN the depth's frame number
+//   Config/*_depth.xml         the depth camera's intrinsics (<px> <py> <u0> <v0>)
+// The depth camera sits at depth_from_colour * cMo: the files do not say where, so the caller does.
+#include <depthtrack/depth_image.hpp>
+#include <depthtrack/pose.hpp>
+#include <depthtrack/sequence.hpp>
+#include <filesystem>
+
+namespace depthtrack::io {
+
+struct VispSimulatedImport {
+  double metres_per_unit = 1.0 / 32768.0;  // ViSP's simulator: 0.000030518 m per unit
+  Pose depth_from_colour;                  // the castle's: a translation of (-0.05, 0, 0)
+  double rate = 30.0;                      // Hz: the files carry no timestamps
+};
+
+// One depth file, checked: its header against its size (before anything is allocated) and `expected`
+// when given. Throws InputError naming the file.
+DepthImage read_visp_depth(const std::filesystem::path& path, double metres_per_unit, int expected_width = 0,
+                           int expected_height = 0);
+
+// One pose file: four rows of four numbers, the last row 0 0 0 1, the 3x3 block a rotation.
+Pose read_visp_pose(const std::filesystem::path& path);
+
+// The intrinsics of a ViSP tracker configuration's <camera> block, for images of width x height.
+Camera read_visp_camera(const std::filesystem::path& xml, int width, int height);
+
+// Writes every frame of the folder `in` as a 16-bit PNG plus sequence.json into `out` (created; an
+// existing sequence.json there is replaced only once every frame is written). Returns its manifest.
+Sequence import_visp_simulated_sequence(const std::filesystem::path& in, const std::filesystem::path& out,
+                                        const VispSimulatedImport& options);
+
+}  // namespace depthtrack::io
