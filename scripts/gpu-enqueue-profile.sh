@@ -3,8 +3,9 @@
 # single-object bench, whose enqueue took 0.17-0.22 ms on an H100 against 0.035-0.05 ms for the same
 # filter inside `--multi-objects` (round 2, session 20). A copy of this tree gets
 # scripts/probes/enqueue-profile.patch (a stopwatch lap after each part of enqueue_update, their
-# medians and means printed at exit when DT_ENQUEUE_PROFILE is set; not for the tree itself), then the
-# handset and the gelatin box run on both backends. Carry .devdeps, .device and .devdata.
+# medians and means printed per filter at exit when DT_ENQUEUE_PROFILE is set; not for the tree itself),
+# then the handset and the gelatin box run on both backends, and the several-object bench (ycbv-0000's
+# three objects: which object's enqueue costs what; round 2, session 22). Carry .devdeps, .device and .devdata.
 set -uo pipefail
 source .device/enter .devdeps
 export DEPTHTRACK_DATA_DIR=$PWD/.devdata POCL_CACHE_DIR=/tmp/pocl-cache
@@ -24,4 +25,11 @@ for b in cuda opencl:nvidia; do
       --untimed-steps $mesh 2>&1 | grep -E 'enqueue profile|,(upload|enqueue|wait|total)_ms,' |
       sed -E 's/^[^"]*"[^"]*",-,[^,]*,([a-z_]+),ms,([0-9.]+)$/\1 \2/'
   done
+done
+# The several-object bench: its filters in the order they first enqueue (each object alone, then the three
+# objects with mutual occlusion off and on, then on one host thread): 0-2, 3-5 (off), 6-8 (on), ...
+for b in cuda opencl:nvidia; do
+  echo "== $b, ycbv-0000's three objects (gelatin box, mug, foam brick)"
+  DT_ENQUEUE_PROFILE=1 "$copy/build/depthtrack_bench" --multi-objects --backend "$b" --particles 2000 --frames 40 \
+    --untimed-steps --simplify-error 0.0005 2>&1 | grep -E 'enqueue profile|occlusion_off_untimed,(multi_object_ratio_to_mean|three_objects_enqueue_ms)'
 done
