@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "io/visp_simulated_sequence.hpp"
+#include "peer_run.hpp"
 
 using namespace depthtrack;
 
@@ -23,8 +24,7 @@ int main(int argc, char** argv) {
                  "camera's (the castle's: -0.05 0 0)")
       ->capture_default_str();
   app.add_option("--rate", options.rate, "Frames per second (the files carry no timestamps)")->capture_default_str();
-  try {
-    app.parse(argc, argv);
+  return peers::run_peer_program(app, argc, argv, "import_visp_simulated", [&] {
     std::istringstream text(offset);
     Eigen::Vector3d t;
     std::string rest;
@@ -34,11 +34,5 @@ int main(int argc, char** argv) {
     const Sequence sequence = io::import_visp_simulated_sequence(in, out, options);
     std::printf("wrote %zu frames (%dx%d, fx %.1f) into %s\n", sequence.frames.size(), sequence.camera.width,
                 sequence.camera.height, sequence.camera.fx, out.c_str());
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  } catch (const std::exception& e) {
-    std::cerr << "import_visp_simulated: error: " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
+  });
 }

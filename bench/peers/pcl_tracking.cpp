@@ -45,9 +45,9 @@ namespace {
 constexpr double kDegree = std::numbers::pi / 180.0;
 
 struct Options {
-  std::string mesh, sequence, object, out, resolution = "80x60", init_perturb = "0.01 5", init_spread = "0.01 5";
+  peers::PeerOptions common;
+  std::string init_spread = "0.01 5";
   std::string step_noise = "0.002 1.5";  // metres, degrees: standard deviation per axis per frame
-  uint64_t seed = TrackerConfig{}.seed;
   int particles = 200, max_particles = 1000, samples = 3000, threads = 1;
   double bin_size = 0.01;  // metres and radians: KLD histogram cell
   double epsilon = 0.2, delta = 0.99;
@@ -282,7 +282,7 @@ void run(const Options& o) {
     throw InputError("--particles must be >= 1 and <= --max-particles");
   if (o.samples < 10) throw InputError("--samples must be at least 10");
   const peers::PeerInput in =
-      peers::load_peer_input(o.mesh, o.sequence, o.object, o.resolution, o.init_perturb, o.seed);
+      peers::load_peer_input(o.common);
   const Mesh& mesh = in.mesh;
   const Sequence& seq = in.sequence;
   const int factor = in.factor;
@@ -296,7 +296,7 @@ void run(const Options& o) {
   const Pose& start = in.start;
   const Pose centre_offset(centre.cast<double>(), Eigen::Quaterniond::Identity());
   auto tracker = make_tracker(o, start * centre_offset);
-  const Cloud samples = sample_surface(mesh, o.samples, o.seed);
+  const Cloud samples = sample_surface(mesh, o.samples, o.common.seed);
 
   Pose estimate = start;
   std::vector<TrackedFrame> frames;
@@ -323,10 +323,10 @@ void run(const Options& o) {
     particle_sum += tracker->getParticles() ? static_cast<double>(tracker->getParticles()->size()) : 0;
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-  peers::write_peer_result(o.out, frames, seconds);
+  peers::write_peer_result(o.common.out, frames, seconds);
   std::printf("mean particles %.0f (KLD-adaptive, %d..%d), %zu model samples\n",
               particle_sum / static_cast<double>(frames.size()), o.particles, o.max_particles, samples.size());
-  std::printf("wrote %s\n", o.out.c_str());
+  std::printf("wrote %s\n", o.common.out.c_str());
 }
 
 }  // namespace
@@ -334,16 +334,7 @@ void run(const Options& o) {
 int main(int argc, char** argv) {
   Options o;
   CLI::App app("Track an object with PCL's KLD-adaptive particle filter on depthtrack's sequences");
-  app.add_option("--mesh", o.mesh, "Object mesh (metres)")->required();
-  app.add_option("--sequence", o.sequence, "Sequence folder (depthtrack layout or YCB-Video clip)")->required();
-  app.add_option("--object", o.object, "Object of a multi-object clip");
-  app.add_option("--out", o.out, "CSV to write (the columns of `depthtrack track`)")->required();
-  app.add_option("--resolution", o.resolution, "Working resolution WxH (the sensor image decimated)")
-      ->capture_default_str();
-  app.add_option("--seed", o.seed, "Seed of the start perturbation (as depthtrack's --seed) and of the model samples")
-      ->capture_default_str();
-  app.add_option("--init-perturb", o.init_perturb, "Start from ground truth moved by exactly \"METRES DEGREES\"")
-      ->capture_default_str();
+  peers::add_peer_options(app, o.common, "Seed of the start perturbation (as depthtrack's --seed) and of the model samples");
   app.add_option("--init-spread", o.init_spread, "Initial particle spread \"METRES DEGREES\" per axis")
       ->capture_default_str();
   app.add_option("--step-noise", o.step_noise, "Per-frame motion noise \"METRES DEGREES\" per axis")
@@ -369,14 +360,5 @@ int main(int argc, char** argv) {
   app.add_option("--motion-ratio", o.motion_ratio, "Share of particles moved by the last motion")
       ->capture_default_str();
   app.add_option("--threads", o.threads, "OpenMP threads of the tracker")->capture_default_str();
-  try {
-    app.parse(argc, argv);
-    run(o);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  } catch (const std::exception& e) {
-    std::cerr << "pcl_tracking: error: " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
+  return peers::run_peer_program(app, argc, argv, "pcl_tracking", [&] { run(o); });
 }

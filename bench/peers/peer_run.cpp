@@ -1,6 +1,7 @@
 #include "peer_run.hpp"
 
 #include <cstdio>
+#include <iostream>
 #include <depthtrack/error.hpp>
 #include <sstream>
 
@@ -16,9 +17,35 @@ std::vector<double> parse_numbers(const std::string& text, size_t n, const std::
   return v;
 }
 
-PeerInput load_peer_input(const std::string& mesh, const std::string& sequence, const std::string& object,
-                          const std::string& resolution, const std::string& init_perturb, uint64_t seed) {
-  PeerInput in{Mesh::load(mesh), load_sequence(sequence, object), 1, {}, {}};
+void add_peer_options(CLI::App& app, PeerOptions& o, const std::string& seed_help) {
+  app.add_option("--mesh", o.mesh, "Object mesh (metres)")->required();
+  app.add_option("--sequence", o.sequence, "Sequence folder (depthtrack layout or YCB-Video clip)")->required();
+  app.add_option("--object", o.object, "Object of a multi-object clip");
+  app.add_option("--out", o.out, "CSV to write (the columns of `depthtrack track`)")->required();
+  app.add_option("--resolution", o.resolution, "Working resolution WxH (the sensor image decimated)")
+      ->capture_default_str();
+  app.add_option("--seed", o.seed, seed_help)->capture_default_str();
+  app.add_option("--init-perturb", o.init_perturb, "Start from ground truth moved by exactly \"METRES DEGREES\"")
+      ->capture_default_str();
+}
+
+int run_peer_program(CLI::App& app, int argc, char** argv, const std::string& program,
+                     const std::function<void()>& run) {
+  try {
+    app.parse(argc, argv);
+    run();
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << program << ": error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+PeerInput load_peer_input(const PeerOptions& o) {
+  const std::string &sequence = o.sequence, &resolution = o.resolution;
+  PeerInput in{Mesh::load(o.mesh), load_sequence(sequence, o.object), 1, {}, {}};
   if (in.sequence.frames.empty() || !in.sequence.frames.front().ground_truth)
     throw InputError("'" + sequence + "' has no ground truth for its first frame: the start needs it");
   int width = 0, height = 0;
@@ -27,9 +54,9 @@ PeerInput load_peer_input(const std::string& mesh, const std::string& sequence, 
     throw InputError("--resolution '" + resolution + "' is not WxH");
   in.factor = in.sequence.camera.decimation_factor_for(width, height);
   in.camera = in.sequence.camera.decimated(in.factor);
-  const auto perturb = parse_numbers(init_perturb, 2, "--init-perturb");
+  const auto perturb = parse_numbers(o.init_perturb, 2, "--init-perturb");
   in.start = perturb_pose(*in.sequence.frames.front().ground_truth, in.mesh.centre().cast<double>(), perturb[0],
-                          perturb[1], seed);
+                          perturb[1], o.seed);
   return in;
 }
 

@@ -5,8 +5,11 @@
 // "N frames in S s" line compare-peers.sh reads.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <depthtrack/evaluation.hpp>
+#include <depthtrack/tracker_config.hpp>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -14,6 +17,19 @@ namespace depthtrack::peers {
 
 // "0.01 5" -> {0.01, 5}: exactly n numbers, or an InputError naming the option.
 std::vector<double> parse_numbers(const std::string& text, size_t n, const std::string& option);
+
+// The options every runner takes, named as `depthtrack track` names them.
+struct PeerOptions {
+  std::string mesh, sequence, object, out, resolution = "80x60", init_perturb = "0.01 5";
+  uint64_t seed = TrackerConfig{}.seed;
+};
+// Adds them to app; seed_help says what the seed seeds in this runner.
+void add_peer_options(CLI::App& app, PeerOptions& options, const std::string& seed_help);
+
+// Parses the command line and runs `run`; a parse error prints CLI11's message, any other error
+// "<program>: error: <what>", with exit status 1.
+int run_peer_program(CLI::App& app, int argc, char** argv, const std::string& program,
+                     const std::function<void()>& run);
 
 struct PeerInput {
   Mesh mesh;
@@ -24,8 +40,7 @@ struct PeerInput {
 };
 
 // Loads and checks everything a run needs; resolution "WxH", init_perturb "METRES DEGREES".
-PeerInput load_peer_input(const std::string& mesh, const std::string& sequence, const std::string& object,
-                          const std::string& resolution, const std::string& init_perturb, uint64_t seed);
+PeerInput load_peer_input(const PeerOptions& options);
 
 // The frame's row: the estimate, and its errors where the frame has ground truth.
 TrackedFrame tracked_frame(const SequenceFrame& frame, const Pose& estimate, double effective_sample_size);

@@ -14,6 +14,8 @@
 #include <numbers>
 #include <sstream>
 
+#include "peer_run.hpp"
+
 using namespace depthtrack;
 
 namespace {
@@ -112,8 +114,7 @@ int main(int argc, char** argv) {
   app.add_option("--label", label, "First column: sequence / object")->required();
   app.add_option("--tracker", tracker, "Second column: tracker and settings")->required();
   app.add_option("--ms-per-frame", ms, "Last column, as measured by the caller");
-  try {
-    app.parse(argc, argv);
+  return peers::run_peer_program(app, argc, argv, "peer_score", [&] {
     const Mesh mesh = Mesh::load(mesh_path);
     const Sequence seq = load_sequence(sequence_path, object);
     const AddsMetric adds(mesh);
@@ -122,11 +123,5 @@ int main(int argc, char** argv) {
     std::printf("| %s | %s | %s | %s | %s | %s | %s |\n", label.c_str(), tracker.c_str(),
                 summary(runs, &Score::mean_t).c_str(), summary(runs, &Score::max_t).c_str(),
                 summary(runs, &Score::mean_r).c_str(), summary(runs, &Score::last_adds).c_str(), ms.c_str());
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  } catch (const std::exception& e) {
-    std::cerr << "peer_score: error: " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
+  });
 }

@@ -33,8 +33,7 @@ using namespace depthtrack;
 namespace {
 
 struct Options {
-  std::string mesh, sequence, object, out, resolution = "80x60", init_perturb = "0.01 5";
-  uint64_t seed = TrackerConfig{}.seed;
+  peers::PeerOptions common;
   double simplify_error = TrackerConfig{}.simplify_error;
   std::string features = "dense";
   unsigned sampling_step = 1;  // every pixel at the working resolution (ViSP's default 2 is for 640x480)
@@ -117,7 +116,7 @@ int tracker_type(const std::string& features) {
 void run(const Options& o) {
   if (o.sampling_step < 1) throw InputError("--sampling-step must be at least 1");
   const peers::PeerInput in =
-      peers::load_peer_input(o.mesh, o.sequence, o.object, o.resolution, o.init_perturb, o.seed);
+      peers::load_peer_input(o.common);
   const Mesh model = simplify_for_drawing(in.mesh, o.simplify_error).mesh;
   const Camera& cam = in.camera;
 
@@ -172,9 +171,9 @@ void run(const Options& o) {
     frames.push_back(peers::tracked_frame(in.sequence.frames[i], estimate, NAN));
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-  peers::write_peer_result(o.out, frames, seconds);
+  peers::write_peer_result(o.common.out, frames, seconds);
   std::printf("%zu model faces, %s features, %d frames failed\n", model.triangles.size(), o.features.c_str(), failures);
-  std::printf("wrote %s\n", o.out.c_str());
+  std::printf("wrote %s\n", o.common.out.c_str());
 }
 
 }  // namespace
@@ -182,15 +181,7 @@ void run(const Options& o) {
 int main(int argc, char** argv) {
   Options o;
   CLI::App app("Track an object with ViSP's model-based tracker on its depth features, on depthtrack's sequences");
-  app.add_option("--mesh", o.mesh, "Object mesh (metres)")->required();
-  app.add_option("--sequence", o.sequence, "Sequence folder (depthtrack layout or YCB-Video clip)")->required();
-  app.add_option("--object", o.object, "Object of a multi-object clip");
-  app.add_option("--out", o.out, "CSV to write (the columns of `depthtrack track`)")->required();
-  app.add_option("--resolution", o.resolution, "Working resolution WxH (the sensor image decimated)")
-      ->capture_default_str();
-  app.add_option("--seed", o.seed, "Seed of the start perturbation (as depthtrack's --seed)")->capture_default_str();
-  app.add_option("--init-perturb", o.init_perturb, "Start from ground truth moved by exactly \"METRES DEGREES\"")
-      ->capture_default_str();
+  peers::add_peer_options(app, o.common, "Seed of the start perturbation (as depthtrack's --seed)");
   app.add_option("--simplify-error", o.simplify_error, "Mesh simplified within this (metres) before it becomes faces")
       ->capture_default_str();
   app.add_option("--features", o.features, "dense (per-pixel point-to-plane) or normal (per-face plane)")
@@ -200,14 +191,5 @@ int main(int argc, char** argv) {
   app.add_option("--gain", o.gain, "Gauss-Newton step gain (ViSP's lambda)")->capture_default_str();
   app.add_option("--scanline", o.scanline, "ViSP's scan-line visibility test (concave meshes)")->capture_default_str();
   app.add_flag("--flip-winding", o.flip_winding, "Write the faces with the opposite winding");
-  try {
-    app.parse(argc, argv);
-    run(o);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  } catch (const std::exception& e) {
-    std::cerr << "visp_tracking: error: " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
+  return peers::run_peer_program(app, argc, argv, "visp_tracking", [&] { run(o); });
 }
