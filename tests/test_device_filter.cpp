@@ -489,6 +489,39 @@ TEST_CASE("the spread refinement at 320x240 (more pixels than its groups' work-i
   }
 }
 
+// Refinement::noise_scale reaches the device's fit as the reference's (model::fit_config on both sides):
+// from a common state each frame, the same refined pose, steps and confidence, and the covariance at
+// the filter's noise; and the scale changes the fit (a device that ignored it would fail the first).
+TEST_CASE("a fit at half the filter's noise (refine.noise_scale 0.5) equals the reference's", "[device][refine]") {
+  if (!test::device_available()) return;
+  const Scene scene = make_scene(20);
+  TrackerConfig config;
+  config.particles = 64;
+  config.seed = 3;
+  config.backend = test::device_selector();
+  config.refine.noise_scale = 0.5;
+  std::vector<Pose> refined;
+  each_frame_from_common_state(scene, config, [&](size_t, const Estimate& a, const Estimate& b, auto&, auto&) {
+    CHECK(translation_error(a.pose, b.pose) <= 1e-5);
+    CHECK(rotation_error(a.pose, b.pose) <= 1e-4);
+    CHECK(a.refine_iterations == b.refine_iterations);
+    CHECK(std::abs(a.confidence - b.confidence) <= 0.02);
+    for (int i = 0; i < 6; ++i)
+      if (std::isfinite(a.covariance(i, i)) && a.covariance(i, i) > 0)
+        CHECK(std::abs(b.covariance(i, i) / a.covariance(i, i) - 1) <= 0.05);
+    refined.push_back(a.pose);
+  });
+  config.refine.noise_scale = 1.0;
+  double largest_move = 0;
+  size_t frame = 0;
+  each_frame_from_common_state(scene, config, [&](size_t f, const Estimate& a, const Estimate&, auto&, auto&) {
+    largest_move = std::max(largest_move, translation_error(a.pose, refined[f]));
+    frame = f;
+  });
+  CHECK(frame + 1 == refined.size());
+  CHECK(largest_move > 1e-5);
+}
+
 TEST_CASE("clouds past the small-cloud folds, the prefix sum over one work-group or many, equal the reference",
           "[device][kernels]") {
   if (!test::device_available()) return;

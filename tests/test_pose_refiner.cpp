@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "atlas/triangle_planes.hpp"
+#include "model/fit_noise.hpp"
 #include "reference/pose_refiner.hpp"
 #include "scene.hpp"
 
@@ -156,4 +157,29 @@ TEST_CASE("refinement parameters outside their range are named errors", "[refine
   config = TrackerConfig{};
   config.refine.converged_motion = -1e-5;
   CHECK_THROWS_WITH(config.validate(), Catch::Contains("refine converged motion"));
+  for (const double scale : {0.0, -0.5, std::nan(""), 10.5}) {
+    config = TrackerConfig{};
+    config.refine.noise_scale = scale;
+    CHECK_THROWS_WITH(config.validate(), Catch::Contains("refine noise scale must be in (0, 10]"));
+  }
+}
+
+TEST_CASE("the fit's own noise: sigma(y) scaled, the confidence's band and the covariance at the filter's",
+          "[refine]") {
+  TrackerConfig config;
+  config.refine.noise_scale = 0.5;
+  const TrackerConfig fit = model::fit_config(config);
+  CHECK(fit.observation.sigma_constant == 0.5 * config.observation.sigma_constant);
+  CHECK(fit.observation.sigma_quadratic == 0.5 * config.observation.sigma_quadratic);
+  CHECK(fit.loss.pixel_sigmas == 2.0 * config.loss.pixel_sigmas);  // 3 sigma of the filter: 6 of the fit
+  CHECK(fit.observation.tail_weight == config.observation.tail_weight);
+  // H of weights 1 / (0.5 sigma)^2 is four times the filter's: its covariance is the filter's at a quarter.
+  Eigen::Matrix<double, 6, 6> h = Eigen::Matrix<double, 6, 6>::Zero();
+  h.diagonal() << 4e6, 1e6, 2.5e5, 1e4, 4e4, 1e5;
+  const Eigen::Matrix<double, 6, 6> c = model::fit_covariance(h, 100, 0.1, config.refine);
+  CHECK(c(0, 0) == Approx(1.0 / 4e6 / 0.25));
+  CHECK(c(3, 3) == Approx(1.0 / 1e4 / 0.25));
+  CHECK(c(1, 2) == 0.0);
+  config.refine.noise_scale = 1.0;
+  CHECK(model::fit_covariance(h, 100, 0.1, config.refine)(0, 0) == Approx(1.0 / 4e6));
 }

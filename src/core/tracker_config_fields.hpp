@@ -87,6 +87,8 @@ inline auto fields_of(const Refinement*) {
       field("converged_motion", &S::converged_motion,
             "stop when the next step moves no mesh point farther than this (m); 0 takes every step"),
       field("min_incidence", &S::min_incidence, "pixels whose |cos(normal, ray)| is below this are left out"),
+      field("noise_scale", &S::noise_scale,
+            "the fit's depth noise as a share of the observation's sigma(y), in (0, 10]; 1 fits at the filter's"),
       field("layout", &S::layout,
             "device backends: auto, one-group (the fit in one work-group), spread (its steps over many) or "
             "one-launch (spread's steps in one work-group)"),

@@ -17,7 +17,7 @@
 #include "filter/wide_summary.hpp"
 #include "model/kernel_params.hpp"
 #include "model/particle_packing.hpp"
-#include "model/pose_covariance.hpp"
+#include "model/fit_noise.hpp"
 #include "philox.h"
 
 namespace depthtrack {
@@ -597,7 +597,8 @@ Estimate DeviceFilter::collect() {
     Eigen::Matrix<double, 6, 6> h;
     for (int r = 0, k = 0; r < 6; ++r)
       for (int c = 0; c <= r; ++c, ++k) h(r, c) = h(c, r) = est[DT_EST_NORMAL + k];
-    e.covariance = model::pose_covariance(h, static_cast<int>(est[DT_EST_FIT_PIXELS]), refiner_->radius());
+    e.covariance =
+        model::fit_covariance(h, static_cast<int>(est[DT_EST_FIT_PIXELS]), refiner_->radius(), config_.refine);
     e.refine_iterations = static_cast<int>(est[DT_EST_REFINE_ITERATIONS]);
     // Counts, exact in float: the share as the reference divides them.
     e.confidence = est[DT_EST_MEASURED] > 0 ? static_cast<double>(est[DT_EST_VISIBLE]) / est[DT_EST_MEASURED] : 0.0;

@@ -8,6 +8,7 @@
 #include "compute/program_cache.hpp"
 #include "dt_refine_state.h"
 #include "dt_state.h"
+#include "model/fit_noise.hpp"
 #include "model/kernel_params.hpp"
 
 namespace depthtrack {
@@ -71,7 +72,7 @@ RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceIn
 DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh,
                              const Camera& camera, const TrackerConfig& config, const std::string& occlusion_definition)
     : queue_(queue),
-      config_(config),
+      config_(model::fit_config(config)),  // the fit's own noise (Refinement::noise_scale), as the reference's
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       radius_(mesh.radius()),

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "atlas/triangle_planes.hpp"
-#include "model/pose_covariance.hpp"
+#include "model/fit_noise.hpp"
 #include "reference/observation_model.hpp"
 
 namespace depthtrack::reference {
@@ -57,7 +57,7 @@ double damping_after_rejection(double lambda) {
 }
 
 PoseRefiner::PoseRefiner(const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
-    : config_(config),
+    : config_(model::fit_config(config)),  // the fit's own noise (Refinement::noise_scale)
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       radius_(mesh.radius()),
@@ -125,7 +125,7 @@ RefinedPose PoseRefiner::refine(const Pose& start, const DepthImage& depth, std:
   best.objective = at_best.objective;
   best.pixels = at_best.pixels;
   best.visible_share = at_best.visible_share();
-  best.covariance = model::pose_covariance(at_best.h, at_best.pixels, radius_);
+  best.covariance = model::fit_covariance(at_best.h, at_best.pixels, radius_, config_.refine);
   return best;
 }
 

@@ -1,0 +1,20 @@
+#pragma once
+// The pose refinement's own depth noise (Refinement::noise_scale): every backend's fit is built from
+// fit_config(config), so that the reference and the devices fit the same likelihood, and hands its H to
+// fit_covariance, so that the covariance is the filter's noise's.
+#include <Eigen/Core>
+#include <depthtrack/tracker_config.hpp>
+
+namespace depthtrack::model {
+
+// config with sigma(y) scaled by refine.noise_scale for the fit's weights and objective, and
+// loss.pixel_sigmas by its inverse, so that the confidence's band (pixel_sigmas sigma(y), counted by the
+// fit) keeps its width in metres.
+TrackerConfig fit_config(const TrackerConfig& config);
+
+// The covariance of the fit's H at the filter's sigma(y): H scaled by noise_scale^2 (the fit's
+// weights are 1 / (noise_scale sigma)^2), then model::pose_covariance.
+Eigen::Matrix<double, 6, 6> fit_covariance(const Eigen::Matrix<double, 6, 6>& h, int pixels, double radius,
+                                           const Refinement& refine);
+
+}  // namespace depthtrack::model
