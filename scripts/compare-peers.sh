@@ -73,12 +73,19 @@ compare() {
   local object_args=()
   [[ -n $object ]] && object_args=(--object "$object")
   local common=(--mesh "$mesh" --sequence "$seq" "${object_args[@]}" --resolution "$res")
-  local variants=("default")
-  has_option track --refine && variants+=("--refine off")
+  # Each variant: "label|options" (the label names the row, the options go to `depthtrack track`).
+  local variants=("|")
+  has_option track --refine && variants+=("--refine off|--refine off")
+  # The fit at half the filter's depth noise (Refinement::noise_scale), where the binary has it.
+  if "$DT" config --dump 2>/dev/null | grep -q noise_scale; then
+    echo '{"refine": {"noise_scale": 0.5}}' >"$WORK/fit-noise-half.json"
+    variants+=("fit noise 0.5|--config $WORK/fit-noise-half.json")
+  fi
   for v in "${variants[@]}"; do
-    local extra=() name="depthtrack, 200 particles"
-    [[ $v != default ]] && { read -r -a extra <<<"$v"; name="$name, $v"; }
-    local out=$WORK/$tag-depthtrack-$(echo "$v" | tr -d ' -')
+    local extra=() name="depthtrack, 200 particles" variant_label=${v%%|*}
+    read -r -a extra <<<"${v#*|}"
+    [[ -n $variant_label ]] && name="$name, $variant_label"
+    local out=$WORK/$tag-depthtrack-$(echo "${variant_label:-default}" | tr -d ' -.')
     echo "== $label: depthtrack ${extra[*]}" >&2
     "$DT" track "${common[@]}" --out "$out.csv" --particles 200 --init-from-gt --init-perturb "0.01 5" \
       "${extra[@]}" "${DT_EXTRA[@]}" >"$out.log"
