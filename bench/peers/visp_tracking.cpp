@@ -45,8 +45,8 @@ struct Options {
 };
 
 // The mesh as a ViSP CAO (version 1) model: its points, then each triangle as a face of three.
-// ViSP takes a face as visible when its points run counter-clockwise seen from the camera, which is
-// the meshes' outward winding (checked on the handset: flipped, nothing tracks).
+// The meshes' own (outward) winding is what ViSP's visibility test takes as facing the camera
+// (checked on the handset and the castle: flipped, every frame fails).
 std::filesystem::path write_cao(const Mesh& mesh, bool flip) {
   const auto path =
       std::filesystem::temp_directory_path() /
