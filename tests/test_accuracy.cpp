@@ -247,8 +247,8 @@ TEST_CASE("ViSP's simulated castle from ground truth perturbed by 1 cm and 5 deg
     const auto frames = track_sequence(sequence, mesh, config, start, InitialSpread{0.01, 5.0 / kDegrees});
     RunErrors e;
     const size_t first = 5;  // the start worked off
+    const double counted = static_cast<double>(frames.size() - first);
     for (size_t i = first; i < frames.size(); ++i) {
-      const double counted = static_cast<double>(frames.size() - first);
       e.mean_t += frames[i].translation_error / counted;
       e.mean_r += frames[i].rotation_error / counted;
       e.max_t = std::max(e.max_t, frames[i].translation_error);

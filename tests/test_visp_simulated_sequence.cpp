@@ -149,6 +149,21 @@ TEST_CASE("A malformed ViSP simulated sequence is refused, naming the file and t
   }
 }
 
+TEST_CASE("A malformed ViSP sequence leaves an earlier import in the same folder whole", "[io][visp]") {
+  const auto good = write_small_sequence("visp_keep_good");
+  const auto out = test::temp_dir("visp_keep_out");
+  io::import_visp_simulated_sequence(good, out, castle_offset());
+  // The second frame's depth is short: found only after the first frame's would have been written.
+  const auto bad = write_small_sequence("visp_keep_bad");
+  write_depth_bin(bad / "Depth" / "Depth_0001.bin", 3, 2, {7, 7, 7, 7, 7, 7});
+  write_depth_bin(bad / "Depth" / "Depth_0002.bin", 3, 2, {1, 2, 3});
+  CHECK_THROWS_WITH(io::import_visp_simulated_sequence(bad, out, castle_offset()), Contains("Depth_0002.bin"));
+  const Sequence kept = load_sequence(out);
+  REQUIRE(kept.frames.size() == 2);
+  CHECK(kept.load_depth(0).at(2, 0) == 1.0f);  // the good import's first frame, not the 7s
+  CHECK(kept.load_depth(1).at(0, 0) == 1.0f);
+}
+
 TEST_CASE("The castle's ground truth, drawn with its model, lies on its depth", "[io][visp][data]") {
   const auto castle = test::shared_data("sequences/visp-castle-simu");
   if (!castle) return;

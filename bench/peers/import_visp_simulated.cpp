@@ -5,8 +5,6 @@
 //   depthtrack_import_visp_simulated --in DIR --out DIR [--depth-from-colour "-0.05 0 0"] [--rate 30]
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <iostream>
-#include <sstream>
 
 #include "io/visp_simulated_sequence.hpp"
 #include "peer_run.hpp"
@@ -25,12 +23,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--rate", options.rate, "Frames per second (the files carry no timestamps)")->capture_default_str();
   return peers::run_peer_program(app, argc, argv, "import_visp_simulated", [&] {
-    std::istringstream text(offset);
-    Eigen::Vector3d t;
-    std::string rest;
-    if (!(text >> t.x() >> t.y() >> t.z()) || (text >> rest))
-      throw std::invalid_argument("--depth-from-colour takes three numbers, got '" + offset + "'");
-    options.depth_from_colour = Pose(t, Eigen::Quaterniond::Identity());
+    const auto t = cli::parse_numbers(offset, 3, "--depth-from-colour");
+    options.depth_from_colour = Pose(Eigen::Vector3d(t[0], t[1], t[2]), Eigen::Quaterniond::Identity());
     const Sequence sequence = io::import_visp_simulated_sequence(in, out, options);
     std::printf("wrote %zu frames (%dx%d, fx %.1f) into %s\n", sequence.frames.size(), sequence.camera.width,
                 sequence.camera.height, sequence.camera.fx, out.c_str());

@@ -29,7 +29,6 @@
 #include <numbers>
 #include <optional>
 #include <random>
-#include <sstream>
 
 #include "peer_run.hpp"
 #include "reference/rasterizer.hpp"
@@ -213,8 +212,8 @@ Pose to_pose(const Eigen::Affine3f& a) {
 
 std::shared_ptr<PclTracker> make_tracker(const Options& o, const Pose& start_about_centre) {
   auto tracker = std::make_shared<PclTracker>(o.threads);
-  const auto noise = peers::parse_numbers(o.step_noise, 2, "--step-noise");
-  const auto spread = peers::parse_numbers(o.init_spread, 2, "--init-spread");
+  const auto noise = cli::parse_numbers(o.step_noise, 2, "--step-noise");
+  const auto spread = cli::parse_numbers(o.init_spread, 2, "--init-spread");
   const double sm = noise[0] * noise[0], sr = std::pow(noise[1] * kDegree, 2);
   const double im = spread[0] * spread[0], ir = std::pow(spread[1] * kDegree, 2);
   // PCL's "covariances" are per-axis variances (its sampler takes their square roots).
@@ -281,8 +280,7 @@ void run(const Options& o) {
   if (o.particles < 1 || o.max_particles < o.particles)
     throw InputError("--particles must be >= 1 and <= --max-particles");
   if (o.samples < 10) throw InputError("--samples must be at least 10");
-  const peers::PeerInput in =
-      peers::load_peer_input(o.common);
+  const peers::PeerInput in = peers::load_peer_input(o.common);
   const Mesh& mesh = in.mesh;
   const Sequence& seq = in.sequence;
   const int factor = in.factor;
@@ -326,7 +324,6 @@ void run(const Options& o) {
   peers::write_peer_result(o.common.out, frames, seconds);
   std::printf("mean particles %.0f (KLD-adaptive, %d..%d), %zu model samples\n",
               particle_sum / static_cast<double>(frames.size()), o.particles, o.max_particles, samples.size());
-  std::printf("wrote %s\n", o.common.out.c_str());
 }
 
 }  // namespace

@@ -3,19 +3,8 @@
 #include <cstdio>
 #include <iostream>
 #include <depthtrack/error.hpp>
-#include <sstream>
 
 namespace depthtrack::peers {
-
-std::vector<double> parse_numbers(const std::string& text, size_t n, const std::string& option) {
-  std::istringstream in(text);
-  std::vector<double> v;
-  double x = 0;
-  while (in >> x) v.push_back(x);
-  if (!in.eof() || v.size() != n)
-    throw InputError(option + " takes " + std::to_string(n) + " numbers, got '" + text + "'");
-  return v;
-}
 
 void add_peer_options(CLI::App& app, PeerOptions& o, const std::string& seed_help) {
   app.add_option("--mesh", o.mesh, "Object mesh (metres)")->required();
@@ -44,17 +33,13 @@ int run_peer_program(CLI::App& app, int argc, char** argv, const std::string& pr
 }
 
 PeerInput load_peer_input(const PeerOptions& o) {
-  const std::string &sequence = o.sequence, &resolution = o.resolution;
-  PeerInput in{Mesh::load(o.mesh), load_sequence(sequence, o.object), 1, {}, {}};
+  PeerInput in{Mesh::load(o.mesh), load_sequence(o.sequence, o.object), 1, {}, {}};
   if (in.sequence.frames.empty() || !in.sequence.frames.front().ground_truth)
-    throw InputError("'" + sequence + "' has no ground truth for its first frame: the start needs it");
-  int width = 0, height = 0;
-  char x = 0;
-  if (std::istringstream text(resolution); !(text >> width >> x >> height) || x != 'x')
-    throw InputError("--resolution '" + resolution + "' is not WxH");
+    throw InputError("'" + o.sequence + "' has no ground truth for its first frame: the start needs it");
+  const auto [width, height] = cli::parse_resolution(o.resolution);
   in.factor = in.sequence.camera.decimation_factor_for(width, height);
   in.camera = in.sequence.camera.decimated(in.factor);
-  const auto perturb = parse_numbers(o.init_perturb, 2, "--init-perturb");
+  const auto perturb = cli::parse_numbers(o.init_perturb, 2, "--init-perturb");
   in.start = perturb_pose(*in.sequence.frames.front().ground_truth, in.mesh.centre().cast<double>(), perturb[0],
                           perturb[1], o.seed);
   return in;
@@ -78,6 +63,7 @@ void write_peer_result(const std::string& out, const std::vector<TrackedFrame>& 
   write_tracking_csv(out, frames);
   std::printf("%zu frames in %.2f s: %.1f frames per second\n", frames.size(), seconds,
               static_cast<double>(frames.size()) / seconds);
+  std::printf("wrote %s\n", out.c_str());
 }
 
 }  // namespace depthtrack::peers

@@ -13,10 +13,9 @@
 #include <string>
 #include <vector>
 
-namespace depthtrack::peers {
+#include "cli/parse_values.hpp"  // the command line's value parsers, for the runners' own options
 
-// "0.01 5" -> {0.01, 5}: exactly n numbers, or an InputError naming the option.
-std::vector<double> parse_numbers(const std::string& text, size_t n, const std::string& option);
+namespace depthtrack::peers {
 
 // The options every runner takes, named as `depthtrack track` names them.
 struct PeerOptions {
@@ -45,7 +44,7 @@ PeerInput load_peer_input(const PeerOptions& options);
 // The frame's row: the estimate, and its errors where the frame has ground truth.
 TrackedFrame tracked_frame(const SequenceFrame& frame, const Pose& estimate, double effective_sample_size);
 
-// Writes the CSV and prints "N frames in S s: F frames per second".
+// Writes the CSV and prints "N frames in S s: F frames per second" and "wrote <out>".
 void write_peer_result(const std::string& out, const std::vector<TrackedFrame>& frames, double seconds);
 
 }  // namespace depthtrack::peers

@@ -92,14 +92,14 @@ Pose from_visp(const vpHomogeneousMatrix& m) {
 }
 
 // The depth back-projected per pixel, as ViSP's depth trackers take it: an organized cloud, a pixel
-// without depth at the origin (ViSP skips points at or behind z = 0).
+// without depth at the origin (ViSP skips points at or behind z = 0). The cloud's vectors are made on the
+// first frame only and overwritten after: a heap vector per pixel each frame would be timed as ViSP's.
 void fill_cloud(const DepthImage& depth, const Camera& cam, std::vector<vpColVector>& cloud) {
-  cloud.assign(static_cast<size_t>(cam.width) * cam.height, vpColVector(3, 0.0));
+  cloud.resize(static_cast<size_t>(cam.width) * cam.height, vpColVector(3, 0.0));
   for (int v = 0; v < cam.height; ++v)
     for (int u = 0; u < cam.width; ++u) {
       const float z = depth.at(u, v);
-      if (!DepthImage::is_valid(z)) continue;
-      const Eigen::Vector3d p = cam.back_project(u, v, z);
+      const Eigen::Vector3d p = DepthImage::is_valid(z) ? cam.back_project(u, v, z) : Eigen::Vector3d::Zero();
       vpColVector& q = cloud[static_cast<size_t>(v) * cam.width + u];
       q[0] = p.x();
       q[1] = p.y();
@@ -115,8 +115,7 @@ int tracker_type(const std::string& features) {
 
 void run(const Options& o) {
   if (o.sampling_step < 1) throw InputError("--sampling-step must be at least 1");
-  const peers::PeerInput in =
-      peers::load_peer_input(o.common);
+  const peers::PeerInput in = peers::load_peer_input(o.common);
   const Mesh model = simplify_for_drawing(in.mesh, o.simplify_error).mesh;
   const Camera& cam = in.camera;
 
@@ -173,7 +172,6 @@ void run(const Options& o) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   peers::write_peer_result(o.common.out, frames, seconds);
   std::printf("%zu model faces, %s features, %d frames failed\n", model.triangles.size(), o.features.c_str(), failures);
-  std::printf("wrote %s\n", o.common.out.c_str());
 }
 
 }  // namespace

@@ -1,10 +1,8 @@
 #include "cli/tracker_options.hpp"
 
-#include <cmath>
 #include <cstdio>
 #include <depthtrack/config_file.hpp>
 #include <depthtrack/error.hpp>
-#include <sstream>
 
 #include "cli/environment_defaults.hpp"
 #include "compute/backend.hpp"
@@ -108,34 +106,6 @@ TrackerConfig TrackerOptions::resolve() const {
                  "rasterizer); it applies to the opencl and cuda backends\n",
                  renderer.c_str(), backend == "reference" ? "reference" : "cpu");
   return c;
-}
-
-std::pair<int, int> parse_resolution(const std::string& text) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  std::istringstream in(text);
-  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> extra) || w <= 0 || h <= 0)
-    throw InputError("resolution '" + text + "' is not of the form WxH with positive integers (e.g. 80x60)");
-  return {w, h};
-}
-
-std::vector<double> parse_numbers(const std::string& text, size_t n, const std::string& option) {
-  std::istringstream in(text);
-  std::vector<double> values;
-  std::string token;
-  while (in >> token) {
-    try {
-      size_t used = 0;
-      values.push_back(std::stod(token, &used));
-      if (used != token.size() || !std::isfinite(values.back())) throw std::invalid_argument(token);
-    } catch (const std::exception&) {
-      throw InputError(option + ": '" + token + "' is not a finite number");
-    }
-  }
-  if (values.size() != n)
-    throw InputError(option + " takes " + std::to_string(n) + " numbers, got " + std::to_string(values.size()) +
-                     " in '" + text + "'");
-  return values;
 }
 
 }  // namespace depthtrack::cli

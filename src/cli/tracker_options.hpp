@@ -4,6 +4,8 @@
 #include <depthtrack/tracker_config.hpp>
 #include <string>
 
+#include "cli/parse_values.hpp"  // the command line's value parsers, with the options
+
 namespace depthtrack::cli {
 
 struct TrackerOptions {
@@ -26,10 +28,5 @@ struct TrackerOptions {
   // GL path, $DEPTHTRACK_DEVICE and $DEPTHTRACK_GL do (cli/environment_defaults.hpp).
   TrackerConfig resolve() const;
 };
-
-// "WxH" -> (W, H); InputError for anything else.
-std::pair<int, int> parse_resolution(const std::string& text);
-// "a b c ..." -> exactly n numbers; InputError naming the option otherwise.
-std::vector<double> parse_numbers(const std::string& text, size_t n, const std::string& option);
 
 }  // namespace depthtrack::cli

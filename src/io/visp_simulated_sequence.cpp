@@ -153,9 +153,8 @@ Sequence import_visp_simulated_sequence(const std::filesystem::path& in, const s
   sequence.format = "depthtrack";
   sequence.camera = read_visp_camera(depth_config(in / "Config"), first.width(), first.height());
   sequence.metres_per_unit = options.metres_per_unit;
-  std::error_code error;
-  std::filesystem::create_directories(out, error);
-  if (error) throw InputError("cannot create sequence folder '" + out.string() + "': " + error.message());
+  // Every file is read and checked before anything is written, so that a bad input leaves an earlier
+  // import in `out` whole (its depths are read again below, one at a time, rather than all held).
   for (const auto& [number, path] : depths) {
     const auto pose = poses.find(number);
     if (pose == poses.end())
@@ -168,11 +167,16 @@ Sequence import_visp_simulated_sequence(const std::filesystem::path& in, const s
     frame.timestamp = static_cast<double>(sequence.frames.size()) / options.rate;
     frame.depth_path = out / (frame.name + "-depth.png");
     frame.ground_truth = options.depth_from_colour * read_visp_pose(pose->second);
-    const DepthImage depth =
-        sequence.frames.empty() ? first : read_visp_depth(path, options.metres_per_unit, first.width(), first.height());
-    depth.save_png(frame.depth_path, options.metres_per_unit);
+    read_visp_depth(path, options.metres_per_unit, first.width(), first.height());
     sequence.frames.push_back(frame);
   }
+  std::error_code error;
+  std::filesystem::create_directories(out, error);
+  if (error) throw InputError("cannot create sequence folder '" + out.string() + "': " + error.message());
+  size_t k = 0;
+  for (const auto& numbered : depths)
+    read_visp_depth(numbered.second, options.metres_per_unit)
+        .save_png(sequence.frames[k++].depth_path, options.metres_per_unit);
   write_sequence_manifest(out, sequence);
   return sequence;
 }

@@ -31,8 +31,9 @@ Pose read_visp_pose(const std::filesystem::path& path);
 // The intrinsics of a ViSP tracker configuration's <camera> block, for images of width x height.
 Camera read_visp_camera(const std::filesystem::path& xml, int width, int height);
 
-// Writes every frame of the folder `in` as a 16-bit PNG plus sequence.json into `out` (created; an
-// existing sequence.json there is replaced only once every frame is written). Returns its manifest.
+// Writes every frame of the folder `in` as a 16-bit PNG plus sequence.json into `out` (created). Every
+// input file is checked before anything is written: a malformed one leaves `out` as it was. Returns
+// the manifest written.
 Sequence import_visp_simulated_sequence(const std::filesystem::path& in, const std::filesystem::path& out,
                                         const VispSimulatedImport& options);
 
