@@ -18,6 +18,11 @@ DT_DEVICE_FN dt_pixel_box dt_box_make(uint u0, uint v0, uint width, uint height)
   return r;
 }
 
+/* No pixels: the band argument of the drawing functions that do not draw into work-group memory. */
+DT_DEVICE_FN dt_pixel_box dt_no_band(void) {
+  return dt_box_make(0, 0, 0, 0);
+}
+
 /* As 4 words (u0, v0, width, height) at box i of `boxes`: rasterize.cl's boxes for weigh.cl. */
 DT_DEVICE_FN void dt_box_store(__global uint* boxes, uint i, dt_pixel_box box) {
   __global uint* at = boxes + 4 * DT_CAST(ulong, i);

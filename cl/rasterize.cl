@@ -124,14 +124,22 @@ DT_DEVICE_FN int dt_centre_range(dt_point a, dt_point b, dt_point c, dt_camera c
  * DT_NEAREST_PACKED), it keeps depth bits and triangle together, (bits << 32) | triangle, by a 64-bit
  * atomic min: the nearest depth and, on a tie, the lowest index, as the reference's strict `<` in
  * triangle order. With local_tile (render_weigh.cl's tile in work-group memory) it keeps the nearer
- * depth there, as tile does in global memory. */
+ * depth there, as tile does in global memory, for the pixels of band only (a box's rows, stored row by
+ * row at the band's own width): the pixels a pose covers may be more than the tile holds. */
 DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_rigid pose, __global const float* planes,
                                      dt_camera cam, __global uint* tile, __global uint* ids, __global dt_u64* nearest,
-                                     DT_LOCAL_PTR uint* local_tile, uint triangle) {
+                                     DT_LOCAL_PTR uint* local_tile, dt_pixel_box band, uint triangle) {
   const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
   if (area == 0.0f || !isfinite(area)) return;
   int u0, u1, v0, v1;
   if (!dt_centre_range(a, b, c, cam, &u0, &u1, &v0, &v1)) return;
+  if (local_tile) { /* the band's pixels only: a box's rows, as many as the tile holds */
+    u0 = max(u0, DT_CAST(int, band.u0));
+    u1 = min(u1, DT_CAST(int, band.u0 + band.width) - 1);
+    v0 = max(v0, DT_CAST(int, band.v0));
+    v1 = min(v1, DT_CAST(int, band.v0 + band.height) - 1);
+    if (u0 > u1 || v0 > v1) return;
+  }
   if (area < 0.0f) { /* no culling: give every triangle the same orientation */
     const dt_point t = b;
     b = c;
@@ -150,7 +158,8 @@ DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_rigi
       if (!(z >= cam.near && z <= cam.far)) continue;
       const uint k = DT_CAST(uint, v) * cam.width + DT_CAST(uint, u);
       if (local_tile) {
-        dt_atomic_min_u32(local_tile + k, dt_as_uint(z));
+        dt_atomic_min_u32(local_tile + (DT_CAST(uint, v) - band.v0) * band.width + (DT_CAST(uint, u) - band.u0),
+                          dt_as_uint(z));
       } else if (nearest) {
 #ifdef DT_NEAREST_PACKED
         dt_atomic_min_u64(nearest + k, (DT_CAST(dt_u64, dt_as_uint(z)) << 32) | triangle);
@@ -184,8 +193,8 @@ DT_DEVICE_FN dt_vec3 dt_cut(dt_vec3 inside, dt_vec3 outside, float near) {
 /* Triangle abc (camera frame) that crosses z = near: cut there (Sutherland-Hodgman against one
  * plane, 3 or 4 vertices remain), then drawn as a fan. */
 DT_DEVICE_FN void dt_draw_cut_triangle(dt_vec3 a, dt_vec3 b, dt_vec3 c, dt_rigid pose, __global const float* planes,
-                                       dt_camera cam, __global uint* tile, __global uint* ids,
-                                       __global dt_u64* nearest, DT_LOCAL_PTR uint* local_tile, uint triangle) {
+                                       dt_camera cam, __global uint* tile, __global uint* ids, __global dt_u64* nearest,
+                                       DT_LOCAL_PTR uint* local_tile, dt_pixel_box band, uint triangle) {
   const dt_vec3 p[3] = {a, b, c};
   dt_vec3 kept[4];
   int n = 0;
@@ -198,14 +207,15 @@ DT_DEVICE_FN void dt_draw_cut_triangle(dt_vec3 a, dt_vec3 b, dt_vec3 c, dt_rigid
   const dt_point first = dt_project(kept[0], cam);
   for (int i = 1; i + 1 < n; ++i)
     dt_raster_triangle(first, dt_project(kept[i], cam), dt_project(kept[i + 1], cam), pose, planes, cam, tile, ids,
-                       nearest, local_tile, triangle);
+                       nearest, local_tile, band, triangle);
 }
 
 /* Triangle t of the mesh placed by pose, cut at the near plane where it crosses it (tile, ids,
  * nearest and local_tile as for dt_raster_triangle, t its triangle index). */
 DT_DEVICE_FN void dt_draw_triangle(dt_rigid pose, __global const float* vertices, __global const uint* triangles,
                                    __global const float* planes, uint t, dt_camera cam, __global uint* tile,
-                                   __global uint* ids, __global dt_u64* nearest, DT_LOCAL_PTR uint* local_tile) {
+                                   __global uint* ids, __global dt_u64* nearest, DT_LOCAL_PTR uint* local_tile,
+                                   dt_pixel_box band) {
   __global const uint* corners = triangles + 3 * DT_CAST(ulong, t);
   const dt_vec3 a = dt_vertex(pose, vertices, corners[0]), b = dt_vertex(pose, vertices, corners[1]),
                 c = dt_vertex(pose, vertices, corners[2]);
@@ -213,9 +223,9 @@ DT_DEVICE_FN void dt_draw_triangle(dt_rigid pose, __global const float* vertices
   if (in_front == 0) return;
   if (in_front == 3)
     dt_raster_triangle(dt_project(a, cam), dt_project(b, cam), dt_project(c, cam), pose, planes, cam, tile, ids,
-                       nearest, local_tile, t);
+                       nearest, local_tile, band, t);
   else
-    dt_draw_cut_triangle(a, b, c, pose, planes, cam, tile, ids, nearest, local_tile, t);
+    dt_draw_cut_triangle(a, b, c, pose, planes, cam, tile, ids, nearest, local_tile, band, t);
 }
 
 /* The group's projected vertices (u, v of vertex i at 2i), kept by dt_pose_box where the mesh's
@@ -232,23 +242,25 @@ DT_DEVICE_FN dt_point dt_point_at(DT_LOCAL_PTR const float* points, uint i) {
  * cut): as dt_draw_triangle draws it. */
 DT_DEVICE_FN void dt_draw_projected_triangle(DT_LOCAL_PTR const float* points, __global const uint* triangles, uint t,
                                              dt_rigid pose, __global const float* planes, dt_camera cam,
-                                             DT_LOCAL_PTR uint* local_tile) {
+                                             DT_LOCAL_PTR uint* local_tile, dt_pixel_box band) {
   __global const uint* corners = triangles + 3 * DT_CAST(ulong, t);
   dt_raster_triangle(dt_point_at(points, corners[0]), dt_point_at(points, corners[1]), dt_point_at(points, corners[2]),
-                     pose, planes, cam, 0, 0, 0, local_tile, t);
+                     pose, planes, cam, 0, 0, 0, local_tile, band, t);
 }
 
-/* Whether triangle t, from the projected points, draws anything: dt_raster_triangle's first tests (not
- * degenerate, a pixel centre in its box) on the same floats, so no triangle that draws is passed over. */
+/* Whether triangle t, from the projected points, draws anything in band: dt_raster_triangle's first tests
+ * (not degenerate, a pixel centre in its box and the band's rows) on the same floats, so no triangle that
+ * draws is passed over. */
 DT_DEVICE_FN int dt_projected_triangle_draws(DT_LOCAL_PTR const float* points, __global const uint* triangles, uint t,
-                                             dt_camera cam) {
+                                             dt_camera cam, dt_pixel_box band) {
   __global const uint* corners = triangles + 3 * DT_CAST(ulong, t);
   const dt_point a = dt_point_at(points, corners[0]), b = dt_point_at(points, corners[1]),
                  c = dt_point_at(points, corners[2]);
   const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
   if (area == 0.0f || !isfinite(area)) return 0;
   int u0, u1, v0, v1;
-  return dt_centre_range(a, b, c, cam, &u0, &u1, &v0, &v1);
+  return dt_centre_range(a, b, c, cam, &u0, &u1, &v0, &v1) && v1 >= DT_CAST(int, band.v0) &&
+         v0 < DT_CAST(int, band.v0 + band.height);
 }
 
 /* The pixels a pose can cover: its projected vertices' bounding box, a pixel wider on each side (the
@@ -338,7 +350,7 @@ __kernel DT_RESIDENCY void rasterize(__global const float* states, __global cons
   barrier(CLK_GLOBAL_MEM_FENCE);
 
   for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
-    dt_draw_triangle(pose, vertices, triangles, planes, t, cam, tile, 0, 0, 0);
+    dt_draw_triangle(pose, vertices, triangles, planes, t, cam, tile, 0, 0, 0, dt_no_band());
   barrier(CLK_GLOBAL_MEM_FENCE);
 
   for (uint b = lid; b < boxed_pixels; b += DT_GROUP_SIZE) {

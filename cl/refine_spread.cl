@@ -53,7 +53,7 @@ __kernel void refine_draw(__global const dt_refine_state* s, __global const floa
                           dt_camera cam, __global dt_u64* nearest) {
   const uint t = get_global_id(0);
   if (!s->active || t >= triangle_count) return;
-  dt_draw_triangle(dt_particle_pose(s->candidate), vertices, triangles, planes, t, cam, 0, 0, nearest, 0);
+  dt_draw_triangle(dt_particle_pose(s->candidate), vertices, triangles, planes, t, cam, 0, 0, nearest, 0, dt_no_band());
 }
 
 /* One work-item of the last group, with the candidate's sums: PoseRefiner's loop body. Keeps or
@@ -234,7 +234,7 @@ __kernel void refine_one_launch(__global const float* log_weight, __global const
   for (;;) {
     const dt_rigid pose = dt_particle_pose(s->candidate);
     for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
-      dt_draw_triangle(pose, vertices, triangles, planes, t, cam, 0, 0, nearest, 0);
+      dt_draw_triangle(pose, vertices, triangles, planes, t, cam, 0, 0, nearest, 0, dt_no_band());
     barrier(CLK_GLOBAL_MEM_FENCE);
     float acc[DT_REFINE_SUMS];
     dt_refine_sum_drawn(acc, lid, DT_GROUP_SIZE, nearest, pose, args, observed, occlusion, occlusion_time,

@@ -11,7 +11,8 @@
  * what propagate.cl does; the frame then launches one kernel fewer); without the define the block is
  * left out, as it costs NVRTC's register allocation spills.
  * Compile-time choices: DT_GROUP_SIZE (power of two), DT_OCCLUSION as weigh.cl, DT_TILE_PIXELS the
- * image's pixels (the tile's size in work-group memory: the host uses this kernel only where it fits),
+ * pixels the tile in work-group memory holds (at least a row of the image; a pose's box beyond it is
+ * drawn and weighed in bands of rows; the host uses this kernel only where the whole image would fit),
  * DT_SHARED_POINTS the vertices whose projections the group keeps in work-group memory (the mesh's
  * vertex count where they fit, else 0: each triangle then projects its own corners), DT_RESIDENT_GROUPS the
  * groups each compute unit should hold at once (CUDA's __launch_bounds__ through DT_RESIDENCY; 0: no hint).
@@ -62,52 +63,77 @@ __kernel DT_RESIDENCY void render_weigh(__global float* states, __global const f
   int in_front;
   const dt_pixel_box box = dt_pose_box(pose, vertices, vertex_count, cam, scratch, kept, &in_front);
   const int projected = kept != 0 && in_front;
-  for (uint b = lid; b < box.width * box.height; b += DT_GROUP_SIZE) tile[dt_box_pixel(box, b, cam)] = DT_NO_SURFACE;
-  barrier(CLK_LOCAL_MEM_FENCE);
-#if DT_SHARED_POINTS > 0
-  /* Every vertex in front (the usual case): the triangles that hold a pixel centre (few of a fine mesh's;
-   * which, and how many for each work-item, vary) are listed from the projected points, then drawn by
-   * the work-items in turn, so a group does not wait at the barrier for the work-item that drew the most
-   * (on the H200 most of the kernel's stalls). The chunk loop's bounds are kernel arguments, so every
-   * work-item meets every barrier (PoCL faults on barriers that a value from memory decides on). */
-  for (uint first = 0; first < triangle_count; first += DT_DRAW_LIST) {
-    if (lid == 0) listed_count = 0;
-    barrier(CLK_LOCAL_MEM_FENCE);
-    const uint end = triangle_count - first < DT_DRAW_LIST ? triangle_count : first + DT_DRAW_LIST;
-    if (projected)
-      for (uint t = first + lid; t < end; t += DT_GROUP_SIZE)
-        if (dt_projected_triangle_draws(points, triangles, t, cam))
-          listed[dt_atomic_add_local_u32(&listed_count, 1u)] = t;
-    barrier(CLK_LOCAL_MEM_FENCE);
-    const uint count = listed_count;
-    for (uint i = lid; i < count; i += DT_GROUP_SIZE)
-      dt_draw_projected_triangle(points, triangles, listed[i], pose, planes, cam, tile);
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
-#endif
-  if (!projected) /* each triangle projects its own corners, and is cut where it crosses the near plane */
-    for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
-      dt_draw_triangle(pose, vertices, triangles, planes, t, cam, 0, 0, 0, tile);
-  barrier(CLK_LOCAL_MEM_FENCE);
-
-  if (keep_atlas) /* tests: the whole tile, 0.0f's bits where nothing was drawn */
+  if (keep_atlas) /* tests: the whole tile, 0.0f's bits outside the box (the bands below write the box) */
     for (uint k = lid; k < pixels; k += DT_GROUP_SIZE)
-      atlas[DT_CAST(ulong, particle) * pixels + k] =
-          dt_box_holds(box, k % cam.width, k / cam.width) && tile[k] != DT_NO_SURFACE ? tile[k] : 0u;
+      if (!dt_box_holds(box, k % cam.width, k / cam.width)) atlas[DT_CAST(ulong, particle) * pixels + k] = 0u;
   const ulong from = DT_CAST(ulong, parents[particle]) * dt_window_last_row(win),
               to = DT_CAST(ulong, particle) * dt_window_row(win);
   const dt_pixel_box visited = dt_weigh_box(box, win);
-  float sum = 0.0f;
-  /* The rectangle's pixels to the work-items in turn, as the whole image's in a plain loop. */
   const uint visits = visited.width * visited.height;
-  dt_u32 x = 0, y = 0;
-  if (visits > 0) dt_pixel_place(lid, visited.width, &x, &y);
-  for (uint b = lid; b < visits; b += DT_GROUP_SIZE, dt_pixel_step(visited.width, &x, &y)) {
-    const dt_u32 u = visited.u0 + x, v = visited.v0 + y;
-    const uint k = v * cam.width + u;
-    const uint bits = dt_box_holds(box, u, v) && tile[k] != DT_NO_SURFACE ? tile[k] : 0u; /* 0.0f where undrawn */
-    sum += dt_weigh_image_pixel(k, u, v, dt_as_float(bits), observed, win, from, to, occlusion_from, time_from,
-                                occlusion_to, time_to, frame_times, m, now, now_index, dt);
+  /* The box drawn and weighed in bands of its rows, as many as the tile holds (the host makes it hold a
+   * row of the image): one band, the whole box, unless the pose covers more pixels than that. Each band
+   * weighs the visited rectangle's rows up to its own last (the last band: all that are left), so each
+   * work-item still adds its pixels in the rectangle's order, as one pass over the whole image would. */
+  const uint band_rows = box.width > 0 ? DT_TILE_PIXELS / box.width : 0, box_end = box.v0 + box.height;
+  float sum = 0.0f;
+  uint weighed = 0; /* the visited rectangle's pixels before this band's rows */
+  /* As many bands as the widest box can need: a count from kernel arguments, so that every work-item
+   * meets every barrier (PoCL faults on barriers that a value from memory decides on); a band after the
+   * box's last is empty and weighs nothing. */
+  const uint most_bands = (cam.height + DT_TILE_PIXELS / cam.width - 1) / (DT_TILE_PIXELS / cam.width);
+  for (uint band_index = 0; band_index < most_bands; ++band_index) {
+    const uint v0 = box.v0 + band_index * band_rows;
+    const uint rows = band_rows > 0 && v0 < box_end ? min(band_rows, box_end - v0) : 0;
+    const dt_pixel_box band = dt_box_make(box.u0, v0, box.width, rows);
+    const int last = band_rows == 0 || v0 + rows >= box_end;
+    for (uint b = lid; b < band.width * band.height; b += DT_GROUP_SIZE) tile[b] = DT_NO_SURFACE;
+    barrier(CLK_LOCAL_MEM_FENCE);
+#if DT_SHARED_POINTS > 0
+    /* Every vertex in front (the usual case): the triangles that hold a pixel centre in the band (few of
+     * a fine mesh's; which, and how many for each work-item, vary) are listed from the projected points,
+     * then drawn by the work-items in turn, so a group does not wait at the barrier for the work-item
+     * that drew the most (on the H200 most of the kernel's stalls). The chunk loop's bounds are kernel
+     * arguments, so every work-item meets every barrier (PoCL faults on barriers that a value from
+     * memory decides on). */
+    for (uint first = 0; first < triangle_count; first += DT_DRAW_LIST) {
+      if (lid == 0) listed_count = 0;
+      barrier(CLK_LOCAL_MEM_FENCE);
+      const uint end = triangle_count - first < DT_DRAW_LIST ? triangle_count : first + DT_DRAW_LIST;
+      if (projected)
+        for (uint t = first + lid; t < end; t += DT_GROUP_SIZE)
+          if (dt_projected_triangle_draws(points, triangles, t, cam, band))
+            listed[dt_atomic_add_local_u32(&listed_count, 1u)] = t;
+      barrier(CLK_LOCAL_MEM_FENCE);
+      const uint count = listed_count;
+      for (uint i = lid; i < count; i += DT_GROUP_SIZE)
+        dt_draw_projected_triangle(points, triangles, listed[i], pose, planes, cam, tile, band);
+      barrier(CLK_LOCAL_MEM_FENCE);
+    }
+#endif
+    if (!projected) /* each triangle projects its own corners, and is cut where it crosses the near plane */
+      for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
+        dt_draw_triangle(pose, vertices, triangles, planes, t, cam, 0, 0, 0, tile, band);
+    barrier(CLK_LOCAL_MEM_FENCE);
+
+    if (keep_atlas) /* tests: the band's pixels, 0.0f's bits where nothing was drawn */
+      for (uint b = lid; b < band.width * band.height; b += DT_GROUP_SIZE)
+        atlas[DT_CAST(ulong, particle) * pixels + dt_box_pixel(band, b, cam)] = tile[b] != DT_NO_SURFACE ? tile[b] : 0u;
+    /* The visited rectangle's pixels to the work-items in turn (pixel b to work-item b mod the group's
+     * size), as the whole image's in a plain loop. */
+    const uint until = last ? visits : (v0 + rows - visited.v0) * visited.width;
+    uint b = weighed + ((lid - weighed) & (DT_GROUP_SIZE - 1));
+    dt_u32 x = 0, y = 0;
+    if (b < until) dt_pixel_place(b, visited.width, &x, &y);
+    for (; b < until; b += DT_GROUP_SIZE, dt_pixel_step(visited.width, &x, &y)) {
+      const dt_u32 u = visited.u0 + x, v = visited.v0 + y;
+      const uint k = v * cam.width + u;
+      const uint at = (v - band.v0) * band.width + (u - band.u0);
+      const uint bits = dt_box_holds(band, u, v) && tile[at] != DT_NO_SURFACE ? tile[at] : 0u; /* 0.0f where undrawn */
+      sum += dt_weigh_image_pixel(k, u, v, dt_as_float(bits), observed, win, from, to, occlusion_from, time_from,
+                                  occlusion_to, time_to, frame_times, m, now, now_index, dt);
+    }
+    weighed = until;
+    barrier(CLK_LOCAL_MEM_FENCE); /* the next band's clear overwrites the tile */
   }
   dt_weigh_end(scratch, sum, log_likelihood, log_weight, particle);
 }

@@ -85,8 +85,13 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
     auto whole_program =
         build("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=4800",
                                   "DT_SHARED_POINTS=" + std::to_string(points), "DT_WHOLE_IMAGE_STATE=1"});
+    // And with a tile of 5 rows (400 pixels): each pose's box drawn and weighed in bands of rows.
+    auto banded_program = build("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=400"});
+    auto banded_listed_program = build("render_weigh.cl", {defines[0], defines[1], "DT_TILE_PIXELS=400",
+                                                           "DT_SHARED_POINTS=" + std::to_string(points)});
     auto corners = fused_program->kernel("render_weigh"), listed = listed_program->kernel("render_weigh"),
-         whole = whole_program->kernel("render_weigh");
+         whole = whole_program->kernel("render_weigh"), banded = banded_program->kernel("render_weigh"),
+         banded_listed = banded_listed_program->kernel("render_weigh");
     compute::Kernel* fused = corners.get();
 
     auto propagate_program = build("propagate.cl", {"DT_GROUP_SIZE=128"});
@@ -146,7 +151,12 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
                 boxed = run(false, 0, win, 1);
       fused = listed.get();
       const Run listed_inside = run(true, 1, win), listed_unkept = run(true, 0, win);
-      std::vector<const Run*> drawn_inside = {&inside, &unkept, &listed_inside, &listed_unkept};
+      fused = banded.get();
+      const Run banded_inside = run(true, 1, win), banded_unkept = run(true, 0, win);
+      fused = banded_listed.get();
+      const Run banded_listed_inside = run(true, 1, win);
+      std::vector<const Run*> drawn_inside = {&inside,        &unkept,        &listed_inside,       &listed_unkept,
+                                              &banded_inside, &banded_unkept, &banded_listed_inside};
       Run whole_image;
       if (win.width == 80 && win.height == 60) {  // the promise holds only for the whole image's window
         fused = whole.get();
@@ -160,6 +170,17 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
       }
       CHECK(inside.atlas == apart.atlas);
       CHECK(listed_inside.atlas == apart.atlas);
+      CHECK(banded_inside.atlas == apart.atlas);
+      CHECK(banded_listed_inside.atlas == apart.atlas);
+      for (size_t i = 0; i < count; ++i) {  // the bands were needed: a box taller than the tile's 5 rows
+        size_t rows = 0;
+        for (size_t v = 0; v < 60; ++v) {
+          bool drawn = false;
+          for (size_t u = 0; u < 80; ++u) drawn = drawn || apart.atlas[i * pixels + v * 80 + u] > 0;
+          rows += drawn;
+        }
+        CHECK(rows > 5);
+      }
       CHECK(unkept.atlas == std::vector<float>(layout.floats(), -3.0f));  // not stored unless asked
       // Rasterized only in each pose's box (the rest of the tile left as it was): the same tiles inside
       // the boxes, and weigh takes the rest as empty.
@@ -224,6 +245,12 @@ TEST_CASE(
   CHECK(render_weigh_resident_groups(4800, 0, small) == 1);
   // OpenCL says nothing of units: no hint.
   CHECK(render_weigh_resident_groups(4800, 423, compute::DeviceInfo{}) == 0);
+  // The tile of half the image's rows (80x60: 2,400 pixels) with the simplified mug's 1,600 points: 9,600 +
+  // 2,560 + 12,800 + 2,052 + 1,024 = 28,036 bytes, 8 fit (the whole image's tile: 37,636, 6).
+  CHECK(render_weigh_tile_pixels(80, 60) == 2400);
+  CHECK(render_weigh_tile_pixels(80, 59) == 2400);
+  CHECK(render_weigh_resident_groups(2400, 1600, h200) == 8);
+  CHECK(render_weigh_resident_groups(4800, 1600, h200) == 6);
   // rasterize's 2,560 bytes (+ 1,024): 65 fit in memory, the registers allow 8; 256 work-items a group, 4.
   CHECK(rasterize_definitions(128, h200) == std::vector<std::string>{"DT_GROUP_SIZE=128", "DT_RESIDENT_GROUPS=8"});
   CHECK(rasterize_definitions(256, h200) == std::vector<std::string>{"DT_GROUP_SIZE=256", "DT_RESIDENT_GROUPS=4"});

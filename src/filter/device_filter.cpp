@@ -85,23 +85,27 @@ bool propagates_inside_weigh(Renderer renderer, size_t pixels, size_t local_memo
   return particles <= kFusedLaunchParticles && renders_inside_weigh(renderer, pixels, local_memory);
 }
 
+size_t render_weigh_tile_pixels(int width, int height) {
+  return static_cast<size_t>(width) * static_cast<size_t>((height + 1) / 2);
+}
+
 namespace {
 // render_weigh's work-group memory with shared_points' projections kept: the tile and reduction, the
 // points, the triangle list (cl/render_weigh.cl's DT_DRAW_LIST) and its count.
-size_t render_weigh_group_bytes(size_t pixels, size_t shared_points) {
+size_t render_weigh_group_bytes(size_t tile_pixels, size_t shared_points) {
   constexpr size_t kDrawList = 512;
-  return render_weigh_local_bytes(pixels) +
+  return render_weigh_local_bytes(tile_pixels) +
          (shared_points > 0 ? shared_points * 2 * sizeof(float) + (kDrawList + 1) * sizeof(unsigned) : 0);
 }
 }  // namespace
 
-size_t render_weigh_shared_points(size_t pixels, size_t vertex_count, size_t local_memory) {
-  const size_t needed = render_weigh_group_bytes(pixels, vertex_count);
+size_t render_weigh_shared_points(size_t tile_pixels, size_t vertex_count, size_t local_memory) {
+  const size_t needed = render_weigh_group_bytes(tile_pixels, vertex_count);
   return vertex_count > 0 && needed <= std::min(local_memory, kStaticLocalLimit) ? vertex_count : 0;
 }
 
-size_t render_weigh_resident_groups(size_t pixels, size_t shared_points, const compute::DeviceInfo& device) {
-  return compute::resident_groups(render_weigh_group_bytes(pixels, shared_points), kGroupSize, device);
+size_t render_weigh_resident_groups(size_t tile_pixels, size_t shared_points, const compute::DeviceInfo& device) {
+  return compute::resident_groups(render_weigh_group_bytes(tile_pixels, shared_points), kGroupSize, device);
 }
 
 struct DeviceFilter::Kernels {
@@ -171,15 +175,16 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   estimate_host_.resize(DT_EST_SIZE);
   if (renders_inside_weigh(config.renderer, pixels_, q.info().local_memory) && atlas_source_->device_mesh()) {
     propagates_in_weigh_ = propagates_inside_weigh(config.renderer, pixels_, q.info().local_memory, count_);
+    const size_t tile = render_weigh_tile_pixels(camera_.width, camera_.height);
     const size_t shared_points =
-        render_weigh_shared_points(pixels_, atlas_source_->device_mesh()->vertex_count(), q.info().local_memory);
+        render_weigh_shared_points(tile, atlas_source_->device_mesh()->vertex_count(), q.info().local_memory);
     render_weigh_ = device_->programs
                         .program("render_weigh.cl",
-                                 {defines[0], defines[1], defines[2], "DT_TILE_PIXELS=" + std::to_string(pixels_),
+                                 {defines[0], defines[1], defines[2], "DT_TILE_PIXELS=" + std::to_string(tile),
                                   "DT_SHARED_POINTS=" + std::to_string(shared_points),
                                   "DT_PROPAGATE_INSIDE=" + std::string(propagates_in_weigh_ ? "1" : "0"),
                                   "DT_RESIDENT_GROUPS=" +
-                                      std::to_string(render_weigh_resident_groups(pixels_, shared_points, q.info()))})
+                                      std::to_string(render_weigh_resident_groups(tile, shared_points, q.info()))})
                         ->kernel("render_weigh");
     render_weigh_mesh_ = atlas_source_->device_mesh();
   } else {  // the atlas drawn by its source (only each pose's box where it can), then weighed

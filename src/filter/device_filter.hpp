@@ -50,14 +50,21 @@ constexpr size_t kFusedLaunchParticles = 4096;
 // Whether render_weigh moves the particles (propagate.cl's step, cl/dt_propagate.h) for this cloud.
 bool propagates_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory, size_t particles);
 
-// How many vertices' projections render_weigh keeps in work-group memory beside the tile (its
-// DT_SHARED_POINTS): the mesh's vertex_count where they and the triangle list fit in what
-// renders_inside_weigh leaves, else 0 (each triangle then projects its own corners).
-size_t render_weigh_shared_points(size_t pixels, size_t vertex_count, size_t local_memory);
+// The pixels render_weigh's tile in work-group memory holds (its DT_TILE_PIXELS): half the image's rows,
+// rounded up. A pose's box is a small part of the image at the resolutions it runs at (ycbv-0000's objects
+// at 80x60: 500-700 of 4,800 pixels), so a tile of the whole image only kept groups from being resident
+// (the mug's 1,600 points beside it: 6 a unit on an H100, 8 with half); a taller box is drawn and weighed
+// in bands of rows.
+size_t render_weigh_tile_pixels(int width, int height);
+
+// How many vertices' projections render_weigh keeps in work-group memory beside its tile of tile_pixels
+// (its DT_SHARED_POINTS): the mesh's vertex_count where they and the triangle list fit in the device's
+// local memory (within CUDA's 48 KiB of static memory), else 0 (each triangle then projects its corners).
+size_t render_weigh_shared_points(size_t tile_pixels, size_t vertex_count, size_t local_memory);
 
 // How many render_weigh groups each compute unit should hold at once (its DT_RESIDENT_GROUPS), for its
-// tile of pixels and shared_points: compute::resident_groups of its work-group memory.
-size_t render_weigh_resident_groups(size_t pixels, size_t shared_points, const compute::DeviceInfo& device);
+// tile of tile_pixels and shared_points: compute::resident_groups of its work-group memory.
+size_t render_weigh_resident_groups(size_t tile_pixels, size_t shared_points, const compute::DeviceInfo& device);
 
 class DevicePoseScorer;
 class WideSummary;
