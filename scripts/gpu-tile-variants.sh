@@ -23,16 +23,21 @@ for rep in $(seq "${REPS:-2}"); do
     for b in cuda opencl:nvidia; do bench "$v" "$b" 40 | rows "$v $b rep$rep"; done
   done
 done
+if [[ -n ${TESTS:-} ]]; then
+  for b in cuda opencl:nvidia; do # scripts/lib/device-tests.sh's loop, each backend within TEST_LIMIT seconds
+    echo "== tests on $b"
+    LD_LIBRARY_PATH=$PWD/build-carry-bin/$TESTS:$LD_LIBRARY_PATH DEPTHTRACK_TEST_DEVICE=$b timeout "${TEST_LIMIT:-150}" \
+      "build-carry-bin/$TESTS/depthtrack_tests" "[render],[device]" >/tmp/tests.log 2>&1
+    grep -E -A8 "FAILED" /tmp/tests.log | head -40
+    grep -E "test cases|assertions" /tmp/tests.log
+  done
+fi
 for v in ${VARIANTS:-base new}; do
   LD_LIBRARY_PATH=$PWD/build-carry-bin/$v:$LD_LIBRARY_PATH CUDA_INJECTION64_PATH=$PWD/build-carry-bin/probe/libtimeline.so \
     DT_TIMELINE_OUT=$out/timeline-$v.csv "build-carry-bin/$v/depthtrack_bench" "${args[@]}" --backend cuda --frames 20 \
     | rows "$v cuda probed"
 done
 gzip -f "$out"/timeline-*.csv
-if [[ -n ${TESTS:-} ]]; then
-  source scripts/lib/device-tests.sh
-  LD_LIBRARY_PATH=$PWD/build-carry-bin/$TESTS:$LD_LIBRARY_PATH device_tests "build-carry-bin/$TESTS/depthtrack_tests" "[render],[device]"
-fi
 if [[ ${NCU:-0} == 1 ]] && command -v ncu >/dev/null; then
   v=${VARIANTS%% *}; v=${v:-base}
   for skip in 10 30; do
