@@ -27,7 +27,7 @@ if [[ -n ${TESTS:-} ]]; then
   for b in cuda opencl:nvidia; do # scripts/lib/device-tests.sh's loop, each backend within TEST_LIMIT seconds
     echo "== tests on $b"
     LD_LIBRARY_PATH=$PWD/build-carry-bin/$TESTS:$LD_LIBRARY_PATH DEPTHTRACK_TEST_DEVICE=$b timeout "${TEST_LIMIT:-150}" \
-      "build-carry-bin/$TESTS/depthtrack_tests" "[render],[device]" >/tmp/tests.log 2>&1
+      "build-carry-bin/$TESTS/depthtrack_tests" "${TEST_TAGS:-[render],[device]}" >/tmp/tests.log 2>&1
     grep -E -A8 "FAILED" /tmp/tests.log | head -40
     grep -E "test cases|assertions" /tmp/tests.log
   done

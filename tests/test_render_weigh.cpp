@@ -246,11 +246,30 @@ TEST_CASE(
   // OpenCL says nothing of units: no hint.
   CHECK(render_weigh_resident_groups(4800, 423, compute::DeviceInfo{}) == 0);
   // The tile of half the image's rows (80x60: 2,400 pixels) with the simplified mug's 1,600 points: 9,600 +
-  // 2,560 + 12,800 + 2,052 + 1,024 = 28,036 bytes, 8 fit (the whole image's tile: 37,636, 6).
-  CHECK(render_weigh_tile_pixels(80, 60) == 2400);
-  CHECK(render_weigh_tile_pixels(80, 59) == 2400);
+  // 2,560 + 12,800 + 2,052 + 1,024 = 28,036 bytes, 8 fit; the whole image's tile: 37,636, 6. So the mug
+  // gets the half tile; the handset's 423 points fit 8 either way (the registers decide) and keep the whole.
   CHECK(render_weigh_resident_groups(2400, 1600, h200) == 8);
   CHECK(render_weigh_resident_groups(4800, 1600, h200) == 6);
+  h200.local_memory = 48 * 1024;
+  const RenderWeighLayout mug = render_weigh_layout(80, 60, 1600, h200),
+                          handset = render_weigh_layout(80, 60, 423, h200);
+  CHECK(mug.tile_pixels == 2400);
+  CHECK(mug.shared_points == 1600);
+  CHECK(mug.resident_groups == 8);
+  CHECK(handset.tile_pixels == 4800);
+  CHECK(handset.resident_groups == 8);
+  // 59 rows: half is 30 of them.
+  CHECK(render_weigh_layout(80, 59, 1600, h200).tile_pixels == 2400);
+  // 4,000 points (32,000 bytes) fit beside the half tile's 9,600 within CUDA's 48 KiB, not beside the whole
+  // image's 19,200: the half tile, which keeps them.
+  const RenderWeighLayout fine = render_weigh_layout(80, 60, 4000, h200);
+  CHECK(fine.tile_pixels == 2400);
+  CHECK(fine.shared_points == 4000);
+  CHECK(render_weigh_shared_points(4800, 4000, 48 * 1024) == 0);
+  // OpenCL says nothing of units: the whole image's tile, as before.
+  compute::DeviceInfo opencl;
+  opencl.local_memory = 48 * 1024;
+  CHECK(render_weigh_layout(80, 60, 1600, opencl).tile_pixels == 4800);
   // rasterize's 2,560 bytes (+ 1,024): 65 fit in memory, the registers allow 8; 256 work-items a group, 4.
   CHECK(rasterize_definitions(128, h200) == std::vector<std::string>{"DT_GROUP_SIZE=128", "DT_RESIDENT_GROUPS=8"});
   CHECK(rasterize_definitions(256, h200) == std::vector<std::string>{"DT_GROUP_SIZE=256", "DT_RESIDENT_GROUPS=4"});

@@ -85,10 +85,6 @@ bool propagates_inside_weigh(Renderer renderer, size_t pixels, size_t local_memo
   return particles <= kFusedLaunchParticles && renders_inside_weigh(renderer, pixels, local_memory);
 }
 
-size_t render_weigh_tile_pixels(int width, int height) {
-  return static_cast<size_t>(width) * static_cast<size_t>((height + 1) / 2);
-}
-
 namespace {
 // render_weigh's work-group memory with shared_points' projections kept: the tile and reduction, the
 // points, the triangle list (cl/render_weigh.cl's DT_DRAW_LIST) and its count.
@@ -106,6 +102,19 @@ size_t render_weigh_shared_points(size_t tile_pixels, size_t vertex_count, size_
 
 size_t render_weigh_resident_groups(size_t tile_pixels, size_t shared_points, const compute::DeviceInfo& device) {
   return compute::resident_groups(render_weigh_group_bytes(tile_pixels, shared_points), kGroupSize, device);
+}
+
+RenderWeighLayout render_weigh_layout(int width, int height, size_t vertex_count, const compute::DeviceInfo& device) {
+  auto layout = [&](size_t tile) {
+    RenderWeighLayout l;
+    l.tile_pixels = tile;
+    l.shared_points = render_weigh_shared_points(tile, vertex_count, device.local_memory);
+    l.resident_groups = render_weigh_resident_groups(tile, l.shared_points, device);
+    return l;
+  };
+  const RenderWeighLayout whole = layout(static_cast<size_t>(width) * static_cast<size_t>(height)),
+                          half = layout(static_cast<size_t>(width) * static_cast<size_t>((height + 1) / 2));
+  return half.resident_groups > whole.resident_groups || half.shared_points > whole.shared_points ? half : whole;
 }
 
 struct DeviceFilter::Kernels {
@@ -175,17 +184,16 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
   estimate_host_.resize(DT_EST_SIZE);
   if (renders_inside_weigh(config.renderer, pixels_, q.info().local_memory) && atlas_source_->device_mesh()) {
     propagates_in_weigh_ = propagates_inside_weigh(config.renderer, pixels_, q.info().local_memory, count_);
-    const size_t tile = render_weigh_tile_pixels(camera_.width, camera_.height);
-    const size_t shared_points =
-        render_weigh_shared_points(tile, atlas_source_->device_mesh()->vertex_count(), q.info().local_memory);
-    render_weigh_ = device_->programs
-                        .program("render_weigh.cl",
-                                 {defines[0], defines[1], defines[2], "DT_TILE_PIXELS=" + std::to_string(tile),
-                                  "DT_SHARED_POINTS=" + std::to_string(shared_points),
-                                  "DT_PROPAGATE_INSIDE=" + std::string(propagates_in_weigh_ ? "1" : "0"),
-                                  "DT_RESIDENT_GROUPS=" +
-                                      std::to_string(render_weigh_resident_groups(tile, shared_points, q.info()))})
-                        ->kernel("render_weigh");
+    const RenderWeighLayout layout =
+        render_weigh_layout(camera_.width, camera_.height, atlas_source_->device_mesh()->vertex_count(), q.info());
+    render_weigh_ =
+        device_->programs
+            .program("render_weigh.cl",
+                     {defines[0], defines[1], defines[2], "DT_TILE_PIXELS=" + std::to_string(layout.tile_pixels),
+                      "DT_SHARED_POINTS=" + std::to_string(layout.shared_points),
+                      "DT_PROPAGATE_INSIDE=" + std::string(propagates_in_weigh_ ? "1" : "0"),
+                      "DT_RESIDENT_GROUPS=" + std::to_string(layout.resident_groups)})
+            ->kernel("render_weigh");
     render_weigh_mesh_ = atlas_source_->device_mesh();
   } else {  // the atlas drawn by its source (only each pose's box where it can), then weighed
     k.weigh_program = device_->programs.program("weigh.cl", defines);

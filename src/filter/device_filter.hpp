@@ -50,12 +50,20 @@ constexpr size_t kFusedLaunchParticles = 4096;
 // Whether render_weigh moves the particles (propagate.cl's step, cl/dt_propagate.h) for this cloud.
 bool propagates_inside_weigh(Renderer renderer, size_t pixels, size_t local_memory, size_t particles);
 
-// The pixels render_weigh's tile in work-group memory holds (its DT_TILE_PIXELS): half the image's rows,
-// rounded up. A pose's box is a small part of the image at the resolutions it runs at (ycbv-0000's objects
-// at 80x60: 500-700 of 4,800 pixels), so a tile of the whole image only kept groups from being resident
-// (the mug's 1,600 points beside it: 6 a unit on an H100, 8 with half); a taller box is drawn and weighed
-// in bands of rows.
-size_t render_weigh_tile_pixels(int width, int height);
+// render_weigh's work-group memory, decided once per filter: the pixels its tile holds (DT_TILE_PIXELS),
+// the vertices whose projections it keeps (DT_SHARED_POINTS) and the groups a unit should hold
+// (DT_RESIDENT_GROUPS).
+struct RenderWeighLayout {
+  size_t tile_pixels = 0, shared_points = 0, resident_groups = 0;
+};
+
+// The whole image's tile, or half its rows (rounded up) where that lets a unit hold more groups or lets the
+// mesh's projected points fit beside it: a pose's box is a small part of the image at the resolutions
+// render_weigh runs at (ycbv-0000's objects at 80x60: 600-700 of 4,800 pixels), and the simplified mug's
+// 1,600 points beside the whole image's tile let 6 groups onto an H100's unit, 8 with half. A taller box is
+// then drawn and weighed in bands of rows (cl/render_weigh.cl); where the smaller tile gains nothing (the
+// registers decide, or the device does not say what a unit holds) the tile stays whole: one band.
+RenderWeighLayout render_weigh_layout(int width, int height, size_t vertex_count, const compute::DeviceInfo& device);
 
 // How many vertices' projections render_weigh keeps in work-group memory beside its tile of tile_pixels
 // (its DT_SHARED_POINTS): the mesh's vertex_count where they and the triangle list fit in the device's
