@@ -3,8 +3,9 @@
 # ycbv-0000's three objects. Carry .devdeps, .device, .devdata and build-carry-bin with one folder per
 # variant (depthtrack_bench and libdepthtrack.so.0 each, built on the CPU machine; VARIANTS names them,
 # the first also gets Nsight Compute's report of render_weigh when NCU=1) and probe/libtimeline.so
-# (scripts/probes/cuda_timeline.cpp). TESTS=VARIANT runs that variant's [device],[render] tests on both
-# backends. Timelines and reports go to $OUT.
+# (scripts/probes/cuda_timeline.cpp). REPS repetitions of the timing (default 2). TESTS=VARIANT runs that
+# variant's TEST_TAGS (default [render],[device]) on both backends, each within TEST_LIMIT seconds.
+# Timelines and reports go to $OUT.
 set -uo pipefail
 source .device/enter .devdeps >/dev/null 2>&1
 export DEPTHTRACK_DATA_DIR=$PWD/.devdata
@@ -12,7 +13,7 @@ out=${OUT:-/tmp/variants}
 mkdir -p "$out"
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader
 args=(--multi-objects --particles 2000 --untimed-steps --simplify-error 0.0005)
-bench() { # variant backend frames [extra env]
+bench() { # variant backend frames
   LD_LIBRARY_PATH=$PWD/build-carry-bin/$1:$LD_LIBRARY_PATH "build-carry-bin/$1/depthtrack_bench" "${args[@]}" \
     --backend "$2" --frames "$3"
 }
@@ -23,14 +24,10 @@ for rep in $(seq "${REPS:-2}"); do
     for b in cuda opencl:nvidia; do bench "$v" "$b" 40 | rows "$v $b rep$rep"; done
   done
 done
-if [[ -n ${TESTS:-} ]]; then
-  for b in cuda opencl:nvidia; do # scripts/lib/device-tests.sh's loop, each backend within TEST_LIMIT seconds
-    echo "== tests on $b"
-    LD_LIBRARY_PATH=$PWD/build-carry-bin/$TESTS:$LD_LIBRARY_PATH DEPTHTRACK_TEST_DEVICE=$b timeout "${TEST_LIMIT:-150}" \
-      "build-carry-bin/$TESTS/depthtrack_tests" "${TEST_TAGS:-[render],[device]}" >/tmp/tests.log 2>&1
-    grep -E -A8 "FAILED" /tmp/tests.log | head -40
-    grep -E "test cases|assertions" /tmp/tests.log
-  done
+if [[ -n ${TESTS:-} ]]; then # each backend's run within TEST_LIMIT seconds (scripts/lib/device-tests.sh)
+  source scripts/lib/device-tests.sh
+  (export LD_LIBRARY_PATH=$PWD/build-carry-bin/$TESTS:$LD_LIBRARY_PATH TEST_LIMIT=${TEST_LIMIT:-150}
+    device_tests "build-carry-bin/$TESTS/depthtrack_tests" "${TEST_TAGS:-[render],[device]}")
 fi
 for v in ${VARIANTS:-base new}; do
   LD_LIBRARY_PATH=$PWD/build-carry-bin/$v:$LD_LIBRARY_PATH CUDA_INJECTION64_PATH=$PWD/build-carry-bin/probe/libtimeline.so \
