@@ -3,19 +3,25 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/convex_hull.hpp"
+
 namespace depthtrack::model {
 
 ObjectExtent object_extent(const Mesh& mesh) {
   ObjectExtent extent;
   extent.centre = mesh.centre().cast<double>();
+  if (const auto hull = convex_hull_vertices(mesh.vertices)) {
+    for (const int i : *hull) extent.bounding_points.push_back(mesh.vertices[static_cast<size_t>(i)].cast<double>());
+    return extent;
+  }
   Eigen::Vector3d low = extent.centre, high = extent.centre;
   for (const auto& v : mesh.vertices) {
     low = low.cwiseMin(v.cast<double>());
     high = high.cwiseMax(v.cast<double>());
   }
   for (int i = 0; i < 8; ++i)
-    extent.corners[static_cast<size_t>(i)] = {(i & 1) ? high.x() : low.x(), (i & 2) ? high.y() : low.y(),
-                                              (i & 4) ? high.z() : low.z()};
+    extent.bounding_points.emplace_back((i & 1) ? high.x() : low.x(), (i & 2) ? high.y() : low.y(),
+                                        (i & 4) ? high.z() : low.z());
   return extent;
 }
 
@@ -50,8 +56,8 @@ std::optional<StateWindow> automatic_window_size(const ObjectExtent& object, con
   if (!(c.z() > 0) || !c.allFinite()) return std::nullopt;
   const Eigen::Vector2d middle = camera.project(c);
   double half_u = 0, half_v = 0;
-  for (const Eigen::Vector3d& corner : object.corners) {
-    const Eigen::Vector3d p = pose.rotation * corner + pose.translation;
+  for (const Eigen::Vector3d& point : object.bounding_points) {
+    const Eigen::Vector3d p = pose.rotation * point + pose.translation;
     if (!(p.z() > 0) || !p.allFinite()) return whole_image(camera);  // its projection is unbounded
     const Eigen::Vector2d q = camera.project(p);
     half_u = std::max(half_u, std::abs(q.x() - middle.x()));

@@ -3,7 +3,6 @@
 // which every particle keeps its per-pixel occlusion state, rows of width x height values. The
 // reference and the device filters size and place it with these same functions, from the same poses,
 // so both keep the same pixels. Its pixels outside the last frame's window start fresh.
-#include <array>
 #include <cstddef>
 #include <depthtrack/camera.hpp>
 #include <depthtrack/mesh.hpp>
@@ -11,6 +10,7 @@
 #include <depthtrack/tracker_config.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace depthtrack::model {
 
@@ -27,10 +27,12 @@ struct StateWindow {
   bool operator==(const StateWindow&) const = default;
 };
 
-// What the automatic window is sized from: the corners of the mesh's bounding box and the point the
-// window is centred on (the mesh centre), in the object frame.
+// What the automatic window is sized from, in the object frame: points whose projections reach as far as
+// the mesh's (the vertices of its convex hull: a few hundred of a scanned mesh's thousands, projected each
+// frame on the host; the 8 corners of its bounding box where the mesh spans no volume, which reach
+// farther) and the point the window is centred on (the mesh centre).
 struct ObjectExtent {
-  std::array<Eigen::Vector3d, 8> corners;
+  std::vector<Eigen::Vector3d> bounding_points;
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
 };
 ObjectExtent object_extent(const Mesh& mesh);
@@ -47,8 +49,8 @@ StateWindow state_window_size(const TrackerConfig& config, const Camera& camera)
 
 // The automatic window's size for the object at `pose`: odd sides centred on the pixel nearest the
 // projected mesh centre (where state_window_at puts the middle), reaching every pixel centre within the
-// projection of the bounding box plus the margins; clamped to the image, and the whole image where a
-// corner lies behind the camera plane. Nothing where the mesh centre is not in front of the camera or
+// projection of the bounding points plus the margins; clamped to the image, and the whole image where a
+// bounding point lies behind the camera plane. Nothing where the mesh centre is not in front of the camera or
 // not finite (the pose says nothing about the object's size in the image).
 std::optional<StateWindow> automatic_window_size(const ObjectExtent& object, const Pose& pose, const Camera& camera);
 
