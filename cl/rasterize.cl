@@ -126,9 +126,12 @@ DT_DEVICE_FN int dt_centre_range(dt_point a, dt_point b, dt_point c, dt_camera c
  * triangle order. With local_tile (render_weigh.cl's tile in work-group memory) it keeps the nearer
  * depth there, as tile does in global memory, for the pixels of band only (a box's rows, stored row by
  * row at the band's own width): the pixels a pose covers may be more than the tile holds. */
-DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_rigid pose, __global const float* planes,
-                                     dt_camera cam, __global uint* tile, __global uint* ids, __global dt_u64* nearest,
-                                     DT_LOCAL_PTR uint* local_tile, dt_pixel_box band, uint triangle) {
+/* With skip_rows and row_count, only those of its rows: row_count rows from the (skip_rows + 1)-th it
+ * would draw (render_weigh.cl hands a large triangle's rows to different work-items). */
+DT_DEVICE_FN void dt_raster_triangle_rows(dt_point a, dt_point b, dt_point c, dt_rigid pose,
+                                          __global const float* planes, dt_camera cam, __global uint* tile,
+                                          __global uint* ids, __global dt_u64* nearest, DT_LOCAL_PTR uint* local_tile,
+                                          dt_pixel_box band, uint triangle, int skip_rows, int row_count) {
   const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
   if (area == 0.0f || !isfinite(area)) return;
   int u0, u1, v0, v1;
@@ -140,6 +143,9 @@ DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_rigi
     v1 = min(v1, DT_CAST(int, band.v0 + band.height) - 1);
     if (u0 > u1 || v0 > v1) return;
   }
+  v0 += skip_rows;
+  if (v0 > v1) return;
+  if (v1 - v0 >= row_count) v1 = v0 + row_count - 1; /* (v0 + row_count may pass int's range) */
   if (area < 0.0f) { /* no culling: give every triangle the same orientation */
     const dt_point t = b;
     b = c;
@@ -173,6 +179,12 @@ DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_rigi
       }
     }
   }
+}
+
+DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_rigid pose, __global const float* planes,
+                                     dt_camera cam, __global uint* tile, __global uint* ids, __global dt_u64* nearest,
+                                     DT_LOCAL_PTR uint* local_tile, dt_pixel_box band, uint triangle) {
+  dt_raster_triangle_rows(a, b, c, pose, planes, cam, tile, ids, nearest, local_tile, band, triangle, 0, 0x7fffffff);
 }
 
 DT_DEVICE_FN dt_point dt_project(dt_vec3 p, dt_camera cam) {
@@ -238,29 +250,38 @@ DT_DEVICE_FN dt_point dt_point_at(DT_LOCAL_PTR const float* points, uint i) {
   return p;
 }
 
-/* Triangle t from the projected points, when every vertex lies in front of the near plane (nothing is
- * cut): as dt_draw_triangle draws it. */
-DT_DEVICE_FN void dt_draw_projected_triangle(DT_LOCAL_PTR const float* points, __global const uint* triangles, uint t,
-                                             dt_rigid pose, __global const float* planes, dt_camera cam,
-                                             DT_LOCAL_PTR uint* local_tile, dt_pixel_box band) {
+/* row_count rows from row `row` (counted from its first in band) of triangle t from the projected points,
+ * when every vertex lies in front of the near plane (nothing is cut): those rows as dt_draw_triangle
+ * draws them. */
+DT_DEVICE_FN void dt_draw_projected_triangle_rows(DT_LOCAL_PTR const float* points, __global const uint* triangles,
+                                                  uint t, uint row, uint row_count, dt_rigid pose,
+                                                  __global const float* planes, dt_camera cam,
+                                                  DT_LOCAL_PTR uint* local_tile, dt_pixel_box band) {
   __global const uint* corners = triangles + 3 * DT_CAST(ulong, t);
-  dt_raster_triangle(dt_point_at(points, corners[0]), dt_point_at(points, corners[1]), dt_point_at(points, corners[2]),
-                     pose, planes, cam, 0, 0, 0, local_tile, band, t);
+  dt_raster_triangle_rows(dt_point_at(points, corners[0]), dt_point_at(points, corners[1]),
+                          dt_point_at(points, corners[2]), pose, planes, cam, 0, 0, 0, local_tile, band, t,
+                          DT_CAST(int, row), DT_CAST(int, row_count));
 }
 
-/* Whether triangle t, from the projected points, draws anything in band: dt_raster_triangle's first tests
- * (not degenerate, a pixel centre in its box and the band's rows) on the same floats, so no triangle that
- * draws is passed over. */
-DT_DEVICE_FN int dt_projected_triangle_draws(DT_LOCAL_PTR const float* points, __global const uint* triangles, uint t,
-                                             dt_camera cam, dt_pixel_box band) {
+/* How many of band's rows triangle t, from the projected points, may draw in (0: none), and in how many
+ * of its columns (*columns): dt_raster_triangle's first tests (not degenerate, a pixel centre in its box)
+ * and its pixels within the band's, on the same floats, so no triangle that draws is passed over and
+ * each row it draws is counted. */
+DT_DEVICE_FN uint dt_projected_triangle_rows(DT_LOCAL_PTR const float* points, __global const uint* triangles, uint t,
+                                             dt_camera cam, dt_pixel_box band, uint* columns) {
   __global const uint* corners = triangles + 3 * DT_CAST(ulong, t);
   const dt_point a = dt_point_at(points, corners[0]), b = dt_point_at(points, corners[1]),
                  c = dt_point_at(points, corners[2]);
   const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
-  if (area == 0.0f || !isfinite(area)) return 0;
   int u0, u1, v0, v1;
-  return dt_centre_range(a, b, c, cam, &u0, &u1, &v0, &v1) && v1 >= DT_CAST(int, band.v0) &&
-         v0 < DT_CAST(int, band.v0 + band.height);
+  if (area == 0.0f || !isfinite(area) || !dt_centre_range(a, b, c, cam, &u0, &u1, &v0, &v1)) return 0;
+  u0 = max(u0, DT_CAST(int, band.u0));
+  u1 = min(u1, DT_CAST(int, band.u0 + band.width) - 1);
+  v0 = max(v0, DT_CAST(int, band.v0));
+  v1 = min(v1, DT_CAST(int, band.v0 + band.height) - 1);
+  if (u1 < u0 || v1 < v0) return 0;
+  *columns = DT_CAST(uint, u1 - u0 + 1);
+  return DT_CAST(uint, v1 - v0 + 1);
 }
 
 /* The pixels a pose can cover: its projected vertices' bounding box, a pixel wider on each side (the

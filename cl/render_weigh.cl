@@ -24,7 +24,10 @@
 #ifndef DT_PROPAGATE_INSIDE
 #define DT_PROPAGATE_INSIDE 0
 #endif
-#define DT_DRAW_LIST 512u /* triangles listed per chunk (2 KB of work-group memory) */
+#define DT_DRAW_LIST 256u /* triangles listed per chunk, each with its first row's place (2 KB) */
+#define DT_ROW_BITS 23u   /* the list's tally: rows listed in its low bits, triangles above them */
+#define DT_ROW_MASK ((1u << DT_ROW_BITS) - 1u)
+#define DT_DRAWN_AT_ONCE 4u /* a triangle of at most this many candidate pixels is drawn as it is listed */
 
 __kernel DT_RESIDENCY void render_weigh(__global float* states, __global const float* vertices,
                                         __global const uint* triangles, __global const float* planes,
@@ -41,7 +44,8 @@ __kernel DT_RESIDENCY void render_weigh(__global float* states, __global const f
 #if DT_SHARED_POINTS > 0
   __local float points[2 * DT_SHARED_POINTS]; /* the pose's projected vertices */
   __local uint listed[DT_DRAW_LIST];          /* triangles to draw, a chunk at a time */
-  __local uint listed_count;
+  __local uint first_row[DT_DRAW_LIST];       /* the place of each one's first row among the chunk's */
+  __local uint listed_tally;                  /* (triangles << DT_ROW_BITS) | rows, as listed so far */
 #endif
   const uint particle = get_group_id(0), lid = get_local_id(0), pixels = cam.width * cam.height;
   dt_weigh_begin(frame_times, now, now_index);
@@ -90,23 +94,45 @@ __kernel DT_RESIDENCY void render_weigh(__global float* states, __global const f
     barrier(CLK_LOCAL_MEM_FENCE);
 #if DT_SHARED_POINTS > 0
     /* Every vertex in front (the usual case): the triangles that hold a pixel centre in the band (few of
-     * a fine mesh's; which, and how many for each work-item, vary) are listed from the projected points,
-     * then drawn by the work-items in turn, so a group does not wait at the barrier for the work-item
-     * that drew the most (on the H200 most of the kernel's stalls). The chunk loop's bounds are kernel
+     * a fine mesh's; which, and how many for each work-item, vary) are listed from the projected points
+     * with their rows, then the rows are drawn by the work-items in turn, so a group does not wait at the
+     * barrier for the work-item that drew the most (on the H200 most of the kernel's stalls; a coarse
+     * mesh's large triangles, drawn whole by one work-item each, left most of a group waiting). One
+     * atomic add gives a triangle its place in the list and its first row's place among the rows, so
+     * both rise together and a row finds its triangle by bisection. The chunk loop's bounds are kernel
      * arguments, so every work-item meets every barrier (PoCL faults on barriers that a value from
-     * memory decides on). */
+     * memory decides on). A small triangle (most of a fine mesh's: one candidate pixel or none) is
+     * drawn where it is found, which saves listing it and setting it up a second time. */
     for (uint first = 0; first < triangle_count; first += DT_DRAW_LIST) {
-      if (lid == 0) listed_count = 0;
+      if (lid == 0) listed_tally = 0;
       barrier(CLK_LOCAL_MEM_FENCE);
       const uint end = triangle_count - first < DT_DRAW_LIST ? triangle_count : first + DT_DRAW_LIST;
       if (projected)
-        for (uint t = first + lid; t < end; t += DT_GROUP_SIZE)
-          if (dt_projected_triangle_draws(points, triangles, t, cam, band))
-            listed[dt_atomic_add_local_u32(&listed_count, 1u)] = t;
+        for (uint t = first + lid; t < end; t += DT_GROUP_SIZE) {
+          uint columns = 0;
+          const uint rows = dt_projected_triangle_rows(points, triangles, t, cam, band, &columns);
+          if (rows > 0 && rows * columns <= DT_DRAWN_AT_ONCE) {
+            dt_draw_projected_triangle_rows(points, triangles, t, 0, rows, pose, planes, cam, tile, band);
+          } else if (rows > 0) {
+            const uint before = dt_atomic_add_local_u32(&listed_tally, (1u << DT_ROW_BITS) | rows);
+            listed[before >> DT_ROW_BITS] = t;
+            first_row[before >> DT_ROW_BITS] = before & DT_ROW_MASK;
+          }
+        }
       barrier(CLK_LOCAL_MEM_FENCE);
-      const uint count = listed_count;
-      for (uint i = lid; i < count; i += DT_GROUP_SIZE)
-        dt_draw_projected_triangle(points, triangles, listed[i], pose, planes, cam, tile, band);
+      const uint tally = listed_tally, count = tally >> DT_ROW_BITS, rows = tally & DT_ROW_MASK;
+      for (uint r = lid; r < rows; r += DT_GROUP_SIZE) {
+        uint low = 0, high = count; /* the last triangle whose first row is at or before row r */
+        while (high - low > 1) {
+          const uint middle = (low + high) / 2;
+          if (first_row[middle] <= r)
+            low = middle;
+          else
+            high = middle;
+        }
+        dt_draw_projected_triangle_rows(points, triangles, listed[low], r - first_row[low], 1, pose, planes, cam, tile,
+                                        band);
+      }
       barrier(CLK_LOCAL_MEM_FENCE);
     }
 #endif

@@ -3,10 +3,11 @@
 # ycbv-0000's three objects. Carry .devdeps, .device, .devdata and build-carry-bin with one folder per
 # build (depthtrack_bench and libdepthtrack.so.0 each, built on the CPU machine) and probe/libtimeline.so
 # (scripts/probes/cuda_timeline.cpp). VARIANTS names them: a build's folder ("new"), or a build and one
-# of scripts/probes/kernel_variants.py's kernel variants ("new:no_draw", through DEPTHTRACK_KERNEL_DIR).
+# of scripts/probes/kernel_variants.py's kernel variants ("new:no_draw", through DEPTHTRACK_KERNEL_DIR;
+# "new:tree": the carried cl/ as it is).
 # REPS repetitions of the timing (default 2), then each variant once under the CUDA timeline probe
 # (bench.txt and the timelines in $OUT; summarize them with timeline_summary.py). TESTS=BUILD runs that build's TEST_TAGS (default [render],[device])
-# on both backends, each within TEST_LIMIT seconds. NCU=1: Nsight Compute's report of render_weigh (the
+# on both backends, each within TEST_LIMIT seconds (TEST_TREE=1: with the carried cl/). NCU=1: Nsight Compute's report of render_weigh (the
 # first object's frame 10 and the second's) for the first variant. Timelines and reports go to $OUT.
 set -uo pipefail
 source .device/enter .devdeps >/dev/null 2>&1
@@ -22,6 +23,7 @@ build_of() { local v=${1%%@*}; echo "${v%%:*}"; }
 variant_env() { # variant: its build's library path and, for a kernel variant, its kernel folder
   local v=${1%%@*} kernels=
   [[ $v == *:* ]] && kernels=$ablations/${v#*:}
+  [[ $v == *:tree ]] && kernels=$PWD/cl # the carried working tree's kernels
   echo "LD_LIBRARY_PATH=$PWD/build-carry-bin/$(build_of "$1"):${LD_LIBRARY_PATH:-} DEPTHTRACK_KERNEL_DIR=$kernels"
 }
 bench() { # variant backend frames [more environment]
@@ -48,6 +50,7 @@ grep ratio_to_mean "$out/bench.txt" # the rest there, and the timelines: timelin
 if [[ -n ${TESTS:-} ]]; then # each backend's run within TEST_LIMIT seconds (scripts/lib/device-tests.sh)
   source scripts/lib/device-tests.sh
   (export LD_LIBRARY_PATH=$PWD/build-carry-bin/$TESTS:$LD_LIBRARY_PATH TEST_LIMIT=${TEST_LIMIT:-150}
+    [[ ${TEST_TREE:-0} == 1 ]] && export DEPTHTRACK_KERNEL_DIR=$PWD/cl
     device_tests "build-carry-bin/$TESTS/depthtrack_tests" "${TEST_TAGS:-[render],[device]}")
 fi
 if [[ ${NCU:-0} == 1 ]] && command -v ncu >/dev/null; then

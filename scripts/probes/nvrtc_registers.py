@@ -6,7 +6,7 @@ Compiles FILE.cl with NVRTC (the CUDA backend's fixed options and prelude, to PT
 has CUDA 13's NVRTC and ptxas under /usr/local/cuda-13.0, or set CUDA_HOME).
 
 usage: nvrtc_registers.py cl/render_weigh.cl -DDT_GROUP_SIZE=128 -DDT_OCCLUSION=0 -DDT_TILE_PIXELS=2400 \
-         -DDT_SHARED_POINTS=1600 -DDT_PROPAGATE_INSIDE=1 -DDT_RESIDENT_GROUPS=8 [--arch sm_90]
+         -DDT_SHARED_POINTS=1600 -DDT_PROPAGATE_INSIDE=1 -DDT_RESIDENT_GROUPS=8 [--arch sm_90] [--ptx FILE]
 """
 import ctypes
 import os
@@ -21,7 +21,11 @@ CUDA = Path(os.environ.get("CUDA_HOME", "/usr/local/cuda-13.0"))
 
 def main():
     args = sys.argv[1:]
-    arch = "sm_90"
+    arch, ptx_out = "sm_90", None
+    if "--ptx" in args:
+        i = args.index("--ptx")
+        ptx_out = args[i + 1]
+        del args[i:i + 2]
     if "--arch" in args:
         i = args.index("--arch")
         arch = args[i + 1]
@@ -46,6 +50,8 @@ def main():
     nvrtc.nvrtcGetPTXSize(program, ctypes.byref(size))
     ptx = ctypes.create_string_buffer(size.value)
     nvrtc.nvrtcGetPTX(program, ptx)
+    if ptx_out:
+        Path(ptx_out).write_bytes(ptx.value)
     with tempfile.NamedTemporaryFile(suffix=".ptx") as f:
         f.write(ptx.value)
         f.flush()
