@@ -69,7 +69,8 @@ TEST_CASE("the automatic window from the hull's vertices is the window from ever
     std::uniform_real_distribution<double> unit(-1.0, 1.0), depth(0.25, 1.5);
     int narrower_than_the_box = 0;
     for (int i = 0; i < 500; ++i) {
-      const Eigen::Quaterniond q = Eigen::Quaterniond(unit(random), unit(random), unit(random), unit(random)).normalized();
+      const Eigen::Quaterniond q =
+          Eigen::Quaterniond(unit(random), unit(random), unit(random), unit(random)).normalized();
       const double z = depth(random);
       const Pose pose({0.3 * z * unit(random), 0.2 * z * unit(random), z}, q);
       const auto from_hull = model::automatic_window_size(hull, pose, camera);

@@ -30,11 +30,10 @@ std::optional<std::vector<int>> convex_hull_vertices(const std::vector<Eigen::Ve
   qhT state;
   qhT* qh = &state;
   qh_zero(qh, quiet.get());
-  // No options beyond the defaults: the hull's vertices, exact arithmetic where points are coplanar
-  // with a facet (merged, so no flat facet's points are listed twice over).
+  // Qhull's defaults: nearly coplanar facets are merged, so a point on a flat face is no vertex.
   char options[] = "qhull";
-  const int failed = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coordinates.data(), False, options,
-                                  nullptr, quiet.get());
+  const int failed =
+      qh_new_qhull(qh, 3, static_cast<int>(points.size()), coordinates.data(), False, options, nullptr, quiet.get());
   std::optional<std::vector<int>> indices;
   if (!failed) {
     indices.emplace();
