@@ -65,6 +65,17 @@ TEST_CASE("the automatic window from the hull's vertices is the window from ever
     CHECK(hull.bounding_points.size() >= 4);
     CHECK(hull.bounding_points.size() <= mesh.vertices.size());
     if (name == "mug") CHECK(hull.bounding_points.size() < mesh.vertices.size() / 4);  // worth the host's time
+    // The bounding box's corners, as the window was sized before: never smaller.
+    model::ObjectExtent box = all;
+    box.bounding_points.clear();
+    Eigen::Vector3d low = all.centre, high = all.centre;
+    for (const auto& p : all.bounding_points) {
+      low = low.cwiseMin(p);
+      high = high.cwiseMax(p);
+    }
+    for (int c = 0; c < 8; ++c)
+      box.bounding_points.emplace_back((c & 1) ? high.x() : low.x(), (c & 2) ? high.y() : low.y(),
+                                       (c & 4) ? high.z() : low.z());
     std::mt19937 random(11);
     std::uniform_real_distribution<double> unit(-1.0, 1.0), depth(0.25, 1.5);
     int narrower_than_the_box = 0;
@@ -78,17 +89,6 @@ TEST_CASE("the automatic window from the hull's vertices is the window from ever
       REQUIRE(from_hull.has_value() == from_all.has_value());
       if (!from_hull) continue;
       CHECK(*from_hull == *from_all);
-      // The bounding box's corners, as the window was sized before: never smaller.
-      model::ObjectExtent box = all;
-      box.bounding_points.clear();
-      Eigen::Vector3d low = all.centre, high = all.centre;
-      for (const auto& p : all.bounding_points) {
-        low = low.cwiseMin(p);
-        high = high.cwiseMax(p);
-      }
-      for (int c = 0; c < 8; ++c)
-        box.bounding_points.emplace_back((c & 1) ? high.x() : low.x(), (c & 2) ? high.y() : low.y(),
-                                         (c & 4) ? high.z() : low.z());
       const auto from_box = model::automatic_window_size(box, pose, camera);
       REQUIRE(from_box);
       CHECK(from_box->width >= from_hull->width);
