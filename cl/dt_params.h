@@ -33,10 +33,12 @@ typedef struct {
   dt_u32 mode_count;
 } dt_initial;
 
-/* The working camera and clip range the rasterizer draws with (rasterize.cl). */
+/* The working camera and clip range the rasterizer draws with (rasterize.cl), and whether it skips the
+ * triangles facing away (1 where the mesh bounds a solid wound outward: core/mesh_topology.hpp). */
 typedef struct {
   float fx, fy, cx, cy, near, far;
   dt_u32 width, height;
+  dt_u32 cull_back_faces;
 } dt_camera;
 
 /* The pose refinement's settings and the mesh facts its stopping rule needs (refine.cl, refine_spread.cl). */

@@ -3,7 +3,8 @@
  * with an atomic minimum on the float's bits (positive floats order like their bit patterns).
  * Conventions of reference::Rasterizer, in float: a pixel is covered when its centre lies inside the
  * projected triangle (top-left rule on ties), its depth is that of the triangle's plane along the
- * ray through the centre, triangles are cut at z = near, depths beyond far discarded, no culling.
+ * ray through the centre, triangles are cut at z = near, depths beyond far discarded, back faces
+ * culled where the mesh bounds a solid (dt_camera.cull_back_faces).
  * The depths are kept in the atlas itself: a tile in local memory measured no faster (PoCL: equal;
  * H100: 5 % faster for the handset, 7-16 % slower for the 69k-triangle bunny, as it lowers occupancy)
  * and fits only up to about 100x100 pixels. DT_GROUP_SIZE: work-items per group.
@@ -117,6 +118,13 @@ DT_DEVICE_FN int dt_centre_range(dt_point a, dt_point b, dt_point c, dt_camera c
   return *u0 <= *u1 && *v0 <= *v1;
 }
 
+/* Whether a triangle of twice this signed area in the image is drawn: not degenerate, and facing the
+ * camera where cam culls the back faces (wound outward, a triangle facing the camera runs clockwise in the
+ * image, v down: area < 0). */
+DT_DEVICE_FN int dt_drawn_facing(float area, dt_camera cam) {
+  return area != 0.0f && isfinite(area) && !(cam.cull_back_faces && area > 0.0f);
+}
+
 /* Keeps, at every pixel of the tile whose centre lies inside triangle abc, the nearer of its depth
  * and the tile's. With ids (a second pass over a finished tile, for the pose refinement), it instead
  * writes triangle where its depth is the tile's (to 1e-6 relative): the lowest such index wins, as
@@ -133,7 +141,7 @@ DT_DEVICE_FN void dt_raster_triangle_rows(dt_point a, dt_point b, dt_point c, dt
                                           __global uint* ids, __global dt_u64* nearest, DT_LOCAL_PTR uint* local_tile,
                                           dt_pixel_box band, uint triangle, int skip_rows, int row_count) {
   const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
-  if (area == 0.0f || !isfinite(area)) return;
+  if (!dt_drawn_facing(area, cam)) return;
   int u0, u1, v0, v1;
   if (!dt_centre_range(a, b, c, cam, &u0, &u1, &v0, &v1)) return;
   if (local_tile) { /* the band's pixels only: a box's rows, as many as the tile holds */
@@ -146,7 +154,7 @@ DT_DEVICE_FN void dt_raster_triangle_rows(dt_point a, dt_point b, dt_point c, dt
   v0 += skip_rows;
   if (v0 > v1) return;
   if (v1 - v0 >= row_count) v1 = v0 + row_count - 1; /* (v0 + row_count may pass int's range) */
-  if (area < 0.0f) { /* no culling: give every triangle the same orientation */
+  if (area < 0.0f) { /* give every triangle drawn the same orientation */
     const dt_point t = b;
     b = c;
     c = t;
@@ -274,7 +282,7 @@ DT_DEVICE_FN uint dt_projected_triangle_rows(DT_LOCAL_PTR const float* points, _
                  c = dt_point_at(points, corners[2]);
   const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
   int u0, u1, v0, v1;
-  if (area == 0.0f || !isfinite(area) || !dt_centre_range(a, b, c, cam, &u0, &u1, &v0, &v1)) return 0;
+  if (!dt_drawn_facing(area, cam) || !dt_centre_range(a, b, c, cam, &u0, &u1, &v0, &v1)) return 0;
   u0 = max(u0, DT_CAST(int, band.u0));
   u1 = min(u1, DT_CAST(int, band.u0 + band.width) - 1);
   v0 = max(v0, DT_CAST(int, band.v0));

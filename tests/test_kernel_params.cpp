@@ -41,7 +41,8 @@ TEST_CASE("the camera parameters are the working camera with the clip range", "[
   TrackerConfig config;
   config.near_plane = 0.1;
   config.observation.max_depth = 4.0;
-  const dt_camera c = model::camera_params(Camera::make(80, 60, 65.5, 66.5, 39.5, 29.5), config);
+  const Camera camera = Camera::make(80, 60, 65.5, 66.5, 39.5, 29.5);
+  const dt_camera c = model::camera_params(camera, config, true);
   CHECK(c.fx == 65.5f);
   CHECK(c.fy == 66.5f);
   CHECK(c.cx == 39.5f);
@@ -50,6 +51,8 @@ TEST_CASE("the camera parameters are the working camera with the clip range", "[
   CHECK(c.far == 4.0f);
   CHECK(c.width == 80u);
   CHECK(c.height == 60u);
+  CHECK(c.cull_back_faces == 1u);
+  CHECK(model::camera_params(camera, config, false).cull_back_faces == 0u);
 }
 
 TEST_CASE("a float compared with the float threshold decides as a double compared with the double one", "[model]") {

@@ -79,7 +79,7 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
   const unsigned now_index = 40;
 
   const MeshBuffers mesh_buffers(*q, mesh);
-  const dt_camera cam = model::camera_params(camera, config);
+  const dt_camera cam = model::camera_params(camera, config, mesh_buffers.cull_back_faces);
   const dt_model m = model::model_params(config);
   const auto layout = render::AtlasLayout::particle_major(static_cast<int>(count), 80, 60);
   const auto range = compute::NdRange::linear(count * 128, 128);

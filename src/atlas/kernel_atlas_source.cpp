@@ -29,10 +29,10 @@ class KernelAtlasSource final : public AtlasSource {
             static_cast<int>(kernel_atlas_tiles(particles_, static_cast<size_t>(camera.pixel_count()),
                                                 config.atlas_particles, queue.info().max_allocation)),
             camera.width, camera.height)),
-        camera_(model::camera_params(camera, config)),
+        mesh_(queue_, mesh),
+        camera_(model::camera_params(camera, config, mesh_.cull_back_faces)),
         program_(programs.program("rasterize.cl", rasterize_definitions(kGroupSize, queue.info()))),
-        kernel_(program_->kernel("rasterize")),
-        mesh_(queue_, mesh) {}
+        kernel_(program_->kernel("rasterize")) {}
 
   const render::AtlasLayout& layout() const override { return layout_; }
 
@@ -75,10 +75,10 @@ class KernelAtlasSource final : public AtlasSource {
   compute::Queue& queue_;
   size_t particles_;
   render::AtlasLayout layout_;
+  MeshBuffers mesh_;
   dt_camera camera_;
   std::shared_ptr<compute::Program> program_;
   std::unique_ptr<compute::Kernel> kernel_;
-  MeshBuffers mesh_;
   bool boxed_ = false;
   compute::Buffer<unsigned> boxes_{queue_, 4};  // one box's worth until draw_boxed()
 };

@@ -2,13 +2,15 @@
 
 #include "atlas/triangle_planes.hpp"
 #include "compute/resident_groups.hpp"
+#include "core/mesh_topology.hpp"
 
 namespace depthtrack {
 
 MeshBuffers::MeshBuffers(compute::Queue& queue, const Mesh& mesh)
     : vertices(queue, mesh.vertices.size() * 3),
       triangles(queue, mesh.triangles.size() * 3),
-      planes(queue, mesh.triangles.size() * 4) {
+      planes(queue, mesh.triangles.size() * 4),
+      cull_back_faces(bounds_solid_outward(mesh)) {
   // Eigen's Vector3f and Vector3i are packed: the mesh uploads as it is.
   vertices.upload(std::span<const float>(mesh.vertices.front().data(), vertices.size()));
   triangles.upload(

@@ -1,6 +1,6 @@
 #pragma once
 // The mesh as cl/rasterize.cl's drawing functions read it, on the device: vertices, triangles, the
-// triangles' planes (the camera is model::camera_params). The atlas rasterizer and the pose
+// triangles' planes, and whether its back faces may be culled (the camera is model::camera_params). The atlas rasterizer and the pose
 // refinement both draw with them.
 #include <depthtrack/mesh.hpp>
 #include <string>
@@ -18,6 +18,7 @@ struct MeshBuffers {
   compute::Buffer<float> vertices;      // 3 per vertex, object frame
   compute::Buffer<unsigned> triangles;  // 3 vertex indices each
   compute::Buffer<float> planes;        // render::triangle_planes
+  bool cull_back_faces;                 // bounds_solid_outward: the kernels skip triangles facing away
 };
 
 // Work-group memory of dt_pose_box's reduction (cl/rasterize.cl: 5 floats a work-item), which rasterize

@@ -529,7 +529,7 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
     p->weighed.push_back(launch_step(
         *render_weigh_, per_particle_group, state_, render_weigh_mesh_->vertices, render_weigh_mesh_->triangles,
         render_weigh_mesh_->planes, render_weigh_mesh_->triangle_count(), render_weigh_mesh_->vertex_count(),
-        model::camera_params(camera_, config_), observed_, parents_, occlusion_, occlusion_time_, scratch_occlusion_,
+        model::camera_params(camera_, config_, render_weigh_mesh_->cull_back_faces), observed_, parents_, occlusion_, occlusion_time_, scratch_occlusion_,
         scratch_occlusion_time_, frame_times_->device(), log_likelihood_, log_weight_, model::model_params(config_),
         static_cast<float>(time_), now_index, static_cast<float>(dt), atlas_, static_cast<unsigned>(keep_atlas_),
         window, static_cast<unsigned>(dt > 0 && propagates_in_weigh_), seed_lo, seed_hi, frame_, motion));

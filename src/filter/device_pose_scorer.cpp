@@ -41,8 +41,8 @@ DevicePoseScorer::DevicePoseScorer(compute::Queue& queue, std::shared_ptr<const 
       batch_(batch_for(queue, pixels_)),
       // Particle-major: tile i is the i-th block of pixels, whatever the batch's fill.
       layout_(render::AtlasLayout::particle_major(static_cast<int>(batch_), camera.width, camera.height)),
-      camera_(model::camera_params(camera, config)),
       mesh_(queue, mesh),
+      camera_(model::camera_params(camera, config, mesh_.cull_back_faces)),
       rasterize_(programs_->rasterize->kernel("rasterize")),
       score_(programs_->score->kernel("score")) {}
 

@@ -42,8 +42,8 @@ class DevicePoseScorer final : public PoseScorer {
   TrackerConfig config_;
   size_t pixels_, batch_;
   render::AtlasLayout layout_;
-  dt_camera camera_;
   MeshBuffers mesh_;
+  dt_camera camera_;
   std::unique_ptr<compute::Kernel> rasterize_, score_;
   compute::Buffer<float> states_, atlas_, observed_, scores_;  // allocated by the first score()
   compute::Buffer<unsigned> unused_boxes_;                     // rasterize.cl's boxes, not written (whole tiles)

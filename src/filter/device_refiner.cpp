@@ -118,7 +118,7 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
                                                    in.dt, config_.loss.pixel_sigmas);
   if (layout_ == RefineLayout::Spread) return refine_spread(estimate, in, args);
   const auto one_group = compute::NdRange::linear(kRefineGroup, kRefineGroup);
-  const dt_camera cam = model::camera_params(camera_, config_);
+  const dt_camera cam = model::camera_params(camera_, config_, mesh_.cull_back_faces);
   const dt_model model = model::model_params(config_);
   compute::EventPtr fit;
   if (layout_ == RefineLayout::OneLaunch) {
@@ -147,7 +147,7 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
 // stops the fit on the device, and what follows returns at once.
 std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in,
                                                             const dt_refine_args& args) {
-  const dt_camera cam = model::camera_params(camera_, config_);
+  const dt_camera cam = model::camera_params(camera_, config_, mesh_.cull_back_faces);
   const dt_model model = model::model_params(config_);
   const auto per_triangle =
       compute::NdRange::linear(round_up(std::max<size_t>(mesh_.triangle_count(), 1), kLinearGroup), kLinearGroup);

@@ -40,11 +40,12 @@ dt_window window_params(const StateWindow& now, const StateWindow& last, const C
                    static_cast<dt_u32>(camera.width),   static_cast<float>(fresh_occlusion(config))};
 }
 
-dt_camera camera_params(const Camera& camera, const TrackerConfig& config) {
+dt_camera camera_params(const Camera& camera, const TrackerConfig& config, bool cull_back_faces) {
   return dt_camera{static_cast<float>(camera.fx),         static_cast<float>(camera.fy),
                    static_cast<float>(camera.cx),         static_cast<float>(camera.cy),
                    static_cast<float>(config.near_plane), static_cast<float>(config.observation.max_depth),
-                   static_cast<dt_u32>(camera.width),     static_cast<dt_u32>(camera.height)};
+                   static_cast<dt_u32>(camera.width),     static_cast<dt_u32>(camera.height),
+                   cull_back_faces ? 1u : 0u};
 }
 
 dt_refine_args refine_params(const Refinement& refine, const Eigen::Vector3d& centre, double radius,

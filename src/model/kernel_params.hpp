@@ -19,7 +19,8 @@ static_assert(sizeof(dt_model) == 28 && offsetof(dt_model, keep) == 12 && offset
 static_assert(sizeof(dt_motion) == 28 && offsetof(dt_motion, dt) == 12 && offsetof(dt_motion, centre_z) == 24);
 static_assert(sizeof(dt_initial) == 24 && offsetof(dt_initial, centre_x) == 8 &&
               offsetof(dt_initial, mode_count) == 20);
-static_assert(sizeof(dt_camera) == 32 && offsetof(dt_camera, far) == 20 && offsetof(dt_camera, height) == 28);
+static_assert(sizeof(dt_camera) == 36 && offsetof(dt_camera, far) == 20 && offsetof(dt_camera, height) == 28 &&
+              offsetof(dt_camera, cull_back_faces) == 32);
 static_assert(sizeof(dt_refine_args) == 48 && offsetof(dt_refine_args, dt) == 24 &&
               offsetof(dt_refine_args, iterations) == 28 && offsetof(dt_refine_args, vertex_count) == 40 &&
               offsetof(dt_refine_args, pixel_sigmas) == 44);
@@ -34,8 +35,9 @@ dt_initial initial_params(const InitialSpread& spread, const Eigen::Vector3d& ce
 // The state window this frame (now) and the rows read (last), with the fresh occlusion probability.
 dt_window window_params(const StateWindow& now, const StateWindow& last, const Camera& camera,
                         const TrackerConfig& config);
-// The working camera with the configuration's near plane and the model's far limit.
-dt_camera camera_params(const Camera& camera, const TrackerConfig& config);
+// The working camera with the configuration's near plane and the model's far limit; cull_back_faces where
+// the mesh drawn bounds a solid wound outward (MeshBuffers::cull_back_faces).
+dt_camera camera_params(const Camera& camera, const TrackerConfig& config, bool cull_back_faces);
 // The kernels' DT_OCCLUSION definition for the storage mode, "DT_OCCLUSION=<DT_PER_PIXEL_TIME...>".
 std::string occlusion_definition(OcclusionStorage storage);
 // The refinement's settings for a mesh with this centre (object frame), radius and vertex count, at

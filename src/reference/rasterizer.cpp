@@ -5,10 +5,16 @@
 #include <cmath>
 #include <depthtrack/error.hpp>
 
+#include "core/mesh_topology.hpp"
+
 namespace depthtrack::reference {
 
 Rasterizer::Rasterizer(const Mesh& mesh, const Camera& camera, double near, double far)
-    : triangles_(mesh.triangles), camera_(camera), near_(near), far_(far) {
+    : triangles_(mesh.triangles),
+      camera_(camera),
+      near_(near),
+      far_(far),
+      cull_back_faces_(bounds_solid_outward(mesh)) {
   camera.validate();
   if (!(near > 0 && far > near)) throw InputError("rasterizer needs 0 < near < far");
   vertices_.reserve(mesh.vertices.size());
@@ -138,8 +144,9 @@ void Rasterizer::rasterize_triangle(const ScreenVertex& a, const ScreenVertex& b
                                     PixelBox& box) const {
   ScreenVertex b = b_in, c = c_in;
   double area = edge(a.u, a.v, b.u, b.v, c.u, c.v);
-  if (area == 0 || !std::isfinite(area)) return;
-  if (area < 0) {  // no culling: give every triangle the same orientation
+  // Facing the camera, a triangle wound outward runs clockwise in the image (v down): area < 0.
+  if (area == 0 || !std::isfinite(area) || (cull_back_faces_ && area > 0)) return;
+  if (area < 0) {  // give every triangle drawn the same orientation
     std::swap(b, c);
     area = -area;
   }

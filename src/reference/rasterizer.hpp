@@ -6,7 +6,9 @@
 //  - its depth is the camera-frame z of the triangle's plane along the ray through that centre
 //    (what perspective-correct interpolation of z gives);
 //  - geometry nearer than `near` is clipped away (triangles are cut at z = near), fragments farther
-//    than `far` are discarded; there is no back-face culling; uncovered pixels hold 0.
+//    than `far` are discarded; uncovered pixels hold 0;
+//  - where the mesh bounds a solid wound outward (bounds_solid_outward), the triangles facing away from
+//    the camera are skipped: never the nearest seen from outside, so the depths are the same.
 #include <depthtrack/camera.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/pose.hpp>
@@ -40,6 +42,8 @@ class Rasterizer {
   void split_over(std::shared_ptr<ThreadPool> pool);
 
   const Camera& camera() const { return camera_; }
+  // Whether the triangles facing away are skipped (the mesh bounds a solid wound outward).
+  bool culls_back_faces() const { return cull_back_faces_; }
 
  private:
   struct ScreenVertex {
@@ -59,6 +63,7 @@ class Rasterizer {
   std::vector<Eigen::Vector3i> triangles_;
   Camera camera_;
   double near_, far_;
+  bool cull_back_faces_;  // bounds_solid_outward(mesh)
   mutable std::vector<Eigen::Vector3d> transformed_;  // scratch: vertices in the camera frame
   mutable std::vector<ScreenVertex> screen_;          // scratch: those in front of near, projected
   std::shared_ptr<ThreadPool> pool_;                  // split_over's, or null

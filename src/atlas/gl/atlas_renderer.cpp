@@ -6,6 +6,7 @@
 
 #include "atlas/gl/gl_program.hpp"
 #include "atlas/triangle_planes.hpp"
+#include "core/mesh_topology.hpp"
 #include "core/pose_state.hpp"
 #include "dt_state.h"
 
@@ -17,6 +18,7 @@ AtlasRenderer::AtlasRenderer(GlContext& context, const Mesh& mesh, const Camera&
   camera.validate();
   if (!(near > 0 && far > near)) throw InputError("atlas renderer needs 0 < near < far");
   if (mesh.vertices.empty() || mesh.triangles.empty()) throw InputError("atlas renderer needs a mesh with triangles");
+  cull_back_faces_ = bounds_solid_outward(mesh);
   max_size_ = options.max_texture_size > 0 ? std::min(options.max_texture_size, context.max_render_size())
                                            : context.max_render_size();
   context_.make_current();
@@ -191,6 +193,14 @@ void AtlasRenderer::draw() {
   gl_.BindTexture(GL_TEXTURE_BUFFER, pose_texture_);
   gl_.Uniform1i(tiles_per_row_location_, layout_.tiles_per_row);
   for (int i = 0; i < 4; ++i) gl_.Enable(GL_CLIP_DISTANCE0 + static_cast<GLenum>(i));
+  if (cull_back_faces_) {
+    // Image row v is window row v (atlas.vert): a triangle wound outward runs clockwise facing the camera.
+    gl_.Enable(GL_CULL_FACE);
+    gl_.FrontFace(GL_CW);
+    gl_.CullFace(GL_BACK);
+  } else {
+    gl_.Disable(GL_CULL_FACE);
+  }
   gl_.Enable(GL_DEPTH_TEST);
   gl_.DepthFunc(GL_LESS);
   gl_.DepthMask(GL_TRUE);

@@ -75,6 +75,7 @@ class AtlasRenderer {
   int max_size_ = 0;
   long long max_buffer_texels_ = 0;
   GLsizei index_count_ = 0;
+  bool cull_back_faces_ = false;  // bounds_solid_outward(mesh): triangles facing away are never nearest
   GLuint program_ = 0, vertex_array_ = 0, vertex_buffer_ = 0, index_buffer_ = 0;
   GLuint pose_buffer_ = 0, pose_texture_ = 0, plane_buffer_ = 0, plane_texture_ = 0;
   GLint first_pose_location_ = -1, tiles_per_row_location_ = -1, page_size_location_ = -1;

@@ -15,6 +15,8 @@ namespace depthtrack::render {
   X(PFNGLGETERRORPROC, GetError)                               \
   X(PFNGLENABLEPROC, Enable)                                   \
   X(PFNGLDISABLEPROC, Disable)                                 \
+  X(PFNGLCULLFACEPROC, CullFace)                               \
+  X(PFNGLFRONTFACEPROC, FrontFace)                             \
   X(PFNGLVIEWPORTPROC, Viewport)                               \
   X(PFNGLCLEARCOLORPROC, ClearColor)                           \
   X(PFNGLCLEARDEPTHPROC, ClearDepth)                           \
