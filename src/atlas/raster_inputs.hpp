@@ -1,7 +1,7 @@
 #pragma once
 // The mesh as cl/rasterize.cl's drawing functions read it, on the device: vertices, triangles, the
-// triangles' planes, and whether its back faces may be culled (the camera is model::camera_params). The atlas rasterizer and the pose
-// refinement both draw with them.
+// triangles' planes, and whether its back faces may be culled (the camera is model::camera_params). The
+// atlas rasterizer and the pose refinement both draw with them.
 #include <depthtrack/mesh.hpp>
 #include <string>
 #include <vector>
