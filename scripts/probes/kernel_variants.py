@@ -10,6 +10,8 @@ that keep the results, tried before they are built into cl/.
   no_draw:   draws no triangle (the box is still found; every pixel is then only carried over)
   no_visits: visits no pixel (the drawing stays; the group's sum is 0)
   no_listed_draws: lists the triangles that draw but draws none of them (the listing's own cost)
+  list_all:  (candidate) every triangle that draws is listed and drawn row by row, none as it is found
+  draw_at_once_16: (candidate) triangles of up to 16 candidate pixels drawn as they are found (4 now)
   no_culling: draws the triangles facing away too, where the mesh bounds a solid (what culling saves;
              the depths stay the same)
   fused_on_cuda: (candidate) the drawing's products and sums fused explicitly on CUDA only, so that
@@ -34,6 +36,8 @@ VARIANTS = {
     "no_visits": [("render_weigh.cl", "for (; b < until; b += DT_GROUP_SIZE,", "for (; b < 0u; b += DT_GROUP_SIZE,")],
     "no_listed_draws": [("render_weigh.cl", "for (uint r = lid; r < rows; r += DT_GROUP_SIZE)",
                          "for (uint r = lid; r < 0u; r += DT_GROUP_SIZE)")],
+    "list_all": [("render_weigh.cl", "#define DT_DRAWN_AT_ONCE 4u", "#define DT_DRAWN_AT_ONCE 0u")],
+    "draw_at_once_16": [("render_weigh.cl", "#define DT_DRAWN_AT_ONCE 4u", "#define DT_DRAWN_AT_ONCE 16u")],
     "no_culling": [("rasterize.cl", "return area != 0.0f && isfinite(area) && !(cam.cull_back_faces && area > 0.0f);",
                     "return area != 0.0f && isfinite(area);")],
 }
