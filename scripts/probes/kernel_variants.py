@@ -12,6 +12,8 @@ that keep the results, tried before they are built into cl/.
   no_listed_draws: lists the triangles that draw but draws none of them (the listing's own cost)
   list_all:  (candidate) every triangle that draws is listed and drawn row by row, none as it is found
   draw_at_once_16: (candidate) triangles of up to 16 candidate pixels drawn as they are found (4 now)
+  chunk_1024: (candidate) 1,024 triangles looked at between drawing passes (256 now), the list's
+             overflow drawn as found: fewer barriers for a fine mesh
   no_culling: draws the triangles facing away too, where the mesh bounds a solid (what culling saves;
              the depths stay the same)
   fused_on_cuda: (candidate) the drawing's products and sums fused explicitly on CUDA only, so that
@@ -38,6 +40,7 @@ VARIANTS = {
                          "for (uint r = lid; r < 0u; r += DT_GROUP_SIZE)")],
     "list_all": [("render_weigh.cl", "#define DT_DRAWN_AT_ONCE 4u", "#define DT_DRAWN_AT_ONCE 0u")],
     "draw_at_once_16": [("render_weigh.cl", "#define DT_DRAWN_AT_ONCE 4u", "#define DT_DRAWN_AT_ONCE 16u")],
+    "chunk_1024": [("render_weigh.cl", "#define DT_LIST_CHUNK 256u", "#define DT_LIST_CHUNK 1024u")],
     "no_culling": [("rasterize.cl", "return area != 0.0f && isfinite(area) && !(cam.cull_back_faces && area > 0.0f);",
                     "return area != 0.0f && isfinite(area);")],
 }

@@ -87,11 +87,12 @@ bool propagates_inside_weigh(Renderer renderer, size_t pixels, size_t local_memo
 
 namespace {
 // render_weigh's work-group memory with shared_points' projections kept: the tile and reduction, the
-// points, the triangle list (cl/render_weigh.cl's DT_DRAW_LIST) with each one's first row, and its tally.
+// points, the triangle list (cl/render_weigh.cl's DT_DRAW_LIST) with each one's first row, its tally and
+// its rows once full.
 size_t render_weigh_group_bytes(size_t tile_pixels, size_t shared_points) {
   constexpr size_t kDrawList = 256;
   return render_weigh_local_bytes(tile_pixels) +
-         (shared_points > 0 ? shared_points * 2 * sizeof(float) + (2 * kDrawList + 1) * sizeof(unsigned) : 0);
+         (shared_points > 0 ? shared_points * 2 * sizeof(float) + (2 * kDrawList + 2) * sizeof(unsigned) : 0);
 }
 }  // namespace
 
