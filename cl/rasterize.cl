@@ -45,7 +45,7 @@ DT_DEVICE_FN dt_edge dt_make_edge(dt_point a, dt_point b) {
 }
 
 DT_DEVICE_FN float dt_edge_at(dt_edge e, float u, float v) {
-  return e.sign * (e.du * (v - e.ov) - e.dv * (u - e.ou));
+  return e.sign * dt_mul_add(e.du, v - e.ov, -(e.dv * (u - e.ou)));
 }
 
 DT_DEVICE_FN int dt_edge_admits(dt_edge e, float u, float v) {
@@ -64,7 +64,7 @@ typedef struct {
 } dt_rigid;
 
 DT_DEVICE_FN float dt_dot(dt_vec3 a, float x, float y, float z) {
-  return a.x * x + a.y * y + a.z * z;
+  return dt_mul_add(a.z, z, dt_mul_add(a.y, y, a.x * x));
 }
 
 /* The particle's pose, R of the normalized quaternion as atlas.vert forms it. */
@@ -100,7 +100,7 @@ DT_DEVICE_FN dt_plane dt_triangle_plane(dt_rigid m, __global const float* planes
   p.nx = dt_dot(m.r0, o[0], o[1], o[2]);
   p.ny = dt_dot(m.r1, o[0], o[1], o[2]);
   p.nz = dt_dot(m.r2, o[0], o[1], o[2]);
-  p.d = o[3] + p.nx * m.t.x + p.ny * m.t.y + p.nz * m.t.z;
+  p.d = dt_mul_add(p.nz, m.t.z, dt_mul_add(p.ny, m.t.y, dt_mul_add(p.nx, m.t.x, o[3])));
   return p;
 }
 
@@ -168,7 +168,8 @@ DT_DEVICE_FN void dt_raster_triangle_rows(dt_point a, dt_point b, dt_point c, dt
     for (int u = u0; u <= u1; ++u) {
       const float pu = DT_CAST(float, u);
       if (!dt_edge_admits(bc, pu, pv) || !dt_edge_admits(ca, pu, pv) || !dt_edge_admits(ab, pu, pv)) continue;
-      const float z = dt_divide(plane.d, plane.nx * ((pu - cam.cx) * inverse_fx) + plane.ny * ray_y + plane.nz);
+      const float z =
+          dt_divide(plane.d, dt_mul_add(plane.ny, ray_y, plane.nx * ((pu - cam.cx) * inverse_fx)) + plane.nz);
       if (!(z >= cam.near && z <= cam.far)) continue;
       const uint k = DT_CAST(uint, v) * cam.width + DT_CAST(uint, u);
       if (local_tile) {
@@ -198,8 +199,8 @@ DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_rigi
 DT_DEVICE_FN dt_point dt_project(dt_vec3 p, dt_camera cam) {
   const float inverse_z = 1.0f / p.z;
   dt_point s;
-  s.u = cam.fx * p.x * inverse_z + cam.cx;
-  s.v = cam.fy * p.y * inverse_z + cam.cy;
+  s.u = dt_mul_add(cam.fx * p.x, inverse_z, cam.cx);
+  s.v = dt_mul_add(cam.fy * p.y, inverse_z, cam.cy);
   return s;
 }
 
@@ -271,12 +272,12 @@ DT_DEVICE_FN void dt_draw_projected_triangle_rows(DT_LOCAL_PTR const float* poin
                           DT_CAST(int, row), DT_CAST(int, row_count));
 }
 
-/* How many of band's rows triangle t, from the projected points, may draw in (0: none), and in how many
- * of its columns (*columns): dt_raster_triangle's first tests (not degenerate, a pixel centre in its box)
+/* How many of band's rows triangle t, from the projected points, may draw in (0: none): dt_raster_triangle's
+ * first tests (not degenerate, a pixel centre in its box)
  * and its pixels within the band's, on the same floats, so no triangle that draws is passed over and
  * each row it draws is counted. */
 DT_DEVICE_FN uint dt_projected_triangle_rows(DT_LOCAL_PTR const float* points, __global const uint* triangles, uint t,
-                                             dt_camera cam, dt_pixel_box band, uint* columns) {
+                                             dt_camera cam, dt_pixel_box band) {
   __global const uint* corners = triangles + 3 * DT_CAST(ulong, t);
   const dt_point a = dt_point_at(points, corners[0]), b = dt_point_at(points, corners[1]),
                  c = dt_point_at(points, corners[2]);
@@ -288,7 +289,6 @@ DT_DEVICE_FN uint dt_projected_triangle_rows(DT_LOCAL_PTR const float* points, _
   v0 = max(v0, DT_CAST(int, band.v0));
   v1 = min(v1, DT_CAST(int, band.v0 + band.height) - 1);
   if (u1 < u0 || v1 < v0) return 0;
-  *columns = DT_CAST(uint, u1 - u0 + 1);
   return DT_CAST(uint, v1 - v0 + 1);
 }
 

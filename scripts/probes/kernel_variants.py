@@ -10,14 +10,10 @@ that keep the results, tried before they are built into cl/.
   no_draw:   draws no triangle (the box is still found; every pixel is then only carried over)
   no_visits: visits no pixel (the drawing stays; the group's sum is 0)
   no_listed_draws: lists the triangles that draw but draws none of them (the listing's own cost)
-  list_all:  (candidate) every triangle that draws is listed and drawn row by row, none as it is found
-  draw_at_once_16: (candidate) triangles of up to 16 candidate pixels drawn as they are found (4 now)
   chunk_1024: (candidate) 1,024 triangles looked at between drawing passes (256 now), the list's
              overflow drawn as found: fewer barriers for a fine mesh
   no_culling: draws the triangles facing away too, where the mesh bounds a solid (what culling saves;
              the depths stay the same)
-  fused_on_cuda: (candidate) the drawing's products and sums fused explicitly on CUDA only, so that
-             NVRTC cannot contract them differently in render_weigh and rasterize
   restrict:  (candidate) render_weigh's buffers declared restrict, so the compiler may move one pixel's
              loads above the last pixel's stores
 
@@ -32,33 +28,15 @@ VARIANTS = {
                   # the rows' pixels outside every box now hold whatever was there: read as fresh
                   ("dt_weigh.h", "p = dt_propagate_occlusion(m, kept, now - frame_times[seen]);",
                    "p = dt_propagate_occlusion(m, kept, now - frame_times[seen]);\n  if (!(p >= 0.0f && p <= 1.0f)) p = initial;")],
-    "no_draw": [("render_weigh.cl", "if (rows > 0 && rows * columns <= DT_DRAWN_AT_ONCE) {", "if (0) {"),
-                ("render_weigh.cl", "} else if (rows > 0) {", "} else if (0) {"),
+    "no_draw": [("render_weigh.cl", "          if (rows > 0) {", "          if (0) {"),
                 ("render_weigh.cl", "if (!projected) /* each triangle", "if (0) /* each triangle")],
     "no_visits": [("render_weigh.cl", "for (; b < until; b += DT_GROUP_SIZE,", "for (; b < 0u; b += DT_GROUP_SIZE,")],
     "no_listed_draws": [("render_weigh.cl", "for (uint r = lid; r < rows; r += DT_GROUP_SIZE)",
                          "for (uint r = lid; r < 0u; r += DT_GROUP_SIZE)")],
-    "list_all": [("render_weigh.cl", "#define DT_DRAWN_AT_ONCE 4u", "#define DT_DRAWN_AT_ONCE 0u")],
-    "draw_at_once_16": [("render_weigh.cl", "#define DT_DRAWN_AT_ONCE 4u", "#define DT_DRAWN_AT_ONCE 16u")],
     "chunk_1024": [("render_weigh.cl", "#define DT_LIST_CHUNK 256u", "#define DT_LIST_CHUNK 1024u")],
     "no_culling": [("rasterize.cl", "return area != 0.0f && isfinite(area) && !(cam.cull_back_faces && area > 0.0f);",
                     "return area != 0.0f && isfinite(area);")],
 }
-# Every product feeding a sum in the drawing fused on CUDA only, in the association the plain text rounds in
-# (elsewhere the same plain products and sums): NVRTC then has no contraction left to choose per call site.
-FUSED = "#ifdef __CUDACC_RTC__\n#define DT_FUSED(a, b, c) fmaf((a), (b), (c))\n#else\n#define DT_FUSED(a, b, c) ((a) * (b) + (c))\n#endif\n"
-VARIANTS["fused_on_cuda"] = [
-    ("rasterize.cl", '#include "dt_atlas.h"\n', '#include "dt_atlas.h"\n' + FUSED),
-    ("rasterize.cl", "return e.sign * (e.du * (v - e.ov) - e.dv * (u - e.ou));",
-     "return e.sign * DT_FUSED(e.du, v - e.ov, -(e.dv * (u - e.ou)));"),
-    ("rasterize.cl", "return a.x * x + a.y * y + a.z * z;", "return DT_FUSED(a.z, z, DT_FUSED(a.y, y, a.x * x));"),
-    ("rasterize.cl", "p.d = o[3] + p.nx * m.t.x + p.ny * m.t.y + p.nz * m.t.z;",
-     "p.d = DT_FUSED(p.nz, m.t.z, DT_FUSED(p.ny, m.t.y, DT_FUSED(p.nx, m.t.x, o[3])));"),
-    ("rasterize.cl", "plane.nx * ((pu - cam.cx) * inverse_fx) + plane.ny * ray_y + plane.nz)",
-     "DT_FUSED(plane.ny, ray_y, plane.nx * ((pu - cam.cx) * inverse_fx)) + plane.nz)"),
-    ("rasterize.cl", "s.u = cam.fx * p.x * inverse_z + cam.cx;", "s.u = DT_FUSED(cam.fx * p.x, inverse_z, cam.cx);"),
-    ("rasterize.cl", "s.v = cam.fy * p.y * inverse_z + cam.cy;", "s.v = DT_FUSED(cam.fy * p.y, inverse_z, cam.cy);"),
-]
 RESTRICTED = ["__global const float* vertices", "__global const uint* triangles", "__global const float* planes",
               "__global const float* observed", "__global const uint* parents", "__global const float* occlusion_from",
               "__global const dt_u16* time_from", "__global float* occlusion_to", "__global dt_u16* time_to",

@@ -42,6 +42,9 @@ __device__ inline uint dt_dim3(dim3 v, uint d) {
 #define dt_cospif cospif
 #define dt_sinpif sinpif
 #define dt_divide(a, b) __fdividef((a), (b)) /* 2 ulp; CUDA's `/` rounds correctly, and slowly */
+/* a * b + c rounded once: NVRTC contracts a plain product and sum into an FMA or not as each call site
+ * compiles, so two kernels drawing the same triangle could round its depth differently (cl/rasterize.cl) */
+#define dt_mul_add(a, b, c) fmaf((a), (b), (c))
 #define dt_as_uint __float_as_uint
 #define dt_as_float __uint_as_float
 #define dt_atomic_min_u32(p, v) atomicMin((p), (v))

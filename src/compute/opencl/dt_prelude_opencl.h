@@ -15,6 +15,7 @@ typedef ulong dt_u64;
 #define dt_cospif cospi
 #define dt_sinpif sinpi
 #define dt_divide(a, b) ((a) / (b))                  /* float division to OpenCL's default 2.5 ulp */
+#define dt_mul_add(a, b, c) ((a) * (b) + (c))        /* as written (CUDA's fuses: dt_prelude_cuda.h) */
 #define dt_as_uint as_uint                           /* a float's bits */
 #define dt_as_float as_float                         /* the float of some bits */
 #define dt_atomic_min_u32(p, v) atomic_min((p), (v)) /* 32-bit uint, global or local memory */
