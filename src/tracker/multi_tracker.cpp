@@ -109,12 +109,11 @@ std::vector<Estimate> MultiTracker::run(const DepthImage& working,
     for (size_t j = 0; j < n; ++j) masked[j] = occlusion_->frame_for(j, working, poses_, layers);
     timings_.masks_ms = clock.lap_ms();
   }
-  // Each object's enqueue time in its own slot: the objects may start on different threads.
-  timings_.object_enqueue_ms.assign(n, 0.0);
   const auto start = [&](size_t j) {
     const Stopwatch own;
     trackers_[j].start_frame(frame_of(j), sensor_frame, timestamp);
-    timings_.object_enqueue_ms[j] = own.elapsed_ms();
+    timings_.object_enqueue_ms.push_back(own.elapsed_ms());
+    timings_.enqueue_ms += timings_.object_enqueue_ms.back();
   };
   // After its estimate: the confidence and status, then the next frame's occluder layer (this estimate
   // drawn: the host confidence drew it already; a refining backend's confidence comes from the device,
@@ -124,50 +123,47 @@ std::vector<Estimate> MultiTracker::run(const DepthImage& working,
     if (occlusion_) trackers_[j].silhouette(estimates[j].pose);
   };
   // Each rethrows the first failure once every started object is collected; the poses then stay.
-  const auto sum_enqueues = [&] {
-    for (const double ms : timings_.object_enqueue_ms) timings_.enqueue_ms += ms;
-  };
-  try {
-    if (collects_on_pool_)
-      side_by_side(n, start, assess, estimates);
-    else
-      collected_here(n, start, assess, estimates);
-  } catch (...) {
-    sum_enqueues();
-    throw;
-  }
-  sum_enqueues();
+  if (collects_on_pool_)
+    pipelined(n, start, assess, estimates);
+  else
+    collected_here(n, start, assess, estimates);
   for (size_t j = 0; j < n; ++j) poses_[j] = estimates[j].pose;
   return estimates;
 }
 
-// Each object's whole frame on a thread of the pool, side by side: its enqueue, then its estimate waited
-// for, assessed and its next layer drawn. No object's enqueue waits for the ones before it (on an H100 an
-// object's CUDA enqueue took about 40 us, so enqueued one after another the third object's work started
-// about 80 us after the first's). collect_ms runs from the last enqueue to the last collection,
-// confidence_ms from there to the last assessment. An object whose start fails is not collected; every
-// started one is (ThreadPool::run runs every task), so none is left mid-frame; the first failure is
-// rethrown after.
-void MultiTracker::side_by_side(size_t n, const std::function<void(size_t)>& start,
-                                const std::function<void(size_t)>& assess, std::vector<Estimate>& estimates) {
+// Each object's estimate is waited for, assessed and its next layer drawn on the pool while this thread
+// enqueues the objects after it (the device finishes the first objects during the later enqueues: on
+// NVIDIA OpenCL an object's enqueue is most of its frame). collect_ms runs from the last enqueue to the
+// last collection, confidence_ms from there to the last assessment. A failed start drops the objects
+// after it; every started one is still collected (ThreadPool::run_as_released), so none is left mid-frame.
+void MultiTracker::pipelined(size_t n, const std::function<void(size_t)>& start,
+                             const std::function<void(size_t)>& assess, std::vector<Estimate>& estimates) {
   const Stopwatch clock;
-  std::vector<double> enqueued_at(n, 0.0), collected_at(n, 0.0);
+  double enqueued_at = 0;
+  std::vector<double> collected_at(n, 0.0);
   std::exception_ptr failure;
   try {
-    pool_->run(n, [&](size_t j, int) {
-      start(j);
-      enqueued_at[j] = clock.elapsed_ms();
-      estimates[j] = trackers_[j].collect_frame();
-      collected_at[j] = clock.elapsed_ms();
-      assess(j);
-    });
+    pool_->run_as_released(
+        n,
+        [&](const std::function<void()>& release) {
+          for (size_t j = 0; j < n; ++j) {
+            start(j);
+            // Before the last release, so that the last collection cannot precede it.
+            if (j + 1 == n) enqueued_at = clock.elapsed_ms();
+            release();
+          }
+        },
+        [&](size_t j, int) {
+          estimates[j] = trackers_[j].collect_frame();
+          collected_at[j] = clock.elapsed_ms();
+          assess(j);
+        });
   } catch (...) {
     failure = std::current_exception();
   }
-  const double last_enqueued = *std::max_element(enqueued_at.begin(), enqueued_at.end());
   const double last_collected = *std::max_element(collected_at.begin(), collected_at.end());
-  timings_.collect_ms = std::max(0.0, last_collected - last_enqueued);
-  timings_.confidence_ms = std::max(0.0, clock.elapsed_ms() - std::max(last_enqueued, last_collected));
+  timings_.collect_ms = std::max(0.0, last_collected - enqueued_at);
+  timings_.confidence_ms = std::max(0.0, clock.elapsed_ms() - std::max(enqueued_at, last_collected));
   if (failure) std::rethrow_exception(failure);
 }
 
