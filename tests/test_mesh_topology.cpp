@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "cli_support.hpp"
 #include "core/mesh_simplify.hpp"
 #include "core/mesh_topology.hpp"
 #include "reference/rasterizer.hpp"
@@ -25,7 +26,7 @@ TEST_CASE("a closed mesh wound outward bounds a solid; open, inverted or broken 
   const Mesh box = make_box({0.1f, 0.2f, 0.3f});
   CHECK(bounds_solid_outward(box));
   CHECK(bounds_solid_outward(builtin_demo_mesh()));  // two boxes sharing a face's plane
-  CHECK_FALSE(bounds_solid_outward(inverted(box)));   // closed, normals inward
+  CHECK_FALSE(bounds_solid_outward(inverted(box)));  // closed, normals inward
 
   Mesh open = box;
   open.triangles.pop_back();  // a hole: three edges have no partner
@@ -100,4 +101,26 @@ TEST_CASE("culling a solid's back faces keeps every depth and triangle of the re
     for (const float z : depth_culled) covered += z > 0;
   }
   CHECK(covered > 200 * 100);
+}
+
+TEST_CASE("track notes a mesh whose back faces cannot be culled, and says nothing of a closed one", "[topology][cli]") {
+  const auto dir = test::write_cli_sequence("cli_topology_note", 2);
+  const Mesh closed = make_box({0.1f, 0.08f, 0.06f});
+  Mesh open = closed;
+  open.triangles.pop_back();
+  test::write_obj(dir / "closed.obj", closed);
+  test::write_obj(dir / "open.obj", open);
+  const auto run = [&](const std::string& mesh) {
+    return test::run_cli("track --mesh " + (dir / mesh).string() + " --sequence " + (dir / "seq").string() +
+                             " --resolution 80x60 --particles 20 --init-from-gt --out " + (dir / "out.csv").string(),
+                         dir / ("log_" + mesh + ".txt"));
+  };
+  const auto [open_status, open_output] = run("open.obj");
+  INFO(open_output);
+  CHECK(open_status == 0);
+  CHECK_THAT(open_output, Catch::Contains("does not bound a solid wound outward"));
+  const auto [closed_status, closed_output] = run("closed.obj");
+  INFO(closed_output);
+  CHECK(closed_status == 0);
+  CHECK_THAT(closed_output, !Catch::Contains("does not bound a solid"));
 }

@@ -17,6 +17,7 @@
 #include "cli/run_summary.hpp"
 #include "cli/tracker_options.hpp"
 #include "core/mesh_simplify.hpp"
+#include "core/mesh_topology.hpp"
 
 namespace depthtrack::cli {
 
@@ -78,25 +79,30 @@ InitHint init_hint(const TrackArgs& a) {
   return InitHint::box(static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]), static_cast<int>(v[3]));
 }
 
-// The mesh, with notes on what the tracker will draw of it: degenerate triangles dropped, and how far the
-// default (or given) simplification thins it (TrackerConfig::simplify_error), so that a run's speed and a
-// fine mesh's precision are not a surprise.
+// The mesh, with notes on what the tracker will draw of it: degenerate triangles dropped, how far the
+// default (or given) simplification thins it (TrackerConfig::simplify_error), and whether its back faces
+// can be culled (an open scan's cannot), so that a run's speed and a fine mesh's precision are not a surprise.
 Mesh load_mesh(const std::string& path, double unit_scale, const TrackerConfig& config) {
   const Mesh mesh = Mesh::load(path, unit_scale);
   warn_if_mesh_scale_unusual(mesh, path, unit_scale);
   if (mesh.dropped_degenerate > 0)
     std::fprintf(stderr, "depthtrack: note: dropped %zu degenerate triangles of '%s'\n", mesh.dropped_degenerate,
                  path.c_str());
-  if (config.simplify_error > 0) {
-    Mesh checked = mesh;
-    checked.validate_and_clean(path);
-    const size_t drawn = simplify_for_drawing(checked, config.simplify_error).mesh.triangles.size();
-    if (drawn < checked.triangles.size())
-      std::fprintf(stderr,
-                   "depthtrack: note: drawing '%s' simplified within %g mm: %zu of its %zu triangles "
-                   "(--simplify-error 0 draws it as given)\n",
-                   path.c_str(), drawing_error(checked, config.simplify_error) * 1e3, drawn, checked.triangles.size());
-  }
+  Mesh checked = mesh;
+  checked.validate_and_clean(path);
+  const Mesh drawn = simplify_for_drawing(checked, config.simplify_error).mesh;
+  if (drawn.triangles.size() < checked.triangles.size())
+    std::fprintf(stderr,
+                 "depthtrack: note: drawing '%s' simplified within %g mm: %zu of its %zu triangles "
+                 "(--simplify-error 0 draws it as given)\n",
+                 path.c_str(), drawing_error(checked, config.simplify_error) * 1e3, drawn.triangles.size(),
+                 checked.triangles.size());
+  if (!bounds_solid_outward(drawn))
+    std::fprintf(stderr,
+                 "depthtrack: note: '%s' does not bound a solid wound outward (an edge without its reverse, or a "
+                 "part wound inward), so every triangle is drawn facing either way: about twice the drawing of a "
+                 "closed mesh\n",
+                 path.c_str());
   return mesh;
 }
 
