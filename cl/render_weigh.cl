@@ -24,15 +24,8 @@
 #ifndef DT_PROPAGATE_INSIDE
 #define DT_PROPAGATE_INSIDE 0
 #endif
-#ifndef DT_DRAW_LIST
-#define DT_DRAW_LIST 256u /* triangles the list holds, each with its first row's place (2 KB) */
-#endif
-#ifndef DT_LIST_CHUNK
-#define DT_LIST_CHUNK 256u /* triangles looked at between two drawing passes (more than the list holds:
-                              those found after it is full are drawn whole as they are found) */
-#endif
-#define DT_ROW_BITS 20u   /* the list's tally: rows listed in its low bits, triangles above them (room
-                             for a chunk of 4,095 triangles and of 1,048,575 rows) */
+#define DT_DRAW_LIST 256u /* triangles listed per chunk, each with its first row's place (2 KB) */
+#define DT_ROW_BITS 23u   /* the list's tally: rows listed in its low bits, triangles above them */
 #define DT_ROW_MASK ((1u << DT_ROW_BITS) - 1u)
 
 __kernel DT_RESIDENCY void render_weigh(__global float* states, __global const float* vertices,
@@ -52,7 +45,6 @@ __kernel DT_RESIDENCY void render_weigh(__global float* states, __global const f
   __local uint listed[DT_DRAW_LIST];          /* triangles to draw, a chunk at a time */
   __local uint first_row[DT_DRAW_LIST];       /* the place of each one's first row among the chunk's */
   __local uint listed_tally;                  /* (triangles << DT_ROW_BITS) | rows, as listed so far */
-  __local uint listed_rows;                   /* the rows of the triangles the list holds, once it is full */
 #endif
   const uint particle = get_group_id(0), lid = get_local_id(0), pixels = cam.width * cam.height;
   dt_weigh_begin(frame_times, now, now_index);
@@ -111,33 +103,21 @@ __kernel DT_RESIDENCY void render_weigh(__global float* states, __global const f
      * memory decides on). Every triangle that draws is listed, even one of a single candidate pixel: drawn
      * where it was found instead, the group's rows waited on the work-items that found the most (H100,
      * round 2, session 25: the mug's weigh 240 -> 195 us listed). */
-    for (uint first = 0; first < triangle_count; first += DT_LIST_CHUNK) {
-      if (lid == 0) {
-        listed_tally = 0;
-        listed_rows = 0;
-      }
+    for (uint first = 0; first < triangle_count; first += DT_DRAW_LIST) {
+      if (lid == 0) listed_tally = 0;
       barrier(CLK_LOCAL_MEM_FENCE);
-      const uint end = triangle_count - first < DT_LIST_CHUNK ? triangle_count : first + DT_LIST_CHUNK;
+      const uint end = triangle_count - first < DT_DRAW_LIST ? triangle_count : first + DT_DRAW_LIST;
       if (projected)
         for (uint t = first + lid; t < end; t += DT_GROUP_SIZE) {
           const uint rows = dt_projected_triangle_rows(points, triangles, t, cam, band);
           if (rows > 0) {
-            /* The tally's order is the list's: the triangles past its end come after every listed one,
-             * and the first of them finds the listed ones' rows in the tally. */
             const uint before = dt_atomic_add_local_u32(&listed_tally, (1u << DT_ROW_BITS) | rows);
-            const uint place = before >> DT_ROW_BITS;
-            if (place < DT_DRAW_LIST) {
-              listed[place] = t;
-              first_row[place] = before & DT_ROW_MASK;
-            } else {
-              if (place == DT_DRAW_LIST) listed_rows = before & DT_ROW_MASK;
-              dt_draw_projected_triangle_rows(points, triangles, t, 0, rows, pose, planes, cam, tile, band);
-            }
+            listed[before >> DT_ROW_BITS] = t;
+            first_row[before >> DT_ROW_BITS] = before & DT_ROW_MASK;
           }
         }
       barrier(CLK_LOCAL_MEM_FENCE);
-      const uint tally = listed_tally, count = min(tally >> DT_ROW_BITS, DT_DRAW_LIST),
-                 rows = tally >> DT_ROW_BITS > DT_DRAW_LIST ? listed_rows : tally & DT_ROW_MASK;
+      const uint tally = listed_tally, count = tally >> DT_ROW_BITS, rows = tally & DT_ROW_MASK;
       for (uint r = lid; r < rows; r += DT_GROUP_SIZE) {
         uint low = 0, high = count; /* the last triangle whose first row is at or before row r */
         while (high - low > 1) {

@@ -10,8 +10,6 @@ that keep the results, tried before they are built into cl/.
   no_draw:   draws no triangle (the box is still found; every pixel is then only carried over)
   no_visits: visits no pixel (the drawing stays; the group's sum is 0)
   no_listed_draws: lists the triangles that draw but draws none of them (the listing's own cost)
-  chunk_1024: (candidate) 1,024 triangles looked at between drawing passes (256 now), the list's
-             overflow drawn as found: fewer barriers for a fine mesh
   no_culling: draws the triangles facing away too, where the mesh bounds a solid (what culling saves;
              the depths stay the same)
   restrict:  (candidate) render_weigh's buffers declared restrict, so the compiler may move one pixel's
@@ -33,7 +31,6 @@ VARIANTS = {
     "no_visits": [("render_weigh.cl", "for (; b < until; b += DT_GROUP_SIZE,", "for (; b < 0u; b += DT_GROUP_SIZE,")],
     "no_listed_draws": [("render_weigh.cl", "for (uint r = lid; r < rows; r += DT_GROUP_SIZE)",
                          "for (uint r = lid; r < 0u; r += DT_GROUP_SIZE)")],
-    "chunk_1024": [("render_weigh.cl", "#define DT_LIST_CHUNK 256u", "#define DT_LIST_CHUNK 1024u")],
     "no_culling": [("rasterize.cl", "return area != 0.0f && isfinite(area) && !(cam.cull_back_faces && area > 0.0f);",
                     "return area != 0.0f && isfinite(area);")],
 }

@@ -11,8 +11,7 @@ namespace depthtrack {
 // wound, non-manifold edges allowed) and each connected part encloses a positive signed volume (wound
 // outward, the normals (b - a) x (c - a) pointing out). False for an open surface (a scan with holes, a
 // single sheet), one wound inconsistently, a part wound inward (also a hollow shell's inner wall: safe,
-// only slower), an empty mesh and one
-// with an index out of range.
+// only slower), an empty mesh and one with an index out of range.
 bool bounds_solid_outward(const Mesh& mesh);
 
 }  // namespace depthtrack

@@ -63,7 +63,7 @@ class Rasterizer {
   std::vector<Eigen::Vector3i> triangles_;
   Camera camera_;
   double near_, far_;
-  bool cull_back_faces_;  // bounds_solid_outward(mesh)
+  bool cull_back_faces_;                              // bounds_solid_outward(mesh)
   mutable std::vector<Eigen::Vector3d> transformed_;  // scratch: vertices in the camera frame
   mutable std::vector<ScreenVertex> screen_;          // scratch: those in front of near, projected
   std::shared_ptr<ThreadPool> pool_;                  // split_over's, or null
