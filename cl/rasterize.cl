@@ -249,31 +249,6 @@ DT_DEVICE_FN void dt_draw_triangle(dt_rigid pose, __global const float* vertices
     dt_draw_cut_triangle(a, b, c, pose, planes, cam, tile, ids, nearest, local_tile, band, t);
 }
 
-/* Whether every triangle of facing bin b (src/core/facing_bins.hpp: 8 floats, the sphere around its corners'
- * centre and radius, its normals' cone axis and cosine of the half angle) faces away from a camera at
- * `camera` in the object frame, the camera behind each one's plane by more than DT_FACING_MARGIN of its
- * distance: then none of them would pass dt_drawn_facing (float rounding of the projected winding is far
- * smaller than the margin), so a drawing that culls back faces may skip them untested. The same test as
- * the host's bin_faces_away. */
-#define DT_FACING_MARGIN 1e-2f
-DT_DEVICE_FN int dt_bin_faces_away(__global const float* bins, uint b, dt_vec3 camera) {
-  __global const float* f = bins + 8 * DT_CAST(ulong, b);
-  const float cos_half = f[7];
-  if (!(cos_half > 0.0f)) return 0;
-  const float dx = f[0] - camera.x, dy = f[1] - camera.y, dz = f[2] - camera.z;
-  const float length_squared = dx * dx + dy * dy + dz * dz, x = f[4] * dx + f[5] * dy + f[6] * dz;
-  const float sine = sqrt(fmax(0.0f, 1.0f - cos_half * cos_half));
-  const float least = x * cos_half - sqrt(fmax(0.0f, length_squared - x * x)) * sine;
-  return least > f[3] + DT_FACING_MARGIN * sqrt(length_squared);
-}
-
-/* The camera's position in the object frame of pose (-R^T t). */
-DT_DEVICE_FN dt_vec3 dt_camera_in_object(dt_rigid m) {
-  return dt_vec3_make(-(m.r0.x * m.t.x + m.r1.x * m.t.y + m.r2.x * m.t.z),
-                      -(m.r0.y * m.t.x + m.r1.y * m.t.y + m.r2.y * m.t.z),
-                      -(m.r0.z * m.t.x + m.r1.z * m.t.y + m.r2.z * m.t.z));
-}
-
 /* The group's projected vertices (u, v of vertex i at 2i), kept by dt_pose_box where the mesh's
  * vertices fit in work-group memory: each vertex is a corner of about six triangles, and projecting it
  * once instead of once per corner is the same floats (the same dt_vertex and dt_project). */

@@ -27,12 +27,10 @@
 #define DT_DRAW_LIST 256u /* triangles listed per chunk, each with its first row's place (2 KB) */
 #define DT_ROW_BITS 23u   /* the list's tally: rows listed in its low bits, triangles above them */
 #define DT_ROW_MASK ((1u << DT_ROW_BITS) - 1u)
-#define DT_FACING_BINS 256u /* at most this many facing bins (src/core/facing_bins.hpp: kMostFacingBins) */
 
 __kernel DT_RESIDENCY void render_weigh(__global float* states, __global const float* vertices,
                                         __global const uint* triangles, __global const float* planes,
-                                        uint triangle_count, uint vertex_count, __global const float* facing_bins,
-                                        __global const dt_u16* triangle_bins, uint facing_bin_count, dt_camera cam,
+                                        uint triangle_count, uint vertex_count, dt_camera cam,
                                         __global const float* observed, __global const uint* parents,
                                         __global const float* occlusion_from, __global const dt_u16* time_from,
                                         __global float* occlusion_to, __global dt_u16* time_to,
@@ -47,7 +45,6 @@ __kernel DT_RESIDENCY void render_weigh(__global float* states, __global const f
   __local uint listed[DT_DRAW_LIST];          /* triangles to draw, a chunk at a time */
   __local uint first_row[DT_DRAW_LIST];       /* the place of each one's first row among the chunk's */
   __local uint listed_tally;                  /* (triangles << DT_ROW_BITS) | rows, as listed so far */
-  __local dt_u16 facing_kept[DT_FACING_BINS]; /* whether each facing bin may hold a triangle facing the camera */
 #endif
   const uint particle = get_group_id(0), lid = get_local_id(0), pixels = cam.width * cam.height;
   dt_weigh_begin(frame_times, now, now_index);
@@ -69,16 +66,6 @@ __kernel DT_RESIDENCY void render_weigh(__global float* states, __global const f
   int in_front;
   const dt_pixel_box box = dt_pose_box(pose, vertices, vertex_count, cam, scratch, kept, &in_front);
   const int projected = kept != 0 && in_front;
-#if DT_SHARED_POINTS > 0
-  /* The mesh's triangles come in facing bins (facing_bin_count of them where the camera culls back faces,
-   * else 0): a bin wholly facing away from this pose is skipped by its triangles' listing below without
-   * loading their corners, the half of a closed mesh that draws nothing (the mug's listing was about half
-   * of its weigh: Nsight Compute, H100, round 2, session 26). */
-  const dt_vec3 camera = dt_camera_in_object(pose);
-  for (uint b = lid; b < facing_bin_count; b += DT_GROUP_SIZE)
-    facing_kept[b] = DT_CAST(dt_u16, !dt_bin_faces_away(facing_bins, b, camera));
-  barrier(CLK_LOCAL_MEM_FENCE);
-#endif
   if (keep_atlas) /* tests: the whole tile, 0.0f's bits outside the box (the bands below write the box) */
     for (uint k = lid; k < pixels; k += DT_GROUP_SIZE)
       if (!dt_box_holds(box, k % cam.width, k / cam.width)) atlas[DT_CAST(ulong, particle) * pixels + k] = 0u;
@@ -122,7 +109,6 @@ __kernel DT_RESIDENCY void render_weigh(__global float* states, __global const f
       const uint end = triangle_count - first < DT_DRAW_LIST ? triangle_count : first + DT_DRAW_LIST;
       if (projected)
         for (uint t = first + lid; t < end; t += DT_GROUP_SIZE) {
-          if (facing_bin_count > 0 && !facing_kept[triangle_bins[t]]) continue;
           const uint rows = dt_projected_triangle_rows(points, triangles, t, cam, band);
           if (rows > 0) {
             const uint before = dt_atomic_add_local_u32(&listed_tally, (1u << DT_ROW_BITS) | rows);

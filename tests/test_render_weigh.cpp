@@ -80,10 +80,7 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
   const float now = 0.9f, dt = 0.033f;
   const unsigned now_index = 40;
 
-  // In facing order with its bins (the box's back faces skipped a bin at a time, as the filter's are).
-  const MeshBuffers mesh_buffers(*q, mesh, true);
-  REQUIRE(mesh_buffers.cull_back_faces);
-  REQUIRE(mesh_buffers.facing_bin_count > 1);
+  const MeshBuffers mesh_buffers(*q, mesh);
   const dt_camera cam = model::camera_params(camera, config, mesh_buffers.cull_back_faces);
   const dt_model m = model::model_params(config);
   const auto layout = render::AtlasLayout::particle_major(static_cast<int>(count), 80, 60);
@@ -152,8 +149,7 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
                   frame, motion);
       if (inside) {
         q->launch(*fused, range, states, mesh_buffers.vertices, mesh_buffers.triangles, mesh_buffers.planes,
-                  mesh_buffers.triangle_count(), mesh_buffers.vertex_count(), mesh_buffers.facing_bins,
-                  mesh_buffers.triangle_bins, mesh_buffers.facing_bin_count, cam, obs, parent_buffer, occ_from, t_from,
+                  mesh_buffers.triangle_count(), mesh_buffers.vertex_count(), cam, obs, parent_buffer, occ_from, t_from,
                   occ_to, t_to, table, ll, lw, m, now, now_index, dt, atlas, keep_atlas, win,
                   static_cast<unsigned>(step == Motion::Inside), seed_lo, seed_hi, frame, motion);
       } else {

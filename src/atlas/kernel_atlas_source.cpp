@@ -29,7 +29,7 @@ class KernelAtlasSource final : public AtlasSource {
             static_cast<int>(kernel_atlas_tiles(particles_, static_cast<size_t>(camera.pixel_count()),
                                                 config.atlas_particles, queue.info().max_allocation)),
             camera.width, camera.height)),
-        mesh_(queue_, mesh, true),
+        mesh_(queue_, mesh),
         camera_(model::camera_params(camera, config, mesh_.cull_back_faces)),
         program_(programs.program("rasterize.cl", rasterize_definitions(kGroupSize, queue.info()))),
         kernel_(program_->kernel("rasterize")) {}

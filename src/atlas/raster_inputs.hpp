@@ -11,10 +11,7 @@
 namespace depthtrack {
 
 struct MeshBuffers {
-  // Uploads the mesh and its planes. With facing_bins, where the back faces are culled, the triangles go
-  // up in facing_order's order with their bins (for render_weigh, which skips a bin facing away whole; a
-  // drawing of depths does not depend on the order).
-  MeshBuffers(compute::Queue& queue, const Mesh& mesh, bool facing_bins = false);
+  MeshBuffers(compute::Queue& queue, const Mesh& mesh);  // uploads the mesh and its planes
   unsigned triangle_count() const { return static_cast<unsigned>(planes.size() / 4); }
   unsigned vertex_count() const { return static_cast<unsigned>(vertices.size() / 3); }
 
@@ -22,11 +19,6 @@ struct MeshBuffers {
   compute::Buffer<unsigned> triangles;  // 3 vertex indices each
   compute::Buffer<float> planes;        // render::triangle_planes
   bool cull_back_faces;                 // bounds_solid_outward: the kernels skip triangles facing away
-  // The bins (packed_bins: 8 floats each) and each triangle's bin; facing_bin_count 0 where there are
-  // none (the buffers then hold a placeholder).
-  compute::Buffer<float> facing_bins;
-  compute::Buffer<uint16_t> triangle_bins;
-  unsigned facing_bin_count = 0;
 };
 
 // Work-group memory of dt_pose_box's reduction (cl/rasterize.cl: 5 floats a work-item), which rasterize

@@ -8,7 +8,6 @@
 
 #include "compute/program_cache.hpp"
 #include "compute/resident_groups.hpp"
-#include "core/facing_bins.hpp"
 #include "core/stopwatch.hpp"
 #include "dt_state.h"
 #include "dt_summary.h"
@@ -88,15 +87,11 @@ bool propagates_inside_weigh(Renderer renderer, size_t pixels, size_t local_memo
 
 namespace {
 // render_weigh's work-group memory with shared_points' projections kept: the tile and reduction, the
-// points, the triangle list (cl/render_weigh.cl's DT_DRAW_LIST) with each one's first row, its tally, and
-// the facing bins' flags (DT_FACING_BINS).
+// points, the triangle list (cl/render_weigh.cl's DT_DRAW_LIST) with each one's first row, and its tally.
 size_t render_weigh_group_bytes(size_t tile_pixels, size_t shared_points) {
-  constexpr size_t kDrawList = 256, kFacingBins = 256;
-  static_assert(kMostFacingBins <= kFacingBins);
+  constexpr size_t kDrawList = 256;
   return render_weigh_local_bytes(tile_pixels) +
-         (shared_points > 0 ? shared_points * 2 * sizeof(float) + (2 * kDrawList + 1) * sizeof(unsigned) +
-                                  kFacingBins * sizeof(uint16_t)
-                            : 0);
+         (shared_points > 0 ? shared_points * 2 * sizeof(float) + (2 * kDrawList + 1) * sizeof(unsigned) : 0);
 }
 }  // namespace
 
@@ -534,7 +529,6 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
     p->weighed.push_back(launch_step(
         *render_weigh_, per_particle_group, state_, render_weigh_mesh_->vertices, render_weigh_mesh_->triangles,
         render_weigh_mesh_->planes, render_weigh_mesh_->triangle_count(), render_weigh_mesh_->vertex_count(),
-        render_weigh_mesh_->facing_bins, render_weigh_mesh_->triangle_bins, render_weigh_mesh_->facing_bin_count,
         model::camera_params(camera_, config_, render_weigh_mesh_->cull_back_faces), observed_, parents_, occlusion_,
         occlusion_time_, scratch_occlusion_, scratch_occlusion_time_, frame_times_->device(), log_likelihood_,
         log_weight_, model::model_params(config_), static_cast<float>(time_), now_index, static_cast<float>(dt), atlas_,
