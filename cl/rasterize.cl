@@ -272,15 +272,13 @@ DT_DEVICE_FN void dt_draw_projected_triangle_rows(DT_LOCAL_PTR const float* poin
                           DT_CAST(int, row), DT_CAST(int, row_count));
 }
 
-/* How many of band's rows triangle t, from the projected points, may draw in (0: none): dt_raster_triangle's
- * first tests (not degenerate, a pixel centre in its box)
- * and its pixels within the band's, on the same floats, so no triangle that draws is passed over and
- * each row it draws is counted. */
-DT_DEVICE_FN uint dt_projected_triangle_rows(DT_LOCAL_PTR const float* points, __global const uint* triangles, uint t,
+/* How many of band's rows the triangle of corners i0, i1, i2, from the projected points, may draw in (0:
+ * none): dt_raster_triangle's first tests (not degenerate, a pixel centre in its box) and its pixels within
+ * the band's, on the same floats, so no triangle that draws is passed over and each row it draws is
+ * counted. The caller loads the corners (render_weigh: the next triangle's while this one is tested). */
+DT_DEVICE_FN uint dt_projected_triangle_rows(DT_LOCAL_PTR const float* points, uint i0, uint i1, uint i2,
                                              dt_camera cam, dt_pixel_box band) {
-  __global const uint* corners = triangles + 3 * DT_CAST(ulong, t);
-  const dt_point a = dt_point_at(points, corners[0]), b = dt_point_at(points, corners[1]),
-                 c = dt_point_at(points, corners[2]);
+  const dt_point a = dt_point_at(points, i0), b = dt_point_at(points, i1), c = dt_point_at(points, i2);
   const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
   int u0, u1, v0, v1;
   if (!dt_drawn_facing(area, cam) || !dt_centre_range(a, b, c, cam, &u0, &u1, &v0, &v1)) return 0;

@@ -89,7 +89,7 @@ namespace {
 // render_weigh's work-group memory with shared_points' projections kept: the tile and reduction, the
 // points, the triangle list (cl/render_weigh.cl's DT_DRAW_LIST) with each one's first row, and its tally.
 size_t render_weigh_group_bytes(size_t tile_pixels, size_t shared_points) {
-  constexpr size_t kDrawList = 256;
+  constexpr size_t kDrawList = 512;
   return render_weigh_local_bytes(tile_pixels) +
          (shared_points > 0 ? shared_points * 2 * sizeof(float) + (2 * kDrawList + 1) * sizeof(unsigned) : 0);
 }
@@ -114,7 +114,7 @@ RenderWeighLayout render_weigh_layout(int width, int height, size_t vertex_count
   };
   const RenderWeighLayout whole = layout(static_cast<size_t>(width) * static_cast<size_t>(height)),
                           half = layout(static_cast<size_t>(width) * static_cast<size_t>((height + 1) / 2));
-  return half.resident_groups > whole.resident_groups || half.shared_points > whole.shared_points ? half : whole;
+  return half.resident_groups >= whole.resident_groups + 2 || half.shared_points > whole.shared_points ? half : whole;
 }
 
 struct DeviceFilter::Kernels {

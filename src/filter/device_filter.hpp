@@ -57,12 +57,14 @@ struct RenderWeighLayout {
   size_t tile_pixels = 0, shared_points = 0, resident_groups = 0;
 };
 
-// The whole image's tile, or half its rows (rounded up) where that lets a unit hold more groups or lets the
-// mesh's projected points fit beside it: a pose's box is a small part of the image at the resolutions
-// render_weigh runs at (ycbv-0000's objects at 80x60: 600-700 of 4,800 pixels), and the simplified mug's
-// 1,600 points beside the whole image's tile let 6 groups onto an H100's unit, 8 with half. A taller box is
-// then drawn and weighed in bands of rows (cl/render_weigh.cl); where the smaller tile gains nothing (the
-// registers decide, or the device does not say what a unit holds) the tile stays whole: one band.
+// The whole image's tile, or half its rows (rounded up) where that lets a unit hold at least two more
+// groups or lets the mesh's projected points fit beside it: a pose's box is a small part of the image at
+// the resolutions render_weigh runs at (ycbv-0000's objects at 80x60: 600-700 of 4,800 pixels), and the
+// simplified mug's 1,600 points beside the whole image's tile let 5 groups onto an H100's unit, 7 with half.
+// One group more was not worth it: the handset's frame at 1,000,000 particles took 20.4 ms on the H100 with
+// the half tile (8 groups) against 18.2 with the whole (7; round 2, session 26). A taller box is then drawn
+// and weighed in bands of rows (cl/render_weigh.cl); where the smaller tile gains less (the registers
+// decide, or the device does not say what a unit holds) the tile stays whole: one band.
 RenderWeighLayout render_weigh_layout(int width, int height, size_t vertex_count, const compute::DeviceInfo& device);
 
 // How many vertices' projections render_weigh keeps in work-group memory beside its tile of tile_pixels
