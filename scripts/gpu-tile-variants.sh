@@ -8,7 +8,7 @@
 # REPS repetitions of the timing (default 2), then each variant once under the CUDA timeline probe
 # (bench.txt and the timelines in $OUT; summarize them with timeline_summary.py). TESTS=BUILD runs that build's TEST_TAGS (default [render],[device])
 # on both backends, each within TEST_LIMIT seconds (TEST_TREE=1: with the carried cl/). NCU=1: Nsight Compute's report of render_weigh (the
-# first object's frame 10 and the second's) for the first variant. Timelines and reports go to $OUT.
+# first object's frame 10 and the second's) for the first variant, and its source page as CSV. Timelines and reports go to $OUT.
 set -uo pipefail
 source .device/enter .devdeps >/dev/null 2>&1
 export DEPTHTRACK_DATA_DIR=$PWD/.devdata
@@ -58,8 +58,11 @@ if [[ ${NCU:-0} == 1 ]] && command -v ncu >/dev/null; then
   for skip in 10 30; do
     report=$out/ncu-$(tr ':@' '-_' <<<"$v")-$skip.txt
     env $(variant_env "$v") timeout 150 ncu --clock-control none -k regex:render_weigh --launch-skip $skip \
-      --launch-count 1 --set full --page details "build-carry-bin/$(build_of "$v")/depthtrack_bench" "${args[@]}" \
-      --simplify-error 0.0005 --backend cuda --frames 20 >"$report" 2>&1
+      --launch-count 1 --set full --import-source yes -o /tmp/ncu-$skip "build-carry-bin/$(build_of "$v")/depthtrack_bench" \
+      "${args[@]}" --simplify-error 0.0005 --backend cuda --frames 20 >/dev/null 2>&1
+    ncu -i /tmp/ncu-$skip.ncu-rep --page details >"$report" 2>&1
+    # Per source line (a build with DEPTHTRACK_CUDA_EXTRA_OPTIONS=-lineinfo): scripts/probes/ncu_source_lines.py.
+    ncu -i /tmp/ncu-$skip.ncu-rep --page source --csv --print-source cuda,sass 2>/dev/null | gzip >"${report%.txt}-source.csv.gz"
     grep -E "^    (Duration|Registers Per|Achieved Occupancy|Theoretical Occupancy|Block Limit|Waves Per|SM Frequency|Memory Throughput|Compute \(SM\) Throughput|No Eligible|Active Warps Per|Eligible Warps|Warp Cycles Per Issued)" \
       "$report" | head -24
   done
