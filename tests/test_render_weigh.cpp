@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <random>
 #include <string>
 
@@ -11,6 +12,7 @@
 #include "atlas/raster_inputs.hpp"
 #include "compute/buffer.hpp"
 #include "compute/kernel_sources.hpp"
+#include "core/mesh_topology.hpp"
 #include "device_support.hpp"
 #include "dt_state.h"
 #include "dt_time_index.h"
@@ -39,6 +41,27 @@ std::string atlas_difference(const std::vector<float>& a, const std::vector<floa
                 static_cast<double>(b[first]));
   return text;
 }
+
+// Each triangle cut into four at its edges' midpoints (shared between the two triangles of an edge, so a
+// closed mesh stays closed and wound as it was), `times` times: the same surface in 4^times as many triangles.
+Mesh subdivided(Mesh mesh, int times) {
+  for (int round = 0; round < times; ++round) {
+    std::map<std::pair<int, int>, int> midpoints;
+    const auto midpoint = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      const auto [it, added] = midpoints.try_emplace(key, static_cast<int>(mesh.vertices.size()));
+      if (added) mesh.vertices.push_back(0.5f * (mesh.vertices[a] + mesh.vertices[b]));
+      return it->second;
+    };
+    std::vector<Eigen::Vector3i> finer;
+    for (const Eigen::Vector3i& t : mesh.triangles) {
+      const int ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
+      finer.insert(finer.end(), {{t[0], ab, ca}, {ab, t[1], bc}, {ca, bc, t[2]}, {ab, bc, ca}});
+    }
+    mesh.triangles = std::move(finer);
+  }
+  return mesh;
+}
 }  // namespace
 
 TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "[device][kernels][render]") {
@@ -47,7 +70,11 @@ TEST_CASE("rasterizing inside weigh equals rasterize then weigh, bit for bit", "
   const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.9375, 29.9375);
   const size_t pixels = 4800, count = 24;
   REQUIRE(renders_inside_weigh(Renderer::Kernel, pixels, 48 * 1024));
-  const Mesh mesh = builtin_demo_mesh();
+  // The built-in box in 1,536 triangles: more than a chunk of the list (512), so that each work-item's
+  // corners loaded ahead cross from one chunk into the next.
+  const Mesh mesh = subdivided(builtin_demo_mesh(), 3);
+  REQUIRE(mesh.triangles.size() == 1536);
+  REQUIRE(bounds_solid_outward(mesh));
   TrackerConfig config;
   const Pose truth({0, 0, 0.8}, rotation_exp(Eigen::Vector3d(0.4, 0.5, 0.1)));
   std::mt19937 rng(8);
