@@ -18,19 +18,13 @@
  * groups each compute unit should hold at once (CUDA's __launch_bounds__ through DT_RESIDENCY; 0: no hint).
  * Reference: Rasterizer::render and ReferenceFilter::weigh_particle. */
 #include "rasterize.cl"
+#include "dt_draw_list.h"
 #include "dt_propagate.h"
 #include "dt_weigh.h"
 
 #ifndef DT_PROPAGATE_INSIDE
 #define DT_PROPAGATE_INSIDE 0
 #endif
-/* Triangles listed per chunk, each with its first row's place (4 KB; the host's kDrawList): 512 rather than
- * 256 halves the chunks' barriers; with the corners loaded ahead (below), the handset's frame at 1,000,000
- * particles took 18.2 / 18.3 ms on the H100 instead of 19.3 / 19.4 (CUDA / NVIDIA OpenCL; round 2, session
- * 26; the mug's weigh level). */
-#define DT_DRAW_LIST 512u
-#define DT_ROW_BITS 22u /* the list's tally: rows listed in its low bits, triangles (up to 512) above them */
-#define DT_ROW_MASK ((1u << DT_ROW_BITS) - 1u)
 
 __kernel DT_RESIDENCY void render_weigh(__global float* states, __global const float* vertices,
                                         __global const uint* triangles, __global const float* planes,

@@ -58,7 +58,7 @@ if [[ ${NCU:-0} == 1 ]] && command -v ncu >/dev/null; then
   for skip in 10 30; do
     report=$out/ncu-$(tr ':@' '-_' <<<"$v")-$skip.txt
     env $(variant_env "$v") timeout 150 ncu --clock-control none -k regex:render_weigh --launch-skip $skip \
-      --launch-count 1 --set full --import-source yes -o /tmp/ncu-$skip "build-carry-bin/$(build_of "$v")/depthtrack_bench" \
+      --launch-count 1 --set full --import-source yes -f -o /tmp/ncu-$skip "build-carry-bin/$(build_of "$v")/depthtrack_bench" \
       "${args[@]}" --simplify-error 0.0005 --backend cuda --frames 20 >/dev/null 2>&1
     ncu -i /tmp/ncu-$skip.ncu-rep --page details >"$report" 2>&1
     # Per source line (a build with DEPTHTRACK_CUDA_EXTRA_OPTIONS=-lineinfo): scripts/probes/ncu_source_lines.py.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <depthtrack/error.hpp>
 #include <numeric>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include "compute/program_cache.hpp"
 #include "compute/resident_groups.hpp"
 #include "core/stopwatch.hpp"
+#include "dt_draw_list.h"
 #include "dt_state.h"
 #include "dt_summary.h"
 #include "dt_time_index.h"
@@ -87,11 +89,11 @@ bool propagates_inside_weigh(Renderer renderer, size_t pixels, size_t local_memo
 
 namespace {
 // render_weigh's work-group memory with shared_points' projections kept: the tile and reduction, the
-// points, the triangle list (cl/render_weigh.cl's DT_DRAW_LIST) with each one's first row, and its tally.
+// points, the triangle list (cl/dt_draw_list.h) with each one's first row, and its tally.
 size_t render_weigh_group_bytes(size_t tile_pixels, size_t shared_points) {
-  constexpr size_t kDrawList = 512;
+  static_assert((uint64_t{DT_DRAW_LIST} << DT_ROW_BITS) < (uint64_t{1} << 32), "a full list's tally overflows 32 bits");
   return render_weigh_local_bytes(tile_pixels) +
-         (shared_points > 0 ? shared_points * 2 * sizeof(float) + (2 * kDrawList + 1) * sizeof(unsigned) : 0);
+         (shared_points > 0 ? shared_points * 2 * sizeof(float) + (2 * DT_DRAW_LIST + 1) * sizeof(unsigned) : 0);
 }
 }  // namespace
 
