@@ -53,6 +53,7 @@ typedef struct {
   float converged_motion; /* a step moving no mesh point farther than this (metres) is not tried */
   dt_u32 vertex_count;
   float pixel_sigmas; /* the confidence's band: a pixel within this many sigma of the surface is visible */
+  dt_u32 draw_slices; /* work-items drawing each triangle, every draw_slices-th row each (DeviceRefiner) */
 } dt_refine_args;
 
 /* The occlusion state window (model::StateWindow, TrackerConfig::occlusion_window): each particle's

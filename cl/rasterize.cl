@@ -134,12 +134,14 @@ DT_DEVICE_FN int dt_drawn_facing(float area, dt_camera cam) {
  * triangle order. With local_tile (render_weigh.cl's tile in work-group memory) it keeps the nearer
  * depth there, as tile does in global memory, for the pixels of band only (a box's rows, stored row by
  * row at the band's own width): the pixels a pose covers may be more than the tile holds. */
-/* With skip_rows and row_count, only those of its rows: row_count rows from the (skip_rows + 1)-th it
- * would draw (render_weigh.cl hands a large triangle's rows to different work-items). */
+/* With skip_rows, row_count and row_step, only those of its rows: row_count rows, every row_step-th, from the
+ * (skip_rows + 1)-th it would draw (render_weigh.cl hands a large triangle's rows to different work-items, the
+ * fit's drawing every row_step-th row to each of row_step work-items). */
 DT_DEVICE_FN void dt_raster_triangle_rows(dt_point a, dt_point b, dt_point c, dt_rigid pose,
                                           __global const float* planes, dt_camera cam, __global uint* tile,
                                           __global uint* ids, __global dt_u64* nearest, DT_LOCAL_PTR uint* local_tile,
-                                          dt_pixel_box band, uint triangle, int skip_rows, int row_count) {
+                                          dt_pixel_box band, uint triangle, int skip_rows, int row_count,
+                                          int row_step) {
   const float area = dt_edge_at(dt_make_edge(a, b), c.u, c.v);
   if (!dt_drawn_facing(area, cam)) return;
   int u0, u1, v0, v1;
@@ -153,7 +155,8 @@ DT_DEVICE_FN void dt_raster_triangle_rows(dt_point a, dt_point b, dt_point c, dt
   }
   v0 += skip_rows;
   if (v0 > v1) return;
-  if (v1 - v0 >= row_count) v1 = v0 + row_count - 1; /* (v0 + row_count may pass int's range) */
+  /* (v0 + row_count may pass int's range: only reached when the rows left are fewer) */
+  if ((v1 - v0) / row_step >= row_count) v1 = v0 + (row_count - 1) * row_step;
   if (area < 0.0f) { /* give every triangle drawn the same orientation */
     const dt_point t = b;
     b = c;
@@ -163,7 +166,7 @@ DT_DEVICE_FN void dt_raster_triangle_rows(dt_point a, dt_point b, dt_point c, dt
   /* Only now the plane: most triangles of a fine mesh hold no pixel centre and never need it. */
   const dt_plane plane = dt_triangle_plane(pose, planes, triangle);
   const float inverse_fx = 1.0f / cam.fx, inverse_fy = 1.0f / cam.fy;
-  for (int v = v0; v <= v1; ++v) {
+  for (int v = v0; v <= v1; v += row_step) {
     const float pv = DT_CAST(float, v), ray_y = (pv - cam.cy) * inverse_fy;
     for (int u = u0; u <= u1; ++u) {
       const float pu = DT_CAST(float, u);
@@ -190,12 +193,6 @@ DT_DEVICE_FN void dt_raster_triangle_rows(dt_point a, dt_point b, dt_point c, dt
   }
 }
 
-DT_DEVICE_FN void dt_raster_triangle(dt_point a, dt_point b, dt_point c, dt_rigid pose, __global const float* planes,
-                                     dt_camera cam, __global uint* tile, __global uint* ids, __global dt_u64* nearest,
-                                     DT_LOCAL_PTR uint* local_tile, dt_pixel_box band, uint triangle) {
-  dt_raster_triangle_rows(a, b, c, pose, planes, cam, tile, ids, nearest, local_tile, band, triangle, 0, 0x7fffffff);
-}
-
 DT_DEVICE_FN dt_point dt_project(dt_vec3 p, dt_camera cam) {
   const float inverse_z = 1.0f / p.z;
   dt_point s;
@@ -212,10 +209,11 @@ DT_DEVICE_FN dt_vec3 dt_cut(dt_vec3 inside, dt_vec3 outside, float near) {
 }
 
 /* Triangle abc (camera frame) that crosses z = near: cut there (Sutherland-Hodgman against one
- * plane, 3 or 4 vertices remain), then drawn as a fan. */
+ * plane, 3 or 4 vertices remain), then drawn as a fan (each part's rows from first_row, every row_step-th). */
 DT_DEVICE_FN void dt_draw_cut_triangle(dt_vec3 a, dt_vec3 b, dt_vec3 c, dt_rigid pose, __global const float* planes,
                                        dt_camera cam, __global uint* tile, __global uint* ids, __global dt_u64* nearest,
-                                       DT_LOCAL_PTR uint* local_tile, dt_pixel_box band, uint triangle) {
+                                       DT_LOCAL_PTR uint* local_tile, dt_pixel_box band, uint triangle, int first_row,
+                                       int row_step) {
   const dt_vec3 p[3] = {a, b, c};
   dt_vec3 kept[4];
   int n = 0;
@@ -227,26 +225,35 @@ DT_DEVICE_FN void dt_draw_cut_triangle(dt_vec3 a, dt_vec3 b, dt_vec3 c, dt_rigid
   }
   const dt_point first = dt_project(kept[0], cam);
   for (int i = 1; i + 1 < n; ++i)
-    dt_raster_triangle(first, dt_project(kept[i], cam), dt_project(kept[i + 1], cam), pose, planes, cam, tile, ids,
-                       nearest, local_tile, band, triangle);
+    dt_raster_triangle_rows(first, dt_project(kept[i], cam), dt_project(kept[i + 1], cam), pose, planes, cam, tile,
+                            ids, nearest, local_tile, band, triangle, first_row, 0x7fffffff, row_step);
 }
 
 /* Triangle t of the mesh placed by pose, cut at the near plane where it crosses it (tile, ids,
- * nearest and local_tile as for dt_raster_triangle, t its triangle index). */
-DT_DEVICE_FN void dt_draw_triangle(dt_rigid pose, __global const float* vertices, __global const uint* triangles,
-                                   __global const float* planes, uint t, dt_camera cam, __global uint* tile,
-                                   __global uint* ids, __global dt_u64* nearest, DT_LOCAL_PTR uint* local_tile,
-                                   dt_pixel_box band) {
+ * nearest and local_tile as for dt_raster_triangle_rows, t its triangle index): its rows from first_row, every
+ * row_step-th (0 and 1: all of them). */
+DT_DEVICE_FN void dt_draw_triangle_rows(dt_rigid pose, __global const float* vertices, __global const uint* triangles,
+                                        __global const float* planes, uint t, dt_camera cam, __global uint* tile,
+                                        __global uint* ids, __global dt_u64* nearest, DT_LOCAL_PTR uint* local_tile,
+                                        dt_pixel_box band, int first_row, int row_step) {
   __global const uint* corners = triangles + 3 * DT_CAST(ulong, t);
   const dt_vec3 a = dt_vertex(pose, vertices, corners[0]), b = dt_vertex(pose, vertices, corners[1]),
                 c = dt_vertex(pose, vertices, corners[2]);
   const int in_front = (a.z >= cam.near) + (b.z >= cam.near) + (c.z >= cam.near);
   if (in_front == 0) return;
   if (in_front == 3)
-    dt_raster_triangle(dt_project(a, cam), dt_project(b, cam), dt_project(c, cam), pose, planes, cam, tile, ids,
-                       nearest, local_tile, band, t);
+    dt_raster_triangle_rows(dt_project(a, cam), dt_project(b, cam), dt_project(c, cam), pose, planes, cam, tile, ids,
+                            nearest, local_tile, band, t, first_row, 0x7fffffff, row_step);
   else
-    dt_draw_cut_triangle(a, b, c, pose, planes, cam, tile, ids, nearest, local_tile, band, t);
+    dt_draw_cut_triangle(a, b, c, pose, planes, cam, tile, ids, nearest, local_tile, band, t, first_row, row_step);
+}
+
+/* The whole of triangle t (dt_draw_triangle_rows' every row). */
+DT_DEVICE_FN void dt_draw_triangle(dt_rigid pose, __global const float* vertices, __global const uint* triangles,
+                                   __global const float* planes, uint t, dt_camera cam, __global uint* tile,
+                                   __global uint* ids, __global dt_u64* nearest, DT_LOCAL_PTR uint* local_tile,
+                                   dt_pixel_box band) {
+  dt_draw_triangle_rows(pose, vertices, triangles, planes, t, cam, tile, ids, nearest, local_tile, band, 0, 1);
 }
 
 /* The group's projected vertices (u, v of vertex i at 2i), kept by dt_pose_box where the mesh's
@@ -269,11 +276,11 @@ DT_DEVICE_FN void dt_draw_projected_triangle_rows(DT_LOCAL_PTR const float* poin
   __global const uint* corners = triangles + 3 * DT_CAST(ulong, t);
   dt_raster_triangle_rows(dt_point_at(points, corners[0]), dt_point_at(points, corners[1]),
                           dt_point_at(points, corners[2]), pose, planes, cam, 0, 0, 0, local_tile, band, t,
-                          DT_CAST(int, row), DT_CAST(int, row_count));
+                          DT_CAST(int, row), DT_CAST(int, row_count), 1);
 }
 
 /* How many of band's rows the triangle of corners i0, i1, i2, from the projected points, may draw in (0:
- * none): dt_raster_triangle's first tests (not degenerate, a pixel centre in its box) and its pixels within
+ * none): dt_raster_triangle_rows' first tests (not degenerate, a pixel centre in its box) and its pixels within
  * the band's, on the same floats, so no triangle that draws is passed over and each row it draws is
  * counted. The caller loads the corners (render_weigh: the next triangle's while this one is tested). */
 DT_DEVICE_FN uint dt_projected_triangle_rows(DT_LOCAL_PTR const float* points, uint i0, uint i1, uint i2,
@@ -329,7 +336,7 @@ DT_DEVICE_FN dt_pixel_box dt_pose_box(dt_rigid pose, __global const float* verti
   dt_pixel_box box = dt_box_make(0, 0, cam.width, cam.height);
   *in_front = scratch[4 * DT_GROUP_SIZE] == 0.0f;
   if (*in_front) {
-    /* clamped in float before the conversion to int, as dt_raster_triangle does */
+    /* clamped in float before the conversion to int, as dt_raster_triangle_rows does */
     const float last_u = DT_CAST(float, cam.width - 1), last_v = DT_CAST(float, cam.height - 1);
     const float u0 = fmin(fmax(0.0f, floor(scratch[0]) - 1.0f), last_u + 1.0f);
     const float v0 = fmin(fmax(0.0f, floor(scratch[DT_GROUP_SIZE]) - 1.0f), last_v + 1.0f);

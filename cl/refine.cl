@@ -34,11 +34,12 @@ DT_DEVICE_FN void dt_refine_evaluate(__global const float* pose_state, __global 
     ids[k] = 0xffffffffu;
   }
   barrier(CLK_GLOBAL_MEM_FENCE);
-  for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
-    dt_draw_triangle(pose, vertices, triangles, planes, t, cam, tile, 0, 0, 0, dt_no_band());
+  const uint items = triangle_count * args.draw_slices;
+  for (uint item = lid; item < items; item += DT_GROUP_SIZE)
+    dt_refine_draw_item(pose, vertices, triangles, planes, triangle_count, args.draw_slices, item, cam, tile, 0, 0);
   barrier(CLK_GLOBAL_MEM_FENCE);
-  for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
-    dt_draw_triangle(pose, vertices, triangles, planes, t, cam, tile, ids, 0, 0, dt_no_band());
+  for (uint item = lid; item < items; item += DT_GROUP_SIZE)
+    dt_refine_draw_item(pose, vertices, triangles, planes, triangle_count, args.draw_slices, item, cam, tile, ids, 0);
   barrier(CLK_GLOBAL_MEM_FENCE);
 
   const dt_vec3 centre = dt_vertex_at(pose, args.centre_x, args.centre_y, args.centre_z);

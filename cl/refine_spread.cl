@@ -1,7 +1,7 @@
 /* The pose refinement spread over many work-groups: the same fit as cl/refine.cl's one-group kernel
  * (dt_refine.h holds what both share), but every evaluation of a candidate pose is two kernels over
  * the whole device: its triangles drawn, a work-item per triangle, into one 64-bit word per pixel
- * (depth bits and triangle index, kept by atomic min: dt_raster_triangle's `nearest`), then the
+ * (depth bits and triangle index, kept by atomic min: dt_raster_triangle_rows' `nearest`), then the
  * image's pixels summed into one row of DT_REFINE_SUMS partial sums per work-group. The last group
  * of the sums to finish (a counter in the fit's state) adds the rows in a fixed order (no float
  * atomics: the same sums every run; how it knows the rows are complete: refine_sums), keeps or rejects the candidate,
@@ -47,13 +47,16 @@ __kernel void refine_begin(__global dt_refine_state* s, __global const float* es
 
 #define DT_REFINE_MAX_POLLS (1u << 20)
 
-/* A work-item per triangle: the candidate's depth and each pixel's triangle, in one pass. */
+/* The candidate's depth and each pixel's triangle, in one pass: a work-item per triangle and slice of its
+ * rows (dt_refine_draw_item). */
 __kernel void refine_draw(__global const dt_refine_state* s, __global const float* vertices,
                           __global const uint* triangles, __global const float* planes, uint triangle_count,
                           dt_camera cam, __global dt_u64* nearest) {
-  const uint t = get_global_id(0);
-  if (!s->active || t >= triangle_count) return;
-  dt_draw_triangle(dt_particle_pose(s->candidate), vertices, triangles, planes, t, cam, 0, 0, nearest, 0, dt_no_band());
+  if (!s->active) return;
+  const uint item = get_global_id(0);
+  if (item < triangle_count * s->args.draw_slices)
+    dt_refine_draw_item(dt_particle_pose(s->candidate), vertices, triangles, planes, triangle_count,
+                        s->args.draw_slices, item, cam, 0, 0, nearest);
 }
 
 /* One work-item of the last group, with the candidate's sums: PoseRefiner's loop body. Keeps or
@@ -233,8 +236,8 @@ __kernel void refine_one_launch(__global const float* log_weight, __global const
   const dt_refine_offsets at = dt_refine_map_offsets(parents[heaviest], win);
   for (;;) {
     const dt_rigid pose = dt_particle_pose(s->candidate);
-    for (uint t = lid; t < triangle_count; t += DT_GROUP_SIZE)
-      dt_draw_triangle(pose, vertices, triangles, planes, t, cam, 0, 0, nearest, 0, dt_no_band());
+    for (uint item = lid; item < triangle_count * args.draw_slices; item += DT_GROUP_SIZE)
+      dt_refine_draw_item(pose, vertices, triangles, planes, triangle_count, args.draw_slices, item, cam, 0, 0, nearest);
     barrier(CLK_GLOBAL_MEM_FENCE);
     float acc[DT_REFINE_SUMS];
     dt_refine_sum_drawn(acc, lid, DT_GROUP_SIZE, nearest, pose, args, observed, occlusion, occlusion_time,

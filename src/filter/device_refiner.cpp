@@ -19,7 +19,7 @@ namespace {
 // memory (29.7 KB) within CUDA's 48 KB of static shared memory and the registers within a
 // multiprocessor. The spread layout's sums kernel uses the same size (its per-group tree).
 constexpr size_t kRefineGroup = 256;
-constexpr size_t kLinearGroup = 64;  // the spread layout's draws: a work-item per triangle
+constexpr size_t kLinearGroup = 64;  // the spread layout's draws: a work-item per triangle and slice
 // The spread sums kernel: enough groups for every pixel of the image to have its own work-item, at
 // most this many rows of partials for its last group to add (beyond 256 x 256 pixels a work-item
 // sums several).
@@ -69,8 +69,16 @@ RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceIn
   return RefineLayout::OneLaunch;
 }
 
+unsigned refine_draw_slices(size_t triangle_count, int image_height, bool gpu) {
+  if (!gpu || triangle_count == 0) return 1;
+  const size_t wanted = (kFitDrawItems + triangle_count - 1) / triangle_count;
+  const size_t most = std::clamp<size_t>(static_cast<size_t>(std::max(image_height, 1)), 1, kMaxDrawSlices);
+  return static_cast<unsigned>(std::min(wanted, most));
+}
+
 DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh,
-                             const Camera& camera, const TrackerConfig& config, const std::string& occlusion_definition)
+                             const Camera& camera, const TrackerConfig& config, const std::string& occlusion_definition,
+                             unsigned draw_slices)
     : queue_(queue),
       config_(model::fit_config(config)),  // the fit's own noise (Refinement::noise_scale), as the reference's
       camera_(camera),
@@ -78,6 +86,8 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
       radius_(mesh.radius()),
       layout_(resolved_refine_layout(config.refine.layout, queue.info(), mesh.triangles.size(),
                                      static_cast<size_t>(camera.pixel_count()))),
+      draw_slices_(draw_slices > 0 ? draw_slices
+                                   : refine_draw_slices(mesh.triangles.size(), camera.height, queue.info().is_gpu)),
       program_(programs.program(layout_ == RefineLayout::OneGroup ? "refine.cl" : "refine_spread.cl",
                                 {"DT_GROUP_SIZE=" + std::to_string(kRefineGroup), occlusion_definition})),
       mesh_(queue, mesh),
@@ -115,7 +125,7 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
   if (summary && !summarizes_first())
     throw std::logic_error("device refiner: the " + std::string(to_string(layout_)) + " layout does not summarize");
   const dt_refine_args args = model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time,
-                                                   in.dt, config_.loss.pixel_sigmas);
+                                                   in.dt, config_.loss.pixel_sigmas, draw_slices_);
   if (layout_ == RefineLayout::Spread) return refine_spread(estimate, in, args);
   const auto one_group = compute::NdRange::linear(kRefineGroup, kRefineGroup);
   const dt_camera cam = model::camera_params(camera_, config_, mesh_.cull_back_faces);
@@ -149,8 +159,8 @@ std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<floa
                                                             const dt_refine_args& args) {
   const dt_camera cam = model::camera_params(camera_, config_, mesh_.cull_back_faces);
   const dt_model model = model::model_params(config_);
-  const auto per_triangle =
-      compute::NdRange::linear(round_up(std::max<size_t>(mesh_.triangle_count(), 1), kLinearGroup), kLinearGroup);
+  const auto per_item = compute::NdRange::linear(
+      round_up(std::max<size_t>(mesh_.triangle_count() * size_t{draw_slices_}, 1), kLinearGroup), kLinearGroup);
   const auto over_pixels = compute::NdRange::linear(sum_groups_ * kRefineGroup, kRefineGroup);
   const unsigned triangles = mesh_.triangle_count();
   // Timed: begin and the last sums, which the filter reads as one span (Event::elapsed_since_ms);
@@ -167,7 +177,7 @@ std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<floa
                            in.frame_times, in.parents, mesh_.planes, triangles, cam, model, nearest_, partials_,
                            correction_);
   for (int evaluation = 0; evaluation <= config_.refine.iterations; ++evaluation) {
-    queue_.launch_untimed(*draw_, per_triangle);
+    queue_.launch_untimed(*draw_, per_item);
     if (compute::EventPtr last =
             compute::launch_timed_if(timed && evaluation == config_.refine.iterations, queue_, *sums_, over_pixels))
       events.push_back(std::move(last));

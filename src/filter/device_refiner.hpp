@@ -62,12 +62,21 @@ constexpr size_t kOneLaunchGpuPixels = 160 * 120;
 RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceInfo& device, size_t triangle_count,
                                     size_t pixel_count);
 
+// The work-items that draw each triangle of the fit's candidate, every draw_slices-th row each: on a GPU
+// enough for about kFitDrawItems items in all (a coarse mesh's few large triangles, a work-item each, kept
+// the fit waiting on their pixel loops), at most one per row of the image and kMaxDrawSlices; 1 on a CPU,
+// whose work-items run in turn anyway (each slice repeats the triangle's set-up).
+constexpr size_t kFitDrawItems = 2048;
+constexpr unsigned kMaxDrawSlices = 64;
+unsigned refine_draw_slices(size_t triangle_count, int image_height, bool gpu);
+
 class DeviceRefiner {
  public:
   // occlusion_definition: the filter kernels' DT_OCCLUSION definition (model::occlusion_definition).
-  // refine.cl / refine_spread.cl come from programs, the cache of queue's device.
+  // refine.cl / refine_spread.cl come from programs, the cache of queue's device. draw_slices: 0 for
+  // refine_draw_slices' choice for this device, or that many (tests: the same fit for any).
   DeviceRefiner(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh, const Camera& camera,
-                const TrackerConfig& config, const std::string& occlusion_definition);
+                const TrackerConfig& config, const std::string& occlusion_definition, unsigned draw_slices = 0);
 
   // Enqueues the fit; estimate holds summarize's output and receives the refined pose. With summary
   // (only where summarizes_first()), summarize.cl's work is done first in the fit's own launch and
@@ -82,6 +91,7 @@ class DeviceRefiner {
   const compute::Buffer<float>& correction() const { return correction_; }
 
   RefineLayout layout() const { return layout_; }  // never Auto
+  unsigned draw_slices() const { return draw_slices_; }
   double radius() const { return radius_; }        // the mesh's (model::pose_covariance's pivot)
 
  private:
@@ -94,6 +104,7 @@ class DeviceRefiner {
   Eigen::Vector3d centre_;
   double radius_;
   RefineLayout layout_;
+  unsigned draw_slices_;
   std::shared_ptr<compute::Program> program_;
   std::unique_ptr<compute::Kernel> refine_;
   // The spread layout's kernels (cl/refine_spread.cl), its fit state, per-group partial sums and

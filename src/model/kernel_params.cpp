@@ -49,7 +49,7 @@ dt_camera camera_params(const Camera& camera, const TrackerConfig& config, bool 
 }
 
 dt_refine_args refine_params(const Refinement& refine, const Eigen::Vector3d& centre, double radius,
-                             size_t vertex_count, double now, double dt, double pixel_sigmas) {
+                             size_t vertex_count, double now, double dt, double pixel_sigmas, unsigned draw_slices) {
   return dt_refine_args{static_cast<float>(refine.damping),
                         static_cast<float>(refine.min_incidence),
                         static_cast<float>(centre.x()),
@@ -61,7 +61,8 @@ dt_refine_args refine_params(const Refinement& refine, const Eigen::Vector3d& ce
                         static_cast<float>(radius),
                         static_cast<float>(refine.converged_motion),
                         static_cast<dt_u32>(vertex_count),
-                        static_cast<float>(pixel_sigmas)};
+                        static_cast<float>(pixel_sigmas),
+                        draw_slices};
 }
 
 std::string occlusion_definition(OcclusionStorage storage) {

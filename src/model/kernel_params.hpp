@@ -21,9 +21,9 @@ static_assert(sizeof(dt_initial) == 24 && offsetof(dt_initial, centre_x) == 8 &&
               offsetof(dt_initial, mode_count) == 20);
 static_assert(sizeof(dt_camera) == 36 && offsetof(dt_camera, far) == 20 && offsetof(dt_camera, height) == 28 &&
               offsetof(dt_camera, cull_back_faces) == 32);
-static_assert(sizeof(dt_refine_args) == 48 && offsetof(dt_refine_args, dt) == 24 &&
+static_assert(sizeof(dt_refine_args) == 52 && offsetof(dt_refine_args, dt) == 24 &&
               offsetof(dt_refine_args, iterations) == 28 && offsetof(dt_refine_args, vertex_count) == 40 &&
-              offsetof(dt_refine_args, pixel_sigmas) == 44);
+              offsetof(dt_refine_args, pixel_sigmas) == 44 && offsetof(dt_refine_args, draw_slices) == 48);
 static_assert(sizeof(dt_window) == 40 && offsetof(dt_window, image_width) == 32 && offsetof(dt_window, initial) == 36);
 
 // Observation model and occlusion chain of config.
@@ -42,9 +42,9 @@ dt_camera camera_params(const Camera& camera, const TrackerConfig& config, bool 
 std::string occlusion_definition(OcclusionStorage storage);
 // The refinement's settings for a mesh with this centre (object frame), radius and vertex count, at
 // `now` seconds since the first frame, `dt` after the frame before; pixel_sigmas: the confidence's band
-// (TrackerConfig::loss).
+// (TrackerConfig::loss); draw_slices: the work-items drawing each triangle (DeviceRefiner).
 dt_refine_args refine_params(const Refinement& refine, const Eigen::Vector3d& centre, double radius,
-                             size_t vertex_count, double now, double dt, double pixel_sigmas);
+                             size_t vertex_count, double now, double dt, double pixel_sigmas, unsigned draw_slices);
 // The largest float not above threshold: a float x exceeds it exactly when x exceeds threshold, so a
 // float comparison on the device decides as the double comparison on the host.
 float float_threshold(double threshold);
