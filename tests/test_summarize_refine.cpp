@@ -151,15 +151,22 @@ TEST_CASE("The one-launch fit's own summary equals summarize then the fit, bit f
 
 TEST_CASE("The fit's drawing split over rows: at most a row per slice, more on a GPU for coarse meshes",
           "[refine]") {
-  // ceil(2,048 / triangles), at most the image's rows and 64; 1 on a CPU.
-  CHECK(refine_draw_slices(246, 60, true) == 9);
-  CHECK(refine_draw_slices(2048, 60, true) == 1);
-  CHECK(refine_draw_slices(3196, 60, true) == 1);
-  CHECK(refine_draw_slices(1000, 60, true) == 3);
-  CHECK(refine_draw_slices(12, 60, true) == 60);
-  CHECK(refine_draw_slices(12, 480, true) == 64);
-  CHECK(refine_draw_slices(12, 480, false) == 1);
-  CHECK(refine_draw_slices(0, 60, true) == 1);
+  // Spread: ceil(2,048 / triangles); one group: floor(256 / triangles), its idle work-items only; at most the
+  // image's rows and 64; 1 on a CPU.
+  const RefineLayout spread = RefineLayout::Spread, one_launch = RefineLayout::OneLaunch;
+  CHECK(refine_draw_slices(spread, 246, 60, true) == 9);
+  CHECK(refine_draw_slices(spread, 2048, 60, true) == 1);
+  CHECK(refine_draw_slices(spread, 3196, 60, true) == 1);
+  CHECK(refine_draw_slices(spread, 1000, 60, true) == 3);
+  CHECK(refine_draw_slices(spread, 12, 60, true) == 60);
+  CHECK(refine_draw_slices(spread, 12, 480, true) == 64);
+  CHECK(refine_draw_slices(spread, 12, 480, false) == 1);
+  CHECK(refine_draw_slices(spread, 0, 60, true) == 1);
+  CHECK(refine_draw_slices(one_launch, 246, 60, true) == 1);
+  CHECK(refine_draw_slices(one_launch, 842, 60, true) == 1);
+  CHECK(refine_draw_slices(one_launch, 100, 60, true) == 2);
+  CHECK(refine_draw_slices(RefineLayout::OneGroup, 12, 60, true) == 21);
+  CHECK(refine_draw_slices(one_launch, 12, 60, false) == 1);
 }
 
 TEST_CASE("A fit whose drawing is split over rows equals the fit drawing each triangle whole, bit for bit",

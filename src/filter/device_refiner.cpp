@@ -69,11 +69,12 @@ RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceIn
   return RefineLayout::OneLaunch;
 }
 
-unsigned refine_draw_slices(size_t triangle_count, int image_height, bool gpu) {
+unsigned refine_draw_slices(RefineLayout layout, size_t triangle_count, int image_height, bool gpu) {
   if (!gpu || triangle_count == 0) return 1;
-  const size_t wanted = (kFitDrawItems + triangle_count - 1) / triangle_count;
+  const size_t wanted = layout == RefineLayout::Spread ? (kFitDrawItems + triangle_count - 1) / triangle_count
+                                                       : kRefineGroup / triangle_count;
   const size_t most = std::clamp<size_t>(static_cast<size_t>(std::max(image_height, 1)), 1, kMaxDrawSlices);
-  return static_cast<unsigned>(std::min(wanted, most));
+  return static_cast<unsigned>(std::clamp<size_t>(wanted, 1, most));
 }
 
 DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& programs, const Mesh& mesh,
@@ -87,7 +88,8 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
       layout_(resolved_refine_layout(config.refine.layout, queue.info(), mesh.triangles.size(),
                                      static_cast<size_t>(camera.pixel_count()))),
       draw_slices_(draw_slices > 0 ? draw_slices
-                                   : refine_draw_slices(mesh.triangles.size(), camera.height, queue.info().is_gpu)),
+                                   : refine_draw_slices(layout_, mesh.triangles.size(), camera.height,
+                                                        queue.info().is_gpu)),
       program_(programs.program(layout_ == RefineLayout::OneGroup ? "refine.cl" : "refine_spread.cl",
                                 {"DT_GROUP_SIZE=" + std::to_string(kRefineGroup), occlusion_definition})),
       mesh_(queue, mesh),

@@ -62,13 +62,16 @@ constexpr size_t kOneLaunchGpuPixels = 160 * 120;
 RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceInfo& device, size_t triangle_count,
                                     size_t pixel_count);
 
-// The work-items that draw each triangle of the fit's candidate, every draw_slices-th row each: on a GPU
-// enough for about kFitDrawItems items in all (a coarse mesh's few large triangles, a work-item each, kept
-// the fit waiting on their pixel loops), at most one per row of the image and kMaxDrawSlices; 1 on a CPU,
-// whose work-items run in turn anyway (each slice repeats the triangle's set-up).
+// The work-items that draw each triangle of the fit's candidate, every draw_slices-th row each (a coarse
+// mesh's few large triangles, a work-item each, kept the fit waiting on their pixel loops). On a GPU: with
+// the spread layout enough for about kFitDrawItems items over the device; with the one-group layouts only
+// the group's otherwise idle work-items (at most one item each: every slice repeats the triangle's set-up,
+// and NVIDIA OpenCL's one-launch fit at 80x60 took 0.19 -> 0.21 ms a frame for the handset with 3 items a
+// work-item, H100, round 2, session 27). At most one per row of the image and kMaxDrawSlices. 1 on a CPU,
+// whose work-items run in turn anyway.
 constexpr size_t kFitDrawItems = 2048;
 constexpr unsigned kMaxDrawSlices = 64;
-unsigned refine_draw_slices(size_t triangle_count, int image_height, bool gpu);
+unsigned refine_draw_slices(RefineLayout layout, size_t triangle_count, int image_height, bool gpu);
 
 class DeviceRefiner {
  public:
