@@ -27,8 +27,11 @@ DT_DEVICE_FN void dt_refine_draw_item(dt_rigid pose, __global const float* verti
                                       __global const float* planes, uint triangle_count, uint draw_slices, uint item,
                                       dt_camera cam, __global uint* tile, __global uint* ids,
                                       __global dt_u64* nearest) {
-  dt_draw_triangle_rows(pose, vertices, triangles, planes, item % triangle_count, cam, tile, ids, nearest, 0,
-                        dt_no_band(), DT_CAST(int, item / triangle_count), DT_CAST(int, draw_slices));
+  /* Uniform: a mesh drawn whole (most meshes) spends no division per triangle. */
+  const uint triangle = draw_slices == 1 ? item : item % triangle_count,
+             slice = draw_slices == 1 ? 0u : item / triangle_count;
+  dt_draw_triangle_rows(pose, vertices, triangles, planes, triangle, cam, tile, ids, nearest, 0, dt_no_band(),
+                        DT_CAST(int, slice), DT_CAST(int, draw_slices));
 }
 
 /* Solves A x = b for the symmetric 6x6 A given by its lower triangle (row by row), its diagonal times
