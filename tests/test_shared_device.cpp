@@ -174,31 +174,17 @@ TEST_CASE("A MultiTracker's objects, enqueued together on one Device, equal sing
   std::vector<Pose> starts(3, frames[0].ground_truth);
   starts[1].translation.x() -= 0.04;
   starts[2].translation.x() += 0.04;
-  // Two host threads: enqueued on the caller's, collected on the pool as the later ones are enqueued;
-  // three: each object's frame on a thread of its own, enqueued side by side.
-  for (const int host_threads : {2, 3}) {
-    INFO(host_threads << " host threads");
-    MultiTracker together(Device::open(test::device_selector()), {mesh, mesh, mesh}, synth.camera, config,
-                          /*mutual_occlusion=*/false, host_threads);
-    std::vector<Tracker> alone;
-    for (size_t j = 0; j < 3; ++j) {
-      together.initialize(j, starts[j]);
-      alone.emplace_back(mesh, synth.camera, config);
-      alone.back().initialize(starts[j]);
-    }
-    for (const auto& f : frames) {
-      const std::vector<Estimate> estimates = together.update(f.depth, f.timestamp);
-      REQUIRE(estimates.size() == 3);
-      for (size_t j = 0; j < 3; ++j) test::require_same_estimate(estimates[j], alone[j].update(f.depth, f.timestamp));
-      // Every object was enqueued, and the stage's time is theirs added.
-      const MultiStageTimings& t = together.last_timings();
-      REQUIRE(t.object_enqueue_ms.size() == 3);
-      double added = 0;
-      for (const double ms : t.object_enqueue_ms) {
-        CHECK(ms > 0);
-        added += ms;
-      }
-      CHECK(t.enqueue_ms == Approx(added));
-    }
+  MultiTracker together(Device::open(test::device_selector()), {mesh, mesh, mesh}, synth.camera, config,
+                        /*mutual_occlusion=*/false);
+  std::vector<Tracker> alone;
+  for (size_t j = 0; j < 3; ++j) {
+    together.initialize(j, starts[j]);
+    alone.emplace_back(mesh, synth.camera, config);
+    alone.back().initialize(starts[j]);
+  }
+  for (const auto& f : frames) {
+    const std::vector<Estimate> estimates = together.update(f.depth, f.timestamp);
+    REQUIRE(estimates.size() == 3);
+    for (size_t j = 0; j < 3; ++j) test::require_same_estimate(estimates[j], alone[j].update(f.depth, f.timestamp));
   }
 }

@@ -18,15 +18,14 @@ class ThreadPool;
 
 // Host wall time of each stage of the last MultiTracker::update, ms: where a several-object frame's time
 // goes. The stages follow one another on the calling thread; meanwhile the pool collects and assesses the
-// objects already enqueued (except with the GL renderer). With a pool thread for every object (and no GL
-// renderer) each object's frame runs on a thread of its own, its enqueue beside the others'. Each
-// object's own steps are in its Estimate::timings.
+// objects already enqueued (except with the GL renderer). Each object's own steps are in its
+// Estimate::timings.
 struct MultiStageTimings {
   double working_ms = 0;    // the frame checked and decimated to the working resolution, once
   double occluders_ms = 0;  // mutual occlusion: the objects' previous estimates drawn (the last frame drew them)
   double masks_ms = 0;      // mutual occlusion: each object's masked working frame
-  double enqueue_ms = 0;  // every object's start_frame added: upload, enqueue (a host filter: its whole update)
-  std::vector<double> object_enqueue_ms;  // each object's share of enqueue_ms, in order (0: not started)
+  double enqueue_ms = 0;    // every object's start_frame: upload, enqueue (a host filter: its whole update)
+  std::vector<double> object_enqueue_ms;  // each object's share of enqueue_ms, in order
   double collect_ms = 0;     // from the last enqueue to the last estimate collected (earlier ones meanwhile)
   double confidence_ms = 0;  // confidences, statuses and next layers still running after that (a pool)
   double total_ms = 0;       // the whole update
@@ -35,9 +34,8 @@ struct MultiStageTimings {
 class MultiTracker {
  public:
   // InputError for no mesh or a null device; each tracker as Tracker(device, mesh, sensor, config).
-  // host_threads: the threads the objects' host steps (enqueuing, collecting, confidence, occluder layers)
-  // share, the caller's included; 0: one per object, at most the hardware's. Any count gives the same
-  // estimates. With at least one per object (and no GL renderer) the objects are enqueued side by side.
+  // host_threads: the threads the objects' host steps (collecting, confidence, occluder layers) share, the
+  // caller's included; 0: one per object, at most the hardware's. Any count gives the same estimates.
   MultiTracker(std::shared_ptr<Device> device, const std::vector<Mesh>& meshes, const Camera& sensor,
                const TrackerConfig& config, bool mutual_occlusion = true, int host_threads = 0);
   ~MultiTracker();
@@ -60,11 +58,8 @@ class MultiTracker {
   // One frame, already at the working resolution, for every object; sensor_frame() as Tracker's.
   std::vector<Estimate> run(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame,
                             double timestamp);
-  // run's three ways of starting every object (start(j)) and collecting and assessing it (assess(j) after
-  // the estimate): each object's frame on a pool thread of its own (a thread for every object), collected on
-  // the pool as the later objects are enqueued on this thread, or collected on this thread (GL).
-  void side_by_side(size_t n, const std::function<void(size_t)>& start, const std::function<void(size_t)>& assess,
-                    std::vector<Estimate>& estimates);
+  // run's two ways of starting every object (start(j)) and collecting and assessing it (assess(j) after
+  // the estimate): collected on the pool as the later objects are enqueued, or on this thread (GL).
   void pipelined(size_t n, const std::function<void(size_t)>& start, const std::function<void(size_t)>& assess,
                  std::vector<Estimate>& estimates);
   void collected_here(size_t n, const std::function<void(size_t)>& start, const std::function<void(size_t)>& assess,

@@ -109,11 +109,11 @@ std::vector<Estimate> MultiTracker::run(const DepthImage& working,
     for (size_t j = 0; j < n; ++j) masked[j] = occlusion_->frame_for(j, working, poses_, layers);
     timings_.masks_ms = clock.lap_ms();
   }
-  timings_.object_enqueue_ms.assign(n, 0.0);
-  const auto start = [&](size_t j) {  // each object's own entry: the objects may start on threads side by side
+  const auto start = [&](size_t j) {
     const Stopwatch own;
     trackers_[j].start_frame(frame_of(j), sensor_frame, timestamp);
-    timings_.object_enqueue_ms[j] = own.elapsed_ms();
+    timings_.object_enqueue_ms.push_back(own.elapsed_ms());
+    timings_.enqueue_ms += timings_.object_enqueue_ms.back();
   };
   // After its estimate: the confidence and status, then the next frame's occluder layer (this estimate
   // drawn: the host confidence drew it already; a refining backend's confidence comes from the device,
@@ -123,51 +123,12 @@ std::vector<Estimate> MultiTracker::run(const DepthImage& working,
     if (occlusion_) trackers_[j].silhouette(estimates[j].pose);
   };
   // Each rethrows the first failure once every started object is collected; the poses then stay.
-  const auto added_enqueues = [&] {
-    for (const double ms : timings_.object_enqueue_ms) timings_.enqueue_ms += ms;
-  };
-  try {
-    if (collects_on_pool_ && n > 1 && static_cast<size_t>(pool_->size()) >= n)
-      side_by_side(n, start, assess, estimates);
-    else if (collects_on_pool_)
-      pipelined(n, start, assess, estimates);
-    else
-      collected_here(n, start, assess, estimates);
-  } catch (...) {
-    added_enqueues();
-    throw;
-  }
-  added_enqueues();
+  if (collects_on_pool_)
+    pipelined(n, start, assess, estimates);
+  else
+    collected_here(n, start, assess, estimates);
   for (size_t j = 0; j < n; ++j) poses_[j] = estimates[j].pose;
   return estimates;
-}
-
-// With a thread for every object, each object's whole frame on its own: started, collected, assessed.
-// The objects' enqueues (a blocking upload and a graph or a dozen launches each, 50-60 us of host time an
-// object on CUDA, more on NVIDIA OpenCL) then overlap instead of following one another, so the later
-// objects' work reaches the device as early as the first's. collect_ms runs from the last enqueue to finish
-// to the last collection. A failed start drops that object only; the others finish their frames.
-void MultiTracker::side_by_side(size_t n, const std::function<void(size_t)>& start,
-                                const std::function<void(size_t)>& assess, std::vector<Estimate>& estimates) {
-  const Stopwatch clock;
-  std::vector<double> enqueued_at(n, 0.0), collected_at(n, 0.0);
-  std::exception_ptr failure;
-  try {
-    pool_->run(n, [&](size_t j, int) {
-      start(j);
-      enqueued_at[j] = clock.elapsed_ms();
-      estimates[j] = trackers_[j].collect_frame();
-      collected_at[j] = clock.elapsed_ms();
-      assess(j);
-    });
-  } catch (...) {
-    failure = std::current_exception();
-  }
-  const double last_enqueued = *std::max_element(enqueued_at.begin(), enqueued_at.end()),
-               last_collected = *std::max_element(collected_at.begin(), collected_at.end());
-  timings_.collect_ms = std::max(0.0, last_collected - last_enqueued);
-  timings_.confidence_ms = std::max(0.0, clock.elapsed_ms() - std::max(last_enqueued, last_collected));
-  if (failure) std::rethrow_exception(failure);
 }
 
 // Each object's estimate is waited for, assessed and its next layer drawn on the pool while this thread
