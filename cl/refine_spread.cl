@@ -1,6 +1,7 @@
 /* The pose refinement spread over many work-groups: the same fit as cl/refine.cl's one-group kernel
  * (dt_refine.h holds what both share), but every evaluation of a candidate pose is two kernels over
- * the whole device: its triangles drawn, a work-item per triangle, into one 64-bit word per pixel
+ * the whole device: its triangles drawn, a work-item per triangle (or per slice of a triangle's rows:
+ * dt_refine_draw_item), into one 64-bit word per pixel
  * (depth bits and triangle index, kept by atomic min: dt_raster_triangle_rows' `nearest`), then the
  * image's pixels summed into one row of DT_REFINE_SUMS partial sums per work-group. The last group
  * of the sums to finish (a counter in the fit's state) adds the rows in a fixed order (no float
