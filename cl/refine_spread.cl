@@ -238,7 +238,8 @@ __kernel void refine_one_launch(__global const float* log_weight, __global const
   for (;;) {
     const dt_rigid pose = dt_particle_pose(s->candidate);
     for (uint item = lid; item < triangle_count * args.draw_slices; item += DT_GROUP_SIZE)
-      dt_refine_draw_item(pose, vertices, triangles, planes, triangle_count, args.draw_slices, item, cam, 0, 0, nearest);
+      dt_refine_draw_item(pose, vertices, triangles, planes, triangle_count, args.draw_slices, item, cam, 0, 0,
+                          nearest);
     barrier(CLK_GLOBAL_MEM_FENCE);
     float acc[DT_REFINE_SUMS];
     dt_refine_sum_drawn(acc, lid, DT_GROUP_SIZE, nearest, pose, args, observed, occlusion, occlusion_time,

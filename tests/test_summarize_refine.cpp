@@ -132,7 +132,8 @@ TEST_CASE("The one-launch fit's own summary equals summarize then the fit, bit f
   config.step_timings = false;
   const FitScene scene = fit_scene(builtin_demo_mesh(), config, 300);
   compute::ProgramCache programs(*q);
-  const FitRun apart = run_fit(*q, programs, scene, config, 0, false), together = run_fit(*q, programs, scene, config, 0, true);
+  const FitRun apart = run_fit(*q, programs, scene, config, 0, false),
+               together = run_fit(*q, programs, scene, config, 0, true);
   CHECK(same_floats(together.estimate, apart.estimate));
   CHECK(same_floats(together.weights, apart.weights));
   CHECK(same_floats(together.correction, apart.correction));
@@ -176,7 +177,7 @@ TEST_CASE("A fit whose drawing is split over rows equals the fit drawing each tr
   compute::ProgramCache programs(*q);
   TrackerConfig config;
   config.step_timings = false;
-  // A box whose 12 triangles span up to about 20 of the 80x60 image's rows, and the demo mesh's smaller ones.
+  // A box whose 12 large triangles each span several of the 80x60 image's rows, and the demo mesh's smaller ones.
   for (const Mesh& mesh : {make_box(Eigen::Vector3f(0.12f, 0.08f, 0.06f)), builtin_demo_mesh()}) {
     const FitScene scene = fit_scene(mesh, config, 64);
     for (const RefineLayout layout : {RefineLayout::OneGroup, RefineLayout::Spread, RefineLayout::OneLaunch}) {

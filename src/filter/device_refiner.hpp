@@ -65,10 +65,11 @@ RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceIn
 // The work-items that draw each triangle of the fit's candidate, every draw_slices-th row each (a coarse
 // mesh's few large triangles, a work-item each, kept the fit waiting on their pixel loops). On a GPU: with
 // the spread layout enough for about kFitDrawItems items over the device; with the one-group layouts only
-// the group's otherwise idle work-items (at most one item each: every slice repeats the triangle's set-up,
-// and NVIDIA OpenCL's one-launch fit at 80x60 took 0.19 -> 0.21 ms a frame for the handset with 3 items a
-// work-item, H100, round 2, session 27). At most one per row of the image and kMaxDrawSlices. 1 on a CPU,
-// whose work-items run in turn anyway.
+// the group's otherwise idle work-items (floor(group / triangles): a mesh of as many triangles as the group
+// has work-items is drawn whole, as before). Every slice repeats the triangle's set-up: with 2,048 items in
+// one group, about 10 a work-item for the handset's 842 triangles against 3-4, NVIDIA OpenCL's one-launch
+// fit at 80x60 took 0.19 -> 0.21 ms a frame (H100, round 2, session 27). At most one per row of the image
+// and kMaxDrawSlices. 1 on a CPU, whose work-items run in turn anyway.
 constexpr size_t kFitDrawItems = 2048;
 constexpr unsigned kMaxDrawSlices = 64;
 unsigned refine_draw_slices(RefineLayout layout, size_t triangle_count, int image_height, bool gpu);
