@@ -160,7 +160,7 @@ TEST_CASE("load_sequence reads the YCB-Video clip ycbv-0000 for the mug", "[io]"
   const Sequence s = load_sequence(*dir, "mug");
   REQUIRE(s.format == "ycb-video");
   REQUIRE(s.object == "025_mug");
-  REQUIRE(s.frames.size() == 10);
+  REQUIRE(s.frames.size() == 20);
   REQUIRE(s.camera.width == 640);
   REQUIRE(s.camera.height == 480);
   REQUIRE(s.camera.fx == 1066.778);
@@ -171,6 +171,8 @@ TEST_CASE("load_sequence reads the YCB-Video clip ycbv-0000 for the mug", "[io]"
   REQUIRE(s.frames[0].name == "000001");
   REQUIRE(s.frames[0].timestamp == 0.0);
   REQUIRE(s.frames[9].timestamp == Approx(9.0 / 30.0));
+  REQUIRE(s.frames[19].name == "000020");
+  REQUIRE(s.frames[19].timestamp == Approx(19.0 / 30.0));
   REQUIRE(s.frames[0].ground_truth.has_value());
   const Eigen::Vector3d t = s.frames[0].ground_truth->translation;
   REQUIRE(t.x() == 0.05854422693862422);
