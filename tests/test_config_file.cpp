@@ -131,7 +131,7 @@ TEST_CASE("The dumped defaults hold the documented values, nested as in TrackerC
   CHECK(j["refine"]["iterations"] == 8);
   CHECK(j["refine"]["enabled"] == true);
   CHECK(j["recovery"]["budget_ms"] == 500);
-  CHECK(j["loss"]["lost_after"] == 3);
+  CHECK(j["loss"]["search_after"] == 3);
 }
 
 TEST_CASE("A partial file overrides only its keys; bad keys, types and values name the field", "[config]") {

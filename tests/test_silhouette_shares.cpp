@@ -10,6 +10,7 @@
 #include "reference/pose_refiner.hpp"
 #include "reference/reference_filter.hpp"
 #include "synth_frames.hpp"
+#include "tracker/confidence_model.hpp"
 #include "tracker/silhouette_shares.hpp"
 
 using namespace depthtrack;
@@ -79,11 +80,12 @@ TEST_CASE("silhouette shares: an object before a wall stands out and an occluder
   CHECK(dropped.separated == 1.0);
   const SilhouetteShares blind = scene.shares(std::vector<float>(scene.rendered.size(), NAN));
   CHECK(blind.missing == 1.0);
-  CHECK(blind.confidence() == 0.0);
+  CHECK(blind.visible == 0.0);
+  CHECK(pose_confidence(blind) == 0.0);
 }
 
-// The filters with refinement take the confidence from the fit's counts at the refined pose instead of
-// drawing it again (FilterBackend::assesses_confidence): the counts must be the silhouette shares'.
+// The filters with refinement report the fit's counts at the refined pose as their estimate's visible
+// share: the counts must be the silhouette shares'.
 TEST_CASE("the refinement's counts at a pose are the confidence's: pixels measured and within the band",
           "[confidence]") {
   Scene scene;
@@ -100,14 +102,14 @@ TEST_CASE("the refinement's counts at a pose are the confidence's: pixels measur
   }
   const int measured = static_cast<int>(covered.size()) - 4, visible = measured - 12;
   const SilhouetteShares shares = scene.shares(metres);
-  REQUIRE(shares.confidence() == Approx(static_cast<double>(visible) / measured).epsilon(1e-12));
+  REQUIRE(shares.visible == Approx(static_cast<double>(visible) / measured).epsilon(1e-12));
 
   const reference::PoseRefiner refiner(scene.mesh, scene.camera, scene.config);
   const DepthImage depth = DepthImage::from_metres(scene.camera.width, scene.camera.height, metres);
   const reference::NormalEquations e = refiner.normal_equations(scene.pose, depth, {});
   CHECK(e.measured == measured);
   CHECK(e.visible == visible);
-  CHECK(e.visible_share() == shares.confidence());
+  CHECK(e.visible_share() == shares.visible);
   // A wider band takes the pixels 0.2 m behind in (sigma at ~0.8 m is a few millimetres).
   TrackerConfig wide = scene.config;
   wide.loss.pixel_sigmas = 0.25 / reference::depth_sigma(wide.observation, 1.0);
@@ -115,7 +117,7 @@ TEST_CASE("the refinement's counts at a pose are the confidence's: pixels measur
         visible + 5);
 }
 
-TEST_CASE("a reference tracker with refinement reports the silhouette shares' confidence at its estimate",
+TEST_CASE("a tracker reports the calibrated confidence of its estimate's silhouette shares; the filter, the fit's share",
           "[confidence]") {
   const Mesh mesh = builtin_demo_mesh();
   const SynthConfig synth = test::small_scene(12);
@@ -135,11 +137,13 @@ TEST_CASE("a reference tracker with refinement reports the silhouette shares' co
     const SilhouetteShares shares =
         silhouette_shares(rasterizer, config.observation, config.loss.pixel_sigmas, e.pose, f.depth, scratch);
     REQUIRE(shares.pixels > 20);
-    REQUIRE(e.confidence == shares.confidence());
+    REQUIRE(e.evidence.visible == shares.visible);
+    REQUIRE(e.evidence.separated == shares.separated);
+    REQUIRE(e.evidence.visible_rms == shares.visible_rms);
+    REQUIRE(e.confidence == pose_confidence(shares));
   }
-  // The filter's own estimate carries it (the tracker would otherwise draw it again itself).
+  // The filter's own estimate carries the fit's visible share.
   reference::ReferenceFilter filter(mesh, synth.camera, config);
-  REQUIRE(filter.assesses_confidence());
   filter.initialize(scene.ground_truth(0.0), InitialSpread{0.01, 0.05});
   for (int i = 0; i < synth.frames; ++i) {
     const SynthFrame f = scene.frame(i);
@@ -147,6 +151,6 @@ TEST_CASE("a reference tracker with refinement reports the silhouette shares' co
     const SilhouetteShares shares =
         silhouette_shares(rasterizer, config.observation, config.loss.pixel_sigmas, e.pose, f.depth, scratch);
     REQUIRE(shares.pixels > 20);
-    REQUIRE(e.confidence == shares.confidence());
+    REQUIRE(e.confidence == shares.visible);
   }
 }

@@ -8,6 +8,7 @@
 #include <depthtrack/init_hint.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/pose.hpp>
+#include <depthtrack/pose_evidence.hpp>
 #include <depthtrack/tracker_config.hpp>
 #include <functional>
 #include <memory>
@@ -42,10 +43,11 @@ struct StepTimings {
   double enqueue_ms = 0, wait_ms = 0;
 };
 
-// What a frame's estimate rests on. Tracking: the filter follows the object. Lost: the confidence
-// stayed low for a few frames (TrackerConfig::loss); a search finding the object ends it. NoData: the
-// frame had no valid pixel (a sensor dropout), so the filter only predicted: the pose is the motion
-// model's guess.
+// What a frame's estimate rests on. Tracking: the confidence is at least loss.lost_below, so the pose can
+// be acted on. Lost: it is not (the object is hidden, gone or the estimate is wrong); while it
+// stays so for loss.search_after frames, or after a gap in time the motion model cannot bridge, the
+// tracker searches for the object. NoData: the frame had no valid pixel (a sensor dropout), so the
+// filter only predicted: the pose is the motion model's guess.
 enum class TrackStatus { Tracking, Lost, NoData };
 const char* to_string(TrackStatus status);  // "tracking", "lost", "no-data"
 
@@ -67,10 +69,11 @@ struct Estimate {
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Constant(std::nan(""));
   StepTimings timings;
   int refine_iterations = 0;  // steps the refinement tried (each one rendering of the pose); 0 when off
-  // Share of the estimate's rendered silhouette (pixels with valid depth) that the depth explains
-  // as the object's visible surface, in [0, 1]: low when the object is hidden or the depth is seen
-  // behind where the estimate puts it.
+  // The probability that the pose lies within tolerance of the truth (ADD-S at most 10 mm and a tenth
+  // of the object's diameter), from `evidence` by a calibrated model (docs/confidence.md); 0 for a
+  // frame without data or a silhouette that covers no measured pixel.
   double confidence = 0;
+  PoseEvidence evidence;  // what the frame's depth says about the pose, at the working resolution
   TrackStatus status = TrackStatus::Tracking;
   bool recovered = false;   // this frame re-seeded the filter from a global search
   size_t search_poses = 0;  // poses this frame's global search scored (0: none ran)
@@ -179,6 +182,8 @@ class Tracker {
   bool initialized_ = false;
   bool has_previous_ = false;
   double previous_timestamp_ = 0;
+  Pose last_pose_;            // the last frame's estimate: where a search after a gap looks
+  bool gap_pending_ = false;  // a gap came with no valid pixel to search: the next frame that has one searches
   size_t frames_since_initialize_ = 0;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();  // the mesh's, where initialize() checks the start
   size_t mesh_triangles_ = 0, drawn_triangles_ = 0;

@@ -82,13 +82,13 @@ struct Refinement {
   RefineLayout layout = RefineLayout::Auto;  // device backends only: the same fit, laid out differently
 };
 
-// When an estimate counts as lost, from its confidence (Estimate::confidence).
+// When an estimate counts as lost, from its confidence (Estimate::confidence, a calibrated probability).
 struct LossModel {
-  double pixel_sigmas = 3.0;   // |y - y_hat| within this many sigma(y): the object is seen there
-  double lost_below = 0.3;     // a frame below this confidence is a bad frame
-  int lost_after = 3;          // this many bad frames in a row raise lost
-  double found_above = 0.75;   // a search candidate this confident ends lost
-  double found_outline = 0.5;  // and this share of its outline sees past its edge (TrackSupervisor::found)
+  double pixel_sigmas = 3.0;  // |y - y_hat| within this many sigma(y): the object is seen there
+  double lost_below = 0.5;    // a frame below this confidence is reported lost
+  int search_after = 3;       // this many lost frames in a row start a search each frame (recovery)
+  double found_above = 0.75;  // a search candidate this confident ends lost
+  double found_outline = 0.5; // and this share of its outline sees past its edge (TrackSupervisor::found)
 };
 
 // Where each particle keeps its per-pixel occlusion state (docs/design-notes.md, "The occlusion state
@@ -149,10 +149,11 @@ struct TrackerConfig {
   int height = 60;
   double resample_kl_threshold = 2.0;  // resample when log N - H(w) exceeds this
   double near_plane = 0.05;            // metres: rendering clips geometry closer than this
-  // Seconds: a longer gap between frames is propagated as this long. The motion noise grows with
-  // the gap without bound (a 1e6 s gap spread the particles over kilometres); after a second the
-  // track is as good as lost anyway, and the cloud stays where the object can still be seen.
-  double max_time_step = 1.0;
+  // Seconds: the longest gap between frames the motion model bridges. A longer one is propagated as
+  // this long, so that the particles' spread stays bounded (the motion noise grows with the gap without
+  // bound, and a cloud spread blindly over the scene settles on whatever surface fits), and then the
+  // object is searched for around its last pose before the track is trusted again (Tracker::update).
+  double max_time_step = 0.2;
   uint64_t seed = 1;
   // reference, opencl, opencl:pocl, opencl:nvidia, opencl:<platform>.<device>, cuda, cuda:<n>;
   // empty: reference (see resolved_backend()). The library reads no environment; the depthtrack

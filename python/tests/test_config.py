@@ -30,7 +30,7 @@ def test_nested_fields_are_set_in_place_and_round_trip_through_json():
     config = depthtrack.TrackerConfig()
     config.observation.sigma_constant = 0.004
     config.refine.iterations = 3
-    config.loss.lost_after = 5
+    config.loss.search_after = 5
     config.occlusion_storage = "global-time"
     config.seed = 2**40
     config.backend = "opencl:pocl"

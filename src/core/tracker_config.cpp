@@ -134,7 +134,7 @@ void TrackerConfig::validate() const {
   require(probability(loss.lost_below) && probability(loss.found_above) && loss.lost_below <= loss.found_above,
           "loss thresholds need 0 <= lost_below <= found_above <= 1");
   require(probability(loss.found_outline), "loss found_outline must be in [0, 1]");
-  require(loss.lost_after >= 1, "loss lost_after must be at least 1 frame");
+  require(loss.search_after >= 1, "loss search_after must be at least 1 frame");
   require(std::isfinite(recovery.budget_ms) && recovery.budget_ms > 0, "recovery budget must be positive (ms)");
 }
 

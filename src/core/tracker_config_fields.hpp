@@ -99,8 +99,8 @@ inline auto fields_of(const LossModel*) {
   using S = LossModel;
   return std::tuple{
       field("pixel_sigmas", &S::pixel_sigmas, "|y - y_hat| within this many sigma(y): the object is seen there"),
-      field("lost_below", &S::lost_below, "a frame below this confidence is a bad frame"),
-      field("lost_after", &S::lost_after, "this many bad frames in a row raise lost"),
+      field("lost_below", &S::lost_below, "a frame below this confidence (a probability) is reported lost"),
+      field("search_after", &S::search_after, "this many lost frames in a row start a search each frame"),
       field("found_above", &S::found_above, "a search candidate this confident ends lost"),
       field("found_outline", &S::found_outline,
             "and this share of its outline (where not against a nearer surface) sees past its edge"),
@@ -147,7 +147,7 @@ inline auto fields_of(const TrackerConfig*) {
       field("height", &S::height, "working resolution height"),
       field("resample_kl_threshold", &S::resample_kl_threshold, "resample when log N - H(w) exceeds this"),
       field("near_plane", &S::near_plane, "rendering clips geometry closer than this (m)"),
-      field("max_time_step", &S::max_time_step, "a longer gap between frames is propagated as this long (s)"),
+      field("max_time_step", &S::max_time_step, "the longest gap between frames the motion model bridges; a longer one is propagated as this long and searched around the last pose (s)"),
       field("seed", &S::seed, "random seed: the same seed gives the same particles on every backend"),
       field("backend", &S::backend,
             "reference, opencl, opencl:pocl, opencl:nvidia, opencl:<p>.<d>, cuda, cuda:<n>; empty: reference"),

@@ -108,7 +108,6 @@ class DeviceFilter final : public FilterBackend {
   Estimate collect() override;
   std::string description() const override;
   std::pair<int, int> occlusion_window_size() const override { return {window_.width, window_.height}; }
-  bool assesses_confidence() const override { return refiner_ != nullptr; }
 
   // What the last update computed, downloaded for comparison with the reference filter.
   std::vector<double> last_log_likelihoods() const;

@@ -34,7 +34,9 @@ class FilterBackend {
   // A scorer of `mesh` (e.g. a simplified copy) on this backend's device, camera and
   // configuration, its programs built now: global search scores through it.
   virtual std::unique_ptr<PoseScorer> make_pose_scorer(const Mesh& mesh) = 0;
-  // dt: seconds since the previous frame, 0 for the first frame after initialize().
+  // dt: seconds since the previous frame, 0 for the first frame after initialize(). With refinement the
+  // estimate's confidence is the fit's visible share at its pose (the Tracker replaces it by the
+  // calibrated confidence of the pose's whole evidence).
   virtual Estimate update(const DepthImage& depth, double dt) = 0;
   // update() in two halves, so that several filters' device work overlaps: enqueue_update starts the
   // frame (a device filter enqueues all of it and waits for nothing; `depth` need not outlive the call)
@@ -48,10 +50,6 @@ class FilterBackend {
     return e;
   }
   virtual std::string description() const = 0;
-  // True when collect() fills Estimate::confidence itself (the silhouette shares' visible share at the
-  // estimate's pose): the refinement's sums at that pose count its covered pixels, so the tracker need
-  // not draw the pose again on the host.
-  virtual bool assesses_confidence() const { return false; }
   // Width and height of the occlusion state window the last frame kept (TrackerConfig::occlusion_window;
   // 0 x 0 for a filter without one).
   virtual std::pair<int, int> occlusion_window_size() const { return {0, 0}; }

@@ -33,7 +33,6 @@ class ReferenceFilter final : public FilterBackend {
   Estimate update(const DepthImage& depth, double dt) override;
   std::string description() const override;
   std::pair<int, int> occlusion_window_size() const override { return {window_.width, window_.height}; }
-  bool assesses_confidence() const override { return config_.refine.enabled; }
 
   // What the last update computed, for comparing backends: per particle, before resampling.
   const std::vector<double>& last_log_likelihoods() const { return last_log_likelihoods_; }

@@ -1,5 +1,7 @@
 #include "tracker/silhouette_shares.hpp"
 
+#include <cmath>
+
 #include "reference/observation_model.hpp"
 
 namespace depthtrack {
@@ -10,6 +12,7 @@ SilhouetteShares silhouette_shares(const reference::Rasterizer& rasterizer, cons
   const reference::PixelBox box = rasterizer.render(pose, scratch);
   const int width = rasterizer.camera().width;
   int visible = 0, occluded = 0, contradicted = 0, missing = 0;
+  double visible_squares = 0;
   for (int v = box.v0; v < box.v1; ++v)
     for (int u = box.u0; u < box.u1; ++u) {
       const size_t k = static_cast<size_t>(v) * static_cast<size_t>(width) + static_cast<size_t>(u);
@@ -27,8 +30,11 @@ SilhouetteShares silhouette_shares(const reference::Rasterizer& rasterizer, cons
         case reference::BandSide::Behind:
           ++contradicted;
           break;
-        case reference::BandSide::Within:
+        case reference::BandSide::Within: {
           ++visible;
+          const double z = (y - y_hat) / reference::depth_sigma(model, y);
+          visible_squares += z * z;
+        }
       }
     }
   // The outline: each uncovered 4-neighbour of a covered pixel, once per covered neighbour.
@@ -58,6 +64,8 @@ SilhouetteShares silhouette_shares(const reference::Rasterizer& rasterizer, cons
   SilhouetteShares s;
   if (outline > nearer) s.separated = static_cast<double>(past_edge) / (outline - nearer);
   if (outline > 0) s.outline_nearer = static_cast<double>(nearer) / outline;
+  s.outline = outline;
+  if (visible > 0) s.visible_rms = std::sqrt(visible_squares / visible);
   s.pixels = visible + occluded + contradicted + missing;
   const int measured = visible + occluded + contradicted;
   if (s.pixels > 0) s.missing = static_cast<double>(missing) / s.pixels;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "model/occlusion_chain.hpp"
+#include "tracker/confidence_model.hpp"
 #include "reference/pose_score.hpp"
 #include "search/box_centre_points.hpp"
 #include "search/simplify_mesh.hpp"
@@ -157,6 +158,25 @@ void TrackSupervisor::fit_best(search::SearchResult& result, const DepthImage& w
   if (!outlined.empty()) result.candidates = std::move(outlined);
 }
 
+InitHint TrackSupervisor::around(const Pose& pose) const {
+  double u0 = sensor_.width, v0 = sensor_.height, u1 = 0, v1 = 0;
+  for (const Eigen::Vector3d& vertex : object_.vertices) {
+    const Eigen::Vector3d p = pose.apply(vertex);
+    if (!(p.z() > config_.near_plane)) return InitHint::anywhere();
+    const Eigen::Vector2d uv = sensor_.project(p);
+    u0 = std::min(u0, uv.x());
+    v0 = std::min(v0, uv.y());
+    u1 = std::max(u1, uv.x());
+    v1 = std::max(v1, uv.y());
+  }
+  const double du = 0.5 * (u1 - u0), dv = 0.5 * (v1 - v0);
+  u0 -= du, u1 += du, v0 -= dv, v1 += dv;
+  if (u1 < 0 || v1 < 0 || u0 > sensor_.width - 1 || v0 > sensor_.height - 1) return InitHint::anywhere();
+  auto pixel = [](double x, int size) { return std::clamp(static_cast<int>(std::lround(x)), 0, size - 1); };
+  return InitHint::box(pixel(u0, sensor_.width), pixel(v0, sensor_.height), pixel(u1, sensor_.width),
+                       pixel(v1, sensor_.height));
+}
+
 std::vector<Pose> TrackSupervisor::seeds(const search::SearchResult& result) {
   std::vector<Pose> out;
   if (result.candidates.empty()) return out;
@@ -193,20 +213,24 @@ const std::vector<float>& TrackSupervisor::silhouette(const Pose& pose) {
 
 bool TrackSupervisor::found(const Pose& pose, const DepthImage& working) {
   const SilhouetteShares s = assess(pose, working);
-  return s.confidence() >= config_.loss.found_above && s.separated >= config_.loss.found_outline;
+  return pose_confidence(s) >= config_.loss.found_above && s.separated >= config_.loss.found_outline;
 }
 
 TrackStatus TrackSupervisor::observe(double confidence) {
-  bad_frames_ = confidence < config_.loss.lost_below ? bad_frames_ + 1 : 0;
-  if (bad_frames_ >= config_.loss.lost_after) status_ = TrackStatus::Lost;
-  // The filter can find the object again by itself (an occluder moves away).
-  if (status_ == TrackStatus::Lost && confidence >= config_.loss.found_above) status_ = TrackStatus::Tracking;
+  // A pose the evidence does not support is never reported as tracked: lost at once. The filter can
+  // find the object again by itself (an occluder moves away), which ends it just as at once.
+  lost_frames_ = confidence < config_.loss.lost_below ? lost_frames_ + 1 : 0;
+  status_ = lost_frames_ > 0 ? TrackStatus::Lost : TrackStatus::Tracking;
   return status_;
+}
+
+bool TrackSupervisor::should_search() const {
+  return status_ == TrackStatus::Lost && lost_frames_ >= config_.loss.search_after;
 }
 
 void TrackSupervisor::reset() {
   status_ = TrackStatus::Tracking;
-  bad_frames_ = 0;
+  lost_frames_ = 0;
 }
 
 }  // namespace depthtrack

@@ -34,6 +34,9 @@ class TrackSupervisor {
   search::SearchResult candidates(const DepthImage& sensor_depth, const DepthImage& working, const InitHint& hint,
                                   double budget_ms, unsigned round) const;
   void finish(search::SearchResult& result, const DepthImage& working, const InitHint& hint, unsigned round) const;
+  // A box around where the object was at pose (its projection, widened by half its size on every side,
+  // in the sensor's pixels): where a search after a gap in time looks. Anywhere when it is out of view.
+  InitHint around(const Pose& pose) const;
   // The candidates to seed the filter with: the best, and the runners-up nearly as likely.
   static std::vector<Pose> seeds(const search::SearchResult& result);
 
@@ -41,12 +44,15 @@ class TrackSupervisor {
   // The working-resolution depth of the mesh at pose (0 where it covers nothing): assess()'s rendering
   // when it drew that very pose last, else drawn now. Valid until the next assess() or silhouette().
   const std::vector<float>& silhouette(const Pose& pose);
-  // Whether a search candidate ends lost: the depth explains its silhouette (confidence at least
+  // Whether a search candidate ends lost: the depth supports it (confidence at least
   // loss.found_above) and it stands out from its surroundings (loss.found_outline of its outline).
   bool found(const Pose& pose, const DepthImage& working);
-  // Takes this frame's confidence; returns the status after it.
+  // Takes this frame's confidence; returns the status after it: lost while it is below loss.lost_below.
   TrackStatus observe(double confidence);
-  void reset();  // tracking, no bad frame counted
+  // Lost for loss.search_after frames in a row: the next frame searches (a shorter dip, such as a
+  // passing occluder, is left to the filter).
+  bool should_search() const;
+  void reset();  // tracking, no lost frame counted
   TrackStatus status() const { return status_; }
 
  private:
@@ -66,7 +72,7 @@ class TrackSupervisor {
   std::vector<float> scratch_;  // the mesh drawn at drawn_ (by assess or silhouette)
   std::optional<Pose> drawn_;
   TrackStatus status_ = TrackStatus::Tracking;
-  int bad_frames_ = 0;
+  int lost_frames_ = 0;  // frames in a row below loss.lost_below
 };
 
 }  // namespace depthtrack

@@ -7,6 +7,7 @@
 
 #include "core/mesh_simplify.hpp"
 #include "core/stopwatch.hpp"
+#include "tracker/confidence_model.hpp"
 #include "tracker/make_filter_backend.hpp"
 #include "tracker/track_supervisor.hpp"
 
@@ -105,6 +106,7 @@ void Tracker::initialize(const Pose& pose, const InitialSpread& spread) {
   supervisor_->reset();
   initialized_ = true;
   has_previous_ = false;
+  gap_pending_ = false;
   frames_since_initialize_ = 0;
 }
 
@@ -150,6 +152,7 @@ Estimate Tracker::initialize_global(const DepthImage& depth, double timestamp, c
   supervisor_->reset();
   initialized_ = true;
   has_previous_ = false;
+  gap_pending_ = false;
   frames_since_initialize_ = 0;
   Estimate e = run_frame(working, timestamp);
   e.timings.search_ms += search_ms;
@@ -181,14 +184,27 @@ void Tracker::start_frame(const DepthImage& working, const std::function<const D
     m << "timestamps must increase: " << timestamp << " s follows " << previous_timestamp_ << " s";
     throw InputError(m.str());
   }
-  // While lost, search this frame; a candidate the depth explains well enough re-seeds the filter.
-  // A dropout frame has nothing to search.
+  // After a gap the motion model cannot bridge (max_time_step), the object is searched for around its
+  // last pose, and the particles are drawn anew around that pose and the search's best candidates: the
+  // next frames' weights decide among them, and the confidence says when the track holds again. While
+  // lost for a few frames, the whole frame is searched; a candidate the depth supports re-seeds the
+  // filter. A dropout frame has nothing to search.
   PendingFrame search;
-  if (supervisor_->status() == TrackStatus::Lost && config_.recovery.enabled && working.valid_count() > 0) {
+  gap_pending_ = gap_pending_ || (has_previous_ && timestamp - previous_timestamp_ > config_.max_time_step);
+  const bool gap = gap_pending_;
+  if (config_.recovery.enabled && working.valid_count() > 0 && (gap || supervisor_->should_search())) {
+    gap_pending_ = false;
     const Stopwatch clock;
+    const InitHint where = gap ? supervisor_->around(last_pose_) : InitHint::anywhere();
     const search::SearchResult found =
-        supervisor_->search(sensor_frame(), working, InitHint::anywhere(), config_.recovery.budget_ms, ++search_round_);
-    if (!found.candidates.empty() && supervisor_->found(found.candidates.front().pose, working)) {
+        supervisor_->search(sensor_frame(), working, where, config_.recovery.budget_ms, ++search_round_);
+    if (gap) {
+      std::vector<Pose> modes{last_pose_};
+      for (const Pose& p : TrackSupervisor::seeds(found)) modes.push_back(p);
+      backend_->initialize_modes(modes, kSearchSpread);
+      has_previous_ = false;
+      search.recovered = true;
+    } else if (!found.candidates.empty() && supervisor_->found(found.candidates.front().pose, working)) {
       backend_->initialize_modes(TrackSupervisor::seeds(found), kSearchSpread);
       supervisor_->reset();
       has_previous_ = false;
@@ -242,6 +258,7 @@ Estimate Tracker::collect_frame() {
   }
   previous_timestamp_ = timestamp;
   has_previous_ = true;
+  last_pose_ = e.pose;
   ++frames_since_initialize_;
   return e;
 }
@@ -256,7 +273,8 @@ void Tracker::assess_frame(Estimate& e, const DepthImage& working) {
     return;
   }
   const Stopwatch clock;
-  if (!backend_->assesses_confidence()) e.confidence = supervisor_->assess(e.pose, working).confidence();
+  e.evidence = supervisor_->assess(e.pose, working);
+  e.confidence = pose_confidence(e.evidence);
   e.status = supervisor_->observe(e.confidence);
   e.timings.confidence_ms = clock.elapsed_ms();
   e.timings.total_ms += e.timings.confidence_ms;

@@ -1,0 +1,13 @@
+#pragma once
+// The tracker's confidence: the probability that a pose lies within tolerance of the truth (ADD-S at
+// most 10 mm and a tenth of the object's diameter), given the evidence of its silhouette. A logistic
+// model whose coefficients were fitted on poses right and wrong from real and synthetic clips
+// (scripts/calibrate-confidence.py; docs/confidence.md says how and how well it holds).
+#include <depthtrack/pose_evidence.hpp>
+
+namespace depthtrack {
+
+// In [0, 1]; 0 for a silhouette with no measured pixel (nothing supports the pose).
+double pose_confidence(const PoseEvidence& evidence);
+
+}  // namespace depthtrack
