@@ -6,7 +6,7 @@ packages=(
   libeigen3-dev libassimp-dev libpng-dev nlohmann-json3-dev libcli11-dev catch2 libnanoflann-dev libmeshoptimizer-dev libqhull-dev
   ocl-icd-opencl-dev opencl-headers opencl-c-headers opencl-clhpp-headers clinfo pocl-opencl-icd
   libegl-dev libgl-dev libgles-dev libosmesa6-dev libegl-mesa0 libgl1-mesa-dri mesa-utils
-  pybind11-dev python3-dev python3-numpy python3-pytest
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
 )
 missing=()
 for p in "${packages[@]}"; do

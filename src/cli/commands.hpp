@@ -11,5 +11,6 @@ void add_info_command(CLI::App& app);
 void add_plot_command(CLI::App& app);
 void add_config_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
+void add_eval_command(CLI::App& app);
 
 }  // namespace depthtrack::cli

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   depthtrack::cli::add_plot_command(app);
   depthtrack::cli::add_config_command(app);
   depthtrack::cli::add_bench_command(app);
+  depthtrack::cli::add_eval_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

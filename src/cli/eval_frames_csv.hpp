@@ -1,0 +1,31 @@
+#pragma once
+// `depthtrack eval --frames-out`: a row per frame of every case, for calibration plots and checks.
+#include <depthtrack/evaluation.hpp>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace depthtrack::cli {
+
+// object,case,frame,timestamp,adds_mm,confidence,status,within_tolerance (adds_mm and within_tolerance
+// empty where the frame has no ground truth; within_tolerance 1 or 0). As TrackingCsvWriter: the place
+// is checked at construction, before any tracking; rows go to PATH.partial, which finish() renames to
+// PATH; without finish() the partial file is removed and an earlier PATH stays.
+class EvalFramesCsv {
+ public:
+  explicit EvalFramesCsv(const std::filesystem::path& path);
+  ~EvalFramesCsv();
+  EvalFramesCsv(const EvalFramesCsv&) = delete;
+  EvalFramesCsv& operator=(const EvalFramesCsv&) = delete;
+
+  void write(const std::string& object, const std::string& case_name, const TrackedFrame& frame, double tolerance);
+  void finish();
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_, partial_;
+  std::ofstream out_;
+  bool finished_ = false;
+};
+
+}  // namespace depthtrack::cli

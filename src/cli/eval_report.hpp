@@ -1,0 +1,36 @@
+#pragma once
+// What `depthtrack eval` prints: a table row per case, the summary, the confidence's reliability table.
+#include <string>
+#include <vector>
+
+#include "eval/case_scores.hpp"
+
+namespace depthtrack::cli {
+
+enum class CaseKind { Perturbed, Box, Gap };
+
+struct CaseRow {
+  std::string object, name;
+  CaseKind kind = CaseKind::Perturbed;
+  CaseScores scores;
+  double seconds = 0;      // wall time of the case's tracking
+  std::string box_source;  // Box: "label" or "projected"
+};
+
+class EvalTable {
+ public:
+  // object_width: the longest object name, for aligned columns.
+  explicit EvalTable(size_t object_width);
+  void print_header() const;
+  // Prints the row at once (a long run shows each case as it ends) and keeps it for the summary.
+  void print_row(const CaseRow& row);
+  void print_summary() const;
+
+ private:
+  size_t width_;
+  std::vector<CaseRow> rows_;
+};
+
+void print_reliability(const Reliability& r);
+
+}  // namespace depthtrack::cli

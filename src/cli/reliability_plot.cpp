@@ -1,0 +1,115 @@
+#include "cli/reliability_plot.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <depthtrack/error.hpp>
+#include <vector>
+
+extern char** environ;
+
+namespace depthtrack::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The program's exit status (127: it could not be started), its output silenced when quiet.
+int run_program(const std::vector<std::string>& arguments, bool quiet) {
+  std::vector<char*> argv;
+  for (const auto& a : arguments) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (quiet) {
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  }
+  std::fflush(stdout);
+  pid_t pid = 0;
+  const int failed = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (failed != 0) return 127;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return 127;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+}
+
+std::vector<fs::path> module_candidates() {
+  std::vector<fs::path> places;
+  if (const char* path = std::getenv("PYTHONPATH")) {
+    std::string entries = path;
+    for (size_t start = 0; start <= entries.size();) {
+      const size_t end = std::min(entries.find(':', start), entries.size());
+      if (end > start) places.push_back(fs::path(entries.substr(start, end - start)) / "depthtrack" / "plots.py");
+      start = end + 1;
+    }
+  }
+#ifdef DEPTHTRACK_PYTHON_BUILD_DIR
+  places.push_back(fs::path(DEPTHTRACK_PYTHON_BUILD_DIR) / "depthtrack" / "plots.py");
+#endif
+#ifdef DEPTHTRACK_PYTHON_INSTALL_DIR
+  std::error_code error;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", error);
+  if (!error)
+    places.push_back(exe.parent_path().parent_path() / DEPTHTRACK_PYTHON_INSTALL_DIR / "depthtrack" / "plots.py");
+#endif
+  return places;
+}
+
+}  // namespace
+
+PlotRunner find_plot_runner() {
+  PlotRunner runner;
+  std::string looked;
+  for (const fs::path& place : module_candidates()) {
+    std::error_code error;
+    if (fs::is_regular_file(place, error)) {
+      runner.module = place;
+      break;
+    }
+    looked += (looked.empty() ? "" : ", ") + place.string();
+  }
+  if (runner.module.empty())
+    throw InputError("--reliability: cannot find depthtrack/plots.py (looked in " +
+                     (looked.empty() ? std::string("no place") : looked) +
+                     "): put the folder holding depthtrack/ on PYTHONPATH");
+  std::vector<std::string> interpreters;
+  if (const char* chosen = std::getenv("DEPTHTRACK_PYTHON")) {
+    interpreters.push_back(chosen);
+  } else {
+    interpreters.push_back("python3");
+#ifdef DEPTHTRACK_PYTHON_EXECUTABLE
+    interpreters.push_back(DEPTHTRACK_PYTHON_EXECUTABLE);
+#endif
+  }
+  std::string tried;
+  for (const std::string& python : interpreters) {
+    const int status = run_program({python, "-c", "import matplotlib"}, true);
+    if (status == 0) {
+      runner.python = python;
+      return runner;
+    }
+    tried += (tried.empty() ? "" : "; ") + python + (status == 127 ? " was not found" : " lacks matplotlib");
+  }
+  throw InputError("--reliability needs python3 with matplotlib (" + tried +
+                   "): install it (Debian: apt install python3-matplotlib) or name an interpreter that has it in "
+                   "$DEPTHTRACK_PYTHON");
+}
+
+void draw_reliability(const PlotRunner& runner, const fs::path& csv, const fs::path& png) {
+  const int status =
+      run_program({runner.python, runner.module.string(), "reliability", csv.string(), png.string()}, false);
+  if (status != 0)
+    throw Error("drawing the reliability diagram failed: " + runner.python + " " + runner.module.string() +
+                " exited with status " + std::to_string(status));
+}
+
+}  // namespace depthtrack::cli
