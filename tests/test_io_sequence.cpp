@@ -74,7 +74,8 @@ fs::path make_ycb_clip(const std::string& name) {
     frames.push_back({{"frame", id},
                       {"depth", depth},
                       {"factor_depth", 10000.0},
-                      {"K", {{500.0, 0.0, 3.5}, {0.0, 501.0, 2.5}, {0.0, 0.0, 1.0}}},
+                      // A focal length for 8x6 pixels (a 640x480 camera's 500 would be a 1-degree lens).
+                      {"K", {{5.0, 0.0, 3.5}, {0.0, 5.01, 2.5}, {0.0, 0.0, 1.0}}},
                       {"objects", objects}});
   }
   write_text(dir / "gt.json", nlohmann::json{{"frames", frames}}.dump(1));
@@ -198,7 +199,7 @@ TEST_CASE("a YCB-Video clip: timestamps from frame numbers, size from the PNG, a
   REQUIRE(s.object == "061_foam_brick");
   REQUIRE(s.camera.width == 8);
   REQUIRE(s.camera.height == 6);
-  REQUIRE(s.camera.fy == 501.0);
+  REQUIRE(s.camera.fy == 5.01);
   REQUIRE(s.frames.size() == 3);
   REQUIRE(s.frames[1].timestamp == Approx(1.0 / 30.0));
   REQUIRE(s.frames[2].timestamp == Approx(3.0 / 30.0));  // frame 3 was dropped

@@ -40,6 +40,7 @@ std::vector<TrackedFrame> track_sequence_global(const Sequence& sequence, const 
 
 // pose moved by exactly `metres` in a direction and rotated by exactly `degrees` about an axis
 // through the mesh's centre, both drawn from seed: a reproducible "start from perturbed ground truth".
+// InputError for a non-finite distance, angle or centre.
 Pose perturb_pose(const Pose& pose, const Eigen::Vector3d& centre, double metres, double degrees, uint64_t seed);
 
 // ADD-S: mean over the model's vertices, placed by the estimate, of the distance to the closest

@@ -52,6 +52,7 @@ struct SynthConfig {
   double background_depth = 1.6;    // metres: a wall behind the object; <= 0 for none
   double metres_per_unit = 0.0001;  // PNG scale written (0.1 mm)
   uint64_t seed = 7;
+  std::string object;  // the object's name, written as the sequence's "object" (empty: none)
   // The object is absent (only the wall, and the occluder, are seen) for timestamps in
   // [hidden_from, hidden_until), seconds; from hidden_until on its path is shifted by
   // reappear_offset (camera frame, metres): it left the view and came back elsewhere.

@@ -20,7 +20,8 @@ class PyMultiTracker {
   PyMultiTracker(const std::vector<Mesh>& meshes, const Camera& camera, const TrackerConfig& config,
                  std::shared_ptr<Device> device, bool mutual_occlusion, int host_threads)
       : tracker_(device ? device : Device::open(config.resolved_backend()), meshes, camera, config, mutual_occlusion,
-                 host_threads) {}
+                 host_threads),
+        sensor_(camera) {}
 
   void initialize(size_t object, py::handle pose, double spread_metres, double spread_radians) {
     const Pose start = pose_from_matrix(pose);
@@ -29,7 +30,7 @@ class PyMultiTracker {
   }
 
   std::vector<Estimate> update(py::handle depth, double timestamp, std::optional<double> metres_per_unit) {
-    const DepthInput in = depth_input(depth, metres_per_unit);  // holds the array while the GIL is released
+    const DepthInput in = depth_input(depth, metres_per_unit, sensor_);  // holds the array while the GIL is released
     const py::gil_scoped_release release;
     const std::lock_guard lock(mutex_);
     return tracker_.update(in.view, timestamp);
@@ -45,6 +46,7 @@ class PyMultiTracker {
 
  private:
   MultiTracker tracker_;
+  Camera sensor_;  // the size update() takes
   std::mutex mutex_;
 };
 

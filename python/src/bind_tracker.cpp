@@ -39,6 +39,7 @@ class PyTracker {
  public:
   PyTracker(const Mesh& mesh, const Camera& camera, const TrackerConfig& config, std::shared_ptr<Device> device)
       : tracker_(make_tracker(mesh, camera, config, device)),
+        sensor_(camera),
         mutex_(device ? device_mutex(device.get()) : std::make_shared<std::mutex>()),
         device_(std::move(device)) {}
 
@@ -49,7 +50,7 @@ class PyTracker {
   }
 
   Estimate update(py::handle depth, double timestamp, std::optional<double> metres_per_unit) {
-    const DepthInput in = depth_input(depth, metres_per_unit);  // holds the array while the GIL is released
+    const DepthInput in = depth_input(depth, metres_per_unit, sensor_);  // holds the array while the GIL is released
     const py::gil_scoped_release release;
     const std::lock_guard lock(*mutex_);
     return tracker_.update(in.view, timestamp);
@@ -61,7 +62,7 @@ class PyTracker {
     const InitHint hint = box     ? InitHint::box((*box)[0], (*box)[1], (*box)[2], (*box)[3])
                           : point ? InitHint::near_point(*point)
                                   : InitHint::anywhere();
-    const DepthInput in = depth_input(depth, metres_per_unit);
+    const DepthInput in = depth_input(depth, metres_per_unit, sensor_);
     const py::gil_scoped_release release;
     const std::lock_guard lock(*mutex_);
     return tracker_.initialize_global(in.view, timestamp, hint);
@@ -75,6 +76,7 @@ class PyTracker {
 
  private:
   Tracker tracker_;
+  Camera sensor_;  // the size update() takes
   std::shared_ptr<std::mutex> mutex_;
   std::shared_ptr<Device> device_;  // keeps device_mutex's key alive
 };

@@ -73,16 +73,19 @@ py::array_t<double> pose_to_matrix(const Pose& pose) {
   return out;
 }
 
-DepthInput depth_input(py::handle depth, std::optional<double> metres_per_unit) {
+DepthInput depth_input(py::handle depth, std::optional<double> metres_per_unit, const Camera& sensor) {
   if (!py::isinstance<py::array>(depth))
     throw InputError("depth must be a numpy array (float32 metres or uint16 units), got " + type_name(depth));
   const auto a = py::reinterpret_borrow<py::array>(depth);
   const std::string dtype = py::str(a.dtype());
   if (a.ndim() != 2)
     throw InputError("depth must be a 2-D array (height, width), got shape " + shape_text(a) + " of " + dtype);
-  const int height = static_cast<int>(a.shape(0)), width = static_cast<int>(a.shape(1));
-  if (a.shape(0) > (1 << 20) || a.shape(1) > (1 << 20))
-    throw InputError("depth of shape " + shape_text(a) + " is larger than any sensor");
+  // Before readable_rows copies it: a broadcast array may claim terabytes it does not hold.
+  if (a.shape(0) != sensor.height || a.shape(1) != sensor.width)
+    throw InputError("depth of shape " + shape_text(a) + " does not fit the camera, which is " +
+                     std::to_string(sensor.width) + "x" + std::to_string(sensor.height) + ": an array of shape (" +
+                     std::to_string(sensor.height) + ", " + std::to_string(sensor.width) + ")");
+  const int height = sensor.height, width = sensor.width;
   DepthInput in;
   if (py::isinstance<py::array_t<float>>(a)) {
     if (metres_per_unit)
@@ -102,8 +105,6 @@ DepthInput depth_input(py::handle depth, std::optional<double> metres_per_unit) 
         "dtype " +
         dtype);
   }
-  // An empty array has no data pointer to speak of: name its shape rather than a null pointer.
-  if (width == 0 || height == 0) throw InputError("depth of shape " + shape_text(a) + " has no pixels");
   return in;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Python values -> the library's types, each checked with a message naming the problem
 // (InputError, so Python sees depthtrack.InputError, a ValueError).
+#include <depthtrack/camera.hpp>
 #include <depthtrack/depth_view.hpp>
 #include <depthtrack/pose.hpp>
 #include <optional>
@@ -19,7 +20,8 @@ struct DepthInput {
   py::array array;
   DepthView view;
 };
-// float32 metres (metres_per_unit must be None) or uint16 units (metres_per_unit required), 2-D.
-DepthInput depth_input(py::handle depth, std::optional<double> metres_per_unit);
+// float32 metres (metres_per_unit must be None) or uint16 units (metres_per_unit required), 2-D, of
+// the sensor's size: a shape other than (sensor.height, sensor.width) is refused before any copy.
+DepthInput depth_input(py::handle depth, std::optional<double> metres_per_unit, const Camera& sensor);
 
 }  // namespace depthtrack::python

@@ -166,3 +166,35 @@ def test_two_threads_on_one_tracker_take_turns(tracker):
     for t in threads:
         t.join()
     assert all("timestamps must increase" in e for e in errors)
+
+
+def test_broadcast_depth_of_a_terabyte_is_refused_before_any_copy(tracker):
+    huge = np.broadcast_to(np.float32(0.7), (1 << 20, 1 << 20))  # 4 TiB it does not hold
+    with pytest.raises(depthtrack.InputError, match=r"shape \(1048576, 1048576\) does not fit the camera"):
+        tracker.update(huge, 0.0)
+    config = depthtrack.TrackerConfig()
+    config.particles = 10
+    multi = depthtrack.MultiTracker([depthtrack.Mesh.builtin()], depthtrack.Camera(80, 60, 66, 66, 39.5, 29.5), config)
+    with pytest.raises(depthtrack.InputError, match="does not fit the camera, which is 80x60"):
+        multi.update(huge, 0.0)
+    # A broadcast array of the right size is read (copied once) like any other.
+    assert tracker.update(np.broadcast_to(np.float32(0.8), (60, 80)), 0.0).status is not None
+
+
+def test_config_nested_too_deep_is_an_error_not_a_crash():
+    deep = '{"particles": ' + "[" * 200000 + "]" * 200000 + "}"
+    with pytest.raises(depthtrack.InputError, match="nested deeper than 64 levels"):
+        depthtrack.TrackerConfig.from_json(deep)
+    with pytest.raises(depthtrack.InputError, match=r"must be an integer, got a string \"x+\.\.\.$"):
+        depthtrack.TrackerConfig.from_json('{"particles": "' + "x" * 100000 + '"}')
+
+
+def test_perturb_pose_refuses_nan():
+    with pytest.raises(depthtrack.InputError, match="must be finite"):
+        depthtrack.perturb_pose(pose_at(0.8), [0, 0, 0], math.nan, 5.0, 1)
+
+
+def test_implausible_focal_length():
+    for fx in (1e-300, 1e300):
+        with pytest.raises(depthtrack.InputError, match="field of view"):
+            depthtrack.Camera(640, 480, fx, 525, 319.5, 239.5)

@@ -28,7 +28,8 @@ struct Figure {
   std::vector<std::pair<const char*, std::function<double(const CaseResult&)>>> panels;
 };
 
-bool draw(const Figure& f, const std::vector<CaseResult>& results, const std::filesystem::path& path) {
+bool draw(const Figure& f, const std::vector<CaseResult>& results, const std::filesystem::path& path,
+          const std::function<std::filesystem::path(const std::filesystem::path&)>& place) {
   std::vector<double> xs;
   std::vector<std::string> backends;
   for (const CaseResult& r : results) {
@@ -52,14 +53,15 @@ bool draw(const Figure& f, const std::vector<CaseResult>& results, const std::fi
     if (!panel.series.empty()) panels.push_back(std::move(panel));
   }
   if (panels.empty()) return false;
-  viz::plot_panels(xs, f.x_label, panels).save_png(path);
+  viz::plot_panels(xs, f.x_label, panels).save_png(place(path));
   return true;
 }
 
 }  // namespace
 
-std::vector<std::filesystem::path> write_bench_figures(const std::vector<CaseResult>& results,
-                                                       const std::filesystem::path& dir) {
+std::vector<std::filesystem::path> write_bench_figures(
+    const std::vector<CaseResult>& results, const std::filesystem::path& dir,
+    const std::function<std::filesystem::path(const std::filesystem::path&)>& place) {
   // Times on a log scale: the reference and a GPU differ a thousandfold, and a linear axis drew the GPUs flat.
   auto frame = [](const CaseResult& r) { return std::log10(r.frame_ms); };
   auto per_particle_us = [](const CaseResult& r) { return std::log10(1000 * r.frame_ms / r.c.particles); };
@@ -88,7 +90,7 @@ std::vector<std::filesystem::path> write_bench_figures(const std::vector<CaseRes
   };
   std::vector<std::filesystem::path> written;
   for (const Figure& f : figures)
-    if (draw(f, results, dir / f.file)) written.push_back(dir / f.file);
+    if (draw(f, results, dir / f.file, place)) written.push_back(dir / f.file);
   return written;
 }
 

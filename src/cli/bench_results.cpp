@@ -65,7 +65,8 @@ void write_results(const BenchResults& results, const fs::path& path) {
   {
     std::ofstream out(partial);
     out << root.dump(1) << "\n";
-    if (!out) throw Error("cannot write " + quoted(partial));
+    out.close();  // the buffer's last bytes fail only here on a full disk
+    if (out.fail()) throw Error("cannot write " + quoted(partial));
   }
   std::error_code error;
   fs::rename(partial, path, error);

@@ -1,6 +1,7 @@
 // depthtrack bench: the thesis' evaluation on the devices present, as results.json and PNG figures;
 // depthtrack bench compare: the cross-vendor table of several results.json files.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <depthtrack/error.hpp>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include "cli/bench_results.hpp"
 #include "cli/bench_suite.hpp"
 #include "cli/commands.hpp"
+#include "cli/staged_outputs.hpp"
 #include "compute/queue.hpp"
 
 namespace depthtrack::cli {
@@ -28,6 +30,7 @@ struct BenchArgs {
   bool quick = false, test_grid = false;
   int frames = 0;
   double max_seconds = 0;
+  CLI::Option *frames_option = nullptr, *max_seconds_option = nullptr;  // given or not
   std::vector<std::string> compare_files;
 };
 
@@ -66,10 +69,17 @@ void run_bench(const BenchArgs& a) {
   if (a.out.empty()) throw InputError("bench needs --out DIR (where results.json and the figures go)");
   renderer_from_string(a.renderer);  // InputError naming the choices
   BenchGrid grid = a.test_grid ? test_grid() : a.quick ? quick_grid() : full_grid();
-  if (a.frames != 0) {
-    if (a.frames < 3) throw InputError("--frames must be at least 3 (two warm-up frames are not timed)");
+  if (a.frames_option->count() > 0) {
+    if (a.frames < 3)
+      throw InputError("--frames must be at least 3 (two warm-up frames are not timed), got " +
+                       std::to_string(a.frames) + "; leave it out for the grid's");
     grid.frames = a.frames;
   }
+  // Left out, there is no limit; given, it must be one.
+  if (a.max_seconds_option->count() > 0 && !(std::isfinite(a.max_seconds) && a.max_seconds > 0))
+    throw InputError("--max-seconds " + std::to_string(a.max_seconds) +
+                     " is not a time limit: give a positive number of seconds, or leave it out for none");
+  check_writable(a.out);
   // Every backend is opened before any case runs, so a wrong name fails at once.
   std::vector<std::string> backends = a.backends;
   if (backends.empty()) {
@@ -80,7 +90,6 @@ void run_bench(const BenchArgs& a) {
   std::vector<BenchTarget> targets;
   for (const std::string& b : backends) targets.push_back(describe_target(b));
   std::stable_partition(targets.begin(), targets.end(), [](const BenchTarget& t) { return t.backend == "reference"; });
-  check_writable(a.out);
 
   BenchResults results;
   const std::vector<BenchMesh> meshes = load_meshes(grid.frames, results.notes);
@@ -116,9 +125,13 @@ void run_bench(const BenchArgs& a) {
     }
   }
   if (results.rows.empty()) throw Error("no case ran (see the notes above); " + a.out + "/results.json not written");
+  // results.json and the figures replace an earlier run's together, once all are written.
+  StagedOutputs outputs;
   const fs::path json = fs::path(a.out) / "results.json";
-  write_results(results, json);
-  const auto figures = write_bench_figures(outcomes, a.out);
+  write_results(results, outputs.add("--out", json));
+  const auto figures =
+      write_bench_figures(outcomes, a.out, [&outputs](const fs::path& file) { return outputs.add("--out", file); });
+  outputs.commit();
   std::printf("%s", compare_table({{json.string(), results}}).c_str());
   std::printf("wrote %s (%zu rows, %zu notes)", json.c_str(), results.rows.size(), results.notes.size());
   for (const auto& f : figures) std::printf(", %s", f.filename().c_str());
@@ -147,8 +160,10 @@ void add_bench_command(CLI::App& app) {
   c->add_option("--out", args->out, "Folder for results.json and the figures (created)");
   c->add_flag("--quick", args->quick, "The small grid: a few minutes on a 2-core CPU (PoCL and the reference)");
   c->add_flag("--test-grid", args->test_grid, "The tiniest grid, for the test suite (seconds)");
-  c->add_option("--frames", args->frames, "Frames per case, the first two not timed (default: the grid's)");
-  c->add_option("--max-seconds", args->max_seconds, "Skip the cases left once this many seconds have passed");
+  args->frames_option =
+      c->add_option("--frames", args->frames, "Frames per case, the first two not timed (default: the grid's)");
+  args->max_seconds_option =
+      c->add_option("--max-seconds", args->max_seconds, "Skip the cases left once this many seconds have passed");
   CLI::App* compare =
       c->add_subcommand("compare", "Print the cross-vendor table of results.json files, ratios to the first");
   compare->add_option("files", args->compare_files, "results.json files")->required()->check(CLI::ExistingFile);

@@ -22,7 +22,7 @@ struct SynthOptions {
   int frames = 150;
   double rate = 30.0, occluder = 0.0, background = 1.6;
   std::string hide, reappear_offset;
-  uint64_t seed = SynthConfig{}.seed;
+  std::string seed = std::to_string(SynthConfig{}.seed), object;
 };
 
 // "WxH" -> the default 640x480, 525-pixel-focal camera scaled to that size (each axis alike).
@@ -41,7 +41,12 @@ void run(const SynthOptions& o) {
   config.rate = o.rate;
   config.occluder_fraction = o.occluder;
   config.background_depth = o.background;
-  config.seed = o.seed;
+  config.seed = parse_seed(o.seed, "--seed");
+  config.object = o.object;
+  // <= 0 is SynthConfig's "no wall"; on the command line only 0 says so, a negative depth is a mistake.
+  if (!(o.background >= 0))
+    throw InputError("--background " + std::to_string(o.background) +
+                     " is not a depth: give the wall's distance in metres, or 0 for no wall");
   config.sensor.kind = sensor_kind_from_string(o.sensor);
   if (!o.hide.empty()) {
     const auto v = parse_numbers(o.hide, 2, "--hide");
@@ -104,6 +109,8 @@ void add_synth_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--background", options->background, "Depth of the wall behind the object (metres; 0 = none)")
       ->capture_default_str();
+  cmd->add_option("--object", options->object,
+                  "Name of the object, written into sequence.json (what `track --object` then checks)");
   cmd->callback([options, mesh, builtin]() {
     if (mesh->count() == 0 && builtin->count() == 0)
       throw InputError("synth needs an object: --mesh FILE or --builtin");

@@ -15,9 +15,11 @@
 #include "cli/overlay_writer.hpp"
 #include "cli/progress.hpp"
 #include "cli/run_summary.hpp"
+#include "cli/staged_outputs.hpp"
 #include "cli/tracker_options.hpp"
 #include "core/mesh_simplify.hpp"
 #include "core/mesh_topology.hpp"
+#include "io/sequence_formats.hpp"
 
 namespace depthtrack::cli {
 
@@ -106,6 +108,23 @@ Mesh load_mesh(const std::string& path, double unit_scale, const TrackerConfig& 
   return mesh;
 }
 
+// The files a run reads, which no output may name: the meshes, the --config file, the sequence's manifests
+// (before loading it) and, once loaded, each frame's images.
+void add_argument_inputs(const TrackArgs& a, StagedOutputs& outputs) {
+  for (const std::string& mesh : a.meshes) outputs.add_input(mesh);
+  outputs.add_input(a.tracker.config_file);
+  for (const char* manifest :
+       {io::kDepthtrackManifest, io::kYcbVideoManifest, io::kBopManifest, "scene_gt.json", "scene_gt_info.json"})
+    outputs.add_input(std::filesystem::path(a.sequence) / manifest);
+}
+
+void add_sequence_inputs(const Sequence& sequence, StagedOutputs& outputs) {
+  for (const SequenceFrame& f : sequence.frames) {
+    outputs.add_input(f.depth_path);
+    outputs.add_input(f.colour_path);
+  }
+}
+
 bool on_off(const std::string& value, const std::string& option) {
   if (value == "on") return true;
   if (value == "off") return false;
@@ -127,6 +146,9 @@ void run_track_objects(const TrackArgs& a) {
                                   {!a.summary.empty(), "--summary"}})
     if (set) throw InputError(std::string(name) + " is for one object; not with several --mesh/--object pairs");
   const bool mutual = on_off(a.mutual_occlusion, "--mutual-occlusion");
+  StagedOutputs outputs;
+  add_argument_inputs(a, outputs);
+  const std::filesystem::path csv_path = outputs.add("--out", a.out);
   TrackerConfig config = a.tracker.resolve();
   if (a.no_recover) config.recovery.enabled = false;
   std::vector<TrackedObject> objects;
@@ -134,6 +156,7 @@ void run_track_objects(const TrackArgs& a) {
     TrackArgs one = a;
     one.object = a.objects[i];
     TrackedObject o{a.objects[i], {}, load_sequence(a.sequence, a.objects[i]), {}};
+    add_sequence_inputs(o.sequence, outputs);
     const bool bop_units = o.sequence.format == "bop" && a.unit_scale_option->count() == 0;
     o.mesh = load_mesh(a.meshes[i], bop_units ? 0.001 : a.unit_scale, config);
     o.initial = initial_pose(one, o.sequence, o.mesh, config.seed);  // as the object's own run starts
@@ -144,7 +167,7 @@ void run_track_objects(const TrackArgs& a) {
     return std::all_of(o.sequence.frames.begin(), o.sequence.frames.end(),
                        [](const auto& f) { return f.ground_truth.has_value(); });
   });
-  TrackingCsvWriter csv(a.out, with_truth && !frames0.empty(), quaternion_order(a.quaternion), true);
+  TrackingCsvWriter csv(csv_path, with_truth && !frames0.empty(), quaternion_order(a.quaternion), true);
   const auto spread_values = parse_numbers(a.init_spread, 2, "--init-spread");
   const InitialSpread spread{spread_values[0], spread_values[1] * std::numbers::pi / 180.0};
   ProgressBar bar("tracking", static_cast<int>(frames0.size()));
@@ -156,6 +179,7 @@ void run_track_objects(const TrackArgs& a) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   bar.finish();
   csv.finish();
+  outputs.commit();
   std::printf("%zu objects, %zu frames in %.2f s: %.1f frames per second (mutual occlusion %s)\n", objects.size(),
               frames0.size(), seconds, seconds > 0 ? static_cast<double>(frames0.size()) / seconds : 0.0,
               mutual ? "on" : "off");
@@ -175,12 +199,23 @@ void run_track(TrackArgs a) {
   if (starts == 0) throw InputError("give --init POSE, --init-from-gt, --init-box \"u0 v0 u1 v1\" or --init-global");
   if (starts > 1) throw InputError("--init, --init-from-gt, --init-box and --init-global exclude each other");
   const QuaternionOrder order = quaternion_order(a.quaternion);
+  // Every output is checked before any work and written beside its place; all replace the earlier files
+  // together once the run succeeded (outputs.commit()), none when it fails.
+  StagedOutputs outputs;
+  add_argument_inputs(a, outputs);
+  const std::filesystem::path csv_path = outputs.add("--out", a.out);
+  const std::filesystem::path bop_path = a.bop_out.empty() ? "" : outputs.add("--bop-out", a.bop_out);
+  const std::filesystem::path summary_path =
+      a.summary.empty() || a.summary == "-" ? std::filesystem::path(a.summary) : outputs.add("--summary", a.summary);
   TrackerConfig config = a.tracker.resolve();
   if (a.no_recover) config.recovery.enabled = false;  // else as the --config file says
   const Sequence seq = load_sequence(a.sequence, a.object);
+  add_sequence_inputs(seq, outputs);
   if (!a.bop_out.empty()) check_bop_exportable(seq);
-  // Opened before any work, so that a bad --out fails at once; rows are streamed as frames are tracked.
-  TrackingCsvWriter csv(a.out,
+  const std::vector<std::filesystem::path> overlay_files =
+      a.overlay.empty() ? std::vector<std::filesystem::path>{} : stage_overlay(a.overlay, seq, outputs);
+  // Rows are streamed as frames are tracked.
+  TrackingCsvWriter csv(csv_path,
                         !seq.frames.empty() && std::all_of(seq.frames.begin(), seq.frames.end(),
                                                            [](const auto& f) { return f.ground_truth.has_value(); }),
                         order);
@@ -196,7 +231,7 @@ void run_track(TrackArgs a) {
   const InitialSpread spread{spread_values[0], spread_values[1] * std::numbers::pi / 180.0};
 
   std::optional<OverlayWriter> overlay;
-  if (!a.overlay.empty()) overlay.emplace(a.overlay, mesh, seq);
+  if (!a.overlay.empty()) overlay.emplace(overlay_files, mesh, seq);
   double overlay_seconds = 0;
 
   ProgressBar bar("tracking", static_cast<int>(seq.frames.size()));
@@ -219,8 +254,10 @@ void run_track(TrackArgs a) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count() - overlay_seconds;
   bar.finish();
   csv.finish();
-  if (!a.bop_out.empty()) write_bop_csv(a.bop_out, seq, frames);
+  if (!a.bop_out.empty()) write_bop_csv(bop_path, seq, frames);
   const RunStats stats = run_stats(frames, seconds);
+  if (!a.summary.empty()) write_summary(summary_path, summary_json(stats, config, a.sequence, a.mesh));
+  outputs.commit();
   print_summary(stats, frames.empty() ? nullptr : &frames.back());
   if (global && !frames.empty())
     std::printf("global initialization: %.2f s, %zu poses scored\n", frames.front().estimate.timings.search_ms / 1000,
@@ -228,7 +265,6 @@ void run_track(TrackArgs a) {
   const auto lost = std::count_if(frames.begin(), frames.end(),
                                   [](const TrackedFrame& f) { return f.estimate.status == TrackStatus::Lost; });
   if (lost > 0) std::printf("lost in %lld of %zu frames\n", static_cast<long long>(lost), frames.size());
-  if (!a.summary.empty()) write_summary(a.summary, summary_json(stats, config, a.sequence, a.mesh));
   std::printf("wrote %s\n", a.out.c_str());
 }
 

@@ -27,20 +27,26 @@ std::vector<std::string> overlay_text(const TrackedFrame& f, int particles) {
   return lines;
 }
 
-OverlayWriter::OverlayWriter(const std::filesystem::path& dir, const Mesh& mesh, const Sequence& sequence)
-    : dir_(dir), sequence_(sequence), painter_(mesh, sequence.camera) {
+std::vector<std::filesystem::path> stage_overlay(const std::filesystem::path& dir, const Sequence& sequence,
+                                                 StagedOutputs& outputs) {
   std::error_code error;
   std::filesystem::create_directories(dir, error);
   if (error || !std::filesystem::is_directory(dir))
     throw InputError("--overlay: cannot create the folder '" + dir.string() + "'" +
                      (error ? ": " + error.message() : ""));
+  std::vector<std::filesystem::path> files;
+  for (const SequenceFrame& f : sequence.frames) files.push_back(outputs.add("--overlay", dir / (f.name + ".png")));
+  return files;
 }
+
+OverlayWriter::OverlayWriter(std::vector<std::filesystem::path> files, const Mesh& mesh, const Sequence& sequence)
+    : files_(std::move(files)), sequence_(sequence), painter_(mesh, sequence.camera) {}
 
 void OverlayWriter::write(size_t i, const TrackedFrame& frame, int particles) const {
   const SequenceFrame& f = sequence_.frames.at(i);
   const viz::RgbImage background = f.colour_path.empty() ? viz::colour_mapped_depth(sequence_.load_depth(i))
                                                          : viz::RgbImage::load_png(f.colour_path);
-  painter_.paint(background, frame.estimate.pose, overlay_text(frame, particles)).save_png(dir_ / (f.name + ".png"));
+  painter_.paint(background, frame.estimate.pose, overlay_text(frame, particles)).save_png(files_.at(i));
 }
 
 }  // namespace depthtrack::cli

@@ -1,7 +1,10 @@
 #include "cli/parse_values.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <depthtrack/error.hpp>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -33,6 +36,17 @@ std::vector<double> parse_numbers(const std::string& text, size_t n, const std::
     throw InputError(option + " takes " + std::to_string(n) + " numbers, got " + std::to_string(values.size()) +
                      " in '" + text + "'");
   return values;
+}
+
+uint64_t parse_seed(const std::string& text, const std::string& option) {
+  // Digits only: stoull would take "-1" as 2^64 - 1, and a float such as 1e21 is no seed.
+  const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+  errno = 0;
+  const unsigned long long value = digits ? std::strtoull(text.c_str(), nullptr, 10) : 0;
+  if (!digits || errno == ERANGE)
+    throw InputError(option + " '" + text + "' is not a whole number from 0 to " +
+                     std::to_string(std::numeric_limits<uint64_t>::max()));
+  return static_cast<uint64_t>(value);
 }
 
 }  // namespace depthtrack::cli

@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <depthtrack/error.hpp>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
+
+#include "cli/staged_outputs.hpp"
 
 namespace depthtrack::cli {
 
@@ -59,9 +60,7 @@ void write_summary(const std::filesystem::path& path, const std::string& text) {
     std::printf("%s\n", text.c_str());
     return;
   }
-  std::ofstream out(path);
-  out << text << "\n";
-  if (!out) throw InputError("cannot write the summary '" + path.string() + "'");
+  write_text_file(path, text + "\n");
 }
 
 }  // namespace depthtrack::cli

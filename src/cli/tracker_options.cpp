@@ -68,7 +68,7 @@ void TrackerOptions::add_to(CLI::App& command) {
           .add_option("--refine-iterations", flags.refine.iterations, "Gauss-Newton steps per frame of the refinement")
           ->capture_default_str();
   seed_option =
-      command.add_option("--seed", flags.seed, "Random seed: the same seed gives the same particles on every backend")
+      command.add_option("--seed", seed, "Random seed: the same seed gives the same particles on every backend")
           ->capture_default_str();
 }
 
@@ -95,7 +95,7 @@ TrackerConfig TrackerOptions::resolve() const {
     c.refine.enabled = refine == "on";
   }
   if (given(refine_iterations_option)) c.refine.iterations = flags.refine.iterations;
-  if (given(seed_option)) c.seed = flags.seed;
+  if (given(seed_option)) c.seed = parse_seed(seed, "--seed");
   if (given(simplify_option)) c.simplify_error = flags.simplify_error;
   c.validate();
   // The reference filter (cpu: on threads) always draws with its own rasterizer: say so rather than ignore it.

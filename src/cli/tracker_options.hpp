@@ -17,6 +17,7 @@ struct TrackerOptions {
   std::string occlusion_window = "auto";
   std::string renderer = "kernel";  // parsed by resolve() (renderer_from_string)
   std::string refine = "on";
+  std::string seed = std::to_string(TrackerConfig{}.seed);  // parsed by resolve() (parse_seed)
   CLI::Option *backend_option = nullptr, *renderer_option = nullptr, *gl_option = nullptr, *particles_option = nullptr,
               *resolution_option = nullptr, *occlusion_option = nullptr, *occlusion_window_option = nullptr,
               *refine_option = nullptr, *refine_iterations_option = nullptr, *seed_option = nullptr,

@@ -1,8 +1,12 @@
 #include <cmath>
+#include <cstdint>
 #include <depthtrack/camera.hpp>
 #include <depthtrack/error.hpp>
+#include <numbers>
 #include <sstream>
 #include <string>
+
+#include "core/image_limits.hpp"
 
 namespace depthtrack {
 
@@ -42,8 +46,26 @@ void Camera::validate() const {
   auto fail = [](const std::string& what) { throw InputError("impossible camera intrinsics: " + what); };
   if (width <= 0 || height <= 0)
     fail("image size " + std::to_string(width) + "x" + std::to_string(height) + " must be positive");
+  if (width > kMaxImageSide || height > kMaxImageSide ||
+      static_cast<int64_t>(width) * static_cast<int64_t>(height) > static_cast<int64_t>(kMaxImagePixels))
+    fail("image size " + std::to_string(width) + "x" + std::to_string(height) + " is larger than the " +
+         std::to_string(kMaxImageSide) + " pixels a side and " + std::to_string(kMaxImagePixels) +
+         " pixels in all allowed");
   if (!std::isfinite(fx) || fx <= 0) fail("focal length fx = " + std::to_string(fx) + " must be positive");
   if (!std::isfinite(fy) || fy <= 0) fail("focal length fy = " + std::to_string(fy) + " must be positive");
+  // A field of view outside (1, 179) degrees is no real lens: a unit mix-up (metres for pixels) or a typo.
+  const auto field_of_view = [&](const char* name, double focal, int size, const char* axis) {
+    const double degrees = 2 * std::atan(size / (2 * focal)) * 180 / std::numbers::pi;
+    if (degrees < kMinFieldOfViewDeg || degrees > kMaxFieldOfViewDeg) {
+      std::ostringstream m;
+      m << "focal length " << name << " = " << focal << " pixels gives a " << axis << " field of view of " << degrees
+        << " degrees over " << size << " pixels (plausible: " << kMinFieldOfViewDeg << " to " << kMaxFieldOfViewDeg
+        << ")";
+      fail(m.str());
+    }
+  };
+  field_of_view("fx", fx, width, "horizontal");
+  field_of_view("fy", fy, height, "vertical");
   if (!std::isfinite(cx) || !std::isfinite(cy)) fail("principal point must be finite");
   // Real lenses put it near the image centre; a point far outside is a unit or field mix-up
   // (millimetres, or fx and cx swapped). Half an image of margin on each side is allowed.

@@ -1,9 +1,12 @@
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <depthtrack/error.hpp>
 #include <depthtrack/tracker_config.hpp>
 #include <sstream>
 #include <string>
+
+#include "core/image_limits.hpp"
 
 namespace depthtrack {
 
@@ -97,6 +100,10 @@ void TrackerConfig::validate() const {
   require(std::isfinite(simplify_error) && simplify_error >= 0 && simplify_error <= 1,
           "mesh simplification error must be in [0, 1] metres (0: the mesh as given)");
   require(width > 0 && height > 0, "working resolution must be positive");
+  require(width <= kMaxImageSide && height <= kMaxImageSide && static_cast<int64_t>(width) * height <= kMaxImagePixels,
+          "working resolution " + std::to_string(width) + "x" + std::to_string(height) + " is larger than the " +
+              std::to_string(kMaxImageSide) + " pixels a side and " + std::to_string(kMaxImagePixels) +
+              " pixels in all allowed");
   require(occlusion_window.width >= 0 && occlusion_window.height >= 0,
           "occlusion window " + std::to_string(occlusion_window.width) + "x" + std::to_string(occlusion_window.height) +
               " must not be negative (0: the whole image)");

@@ -25,7 +25,9 @@ void write_bop_csv(const std::filesystem::path& path, const Sequence& sequence,
     for (int i = 0; i < 9; ++i) out << (i ? " " : "") << r(i / 3, i % 3);
     out << "," << t.x() << " " << t.y() << " " << t.z() << "," << f.estimate.timings.total_ms / 1000.0 << "\n";
   }
-  if (!out) throw InputError("failed writing '" + path.string() + "'");
+  // The last rows sit in the stream's buffer until the close: a full disk shows only then.
+  out.close();
+  if (out.fail()) throw Error("failed writing '" + path.string() + "' (disk full?)");
 }
 
 }  // namespace depthtrack

@@ -1,19 +1,20 @@
 // TrackerConfig <-> JSON, generated from the one field list (core/tracker_config_fields.hpp).
 #include <depthtrack/config_file.hpp>
 #include <depthtrack/error.hpp>
-#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <type_traits>
 
 #include "core/tracker_config_fields.hpp"
+#include "io/json_text.hpp"
 
 namespace depthtrack {
 
 namespace {
 
 using Json = nlohmann::ordered_json;
+// Far above any real file (every field is about 2 KiB), far below what would exhaust memory.
+constexpr size_t max_config_bytes = size_t{16} << 20;
 namespace fields = config_fields;
 
 template <typename T>
@@ -41,7 +42,7 @@ std::string kind_of(const Json& j) {
 }
 
 [[noreturn]] void wrong_type(const std::string& source, const std::string& path, const char* wanted, const Json& j) {
-  throw InputError(source + ": '" + path + "' must be " + wanted + ", got " + kind_of(j) + " " + j.dump());
+  throw InputError(source + ": '" + path + "' must be " + wanted + ", got " + kind_of(j) + " " + io::json_excerpt(j));
 }
 
 template <typename T>
@@ -95,12 +96,7 @@ std::string tracker_config_to_json(const TrackerConfig& config) {
 }
 
 TrackerConfig tracker_config_from_json(const std::string& text, const TrackerConfig& base, const std::string& source) {
-  Json j;
-  try {
-    j = Json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(source + ": not valid JSON: " + e.what());
-  }
+  const Json j = io::parse_bounded_json<Json>(text, source);
   TrackerConfig config = base;
   from_json_value(j, config, "", source);
   try {
@@ -112,12 +108,8 @@ TrackerConfig tracker_config_from_json(const std::string& text, const TrackerCon
 }
 
 TrackerConfig load_tracker_config(const std::filesystem::path& path, const TrackerConfig& base) {
-  std::ifstream in(path);
-  if (!in) throw InputError("cannot open configuration file '" + path.string() + "'");
-  std::stringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError("cannot read configuration file '" + path.string() + "'");
-  return tracker_config_from_json(text.str(), base, "configuration file '" + path.string() + "'");
+  const std::string text = io::read_bounded_file(path, max_config_bytes, "configuration file");
+  return tracker_config_from_json(text, base, "configuration file '" + path.string() + "'");
 }
 
 bool same_config(const TrackerConfig& a, const TrackerConfig& b) {

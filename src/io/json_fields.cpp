@@ -2,18 +2,19 @@
 
 #include <cmath>
 #include <depthtrack/error.hpp>
-#include <fstream>
+
+#include "io/json_text.hpp"
 
 namespace depthtrack::io {
 
 nlohmann::json JsonField::read_file(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError("cannot open '" + path.string() + "'");
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError("'" + path.string() + "' is not valid JSON: " + e.what());
-  }
+  // A manifest of a long sequence (a pose per frame) stays far below this.
+  constexpr size_t max_bytes = size_t{1} << 30;
+  const std::string text = read_bounded_file(path, max_bytes, "file");
+  std::string source = path.string();  // quoted, built in place (GCC 12 warns falsely on "'" + s + "'")
+  source.insert(source.begin(), '\'');
+  source.push_back('\'');
+  return parse_bounded_json<nlohmann::json>(text, source);
 }
 
 void JsonField::fail(const std::string& problem) const {

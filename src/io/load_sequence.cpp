@@ -1,12 +1,38 @@
 // Picks the sequence reader from the files present, and loads a frame's depth.
+#include <cmath>
 #include <depthtrack/error.hpp>
+#include <string>
 
 #include "io/png_depth.hpp"
 #include "io/sequence_formats.hpp"
 
 namespace depthtrack {
 
-Sequence load_sequence(const std::filesystem::path& dir, const std::string& object) {
+namespace {
+
+// Beyond these a timestamp is a unit mistake or a corrupt file (a frame id off by 1e9), not a recording:
+// the motion model divides by the step, and the CSV would carry the nonsense on.
+constexpr double kMaxAbsTimestamp = 1e9;  // seconds, about 32 years
+constexpr double kMaxTimeStep = 86400;    // seconds between frames: a day
+
+Sequence checked_times(Sequence sequence, const std::filesystem::path& dir) {
+  const auto fail = [&](size_t i, const std::string& problem) {
+    throw InputError("sequence '" + dir.string() + "': frame '" + sequence.frames[i].name + "' " + problem);
+  };
+  for (size_t i = 0; i < sequence.frames.size(); ++i) {
+    const double t = sequence.frames[i].timestamp;
+    if (!std::isfinite(t) || std::abs(t) >= kMaxAbsTimestamp)
+      fail(i, "has timestamp " + std::to_string(t) + " s, outside the sane range (-1e9, 1e9) s");
+    if (i == 0) continue;
+    const double step = t - sequence.frames[i - 1].timestamp;
+    if (step > kMaxTimeStep)
+      fail(i, "comes " + std::to_string(step) + " s after the previous frame, more than a day (" +
+                  std::to_string(kMaxTimeStep) + " s): a corrupt timestamp or frame id?");
+  }
+  return sequence;
+}
+
+Sequence load_any(const std::filesystem::path& dir, const std::string& object) {
   std::error_code error;
   if (!std::filesystem::exists(dir, error)) throw InputError("sequence folder '" + dir.string() + "' does not exist");
   if (!std::filesystem::is_directory(dir, error))
@@ -16,6 +42,12 @@ Sequence load_sequence(const std::filesystem::path& dir, const std::string& obje
   if (std::filesystem::exists(dir / io::kBopManifest, error)) return io::load_bop_sequence(dir, object);
   throw InputError("sequence folder '" + dir.string() + "' has none of " + io::kDepthtrackManifest + " (depthtrack), " +
                    io::kYcbVideoManifest + " (YCB-Video) and " + io::kBopManifest + " (BOP)");
+}
+
+}  // namespace
+
+Sequence load_sequence(const std::filesystem::path& dir, const std::string& object) {
+  return checked_times(load_any(dir, object), dir);
 }
 
 DepthImage Sequence::load_depth(size_t i) const {

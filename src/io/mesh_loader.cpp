@@ -93,6 +93,60 @@ bool is_obj(const std::filesystem::path& path) {
   return lower_extension(path) == ".obj";
 }
 
+// Bytes a PLY value of this type takes in binary; 0 for a type name assimp would not read either.
+size_t ply_type_bytes(const std::string& type) {
+  static const std::pair<const char*, size_t> sizes[] = {{"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},
+                                                         {"short", 2}, {"ushort", 2},  {"int16", 2},  {"uint16", 2},
+                                                         {"int", 4},   {"uint", 4},    {"int32", 4},  {"uint32", 4},
+                                                         {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
+  for (const auto& [name, bytes] : sizes)
+    if (type == name) return bytes;
+  return 0;
+}
+
+// Like the OFF counts below: assimp reserves what "element vertex N" declares, so a short file claiming
+// four billion vertices ends in an allocation failure. Each element takes at least its properties'
+// bytes (binary: a scalar's size, a list's count; ASCII: a character and a separator per property),
+// so counts the data after the header cannot hold are refused before assimp sees the file.
+void check_ply_counts(const std::filesystem::path& path, const std::string& name, const std::string& header,
+                      size_t header_bytes) {
+  std::istringstream lines(header);
+  bool ascii = false;
+  std::vector<std::pair<std::string, uint64_t>> elements;  // name, count
+  long double needed = 0, element_bytes = 0;
+  const auto close_element = [&] {
+    if (!elements.empty()) needed += static_cast<long double>(elements.back().second) * element_bytes;
+    element_bytes = 0;
+  };
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream words(line);
+    std::string keyword, a, b, c;
+    words >> keyword >> a >> b >> c;
+    if (keyword == "format") ascii = a == "ascii";
+    if (keyword == "element") {
+      close_element();
+      uint64_t count = 0;
+      for (size_t i = 0; i < b.size() && std::isdigit(static_cast<unsigned char>(b[i])); ++i)
+        count = std::min<uint64_t>(count * 10 + static_cast<uint64_t>(b[i] - '0'), uint64_t{1} << 60);
+      elements.emplace_back(a, count);
+    }
+    if (keyword == "property" && !elements.empty())
+      element_bytes += ascii ? 2 : static_cast<long double>(ply_type_bytes(a == "list" ? b : a));
+  }
+  close_element();
+  std::error_code error;
+  const uintmax_t bytes = std::filesystem::file_size(path, error);
+  if (error || bytes < header_bytes) return;
+  const uintmax_t data = bytes - header_bytes;
+  if (needed <= static_cast<long double>(data)) return;
+  std::string claims;
+  for (const auto& [element, count] : elements)
+    claims += (claims.empty() ? "" : ", ") + std::to_string(count) + " " + element;
+  throw InputError(name + ": the file's header claims more than it holds: " + claims + " elements need at least " +
+                   std::to_string(static_cast<uintmax_t>(std::min<long double>(needed, 1e18L))) + " bytes, " +
+                   "but only " + std::to_string(data) + " follow the header (the file is cut short or malformed)");
+}
+
 // assimp's PLY reader loops forever on a header it cannot finish: a PLY must say "ply" and end its
 // header within its first MiB (real headers take a few hundred bytes). Clearer, and at once.
 void check_ply_header(const std::filesystem::path& path, const std::string& name) {
@@ -107,6 +161,8 @@ void check_ply_header(const std::filesystem::path& path, const std::string& name
   const size_t end = line == std::string::npos ? line : line + 1;
   if (end == std::string::npos || head.find_first_not_of(" \t\r\n", end + 10) < head.find('\n', end))
     throw InputError(name + ": its PLY header has no 'end_header' line within the first MiB");
+  const size_t newline = head.find('\n', end);
+  check_ply_counts(path, name, head.substr(0, end), newline == std::string::npos ? head.size() : newline + 1);
 }
 
 // assimp's OFF reader reserves what the header declares before reading a face: a 60-byte file that

@@ -41,6 +41,7 @@ Sequence write_synthetic_sequence(const std::filesystem::path& dir, const Mesh& 
   sequence.format = "depthtrack";
   sequence.camera = config.camera;
   sequence.metres_per_unit = config.metres_per_unit;
+  sequence.object = config.object;
   for (int i = 0; i < config.frames; ++i) {
     const SynthFrame frame = synthesizer.frame(i);
     SequenceFrame entry;
