@@ -23,28 +23,24 @@ WRONG_MM = 20.0  # a frame this far off while confident is "confidently wrong"
 
 
 def features(row):
-    """The evidence as the model reads it (src/tracker/confidence_model.cpp: the same order)."""
-    visible = float(row["visible"])
-    separated = float(row["separated"])
-    contradicted = float(row["contradicted"])
-    missing = float(row["missing"])
-    rms = float(row["visible_rms"])
-    pixels = max(1.0, float(row["pixels"]))
+    """The evidence as the model reads it (src/tracker/confidence_model.cpp: the same order).
+
+    visible + occluded + contradicted = 1, so visible is left out: the other two say how far the
+    measured pixels depart from it.
+    """
     nearer = float(row["outline_nearer"])
     return [
         1.0,
-        visible,
-        separated,
-        contradicted,
-        missing,
-        min(rms, 3.0),
-        math.log(pixels),
-        # How much of the outline could be judged at all (the rest is against nearer surfaces).
-        (1.0 - nearer),
+        float(row["occluded"]),
+        float(row["contradicted"]),
+        min(float(row["visible_rms"]), 3.0),
+        # The outline's share that sees past the edge, of the whole outline: the part hidden by nearer
+        # surfaces says nothing.
+        float(row["separated"]) * (1.0 - nearer),
     ]
 
 
-NAMES = ["bias", "visible", "separated", "contradicted", "missing", "visible_rms", "log_pixels", "outline_free"]
+NAMES = ["bias", "occluded", "contradicted", "visible_rms", "separated_free"]
 
 
 def load(path):

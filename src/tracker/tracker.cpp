@@ -184,20 +184,22 @@ void Tracker::start_frame(const DepthImage& working, const std::function<const D
     m << "timestamps must increase: " << timestamp << " s follows " << previous_timestamp_ << " s";
     throw InputError(m.str());
   }
-  // After a gap the motion model cannot bridge (max_time_step), the object is searched for around its
-  // last pose, and the particles are drawn anew around that pose and the search's best candidates: the
-  // next frames' weights decide among them, and the confidence says when the track holds again. While
-  // lost for a few frames, the whole frame is searched; a candidate the depth supports re-seeds the
-  // filter. A dropout frame has nothing to search.
+  // After a gap the motion model cannot bridge (max_time_step) the particles are drawn anew around the
+  // last pose, and, unless this frame still supports that pose, around the best candidates of a search
+  // near it too: the next frames' weights decide among them, and the confidence says when the track
+  // holds again. While lost for a few frames, the whole frame is searched; a candidate the depth
+  // supports re-seeds the filter. A dropout frame has nothing to search.
   PendingFrame search;
   gap_pending_ = gap_pending_ || (has_previous_ && timestamp - previous_timestamp_ > config_.max_time_step);
   const bool gap = gap_pending_;
   if (config_.recovery.enabled && working.valid_count() > 0 && (gap || supervisor_->should_search())) {
     gap_pending_ = false;
     const Stopwatch clock;
-    const InitHint where = gap ? supervisor_->around(last_pose_) : InitHint::anywhere();
-    const search::SearchResult found =
-        supervisor_->search(sensor_frame(), working, where, config_.recovery.budget_ms, ++search_round_);
+    const bool holds = gap && pose_confidence(supervisor_->assess(last_pose_, working)) >= config_.loss.lost_below;
+    search::SearchResult found;
+    if (!holds)
+      found = supervisor_->search(sensor_frame(), working, gap ? supervisor_->around(last_pose_) : InitHint::anywhere(),
+                                  config_.recovery.budget_ms, ++search_round_);
     if (gap) {
       std::vector<Pose> modes{last_pose_};
       for (const Pose& p : TrackSupervisor::seeds(found)) modes.push_back(p);
