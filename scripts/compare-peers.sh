@@ -8,7 +8,7 @@
 # icg: ICG_DIR and ICG_LIBRARY, xvfb-run) and ../shared/data (meshes, the YCB-Video clips).
 #
 #   bash scripts/compare-peers.sh            # builds build-peers/, writes into $WORK, prints the table
-#   PEERS=icg ICG_DIR=/work/icg-src/ICG ICG_LIBRARY=/work/icg-build/icg/libicg.a SEEDS="1 2 3" \
+#   PEERS=icg ICG_DIR=<3DObjectTracking>/ICG ICG_LIBRARY=<its build>/libicg.a SEEDS="1 2 3" \
 #     ONLY=ycbv-0000 bash scripts/compare-peers.sh   # depthtrack and ICG on ycbv-0000, three starts
 #
 # Environment: BUILD (build folder, default build-peers), CMAKE_ARGS (extra configure options), WORK
