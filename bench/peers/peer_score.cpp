@@ -1,10 +1,15 @@
 // Scores a tracker's CSVs (what `depthtrack track` or depthtrack_pcl_tracking writes) against the
 // sequence's ground truth, the same way for every tracker, and prints one Markdown table row:
-// | label | tracker | mean translation mm | max mm | mean rotation deg | last-frame ADD-S mm | ms/frame |
-// Several CSVs (repeated runs of a tracker whose randomness cannot be seeded, like PCL's) give the
-// mean over the runs with the range of the per-run values in brackets.
+// | label | tracker | mean translation mm | max mm | mean rotation deg | mean ADD-S mm | last-frame ADD-S mm |
+//   ADD-S AUC 0-100 mm | ms/frame |
+// The AUC is YCB-Video's: the area under the share of frames whose ADD-S is within a threshold, for
+// thresholds from 0 to 100 mm, in percent; integrated exactly (no grid of thresholds) as the mean
+// over frames of max(0, 1 - ADD-S / 100 mm).
+// Several CSVs (repeated runs: of a tracker whose randomness cannot be seeded, like PCL's, or from
+// several seeded starts) give the mean over the runs with the range of the per-run values in brackets.
 // Columns are found by header name (tx..qz, frame), so columns added later do not matter.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <depthtrack/error.hpp>
 #include <depthtrack/evaluation.hpp>
@@ -56,8 +61,10 @@ std::map<std::string, Pose> read_poses(const std::string& path) {
   return poses;
 }
 
+constexpr double kAucMaxMm = 100;  // the AUC's largest threshold
+
 struct Score {
-  double mean_t = 0, max_t = 0, mean_r = 0, last_adds = NAN;  // mm, mm, degrees, mm
+  double mean_t = 0, max_t = 0, mean_r = 0, mean_adds = 0, last_adds = NAN, adds_auc = 0;  // mm, mm, deg, mm, mm, %
 };
 
 Score score(const Sequence& seq, const std::string& sequence_path, const AddsMetric& adds, const std::string& csv) {
@@ -76,11 +83,15 @@ Score score(const Sequence& seq, const std::string& sequence_path, const AddsMet
     s.max_t = std::max(s.max_t, t);
     s.mean_r += rotation_error(it->second, *f.ground_truth) * 180.0 / std::numbers::pi;
     s.last_adds = 1000 * adds(it->second, *f.ground_truth);
+    s.mean_adds += s.last_adds;
+    s.adds_auc += 100 * std::max(0.0, 1 - s.last_adds / kAucMaxMm);
     ++n;
   }
   if (n == 0) throw InputError("'" + sequence_path + "' has no frames");
   s.mean_t /= static_cast<double>(n);
   s.mean_r /= static_cast<double>(n);
+  s.mean_adds /= static_cast<double>(n);
+  s.adds_auc /= static_cast<double>(n);
   return s;
 }
 
@@ -120,8 +131,9 @@ int main(int argc, char** argv) {
     const AddsMetric adds(mesh);
     std::vector<Score> runs;
     for (const auto& csv : csvs) runs.push_back(score(seq, sequence_path, adds, csv));
-    std::printf("| %s | %s | %s | %s | %s | %s | %s |\n", label.c_str(), tracker.c_str(),
+    std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", label.c_str(), tracker.c_str(),
                 summary(runs, &Score::mean_t).c_str(), summary(runs, &Score::max_t).c_str(),
-                summary(runs, &Score::mean_r).c_str(), summary(runs, &Score::last_adds).c_str(), ms.c_str());
+                summary(runs, &Score::mean_r).c_str(), summary(runs, &Score::mean_adds).c_str(),
+                summary(runs, &Score::last_adds).c_str(), summary(runs, &Score::adds_auc).c_str(), ms.c_str());
   });
 }
