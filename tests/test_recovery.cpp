@@ -2,6 +2,7 @@
 // wall is seen) for 1 s and comes back elsewhere; a 90 % occluder; the lost status and recovery.
 #include <catch2/catch.hpp>
 #include <cstdio>
+#include <depthtrack/evaluation.hpp>
 #include <depthtrack/synth.hpp>
 #include <depthtrack/tracker.hpp>
 
@@ -47,8 +48,9 @@ TEST_CASE("synthetic handset vanishes for 1 s and returns 22 cm over: lost, then
   tracker.initialize(frames.front().ground_truth);
   std::printf("\nhandset hidden at frame %d, back at %d, %.0f mm from where it vanished\n", vanish, back, 1000 * moved);
   std::printf("  frame  status    confidence  error mm  search ms\n");
-  int first_lost = -1, found = -1;
+  int first_lost = -1, found = -1, confidently_wrong = 0;
   double search_ms = 0;
+  const AddsMetric adds(mesh);
   for (int i = 0; i < synth.frames; ++i) {
     const Estimate e = tracker.update(frames[i].depth, frames[i].timestamp);
     const double error = translation_error(e.pose, frames[i].ground_truth);
@@ -57,6 +59,9 @@ TEST_CASE("synthetic handset vanishes for 1 s and returns 22 cm over: lost, then
       std::printf("  %5d  %-9s %10.2f %9.1f %10.1f\n", i, to_string(e.status), e.confidence, 1000 * error,
                   e.timings.search_ms);
     search_ms = std::max(search_ms, e.timings.search_ms);
+    // While hidden there is nothing to be right about: any pose reported tracking then is wrong.
+    const double wrong_by = frames[i].hidden ? 1.0 : adds(e.pose, frames[i].ground_truth);
+    confidently_wrong += wrong_by > 0.020 && !lost && e.confidence >= 0.5;
     if (lost && first_lost < 0) first_lost = i;
     if (i < vanish) CHECK(!lost);                  // never lost while seen and tracked
     if (i >= vanish + 6 && i < back) CHECK(lost);  // lost at most 6 frames after it vanished
@@ -67,6 +72,7 @@ TEST_CASE("synthetic handset vanishes for 1 s and returns 22 cm over: lost, then
       "  lost raised at frame %d (%d after vanishing); found again at frame %d (%d after return); "
       "longest search %.0f ms\n",
       first_lost, first_lost - vanish, found, found - back, search_ms);
+  CHECK(confidently_wrong == 0);
   CHECK(first_lost >= vanish);
   CHECK(first_lost <= vanish + 6);
   REQUIRE(found >= 0);
@@ -85,20 +91,28 @@ TEST_CASE("synthetic handset behind a 90% occluder: when lost is raised", "[reco
   config.recovery.enabled = false;  // report the status only
   Tracker tracker(mesh, synth.camera, config);
   tracker.initialize(frames.front().ground_truth);
-  int first_lost = -1, lost_frames = 0;
+  int first_lost = -1, lost_frames = 0, confidently_wrong = 0;
   double worst = 0;
+  const AddsMetric adds(mesh);
   for (int i = 0; i < synth.frames; ++i) {
     const Estimate e = tracker.update(frames[i].depth, frames[i].timestamp);
     worst = std::max(worst, translation_error(e.pose, frames[i].ground_truth));
+    confidently_wrong +=
+        adds(e.pose, frames[i].ground_truth) > 0.020 && e.status == TrackStatus::Tracking && e.confidence >= 0.5;
     if (e.status == TrackStatus::Lost) {
       ++lost_frames;
       if (first_lost < 0) first_lost = i;
     }
   }
-  std::printf("\nhandset, 90%% occluder, %d frames: lost first at frame %d, lost in %d frames, worst error %.1f mm\n",
-              synth.frames, first_lost, lost_frames, 1000 * worst);
-  // With a tenth of the object in view the estimate is not trusted: lost is raised within 6 frames
-  // (measured: at frame 2, and held for 88 of the 90 frames).
+  std::printf(
+      "\nhandset, 90%% occluder, %d frames: lost first at frame %d, lost in %d frames, worst error %.1f mm, "
+      "%d confidently wrong\n",
+      synth.frames, first_lost, lost_frames, 1000 * worst, confidently_wrong);
+  // With a tenth of the object in view the estimate is not trusted: lost is raised within 6 frames. Frames
+  // more than 20 mm off reported tracking with confidence 0.5 or more stay under a tenth of the run: the
+  // evidence of 5-10 visible pixels is too little to tell 10 mm from 25 mm (docs/confidence.md; none is
+  // the aim, not yet reached).
+  CHECK(confidently_wrong <= synth.frames / 10);
   CHECK(first_lost >= 0);
   CHECK(first_lost <= 6);
 }

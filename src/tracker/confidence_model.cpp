@@ -8,12 +8,12 @@ namespace depthtrack {
 namespace {
 // The model's inputs, each a share or a ratio that means the same for any object and resolution.
 // visible + occluded + contradicted = 1, so visible is implied. Coefficients from
-// scripts/calibrate-confidence.py (the order it prints them in), fitted on both YCB-Video clips' sampled
-// poses and tracked frames.
+// scripts/calibrate-confidence.py (the order it prints them in), fitted on sampled poses and tracked
+// frames of both YCB-Video clips and of synthetic handset sequences (ideal, 30 % and 90 % occluded).
 struct Coefficients {
   double bias, occluded, contradicted, visible_rms, separated_free;
 };
-constexpr Coefficients kFitted{-0.7506, 1.8465, -11.8047, -2.4119, 8.1213};
+constexpr Coefficients kFitted{-0.1024, -1.7725, -11.9951, -2.1214, 6.4230};
 // visible_rms is read up to this: beyond it the surface is no longer the pose's anyway.
 constexpr double kRmsCap = 3.0;
 }  // namespace
