@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Peer comparison (issue 8): depthtrack against the trackers users pick instead, on the same frames from
+# Peer comparison: depthtrack against the trackers users pick instead, on the same frames from
 # the same starts, printed as one Markdown table: PCL's KLD-adaptive particle filter tracker (pcl::tracking,
 # bench/peers/pcl_tracking.cpp), ViSP's model-based tracker on its dense depth features
 # (vpMbGenericTracker, bench/peers/visp_tracking.cpp) and ICG (Iterative Corresponding Geometry,
@@ -218,7 +218,7 @@ done
 for o in 004_sugar_box 007_tuna_fish_can 010_potted_meat_can 024_bowl; do
   compare "ycbv-0049 $o" "$DATA/meshes/ycb/$o.obj" "$YCBV49" "$o" 160x120
 done
-# ViSP's own simulated castle (noise-free, exact ground truth: where issue 8's precision was first measured),
+# ViSP's own simulated castle (noise-free, exact ground truth: where the fit's precision was first measured),
 # converted once into depthtrack's layout. Its model is to be drawn without back-face culling.
 CASTLE=$DATA/sequences/visp-castle-simu
 if [[ -d $CASTLE && (-z $ONLY || visp-castle =~ $ONLY) ]]; then

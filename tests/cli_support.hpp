@@ -38,6 +38,14 @@ inline std::vector<std::string> lines_of(const std::filesystem::path& path) {
   return lines;
 }
 
+// The whole file as text ("" when it cannot be read).
+inline std::string text_of(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
 inline std::vector<std::string> cells_of(const std::string& line) {
   std::stringstream row(line);
   std::vector<std::string> cells;

@@ -17,12 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string text_of(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::text_of;
 
 // track on the sequence in dir with extra arguments; the CSV goes to out unless the arguments name one.
 std::pair<int, std::string> track(const fs::path& dir, const std::string& arguments,

@@ -18,12 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string text_of(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::text_of;
 
 std::pair<int, std::string> track(const fs::path& dir, const fs::path& sequence, const std::string& arguments) {
   return test::run_cli("track --mesh " + (dir / "object.obj").string() + " --sequence " + sequence.string() +
@@ -89,7 +84,7 @@ TEST_CASE("a bad --summary or --bop-out path fails before tracking and leaves th
   check_earlier(earlier);
 }
 
-TEST_CASE("--summary and --bop-out on a full disk fail, leaving every earlier file as it was", "[cli][outputs]") {
+TEST_CASE("track: --summary and --bop-out on a full disk fail, leaving every earlier file as it was", "[cli][outputs]") {
   if (!fs::exists("/dev/full")) return;
   const auto dir = test::write_cli_sequence("safe_full", 2);
   const fs::path scene = bop_scene(dir);
@@ -152,7 +147,7 @@ TEST_CASE("an output naming an input of the run is refused before anything is wr
   CHECK(fs::file_size(depth) > 0);
 }
 
-TEST_CASE("--overlay into a BOP scene's depth folder is refused: its pictures would replace the depth images",
+TEST_CASE("track: --overlay into a BOP scene's depth folder is refused: its pictures would replace the depth images",
           "[cli][outputs]") {
   const auto dir = test::write_cli_sequence("safe_overlay_bop", 2);
   const fs::path scene = bop_scene(dir);

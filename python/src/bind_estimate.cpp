@@ -25,6 +25,18 @@ void bind_estimate(py::module_& m) {
       .def_readonly("wait_ms", &StepTimings::wait_ms)
       .def_readonly("total_ms", &StepTimings::total_ms);
 
+  py::class_<PoseEvidence>(m, "PoseEvidence", "What the frame's depth says about a pose (docs/confidence.md)")
+      .def_readonly("pixels", &PoseEvidence::pixels, "pixels the silhouette covers at the working resolution")
+      .def_readonly("visible", &PoseEvidence::visible, "of the measured silhouette pixels: on the surface")
+      .def_readonly("occluded", &PoseEvidence::occluded, "of the measured silhouette pixels: something in front")
+      .def_readonly("contradicted", &PoseEvidence::contradicted,
+                    "of the measured silhouette pixels: seen behind where the object would be")
+      .def_readonly("missing", &PoseEvidence::missing, "of the silhouette pixels: no depth")
+      .def_readonly("separated", &PoseEvidence::separated,
+                    "of the outline not against nearer surfaces: the share seeing past the edge")
+      .def_readonly("outline_nearer", &PoseEvidence::outline_nearer, "of the outline: seen in front of the edge")
+      .def_readonly("visible_rms", &PoseEvidence::visible_rms, "rms of (y - y_hat) / sigma(y) over visible pixels");
+
   py::class_<Estimate>(m, "Estimate", "One frame's estimate")
       .def_property_readonly(
           "pose", [](const Estimate& e) { return pose_to_matrix(e.pose); }, "4x4 camera-from-object matrix, metres")
@@ -50,7 +62,10 @@ void bind_estimate(py::module_& m) {
                     "inf on the diagonal (0 across) for an axis the depth cannot determine; NaN with refinement off")
       .def_readonly("refine_iterations", &Estimate::refine_iterations, "refinement steps tried this frame")
       .def_readonly("timings", &Estimate::timings)
-      .def_readonly("confidence", &Estimate::confidence, "share of the silhouette the depth explains, [0, 1]")
+      .def_readonly("confidence", &Estimate::confidence,
+                    "probability that the pose is within tolerance of the truth (ADD-S <= 10 mm and a tenth of the "
+                    "diameter), calibrated from `evidence`")
+      .def_readonly("evidence", &Estimate::evidence, "what the frame's depth says about the pose (PoseEvidence)")
       .def_property_readonly(
           "status", [](const Estimate& e) { return std::string(to_string(e.status)); }, "tracking, lost or no-data")
       .def_readonly("recovered", &Estimate::recovered, "this frame re-seeded the filter from a global search")
