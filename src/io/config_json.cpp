@@ -50,7 +50,10 @@ void from_json_value(const Json& j, T& value, const std::string& path, const std
   if constexpr (fields::Struct<T>) {
     if (!j.is_object()) wrong_type(source, path, "an object", j);
     const std::string prefix = path.empty() ? "" : path + ".";
-    for (const auto& [key, item] : j.items()) {
+    for (const auto& entry : j.items()) {
+      // Named copies, not structured bindings: clang 14 cannot capture those in the lambda below.
+      const std::string& key = entry.key();
+      const Json& item = entry.value();
       bool known = false;
       fields::for_each_field<T>([&](const auto& f) {
         if (key != f.name) return;
