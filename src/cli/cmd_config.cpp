@@ -18,7 +18,8 @@ void add_config_command(CLI::App& app) {
               "filled in (checked)")
       ->required();
   c->add_option("--config", *file, "JSON file to read (any subset of the parameters)")->check(CLI::ExistingFile);
-  c->callback([file] {
+  c->callback([file, dump] {
+    static_cast<void>(dump);  // held by the callback: CLI11 writes the flag into it while parsing
     const TrackerConfig config = file->empty() ? TrackerConfig{} : load_tracker_config(*file);
     std::fputs(tracker_config_to_json(config).c_str(), stdout);
   });
