@@ -12,7 +12,8 @@ namespace {
 
 // Beyond these a timestamp is a unit mistake or a corrupt file (a frame id off by 1e9), not a recording:
 // the motion model divides by the step, and the CSV would carry the nonsense on.
-constexpr double kMaxAbsTimestamp = 1e9;  // seconds, about 32 years
+// Seconds, about 317 years: Unix-epoch seconds (1.7e9, as ROS stamps them) pass; nanoseconds do not.
+constexpr double kMaxAbsTimestamp = 1e10;
 constexpr double kMaxTimeStep = 86400;    // seconds between frames: a day
 
 Sequence checked_times(Sequence sequence, const std::filesystem::path& dir) {
@@ -22,7 +23,7 @@ Sequence checked_times(Sequence sequence, const std::filesystem::path& dir) {
   for (size_t i = 0; i < sequence.frames.size(); ++i) {
     const double t = sequence.frames[i].timestamp;
     if (!std::isfinite(t) || std::abs(t) >= kMaxAbsTimestamp)
-      fail(i, "has timestamp " + std::to_string(t) + " s, outside the sane range (-1e9, 1e9) s");
+      fail(i, "has timestamp " + std::to_string(t) + " s, outside the sane range (-1e10, 1e10) s");
     if (i == 0) continue;
     const double step = t - sequence.frames[i - 1].timestamp;
     if (step > kMaxTimeStep)
