@@ -17,8 +17,8 @@
 #include <depthtrack/evaluation.hpp>
 #include <depthtrack/init_hint.hpp>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <string>
 #include <vector>
@@ -97,9 +97,9 @@ struct Sample {
   Pose pose;
 };
 
-void print_row(const std::string& clip, const std::string& object, const std::string& frame,
-               const std::string& kind, double start_mm, double start_deg, double adds_m, double diameter,
-               const PoseEvidence& e, double confidence, const char* status) {
+void print_row(const std::string& clip, const std::string& object, const std::string& frame, const std::string& kind,
+               double start_mm, double start_deg, double adds_m, double diameter, const PoseEvidence& e,
+               double confidence, const char* status) {
   std::printf("%s,%s,%s,%s,%.1f,%.1f,%.3f,%.1f,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%s\n", clip.c_str(),
               object.c_str(), frame.c_str(), kind.c_str(), start_mm, start_deg, 1000.0 * adds_m, 1000.0 * diameter,
               e.pixels, e.visible, e.occluded, e.contradicted, e.missing, e.separated, e.outline_nearer, e.visible_rms,
@@ -120,7 +120,8 @@ void track_rows(const std::string& clip, const std::string& object, const Sequen
   };
   for (uint64_t seed = 1; seed <= 3; ++seed) {
     config.seed = seed;
-    emit("track-perturbed", track_sequence(seq, mesh, config, perturb_pose(truth, centre, 0.01, 5, seed), {0.01, 0.087}));
+    emit("track-perturbed",
+         track_sequence(seq, mesh, config, perturb_pose(truth, centre, 0.01, 5, seed), {0.01, 0.087}));
   }
   config.seed = 1;
   emit("track-box", track_sequence_global(seq, mesh, config, projected_box(mesh, seq.camera, truth)));
@@ -154,7 +155,8 @@ int main(int argc, char** argv) try {
     found.push_back(name);
   }
   std::vector<Eigen::Vector3d> other_centres;
-  for (const auto& name : found) other_centres.push_back(Mesh::load(mesh_path(o.mesh_dir, name)).centre().cast<double>());
+  for (const auto& name : found)
+    other_centres.push_back(Mesh::load(mesh_path(o.mesh_dir, name)).centre().cast<double>());
   const std::string clip_name = std::filesystem::path(o.clip).filename().string();
   for (size_t k = 0; k < found.size(); ++k) {
     const Sequence& seq = sequences[k];
@@ -211,13 +213,14 @@ int main(int argc, char** argv) try {
       }
       for (const Sample& s : samples) {
         const double start_mm =
-            1000.0 * ((s.pose.rotation * centre + s.pose.translation) - (truth.rotation * centre + truth.translation)).norm();
+            1000.0 *
+            ((s.pose.rotation * centre + s.pose.translation) - (truth.rotation * centre + truth.translation)).norm();
         const double start_deg = s.pose.rotation.angularDistance(truth.rotation) * 180.0 / M_PI;
         const reference::RefinedPose fit = refiner.refine(s.pose, depth, fresh);
-        const SilhouetteShares sh = silhouette_shares(rasterizer, config.observation, config.loss.pixel_sigmas,
-                                                      fit.pose, depth, scratch);
-        print_row(clip_name, found[k], seq.frames[f].name, s.kind, start_mm, start_deg, adds(fit.pose, truth),
-                  diameter, sh, pose_confidence(sh), "-");
+        const SilhouetteShares sh =
+            silhouette_shares(rasterizer, config.observation, config.loss.pixel_sigmas, fit.pose, depth, scratch);
+        print_row(clip_name, found[k], seq.frames[f].name, s.kind, start_mm, start_deg, adds(fit.pose, truth), diameter,
+                  sh, pose_confidence(sh), "-");
       }
       std::fflush(stdout);
     }

@@ -84,7 +84,8 @@ TEST_CASE("a bad --summary or --bop-out path fails before tracking and leaves th
   check_earlier(earlier);
 }
 
-TEST_CASE("track: --summary and --bop-out on a full disk fail, leaving every earlier file as it was", "[cli][outputs]") {
+TEST_CASE("track: --summary and --bop-out on a full disk fail, leaving every earlier file as it was",
+          "[cli][outputs]") {
   if (!fs::exists("/dev/full")) return;
   const auto dir = test::write_cli_sequence("safe_full", 2);
   const fs::path scene = bop_scene(dir);

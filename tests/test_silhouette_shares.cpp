@@ -117,8 +117,9 @@ TEST_CASE("the refinement's counts at a pose are the confidence's: pixels measur
         visible + 5);
 }
 
-TEST_CASE("a tracker reports the calibrated confidence of its estimate's silhouette shares; the filter, the fit's share",
-          "[confidence]") {
+TEST_CASE(
+    "a tracker reports the calibrated confidence of its estimate's silhouette shares; the filter, the fit's share",
+    "[confidence]") {
   const Mesh mesh = builtin_demo_mesh();
   const SynthConfig synth = test::small_scene(12);
   const Synthesizer scene(mesh, synth);

@@ -39,7 +39,7 @@ TEST_CASE("the confidence rises with the evidence and falls with what contradict
   seen.separated = 0.9;
   seen.visible_rms = 0.6;
   const double p = pose_confidence(seen);
-  CHECK(p > 0.8);  // a surface where the pose puts it, standing out from what lies behind
+  CHECK(p > 0.8);               // a surface where the pose puts it, standing out from what lies behind
   PoseEvidence pressed = seen;  // pressed into a wall: the surface fits, no outline sees past it
   pressed.separated = 0.0;
   CHECK(pose_confidence(pressed) < 0.5);
@@ -68,8 +68,7 @@ TEST_CASE("a wall with no object in front of it: never tracking", "[trust]") {
   for (const SynthFrame& f : frames) {
     const Estimate e = tracker.update(f.depth, f.timestamp);
     tracking += e.status == TrackStatus::Tracking;
-    INFO("confidence " << e.confidence << " separated " << e.evidence.separated << " visible "
-                       << e.evidence.visible);
+    INFO("confidence " << e.confidence << " separated " << e.evidence.separated << " visible " << e.evidence.visible);
     CHECK(!(e.status == TrackStatus::Tracking && e.confidence >= 0.5));
   }
   std::printf("\nwall only, %d frames: %d reported tracking\n", synth.frames, tracking);

@@ -75,7 +75,7 @@ struct Estimate {
   double confidence = 0;
   PoseEvidence evidence;  // what the frame's depth says about the pose, at the working resolution
   TrackStatus status = TrackStatus::Tracking;
-  bool recovered = false;   // this frame re-seeded the filter from a global search
+  bool recovered = false;   // this frame re-seeded the filter: a search while lost found it, or after a gap in time
   size_t search_poses = 0;  // poses this frame's global search scored (0: none ran)
 };
 
@@ -187,8 +187,8 @@ class Tracker {
   size_t frames_since_initialize_ = 0;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();  // the mesh's, where initialize() checks the start
   size_t mesh_triangles_ = 0, drawn_triangles_ = 0;
-  unsigned search_round_ = 0;                         // varies each recovery search's perturbations
-  PendingFrame pending_;                              // between start_frame and finish_frame
+  unsigned search_round_ = 0;  // varies each recovery search's perturbations
+  PendingFrame pending_;       // between start_frame and finish_frame
   bool frame_pending_ = false;
 };
 

@@ -84,11 +84,11 @@ struct Refinement {
 
 // When an estimate counts as lost, from its confidence (Estimate::confidence, a calibrated probability).
 struct LossModel {
-  double pixel_sigmas = 3.0;  // |y - y_hat| within this many sigma(y): the object is seen there
-  double lost_below = 0.5;    // a frame below this confidence is reported lost
-  int search_after = 3;       // this many lost frames in a row start a search each frame (recovery)
-  double found_above = 0.75;  // a search candidate this confident ends lost
-  double found_outline = 0.5; // and this share of its outline sees past its edge (TrackSupervisor::found)
+  double pixel_sigmas = 3.0;   // |y - y_hat| within this many sigma(y): the object is seen there
+  double lost_below = 0.5;     // a frame below this confidence is reported lost
+  int search_after = 3;        // this many lost frames in a row start a search each frame (recovery)
+  double found_above = 0.75;   // a search candidate this confident ends lost
+  double found_outline = 0.5;  // and this share of its outline sees past its edge (TrackSupervisor::found)
 };
 
 // Where each particle keeps its per-pixel occlusion state (docs/design-notes.md, "The occlusion state

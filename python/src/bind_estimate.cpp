@@ -68,7 +68,8 @@ void bind_estimate(py::module_& m) {
       .def_readonly("evidence", &Estimate::evidence, "what the frame's depth says about the pose (PoseEvidence)")
       .def_property_readonly(
           "status", [](const Estimate& e) { return std::string(to_string(e.status)); }, "tracking, lost or no-data")
-      .def_readonly("recovered", &Estimate::recovered, "this frame re-seeded the filter from a global search")
+      .def_readonly("recovered", &Estimate::recovered,
+                    "this frame re-seeded the filter: a search while lost found it, or after a gap in time")
       .def_readonly("search_poses", &Estimate::search_poses, "poses this frame's global search scored")
       .def("__repr__", [](const Estimate& e) {
         const auto& t = e.pose.translation;

@@ -147,7 +147,9 @@ inline auto fields_of(const TrackerConfig*) {
       field("height", &S::height, "working resolution height"),
       field("resample_kl_threshold", &S::resample_kl_threshold, "resample when log N - H(w) exceeds this"),
       field("near_plane", &S::near_plane, "rendering clips geometry closer than this (m)"),
-      field("max_time_step", &S::max_time_step, "the longest gap between frames the motion model bridges; a longer one is propagated as this long and searched around the last pose (s)"),
+      field("max_time_step", &S::max_time_step,
+            "the longest gap between frames the motion model bridges; a longer one is propagated as this long and "
+            "searched around the last pose (s)"),
       field("seed", &S::seed, "random seed: the same seed gives the same particles on every backend"),
       field("backend", &S::backend,
             "reference, opencl, opencl:pocl, opencl:nvidia, opencl:<p>.<d>, cuda, cuda:<n>; empty: reference"),

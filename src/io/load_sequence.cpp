@@ -14,7 +14,7 @@ namespace {
 // the motion model divides by the step, and the CSV would carry the nonsense on.
 // Seconds, about 317 years: Unix-epoch seconds (1.7e9, as ROS stamps them) pass; nanoseconds do not.
 constexpr double kMaxAbsTimestamp = 1e10;
-constexpr double kMaxTimeStep = 86400;    // seconds between frames: a day
+constexpr double kMaxTimeStep = 86400;  // seconds between frames: a day
 
 Sequence checked_times(Sequence sequence, const std::filesystem::path& dir) {
   const auto fail = [&](size_t i, const std::string& problem) {

@@ -4,11 +4,11 @@
 #include <cmath>
 
 #include "model/occlusion_chain.hpp"
-#include "tracker/confidence_model.hpp"
 #include "reference/pose_score.hpp"
 #include "search/box_centre_points.hpp"
 #include "search/simplify_mesh.hpp"
 #include "search/surface_points.hpp"
+#include "tracker/confidence_model.hpp"
 
 namespace depthtrack {
 
