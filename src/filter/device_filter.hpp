@@ -62,7 +62,7 @@ struct RenderWeighLayout {
 // the resolutions render_weigh runs at (ycbv-0000's objects at 80x60: 600-700 of 4,800 pixels), and the
 // simplified mug's 1,600 points beside the whole image's tile let 5 groups onto an H100's unit, 7 with half.
 // One group more was not worth it: the handset's frame at 1,000,000 particles took 20.4 ms on the H100 with
-// the half tile (8 groups) against 18.2 with the whole (7; round 2, session 26). A taller box is then drawn
+// the half tile (8 groups) against 18.2 with the whole (7). A taller box is then drawn
 // and weighed in bands of rows (cl/render_weigh.cl); where the smaller tile gains less (the registers
 // decide, or the device does not say what a unit holds) the tile stays whole: one band.
 RenderWeighLayout render_weigh_layout(int width, int height, size_t vertex_count, const compute::DeviceInfo& device);

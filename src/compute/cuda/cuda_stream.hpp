@@ -5,7 +5,7 @@
 // whose thousands of groups fill the device. At equal priority a chain's next launch waits for free
 // room behind the groups already queued; with the first-made stream the most urgent, the block
 // scheduler runs the first object's chain ahead of the later objects' groups, so the objects' frames
-// finish one after another rather than all at the end. Measured (H100, round 2, session 21, three
+// finish one after another rather than all at the end. Measured (H100, three
 // ycbv-0000 objects at 2,000 particles over one, mutual occlusion off / on): 1.99x / 2.81x at one
 // priority, 1.86x / 2.47x ranked. Graphs launched into a stream take its priority.
 // DEPTHTRACK_CUDA_STREAM_PRIORITIES=0 or off (read when a queue is made): every stream at the default

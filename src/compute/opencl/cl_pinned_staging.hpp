@@ -2,7 +2,7 @@
 // Host memory the driver can copy from and to by DMA, for the enqueued transfers: a buffer made with
 // CL_MEM_ALLOC_HOST_PTR and mapped for the area's lifetime (the pinned-memory path of NVIDIA's OpenCL
 // guide; other drivers take it as host memory). A transfer from or to ordinary host memory is staged
-// by the driver first: on NVIDIA's OpenCL (H100, round 2 session 18) enqueueing a 19 KB non-blocking
+// by the driver first: on NVIDIA's OpenCL (H100) enqueueing a 19 KB non-blocking
 // write cost the host about 55 us and a 224-byte read 45 us that way. One area reused by each transfer, as
 // cuda::PinnedStaging: a transfer first waits for the one before it to be done with the area, unless
 // the queue knows its stream passed a later point. A queue keeps one for writes and one for reads.
