@@ -180,3 +180,25 @@ TEST_CASE("eval --reliability draws the diagram through depthtrack/plots.py", "[
   CHECK(output.find("4 frames, ECE") != std::string::npos);        // plots.py's own count
   CHECK_FALSE(std::filesystem::exists(dir / "r.png.frames.csv"));  // the rows it drew from are removed
 }
+
+TEST_CASE("eval: a failed diagram leaves the earlier --frames-out and picture as they were", "[cli][eval][outputs]") {
+  const auto dir = test::write_cli_sequence("cli_eval_transaction", 4);
+  // An interpreter that passes the matplotlib check and then fails to draw: the run fails after tracking.
+  const auto python = dir / "failing-python";
+  std::ofstream(python) << "#!/bin/sh\n[ \"$1\" = -c ] && exit 0\nexit 3\n";
+  std::filesystem::permissions(python, std::filesystem::perms::owner_all);
+  std::ofstream(dir / "frames.csv") << "earlier rows\n";
+  std::ofstream(dir / "r.png") << "earlier picture\n";
+  const auto [status, output] =
+      test::run_cli("eval --sequence " + (dir / "seq").string() + " --mesh " + (dir / "object.obj").string() +
+                        " --cases perturbed --seeds 1 --resolution 80x60 --particles 50 --frames-out " +
+                        (dir / "frames.csv").string() + " --reliability " + (dir / "r.png").string(),
+                    dir / "log.txt", "DEPTHTRACK_PYTHON=" + python.string());
+  INFO(output);
+  CHECK(status == 1);
+  CHECK(output.find("drawing the reliability diagram failed") != std::string::npos);
+  CHECK(test::text_of(dir / "frames.csv") == "earlier rows\n");
+  CHECK(test::text_of(dir / "r.png") == "earlier picture\n");
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    CHECK(entry.path().filename().string().find(".partial") == std::string::npos);
+}

@@ -1,12 +1,18 @@
 // Every output of a command is checked before any work and replaced together at the end: a bad path,
 // an output that names an input, or a failed write leaves each earlier file as it was.
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
+#include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <depthtrack/sequence.hpp>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "cli_support.hpp"
 #include "support.hpp"
@@ -240,4 +246,88 @@ TEST_CASE("plot draws a series per object of a several-object CSV", "[cli][outpu
       test::run_cli("plot " + (dir / "uneven.csv").string() + " --out " + (dir / "u.png").string(), dir / "log.txt");
   CHECK(uneven == 1);
   CHECK_THAT(uneven_output, Contains("object 'b' has other frames than 'a'"));
+}
+
+TEST_CASE("an interrupted track (SIGINT, SIGTERM) leaves the earlier --out and no partial file", "[cli][outputs]") {
+  const auto dir = test::write_cli_sequence("cli_interrupted", 40);
+  for (const int signal_number : {SIGINT, SIGTERM}) {
+    INFO("signal " << signal_number);
+    const fs::path out = dir / "out.csv";
+    write_earlier({out});
+    const std::string run = "exec " + std::string(DEPTHTRACK_CLI) + " track --mesh " + (dir / "object.obj").string() +
+                            " --sequence " + (dir / "seq").string() +
+                            " --backend reference --resolution 160x120 --particles 3000 --init-from-gt --out " +
+                            out.string() + " > " + (dir / "log.txt").string() + " 2>&1";
+    const pid_t pid = fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+      std::signal(SIGINT, SIG_DFL);  // as from a terminal: the signals are not ignored
+      std::signal(SIGTERM, SIG_DFL);
+      execl("/bin/sh", "sh", "-c", run.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    // Signalled once its partial CSV exists: it is tracking.
+    const fs::path partial = out.string() + ".partial.partial";
+    for (int i = 0; i < 1200 && !fs::exists(partial); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    CHECK(fs::exists(partial));
+    kill(pid, signal_number);
+    int status = 0;
+    REQUIRE(waitpid(pid, &status, 0) == pid);
+    INFO(text_of(dir / "log.txt"));
+    // Ended by the signal, as the signal ends a program, not by finishing first.
+    CHECK(WIFSIGNALED(status));
+    if (WIFSIGNALED(status)) CHECK(WTERMSIG(status) == signal_number);
+    check_earlier({out});
+  }
+}
+
+TEST_CASE("synth replaces an earlier sequence folder only when it succeeds, and never a folder of other files",
+          "[cli][outputs]") {
+  const auto dir = test::temp_dir("cli_synth_staged");
+  const fs::path seq = dir / "seq";
+  auto synth = [&](const std::string& arguments) {
+    return test::run_cli("synth --builtin --resolution 80x60 --out " + seq.string() + " " + arguments, dir / "log.txt");
+  };
+  {
+    const auto [status, output] = synth("--seed 1 --frames 3");
+    INFO(output);
+    REQUIRE(status == 0);
+  }
+  const std::string manifest = text_of(seq / "sequence.json");
+  // A run that fails after validation (its staging folder cannot be made) leaves the earlier sequence.
+  std::ofstream(seq.string() + ".partial") << "in the way\n";
+  {
+    const auto [status, output] = synth("--seed 2 --frames 5");
+    INFO(output);
+    CHECK(status == 1);
+    CHECK(output.find(seq.string() + ".partial") != std::string::npos);
+  }
+  CHECK(text_of(seq / "sequence.json") == manifest);
+  CHECK(load_sequence(seq).frames.size() == 3);
+  fs::remove(seq.string() + ".partial");
+  // A good run replaces the whole folder: no frame of the earlier, longer sequence stays behind.
+  {
+    const auto [status, output] = synth("--seed 2 --frames 5");
+    INFO(output);
+    REQUIRE(status == 0);
+    REQUIRE(synth("--seed 2 --frames 2").first == 0);
+  }
+  CHECK(load_sequence(seq).frames.size() == 2);
+  size_t files = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(seq)) ++files;
+  CHECK(files == 3);  // two depth images and sequence.json
+  CHECK_FALSE(fs::exists(seq.string() + ".previous"));
+  // A folder that holds something other than a sequence is refused untouched.
+  const fs::path mine = dir / "mine";
+  fs::create_directories(mine);
+  std::ofstream(mine / "notes.txt") << "mine\n";
+  {
+    const auto [status, output] =
+        test::run_cli("synth --builtin --frames 2 --resolution 80x60 --out " + mine.string(), dir / "log.txt");
+    INFO(output);
+    CHECK(status == 1);
+    CHECK(output.find("not a sequence folder") != std::string::npos);
+  }
+  CHECK(text_of(mine / "notes.txt") == "mine\n");
+  CHECK_FALSE(fs::exists(mine / "sequence.json"));
 }

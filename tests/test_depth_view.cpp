@@ -158,6 +158,9 @@ TEST_CASE("Bad DepthViews and timestamps are InputErrors naming the problem", "[
   CHECK_THROWS_WITH(tracker.update(good, 10.0), Contains("timestamps must increase: 10 s follows 10 s"));
   CHECK_THROWS_WITH(tracker.update(good, 9.5), Contains("timestamps must increase"));
   CHECK_NOTHROW(tracker.update(good, 10.033));
+  // Nanoseconds are a unit mistake; Unix-epoch seconds are real times.
+  CHECK_THROWS_WITH(tracker.update(good, 1.7e18), Contains("outside the sane range"));
+  CHECK_NOTHROW(tracker.update(good, 1.7e9));
 }
 
 TEST_CASE("Camera::from_matrix reads K and rejects skew and impossible intrinsics", "[camera]") {

@@ -125,7 +125,7 @@ def main(argv):
     except (OSError, ValueError) as e:
         print("depthtrack.plots: error: %s" % e, file=sys.stderr)
         return 1
-    print("wrote %s: %d frames, ECE %.3f" % (argv[2], sum(n for n, _, _ in bins), ece))
+    print("reliability diagram: %d frames, ECE %.3f" % (sum(n for n, _, _ in bins), ece))
     return 0
 
 

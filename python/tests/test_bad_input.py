@@ -80,6 +80,9 @@ def test_timestamps(tracker):
         tracker.update(frame(), 1.0, metres_per_unit=1e-4)
     with pytest.raises(TypeError):
         tracker.update(frame(), "soon", metres_per_unit=1e-4)
+    # Nanoseconds are a unit mistake, named as such.
+    with pytest.raises(depthtrack.InputError, match="outside the sane range"):
+        tracker.update(frame(), 1.7e18, metres_per_unit=1e-4)
 
 
 def test_update_before_initialize():

@@ -18,6 +18,7 @@
 #include "cli/mesh_scale_warning.hpp"
 #include "cli/progress.hpp"
 #include "cli/reliability_plot.hpp"
+#include "cli/staged_outputs.hpp"
 #include "cli/tracker_options.hpp"
 #include "eval/clip_objects.hpp"
 #include "eval/label_box.hpp"
@@ -246,11 +247,14 @@ void run_eval(const EvalArgs& a) {
     if (with_gap && (a.gap_before < 1 || static_cast<size_t>(a.gap_before) >= o.sequence.frames.size()))
       throw InputError("--gap-before " + std::to_string(a.gap_before) + " must name a frame after the first: 1 to " +
                        std::to_string(o.sequence.frames.size() - 1) + " for '" + a.sequence + "'");
-  // The frames CSV is opened before any tracking, so that a bad path fails at once; without --frames-out the
-  // diagram's rows go to a file beside the PNG, removed after drawing.
+  // Both outputs are checked before any tracking and replace earlier files together once the run succeeded;
+  // without --frames-out the diagram's rows go to a file beside the PNG, removed after drawing.
+  StagedOutputs outputs;
+  const fs::path frames_path = a.frames_out.empty() ? fs::path() : outputs.add("--frames-out", a.frames_out);
+  const fs::path png_path = plot ? outputs.add("--reliability", a.reliability) : fs::path();
   std::optional<EvalFramesCsv> csv;
   if (!a.frames_out.empty())
-    csv.emplace(a.frames_out);
+    csv.emplace(frames_path);
   else if (plot)
     csv.emplace(a.reliability + ".frames.csv");
 
@@ -271,7 +275,8 @@ void run_eval(const EvalArgs& a) {
       });
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
       bar.finish();
-      CaseRow row{o.name, c.name, c.kind, {}, seconds, o.box_source};
+      const double search_ms = frames.empty() ? 0.0 : frames.front().estimate.timings.search_ms;
+      CaseRow row{o.name, c.name, c.kind, {}, seconds, o.box_source, search_ms};
       const std::optional<size_t> recovery_from =
           c.kind == CaseKind::Gap ? std::optional<size_t>(static_cast<size_t>(a.gap_before) + kRecoveryFrames)
                                   : std::nullopt;
@@ -290,17 +295,19 @@ void run_eval(const EvalArgs& a) {
       1000 * kEndsWithin);
   print_reliability(reliability(outcomes));
   if (csv) csv->finish();
-  if (!a.frames_out.empty()) std::printf("wrote %s\n", a.frames_out.c_str());
   if (plot) {
     const fs::path rows = csv->path();
     try {
-      draw_reliability(*plot, rows, a.reliability);
+      draw_reliability(*plot, rows, png_path);
     } catch (...) {
       if (a.frames_out.empty()) fs::remove(rows);
       throw;
     }
     if (a.frames_out.empty()) fs::remove(rows);
   }
+  outputs.commit();
+  if (!a.frames_out.empty()) std::printf("wrote %s\n", a.frames_out.c_str());
+  if (plot) std::printf("wrote %s\n", a.reliability.c_str());
 }
 
 }  // namespace

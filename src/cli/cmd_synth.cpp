@@ -15,6 +15,71 @@
 namespace depthtrack::cli {
 
 namespace {
+
+namespace fs = std::filesystem;
+
+// What synth itself writes into a sequence folder.
+bool written_by_synth(const fs::path& file) {
+  const std::string name = file.filename().string();
+  return name == "sequence.json" || (name.rfind("depth_", 0) == 0 && file.extension() == ".png");
+}
+
+// --out is replaced as a whole when the run succeeds: it must be new, empty, or an earlier sequence of synth's
+// (nothing in it but sequence.json and depth_*.png), so that no other file is ever lost.
+void check_replaceable(const fs::path& out) {
+  std::error_code error;
+  const fs::file_status status = fs::symlink_status(out, error);
+  if (!fs::exists(status)) return;
+  if (!fs::is_directory(status)) throw InputError("--out '" + out.string() + "' exists and is not a folder");
+  for (const auto& entry : fs::directory_iterator(out, error))
+    if (!entry.is_regular_file() || !written_by_synth(entry.path()))
+      throw InputError("--out '" + out.string() + "' is not a sequence folder written by synth (it holds '" +
+                       entry.path().filename().string() + "'): give a new or empty folder");
+  if (error) throw InputError("cannot read --out '" + out.string() + "': " + error.message());
+}
+
+// The sequence is written into OUT.partial, then put in OUT's place (an earlier OUT set aside and removed),
+// so that a failed or interrupted run leaves an earlier sequence as it was.
+class StagedFolder {
+ public:
+  explicit StagedFolder(const fs::path& out) : out_(out), staging_(out.string() + ".partial") {
+    std::error_code error;
+    if (fs::exists(fs::symlink_status(staging_, error)))
+      throw InputError("'" + staging_.string() + "' is in the way: synth writes the sequence there first; remove it");
+    fs::create_directories(staging_, error);
+    if (error) throw InputError("cannot create folder '" + staging_.string() + "': " + error.message());
+  }
+  StagedFolder(const StagedFolder&) = delete;
+  StagedFolder& operator=(const StagedFolder&) = delete;
+  ~StagedFolder() {
+    std::error_code ignored;
+    if (!committed_) fs::remove_all(staging_, ignored);
+  }
+  const fs::path& path() const { return staging_; }
+  void commit() {
+    std::error_code error;
+    const fs::path previous = out_.string() + ".previous";
+    const bool had_earlier = fs::exists(out_, error);
+    if (had_earlier) {
+      fs::remove_all(previous, error);
+      fs::rename(out_, previous, error);
+      if (error) throw Error("cannot move the earlier '" + out_.string() + "' aside: " + error.message());
+    }
+    fs::rename(staging_, out_, error);
+    if (error) {
+      std::error_code ignored;
+      if (had_earlier) fs::rename(previous, out_, ignored);
+      throw Error("cannot rename '" + staging_.string() + "' to '" + out_.string() + "': " + error.message());
+    }
+    committed_ = true;
+    if (had_earlier) fs::remove_all(previous, error);
+  }
+
+ private:
+  fs::path out_, staging_;
+  bool committed_ = false;
+};
+
 struct SynthOptions {
   std::string out, mesh, resolution = "640x480", sensor = "structured-light";
   double unit_scale = 1.0;
@@ -60,13 +125,21 @@ void run(const SynthOptions& o) {
     config.reappear_offset = Eigen::Vector3d(v[0], v[1], v[2]);
   }
 
+  fs::path out = fs::path(o.out).lexically_normal();
+  if (!out.has_filename()) out = out.parent_path();  // "seq/" names seq
+  if (out.empty() || out.filename() == "." || out.filename() == "..")
+    throw InputError("--out '" + o.out + "' must name a folder by its name (not '.' or '..')");
+  check_replaceable(out);
+  StagedFolder folder(out);
   ProgressBar bar("synth", config.frames);
   double occluded_sum = 0;
-  const Sequence written = write_synthetic_sequence(o.out, mesh, config, [&](int index, const SynthFrame& frame) {
-    occluded_sum += frame.occluded_fraction;
-    bar.update(index + 1);
-  });
+  const Sequence written =
+      write_synthetic_sequence(folder.path(), mesh, config, [&](int index, const SynthFrame& frame) {
+        occluded_sum += frame.occluded_fraction;
+        bar.update(index + 1);
+      });
   bar.finish();
+  folder.commit();
   std::cout << "wrote " << written.frames.size() << " frames (" << config.camera.width << "x" << config.camera.height
             << ", " << config.rate << " Hz), mean occluded fraction " << occluded_sum / config.frames << ", to "
             << o.out << "\n";

@@ -15,6 +15,7 @@ EvalFramesCsv::EvalFramesCsv(const fs::path& path) : path_(path), partial_(path.
   if (fs::is_directory(path, error)) throw InputError("'" + path.string() + "' is a folder, not a file");
   const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
   if (!fs::is_directory(folder, error)) throw InputError("output folder '" + folder.string() + "' does not exist");
+  listed_ = PartialFile(partial_);
   out_.open(partial_, std::ios::out | std::ios::trunc);
   if (!out_) throw InputError("cannot write '" + partial_.string() + "': " + std::strerror(errno));
   out_ << "object,case,frame,timestamp,adds_mm,confidence,status,within_tolerance\n";
@@ -47,6 +48,7 @@ void EvalFramesCsv::finish() {
   std::error_code error;
   fs::rename(partial_, path_, error);
   if (error) throw Error("cannot rename '" + partial_.string() + "' to '" + path_.string() + "': " + error.message());
+  listed_.release();
   finished_ = true;
 }
 

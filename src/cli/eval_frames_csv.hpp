@@ -5,6 +5,8 @@
 #include <fstream>
 #include <string>
 
+#include "core/partial_files.hpp"
+
 namespace depthtrack::cli {
 
 // object,case,frame,timestamp,adds_mm,confidence,status,within_tolerance (adds_mm and within_tolerance
@@ -25,6 +27,7 @@ class EvalFramesCsv {
  private:
   std::filesystem::path path_, partial_;
   std::ofstream out_;
+  PartialFile listed_;  // removed if the run is interrupted
   bool finished_ = false;
 };
 

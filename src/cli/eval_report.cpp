@@ -19,8 +19,11 @@ std::string check(const CaseRow& row) {
       return "false_lost=" + std::to_string(row.scores.false_lost);
     case CaseKind::Gap:
       return std::string("recovered=") + (!row.scores.recovered ? "n/a" : *row.scores.recovered ? "yes" : "no");
-    case CaseKind::Box:
-      return "box=" + row.box_source + " ended_within_10mm=" + (box_ended_within(row) ? "yes" : "no");
+    case CaseKind::Box: {
+      char search[32];
+      std::snprintf(search, sizeof search, " search_ms=%.0f", row.search_ms);
+      return "box=" + row.box_source + search + " ended_within_10mm=" + (box_ended_within(row) ? "yes" : "no");
+    }
   }
   return "";
 }

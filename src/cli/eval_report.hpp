@@ -15,6 +15,7 @@ struct CaseRow {
   CaseScores scores;
   double seconds = 0;      // wall time of the case's tracking
   std::string box_source;  // Box: "label" or "projected"
+  double search_ms = 0;    // Box: the first frame's search for the object in the box
 };
 
 class EvalTable {

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "core/partial_files.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -18,6 +19,8 @@ int main(int argc, char** argv) {
   depthtrack::cli::add_config_command(app);
   depthtrack::cli::add_bench_command(app);
   depthtrack::cli::add_eval_command(app);
+  // Ctrl-C or a kill leaves no partial output behind (earlier outputs are replaced only on success).
+  depthtrack::remove_partial_files_on_interrupt();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

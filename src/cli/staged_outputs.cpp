@@ -12,7 +12,10 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string quoted(const fs::path& path) {
-  return "'" + path.string() + "'";
+  // Appended, not "'" + ... + "'": GCC 12 reports a false -Wrestrict on that form here.
+  std::string text(1, '\'');
+  text.append(path.native()).push_back('\'');
+  return text;
 }
 
 // What names one file however it is spelt (relative, through a symbolic link, with "..").
@@ -49,7 +52,7 @@ fs::path StagedOutputs::add(const std::string& option, const fs::path& path) {
   std::error_code error;
   const fs::file_status status = fs::status(path, error);
   if (fs::is_directory(status)) throw InputError(option + " " + quoted(path) + " is a folder, not a file");
-  Output output{option, path, path};
+  Output output{option, path, path, {}};
   // A device or a pipe is written in place: there is nothing to replace.
   if (!fs::exists(status) || fs::is_regular_file(status)) {
     const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
@@ -63,17 +66,42 @@ fs::path StagedOutputs::add(const std::string& option, const fs::path& path) {
     throw InputError(option + " " + quoted(path) + " is also the file of " + outputs_[o->second].option +
                      ": give each its own");
   output_keys_.emplace(key, outputs_.size());
-  outputs_.push_back(output);
-  return output.partial;
+  if (output.partial != path) output.listed = PartialFile(output.partial);
+  outputs_.push_back(std::move(output));
+  return outputs_.back().partial;
 }
 
 void StagedOutputs::commit() {
+  // Earlier files moved aside, and the outputs already in place, to undo on a failed rename.
+  std::vector<std::pair<fs::path, fs::path>> set_aside;
+  std::vector<fs::path> placed;
+  const auto undo = [&] {
+    std::error_code ignored;
+    for (const fs::path& path : placed) fs::remove(path, ignored);
+    for (const auto& [path, previous] : set_aside) fs::rename(previous, path, ignored);
+  };
   for (const Output& o : outputs_) {
     if (o.partial == o.path) continue;
     std::error_code error;
+    if (fs::exists(o.path, error)) {
+      const fs::path previous = o.path.string() + ".previous";
+      fs::rename(o.path, previous, error);
+      if (error) {
+        undo();
+        throw Error("cannot move the earlier " + quoted(o.path) + " aside: " + error.message());
+      }
+      set_aside.emplace_back(o.path, previous);
+    }
     fs::rename(o.partial, o.path, error);
-    if (error) throw Error("cannot rename " + quoted(o.partial) + " to " + quoted(o.path) + ": " + error.message());
+    if (error) {
+      undo();
+      throw Error("cannot rename " + quoted(o.partial) + " to " + quoted(o.path) + ": " + error.message());
+    }
+    placed.push_back(o.path);
   }
+  std::error_code ignored;
+  for (const auto& [path, previous] : set_aside) fs::remove(previous, ignored);
+  for (Output& o : outputs_) o.listed.release();
   committed_ = true;
 }
 

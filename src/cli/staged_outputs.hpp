@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "core/partial_files.hpp"
+
 namespace depthtrack::cli {
 
 class StagedOutputs {
@@ -22,13 +24,15 @@ class StagedOutputs {
   // not another output. Returns where to write it: PATH.partial beside it, or PATH itself for a
   // device such as /dev/stdout or /dev/full, which cannot be replaced.
   std::filesystem::path add(const std::string& option, const std::filesystem::path& path);
-  // Renames every partial file over its path.
+  // Renames every partial file over its path, all or none: an earlier file is first moved aside
+  // (PATH.previous), and put back if a later rename fails.
   void commit();
 
  private:
   struct Output {
     std::string option;
     std::filesystem::path path, partial;
+    PartialFile listed;  // the partial file, removed if the run is interrupted
   };
   std::vector<Output> outputs_;
   // By absolute, symlink-resolved path: the input's path as given, the output's index.

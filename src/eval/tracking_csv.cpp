@@ -6,12 +6,15 @@
 #include <fstream>
 #include <numbers>
 
+#include "core/partial_files.hpp"
+
 namespace depthtrack {
 
 namespace fs = std::filesystem;
 
 struct TrackingCsvWriter::Stream {
   std::ofstream out;
+  PartialFile listed;  // removed if the run is interrupted
 };
 
 namespace {
@@ -42,6 +45,7 @@ TrackingCsvWriter::TrackingCsvWriter(const fs::path& path, bool with_ground_trut
       with_ground_truth_(with_ground_truth),
       order_(order),
       object_column_(object_column) {
+  if (partial_ != path_) stream_->listed = PartialFile(partial_);
   stream_->out.open(partial_, std::ios::out | std::ios::trunc);
   if (!stream_->out)
     throw InputError("cannot write " + quoted(partial_) + ": " + std::strerror(errno) + " (check the folder of --out)");
@@ -94,7 +98,7 @@ void TrackingCsvWriter::finish() {
     fs::rename(partial_, path_, error);
     if (error) throw Error("cannot rename " + quoted(partial_) + " to " + quoted(path_) + ": " + error.message());
   }
-  stream_.reset();
+  stream_.reset();  // and with it the partial file's listing
 }
 
 void write_tracking_csv(const fs::path& path, const std::vector<TrackedFrame>& frames, QuaternionOrder order) {

@@ -3,18 +3,13 @@
 #include <depthtrack/error.hpp>
 #include <string>
 
+#include "core/timestamp_limits.hpp"
 #include "io/png_depth.hpp"
 #include "io/sequence_formats.hpp"
 
 namespace depthtrack {
 
 namespace {
-
-// Beyond these a timestamp is a unit mistake or a corrupt file (a frame id off by 1e9), not a recording:
-// the motion model divides by the step, and the CSV would carry the nonsense on.
-// Seconds, about 317 years: Unix-epoch seconds (1.7e9, as ROS stamps them) pass; nanoseconds do not.
-constexpr double kMaxAbsTimestamp = 1e10;
-constexpr double kMaxTimeStep = 86400;  // seconds between frames: a day
 
 Sequence checked_times(Sequence sequence, const std::filesystem::path& dir) {
   const auto fail = [&](size_t i, const std::string& problem) {

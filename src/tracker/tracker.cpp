@@ -7,6 +7,7 @@
 
 #include "core/mesh_simplify.hpp"
 #include "core/stopwatch.hpp"
+#include "core/timestamp_limits.hpp"
 #include "tracker/confidence_model.hpp"
 #include "tracker/make_filter_backend.hpp"
 #include "tracker/track_supervisor.hpp"
@@ -137,7 +138,7 @@ const DepthImage& Tracker::working_frame(const DepthImage& depth, DepthImage& st
 }
 
 Estimate Tracker::initialize_global(const DepthImage& depth, double timestamp, const InitHint& hint) {
-  if (!std::isfinite(timestamp)) throw InputError("timestamp is not finite");
+  check_timestamp(timestamp);
   DepthImage storage;
   const DepthImage& working = working_frame(depth, storage);
   const Stopwatch clock;
@@ -177,7 +178,7 @@ Estimate Tracker::track_frame(const DepthImage& working, const std::function<con
 
 void Tracker::start_frame(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame,
                           double timestamp) {
-  if (!std::isfinite(timestamp)) throw InputError("timestamp is not finite");
+  check_timestamp(timestamp);
   if (has_previous_ && timestamp <= previous_timestamp_) {
     std::ostringstream m;
     m.precision(17);
