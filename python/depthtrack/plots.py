@@ -44,10 +44,19 @@ def _save(fig, png_path):
 
 
 def _plain_numbers(axis):
-    """Tick labels of a log axis as plain numbers in the axis' unit (0.1, 1, 10, 100), not powers of ten."""
+    """Tick labels of a log axis as plain numbers in the axis' unit (0.1, 1, 10, 100), not powers of ten;
+    on an axis spanning under about a decade and a half, 2 and 5 of each decade labelled too."""
     from matplotlib.ticker import FuncFormatter
+
+    def minor(value, _):
+        low, high = sorted(axis.get_view_interval())
+        if value <= 0 or low <= 0 or high / low > 30:
+            return ""
+        leading = value / 10 ** math.floor(math.log10(value) + 1e-9)
+        return "%g" % value if round(leading) in (2, 5) and abs(leading - round(leading)) < 1e-6 else ""
+
     axis.set_major_formatter(FuncFormatter(lambda v, _: "%g" % v))
-    axis.set_minor_formatter(FuncFormatter(lambda v, _: ""))
+    axis.set_minor_formatter(FuncFormatter(minor))
 
 
 def read_outcomes(csv_path):
@@ -413,6 +422,7 @@ def draw_bench(cases, sweep):
     microseconds: particles (frame time and time per particle against the particle count),
     resolution (frame time against pixels), triangles (frame time against the mesh's triangles),
     occlusion (frame time and device memory per occlusion mode)."""
+    from matplotlib.ticker import NullFormatter
     rows = [c for c in cases if c["sweep"] == sweep]
     if not rows:
         raise ValueError("the cases have no '%s' sweep to draw" % sweep)
@@ -434,6 +444,7 @@ def draw_bench(cases, sweep):
         sizes = sorted({(c["width"] * c["height"], "%dx%d" % (c["width"], c["height"])) for c in rows})
         ax.set_xticks([p for p, _ in sizes])
         ax.set_xticklabels([name for _, name in sizes], fontsize=8)
+        ax.xaxis.set_minor_formatter(NullFormatter())  # the cases' own ticks only
         ax.set_xlabel("image size (pixels, log scale)")
         ax.set_ylabel("frame time (ms)")
         ax.set_title("Frame time against resolution (%s, %d particles)" % (first["mesh"], first["particles"]))
@@ -443,6 +454,7 @@ def draw_bench(cases, sweep):
         meshes = sorted({(c["triangles"], c["mesh"]) for c in rows})
         ax.set_xticks([t for t, _ in meshes])
         ax.set_xticklabels(["%s\n%d" % (name, t) for t, name in meshes], fontsize=8)
+        ax.xaxis.set_minor_formatter(NullFormatter())  # the cases' own ticks only
         ax.set_xlabel("mesh triangles (log scale)")
         ax.set_ylabel("frame time (ms)")
         ax.set_title("Frame time against triangles (%dx%d, %d particles)"

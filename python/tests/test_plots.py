@@ -218,3 +218,17 @@ def test_missing_matplotlib_is_named(tmp_path):
                           capture_output=True, text=True, env={**os.environ, "PYTHONPATH": str(tmp_path / "fake")})
     assert done.returncode == 1
     assert "matplotlib is not installed (Debian: apt install python3-matplotlib)" in done.stderr
+
+
+def test_log_axis_labels_plain_numbers_and_narrow_spans():
+    plt = plots._pyplot()
+    fig, ax = plt.subplots()
+    ax.set_yscale("log")
+    plots._plain_numbers(ax.yaxis)
+    major, minor = ax.yaxis.get_major_formatter(), ax.yaxis.get_minor_formatter()
+    assert [major(v, 0) for v in (0.01, 1, 1000)] == ["0.01", "1", "1000"]
+    ax.set_ylim(2, 7)  # under a decade: 2 and 5 labelled as well
+    assert [minor(v, 0) for v in (2, 3, 5, 6)] == ["2", "", "5", ""]
+    ax.set_ylim(0.1, 100)  # three decades: the powers of ten are enough
+    assert minor(5, 0) == ""
+    plt.close(fig)
