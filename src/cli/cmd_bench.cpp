@@ -139,7 +139,7 @@ void run_bench(const BenchArgs& a) {
       std::string skip;
       if (a.max_seconds > 0 && elapsed + expected > a.max_seconds) {
         char reason[160];
-        std::snprintf(reason, sizeof reason, "skipped: %.0f s passed and it would take about %.1f s (--max-seconds %s)",
+        std::snprintf(reason, sizeof reason, "skipped: %.2f s passed and it would take about %.2f s (--max-seconds %s)",
                       elapsed, expected, limit);
         skip = reason;
         ++skipped_for_time;
