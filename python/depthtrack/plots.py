@@ -327,7 +327,7 @@ def draw_timeline(csv_path):
     plt = _pyplot()
     fig, axes = plt.subplots(len(objects), 1, sharex=True, squeeze=False, figsize=(9.6, 0.9 + 2.6 * len(objects)),
                              dpi=100)
-    lost = 0
+    lost, x_label = 0, "frame"
     for ax, (name, rows) in zip(axes[:, 0], objects):
         x, x_label = table.times(rows)
         states = [status[r] for r in rows]
@@ -358,7 +358,7 @@ def draw_timeline(csv_path):
         handles, labels = ax.get_legend_handles_labels()
         more_handles, more_labels = right_ax.get_legend_handles_labels()
         ax.legend(handles + more_handles, labels + more_labels, fontsize=8, loc="best", framealpha=0.9)
-        ax.set_xlabel(x_label)
+    axes[-1, 0].set_xlabel(x_label)
     fig.tight_layout()
     return fig, [name for name, _ in objects], max(len(rows) for _, rows in objects), lost
 
