@@ -209,9 +209,12 @@ TEST_CASE("config --describe gives every key of --dump with its value, unit and 
         continue;
       }
       ++leaves;
-      INFO(prefix + key);
-      REQUIRE(lines.count(prefix + key) == 1);
-      CHECK(contains(lines.at(prefix + key), " " + value.dump() + " "));
+      const std::string path = prefix + key;
+      std::string shown(1, ' ');  // the value between the columns' spaces
+      shown.append(value.dump()).append(1, ' ');
+      INFO(path);
+      REQUIRE(lines.count(path) == 1);
+      CHECK(contains(lines.at(path), shown));
     }
   };
   walk(nlohmann::json::parse(dump), "");
@@ -240,6 +243,6 @@ TEST_CASE("the default initial spread is one: 1 cm and 5 degrees in the library,
     const auto [status, help] = test::run_cli(std::string(command) + " --help", dir / "help.txt");
     INFO(help);
     CHECK(status == 0);
-    CHECK(std::regex_search(help, std::regex("--init-spread TEXT \\[0\\.01 5\\]")));
+    CHECK(std::regex_search(help, std::regex("--init-spread TEXT=0\\.01 5 ")));
   }
 }

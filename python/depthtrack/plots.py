@@ -45,13 +45,16 @@ def _save(fig, png_path):
 
 def _plain_numbers(axis):
     """Tick labels of a log axis as plain numbers in the axis' unit (0.1, 1, 10, 100), not powers of ten;
-    on an axis spanning under about a decade and a half, 2 and 5 of each decade labelled too."""
+    on an axis spanning under about a decade and a half, 2 and 5 of each decade labelled too, and under a
+    factor of 3 every tick."""
     from matplotlib.ticker import FuncFormatter
 
     def minor(value, _):
         low, high = sorted(axis.get_view_interval())
         if value <= 0 or low <= 0 or high / low > 30:
             return ""
+        if high / low <= 3:
+            return "%g" % float("%.3g" % value)
         leading = value / 10 ** math.floor(math.log10(value) + 1e-9)
         return "%g" % value if round(leading) in (2, 5) and abs(leading - round(leading)) < 1e-6 else ""
 
@@ -478,7 +481,18 @@ def draw_bench(cases, sweep):
             ax.grid(alpha=0.3, axis="y", which="both")
             ax.legend(fontsize=8)
 
-        bars(axes[0, 0], [(b, backend, cs) for b, (backend, cs) in enumerate(backends)], lambda c: c["frame_ms"])
+        # Times as markers on a log axis (a bar there would start at an arbitrary floor), memory as bars from 0.
+        time = axes[0, 0]
+        for b, (backend, cs) in enumerate(backends):
+            times = [next((c["frame_ms"] for c in cs if c["occlusion"] == m), math.nan) for m in modes]
+            time.plot(range(len(modes)), times, marker="os^Dv"[b % 5], markersize=8, linestyle=":", color=colours[b],
+                      label=backend)
+        time.set_xticks(range(len(modes)))
+        time.set_xticklabels(modes)
+        time.set_xlim(-0.5, len(modes) - 0.5)
+        time.set_xlabel("occlusion storage")
+        time.grid(alpha=0.3, axis="y", which="both")
+        time.legend(fontsize=8)
         axes[0, 0].set_yscale("log")
         _plain_numbers(axes[0, 0].yaxis)
         axes[0, 0].set_ylabel("frame time (ms)")

@@ -57,7 +57,7 @@ def test_initialize_spread_defaults_are_track_s():
     import math
     import re
     helptext = subprocess.run([cli(), "track", "--help"], check=True, capture_output=True, text=True).stdout
-    metres, degrees = map(float, re.search(r"--init-spread TEXT \[([0-9.]+) ([0-9.]+)\]", helptext).groups())
+    metres, degrees = map(float, re.search(r"--init-spread TEXT=([0-9.]+) ([0-9.]+) ", helptext).groups())
     assert (metres, degrees) == (0.01, 5.0)
     for method in (depthtrack.Tracker.initialize, depthtrack.MultiTracker.initialize):
         doc = method.__doc__

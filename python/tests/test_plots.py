@@ -180,6 +180,9 @@ def test_bench_figures_log_axes_in_real_units(tmp_path):
     fig = plots.draw_bench(cases, "occlusion")
     time, memory = fig.axes
     assert [t.get_text() for t in time.get_xticklabels()] == ["per-pixel-time", "off"]
+    times = {line.get_label(): list(line.get_ydata()) for line in time.get_lines()}
+    assert times == {"reference": [40, 30], "opencl:0": [1, 0.8]}
+    assert time.get_yscale() == "log"
     assert [p.get_height() for p in memory.patches] == [3, 2]  # only the device reports memory
     plots._pyplot().close(fig)
     with pytest.raises(ValueError, match="no 'resolution' sweep"):
@@ -229,6 +232,8 @@ def test_log_axis_labels_plain_numbers_and_narrow_spans():
     assert [major(v, 0) for v in (0.01, 1, 1000)] == ["0.01", "1", "1000"]
     ax.set_ylim(2, 7)  # under a decade: 2 and 5 labelled as well
     assert [minor(v, 0) for v in (2, 3, 5, 6)] == ["2", "", "5", ""]
+    ax.set_ylim(0.65, 0.9)  # under a factor of 3: every tick
+    assert [minor(v, 0) for v in (0.7, 0.8)] == ["0.7", "0.8"]
     ax.set_ylim(0.1, 100)  # three decades: the powers of ten are enough
     assert minor(5, 0) == ""
     plt.close(fig)
