@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <regex>
 
 #include "cli/bench_results.hpp"
 #include "cli/step_bytes.hpp"
@@ -208,8 +207,7 @@ TEST_CASE("bench compare prints each file's column with its ratio to the first",
 TEST_CASE("bench --max-seconds skips the cases that would pass it, each said on stderr", "[bench][cli]") {
   const auto dir = test::temp_dir("bench_max_seconds");
   const std::string run = "bench --test-grid --frames 3 --backend reference --no-figures --out ";
-  // A limit no case fits in: every case is skipped, and said so, and nothing is written. The first
-  // case's note says how long the meshes and their sequences took to prepare.
+  // A limit no case fits in: every case is skipped, and said so, and nothing is written.
   const auto [none_status, none] =
       test::run_cli(run + (dir / "none").string() + " --max-seconds 0.000001", dir / "none.txt");
   INFO(none);
@@ -217,25 +215,25 @@ TEST_CASE("bench --max-seconds skips the cases that would pass it, each said on 
   CHECK_THAT(none, Catch::Contains("bench: reference particles_") && Catch::Contains("(--max-seconds 1e-06)") &&
                        Catch::Contains("no case ran"));
   CHECK_FALSE(std::filesystem::exists(dir / "none/results.json"));
-  std::smatch prepared;
-  REQUIRE(std::regex_search(none, prepared, std::regex("skipped: ([0-9.]+) s passed")));
-  const double preparing = std::stod(prepared[1]);
-  // A run without a limit, then one limited to the preparation and half the cases' time: some cases are
-  // skipped before they would pass it, each printed, and the run is shorter.
+  // A run without a limit, then one with half its time: it stops starting cases that would pass the limit,
+  // says so for each, and ends within the limit (give or take the last case's misjudged time and the
+  // process' start and exit, well under a second on the test grid).
   const auto begin = std::chrono::steady_clock::now();
   const auto [full_status, full] = test::run_cli(run + (dir / "full").string(), dir / "full.txt");
   const double full_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   REQUIRE(full_status == 0);
   char limit[32];
-  std::snprintf(limit, sizeof limit, "%.3f", preparing + (full_seconds - preparing) / 2);
+  std::snprintf(limit, sizeof limit, "%.3f", full_seconds / 2);
   const auto started = std::chrono::steady_clock::now();
   const auto [status, output] =
       test::run_cli(run + (dir / "half").string() + " --max-seconds " + limit, dir / "half.txt");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  INFO(output << "\npreparing " << preparing << " s, full run " << full_seconds << " s, limit " << limit
-              << " s, limited run " << seconds << " s");
-  REQUIRE(status == 0);
+  INFO(output << "\nfull run " << full_seconds << " s, limit " << limit << " s, limited run " << seconds << " s");
+  CHECK((status == 0 || output.find("no case ran") != std::string::npos));
   CHECK_THAT(output, Catch::Contains("skipped to stay within --max-seconds"));
+  CHECK(seconds < full_seconds);
+  CHECK(seconds < full_seconds / 2 + 1.0);
+  if (status != 0) return;  // the meshes' preparation alone took the half
   const auto notes = nlohmann::json::parse(text_of(dir / "half/results.json")).at("notes");
   size_t skipped = 0;
   for (const auto& note : notes) {
@@ -245,7 +243,6 @@ TEST_CASE("bench --max-seconds skips the cases that would pass it, each said on 
     CHECK_THAT(output, Catch::Contains("bench: " + text));  // each on the terminal too
   }
   CHECK(skipped > 0);
-  CHECK(seconds < full_seconds);
 }
 
 TEST_CASE("bench --no-figures needs no matplotlib; without it, a missing one fails at once", "[bench][cli]") {

@@ -139,8 +139,12 @@ void run_bench(const BenchArgs& a) {
       std::string skip;
       if (a.max_seconds > 0 && elapsed + expected > a.max_seconds) {
         char reason[160];
-        std::snprintf(reason, sizeof reason, "skipped: %.2f s passed and it would take about %.2f s (--max-seconds %s)",
-                      elapsed, expected, limit);
+        if (expected > 0)
+          std::snprintf(reason, sizeof reason,
+                        "skipped: %.2f s passed and it would take about %.2f s (--max-seconds %s)", elapsed, expected,
+                        limit);
+        else
+          std::snprintf(reason, sizeof reason, "skipped: %.2f s passed (--max-seconds %s)", elapsed, limit);
         skip = reason;
         ++skipped_for_time;
       } else if (target.cpu && static_cast<double>(c.particles) * c.width * c.height > grid.cpu_max_work) {
