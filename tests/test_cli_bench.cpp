@@ -1,6 +1,9 @@
-// depthtrack bench: results.json's rows and figures from a tiny grid, the bytes formula, median and
-// p95, bench compare's ratios on hand-written files, and bad arguments.
+// depthtrack bench: results.json's rows, cases.csv and the figures from a tiny grid, --max-seconds and
+// --no-figures, the bytes formula, median and p95, bench compare's ratios on hand-written files, and bad
+// arguments.
 #include <catch2/catch.hpp>
+#include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -139,7 +142,8 @@ TEST_CASE("bench writes results.json with every column and the four figures", "[
           Approx(frame->at("median").get<double>() / device_frame->at("median").get<double>()));
     // Without the atlas where the kernel renderer draws inside weigh (the tile fits in work-group memory);
     // the occlusion rows (p twice, t twice in 16 bits: 3 floats a pixel) over the automatic window's pixels.
-    const bool inside = renders_inside_weigh(Renderer::Kernel, 4800, compute::open_device(test::device_selector())->info().local_memory);
+    const bool inside = renders_inside_weigh(Renderer::Kernel, 4800,
+                                             compute::open_device(test::device_selector())->info().local_memory);
     const auto* window = find_row(rows, test::device_selector(), test, "state_window_pixels");
     REQUIRE(window);
     const double kept = window->at("median").get<double>();
@@ -149,6 +153,21 @@ TEST_CASE("bench writes results.json with every column and the four figures", "[
   }
   for (const char* figure : {"particles.png", "resolution.png", "triangles.png", "occlusion.png"})
     CHECK(text_of(dir / "out" / figure).rfind("\x89PNG\r\n\x1a\n", 0) == 0);
+  // cases.csv, which the figures are drawn from: a row per case run, its frame time results.json's.
+  const auto cases = test::lines_of(dir / "out/cases.csv");
+  REQUIRE(!cases.empty());
+  CHECK(cases[0] == "sweep,backend,mesh,triangles,width,height,particles,occlusion,frame_ms,memory_mib");
+  bool found_case = false;
+  for (const auto& line : cases) {
+    const auto cells = test::cells_of(line);
+    if (cells.size() < 9 || cells[0] != "particles" || cells[1] != "reference" || cells[6] != "10") continue;
+    found_case = true;
+    CHECK(cells[2] == mesh);
+    CHECK(cells[7] == "per-pixel-time");
+    CHECK(std::stod(cells[8]) == Approx(frame->at("median").get<double>()).epsilon(1e-6));
+    CHECK(cells.size() == 9);  // no device memory on the reference: the last cell empty
+  }
+  CHECK(found_case);
 
   // A failed run leaves the earlier results.json as it was.
   const std::string before = text_of(dir / "out/results.json");
@@ -183,6 +202,68 @@ TEST_CASE("bench compare prints each file's column with its ratio to the first",
   const auto table = cli::compare_table(
       {{"a.json", cli::read_results(dir / "a.json")}, {"b.json", cli::read_results(dir / "b.json")}});
   CHECK_THAT(table, Catch::Contains("t1 frame_ms") && Catch::Contains("t1 weigh_ms"));
+}
+
+TEST_CASE("bench --max-seconds skips the cases that would pass it, each said on stderr", "[bench][cli]") {
+  const auto dir = test::temp_dir("bench_max_seconds");
+  const std::string run = "bench --test-grid --frames 3 --backend reference --no-figures --out ";
+  // A limit no case fits in: every case is skipped, and said so, and nothing is written.
+  const auto [none_status, none] =
+      test::run_cli(run + (dir / "none").string() + " --max-seconds 0.000001", dir / "none.txt");
+  INFO(none);
+  CHECK(none_status == 1);
+  CHECK_THAT(none, Catch::Contains("bench: reference particles_") && Catch::Contains("(--max-seconds 1e-06)") &&
+                       Catch::Contains("no case ran"));
+  CHECK_FALSE(std::filesystem::exists(dir / "none/results.json"));
+  // A run without a limit, then one with half its time: it stops starting cases that would pass the limit,
+  // says so for each, and ends within the limit (give or take the last case's misjudged time and the
+  // process' start and exit, well under a second on the test grid).
+  const auto begin = std::chrono::steady_clock::now();
+  const auto [full_status, full] = test::run_cli(run + (dir / "full").string(), dir / "full.txt");
+  const double full_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  REQUIRE(full_status == 0);
+  char limit[32];
+  std::snprintf(limit, sizeof limit, "%.3f", full_seconds / 2);
+  const auto started = std::chrono::steady_clock::now();
+  const auto [status, output] =
+      test::run_cli(run + (dir / "half").string() + " --max-seconds " + limit, dir / "half.txt");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  INFO(output << "\nfull run " << full_seconds << " s, limit " << limit << " s, limited run " << seconds << " s");
+  CHECK((status == 0 || output.find("no case ran") != std::string::npos));
+  CHECK_THAT(output, Catch::Contains("skipped to stay within --max-seconds"));
+  CHECK(seconds < full_seconds);
+  CHECK(seconds < full_seconds / 2 + 1.0);
+  if (status != 0) return;  // the meshes' preparation alone took the half
+  const auto notes = nlohmann::json::parse(text_of(dir / "half/results.json")).at("notes");
+  size_t skipped = 0;
+  for (const auto& note : notes) {
+    const std::string text = note.get<std::string>();
+    if (text.find("--max-seconds") == std::string::npos) continue;
+    ++skipped;
+    CHECK_THAT(output, Catch::Contains("bench: " + text));  // each on the terminal too
+  }
+  CHECK(skipped > 0);
+}
+
+TEST_CASE("bench --no-figures needs no matplotlib; without it, a missing one fails at once", "[bench][cli]") {
+  const auto dir = test::temp_dir("bench_figures");
+  const auto [status, output] =
+      test::run_cli("bench --test-grid --frames 3 --backend reference --out " + (dir / "out").string(), dir / "log.txt",
+                    "DEPTHTRACK_PYTHON=/nonexistent/python3");
+  INFO(output);
+  CHECK(status == 1);
+  CHECK_THAT(output, Catch::Contains("bench (for its figures; --no-figures leaves them out) needs python3 with "
+                                     "matplotlib (/nonexistent/python3 was not found)"));
+  CHECK_THAT(output, !Catch::Contains("ms per frame"));  // before any case ran
+  const auto [plain_status, plain] =
+      test::run_cli("bench --test-grid --frames 3 --backend reference --no-figures --out " + (dir / "out").string(),
+                    dir / "log.txt", "DEPTHTRACK_PYTHON=/nonexistent/python3");
+  INFO(plain);
+  REQUIRE(plain_status == 0);
+  CHECK(std::filesystem::exists(dir / "out/results.json"));
+  CHECK(std::filesystem::exists(dir / "out/cases.csv"));
+  CHECK_FALSE(std::filesystem::exists(dir / "out/particles.png"));
+  CHECK(plain.find('\r') == std::string::npos);  // no progress bar when stderr is not a terminal
 }
 
 TEST_CASE("bench refuses bad arguments and corrupt results with a clear error", "[bench][cli]") {

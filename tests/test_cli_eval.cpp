@@ -196,7 +196,7 @@ TEST_CASE("eval: a failed diagram leaves the earlier --frames-out and picture as
                     dir / "log.txt", "DEPTHTRACK_PYTHON=" + python.string());
   INFO(output);
   CHECK(status == 1);
-  CHECK(output.find("drawing the reliability diagram failed") != std::string::npos);
+  CHECK(output.find("drawing the figure failed") != std::string::npos);
   CHECK(test::text_of(dir / "frames.csv") == "earlier rows\n");
   CHECK(test::text_of(dir / "r.png") == "earlier picture\n");
   for (const auto& entry : std::filesystem::directory_iterator(dir))

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <depthtrack/sequence.hpp>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -227,25 +228,32 @@ TEST_CASE("plot draws a series per object of a several-object CSV", "[cli][outpu
   }
   const auto [status, output] =
       test::run_cli("plot " + (dir / "run.csv").string() + " --out " + (dir / "p.png").string(), dir / "log.txt");
+  if (output.find("needs python3 with matplotlib") != std::string::npos) {
+    std::printf("SKIPPED: no python3 with matplotlib here\n");
+    return;
+  }
   INFO(output);
   REQUIRE(status == 0);
   CHECK_THAT(output, Contains("4 frames, 2 objects"));
-  // Object a in the first colour of the palette, b in the second: both lines are drawn.
+  // Object a in matplotlib's first colour (tab:blue, 31 119 180), b in its second (tab:orange, 255 127 14).
   const viz::RgbImage image = viz::RgbImage::load_png(dir / "p.png");
+  auto near = [](viz::Rgb p, int r, int g, int b) {
+    return std::abs(p.r - r) <= 12 && std::abs(p.g - g) <= 12 && std::abs(p.b - b) <= 12;
+  };
   int first = 0, second = 0;
   for (int y = 0; y < image.height(); ++y)
     for (int x = 0; x < image.width(); ++x) {
-      first += image.at(x, y) == viz::Rgb{200, 40, 40};
-      second += image.at(x, y) == viz::Rgb{40, 90, 200};
+      first += near(image.at(x, y), 31, 119, 180);
+      second += near(image.at(x, y), 255, 127, 14);
     }
   CHECK(first > 50);
   CHECK(second > 50);
-  // Objects over different frames have no shared time axis: refused by name.
+  // Objects over different frames: each over its own.
   std::ofstream(dir / "uneven.csv") << "object,frame,timestamp,ess\na,000000,0,1\nb,000000,0,2\na,000001,0.1,1\n";
   const auto [uneven, uneven_output] =
       test::run_cli("plot " + (dir / "uneven.csv").string() + " --out " + (dir / "u.png").string(), dir / "log.txt");
-  CHECK(uneven == 1);
-  CHECK_THAT(uneven_output, Contains("object 'b' has other frames than 'a'"));
+  CHECK(uneven == 0);
+  CHECK_THAT(uneven_output, Contains("1 panel, 2 frames, 2 objects"));
 }
 
 TEST_CASE("an interrupted track (SIGINT, SIGTERM) leaves the earlier --out and no partial file", "[cli][outputs]") {

@@ -1,7 +1,14 @@
 // The small frictions of a first try, each with its exit code and message: backend names, options
-// that do nothing, meshes in the wrong unit, progress, --version, the benchmarks' command lines.
+// that do nothing, meshes in the wrong unit, progress, --version, the benchmarks' command lines, the
+// configuration's keys described, one default initial spread.
 #include <catch2/catch.hpp>
+#include <depthtrack/tracker.hpp>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <numbers>
 #include <regex>
+#include <sstream>
 
 #include "cli_support.hpp"
 
@@ -158,5 +165,84 @@ TEST_CASE("the benchmarks answer --help and refuse malformed numbers", "[cli][be
     CHECK(status == 2);
     CHECK(contains(output, c.expected));
     CHECK(contains(output, std::string("usage: ") + c.program));
+  }
+}
+
+TEST_CASE("bench draws its progress bar when stderr is a terminal", "[cli][bench]") {
+  if (std::system("script -qec true /dev/null > /dev/null 2>&1") != 0) {
+    std::cout << "SKIPPED: 'script' cannot give the command a terminal here (not installed, or no pty)\n";
+    return;
+  }
+  const auto dir = test::temp_dir("cli_rough_bench_progress");
+  const std::string command = "script -qec '" + std::string(DEPTHTRACK_CLI) +
+                              " bench --test-grid --frames 3 --backend reference --no-figures --out " +
+                              (dir / "out").string() + "' /dev/null > " + (dir / "log.txt").string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  const std::string output = test::text_of(dir / "log.txt");
+  INFO(output);
+  CHECK(WEXITSTATUS(status) == 0);
+  CHECK(std::regex_search(output, std::regex("bench \\[#* *\\] [0-9]+/[0-9]+ reference")));
+  CHECK(contains(output, "ms per frame"));
+}
+
+TEST_CASE("config --describe gives every key of --dump with its value, unit and meaning", "[cli][config]") {
+  const auto dir = test::temp_dir("cli_rough_describe");
+  const auto [dump_status, dump] = test::run_cli("config --dump", dir / "dump.txt");
+  REQUIRE(dump_status == 0);
+  const auto [status, output] = test::run_cli("config --describe", dir / "describe.txt");
+  INFO(output);
+  REQUIRE(status == 0);
+  std::map<std::string, std::string> lines;  // key -> the rest of its line
+  std::istringstream in(output);
+  for (std::string line; std::getline(in, line);) {
+    const size_t end = line.find(' ');
+    CHECK(lines.emplace(line.substr(0, end), line.substr(end)).second);  // each key once
+  }
+  CHECK(contains(lines.at("key"), "default"));
+  // Every leaf of the JSON --dump prints has a line holding its value.
+  size_t leaves = 0;
+  std::function<void(const nlohmann::json&, const std::string&)> walk = [&](const nlohmann::json& j,
+                                                                            const std::string& prefix) {
+    for (const auto& [key, value] : j.items()) {
+      if (value.is_object()) {
+        walk(value, prefix + key + ".");
+        continue;
+      }
+      ++leaves;
+      const std::string path = prefix + key;
+      std::string shown(1, ' ');  // the value between the columns' spaces
+      shown.append(value.dump()).append(1, ' ');
+      INFO(path);
+      REQUIRE(lines.count(path) == 1);
+      CHECK(contains(lines.at(path), shown));
+    }
+  };
+  walk(nlohmann::json::parse(dump), "");
+  CHECK(leaves > 40);
+  CHECK(std::regex_search(lines.at("observation.sigma_constant"), std::regex("^ +0\\.003 +m +depth noise")));
+  CHECK(std::regex_search(lines.at("recovery.budget_ms"), std::regex("^ +500\\.0 +ms +wall-clock")));
+  CHECK(std::regex_search(lines.at("max_time_step"), std::regex("^ +0\\.2 +s +the longest gap")));
+  // With --config, that file's values.
+  std::ofstream(dir / "c.json") << R"({"particles": 40})";
+  const auto [file_status, file] =
+      test::run_cli("config --describe --config " + (dir / "c.json").string(), dir / "c.txt");
+  REQUIRE(file_status == 0);
+  CHECK(std::regex_search(file, std::regex("\nparticles +40 +particles +number of particles\n")));
+  CHECK(file.rfind("key", 0) == 0);
+  CHECK(contains(file.substr(0, file.find('\n')), "value"));
+  const auto [none_status, none] = test::run_cli("config", dir / "none.txt");
+  CHECK(none_status == 1);
+  CHECK(contains(none, "config: give one of --dump (JSON) and --describe (a table)"));
+}
+
+TEST_CASE("the default initial spread is one: 1 cm and 5 degrees in the library, track and eval", "[cli]") {
+  CHECK(InitialSpread{}.metres == 0.01);
+  CHECK(InitialSpread{}.radians == Approx(5 * std::numbers::pi / 180));
+  const auto dir = test::temp_dir("cli_rough_spread");
+  for (const char* command : {"track", "eval"}) {
+    const auto [status, help] = test::run_cli(std::string(command) + " --help", dir / "help.txt");
+    INFO(help);
+    CHECK(status == 0);
+    CHECK(std::regex_search(help, std::regex("--init-spread TEXT=0\\.01 5 ")));
   }
 }

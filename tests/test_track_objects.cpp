@@ -1,6 +1,6 @@
 // Several objects in one run: `track` with --mesh/--object pairs (one Device, an object column, a row per
-// object per frame), its refusals, and on ycbv-0000 the last-frame ADD-S of each object with and without
-// mutual occlusion against its own single-object run.
+// object per frame, a summary entry per object, every object on the overlay), its refusals, and on ycbv-0000
+// the last-frame ADD-S of each object with and without mutual occlusion against its own single-object run.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -32,12 +32,23 @@ TEST_CASE("track with two --mesh/--object pairs writes an object column and each
       test::run_cli("track --mesh " + mesh + common + " --out " + (dir / "one.csv").string(), dir / "one.txt");
   INFO(output);
   REQUIRE(status == 0);
-  std::tie(status, output) = test::run_cli("track --mesh " + mesh + " --object a --mesh " + mesh + " --object b" +
-                                               common + " --mutual-occlusion off --out " + (dir / "two.csv").string(),
-                                           dir / "two.txt");
+  std::tie(status, output) =
+      test::run_cli("track --mesh " + mesh + " --object a --mesh " + mesh + " --object b" + common +
+                        " --mutual-occlusion off --out " + (dir / "two.csv").string() + " --summary " +
+                        (dir / "two.json").string() + " --overlay " + (dir / "overlay").string(),
+                    dir / "two.txt");
   INFO(output);
   REQUIRE(status == 0);
   CHECK(output.find("2 objects, 3 frames") != std::string::npos);
+  // An overlay picture per frame at the sensor's size, both objects drawn on it.
+  for (const char* frame : {"000000", "000001", "000002"}) {
+    std::ifstream png(dir / "overlay" / (std::string(frame) + ".png"), std::ios::binary);
+    unsigned char header[24] = {};
+    png.read(reinterpret_cast<char*>(header), sizeof header);
+    CHECK(header[1] == 'P');
+    CHECK(((header[18] << 8) | header[19]) == 160);
+    CHECK(((header[22] << 8) | header[23]) == 120);
+  }
   const auto one = test::lines_of(dir / "one.csv"), two = test::lines_of(dir / "two.csv");
   REQUIRE(one.size() == 4);
   REQUIRE(two.size() == 7);  // header, then a row per object per frame
@@ -51,6 +62,23 @@ TEST_CASE("track with two --mesh/--object pairs writes an object column and each
       CHECK(without_latency({cells.begin() + 1, cells.end()}, 13) ==
             without_latency(test::cells_of(one[1 + frame]), 13));
     }
+  // The summary: an entry per object whose mean and largest ADD-S are those of its rows in the CSV.
+  const auto summary = nlohmann::json::parse(test::text_of(dir / "two.json"));
+  CHECK(summary.at("frames") == 3);
+  REQUIRE(summary.at("objects").size() == 2);
+  for (size_t object = 0; object < 2; ++object) {
+    const auto& entry = summary.at("objects").at(object);
+    CHECK(entry.at("object") == (object == 0 ? "a" : "b"));
+    CHECK(entry.at("frames") == 3);
+    double sum = 0, most = 0;
+    for (size_t frame = 0; frame < 3; ++frame) {
+      const double adds = std::stod(test::cells_of(two[1 + 2 * frame + object])[13]);
+      sum += adds;
+      most = std::max(most, adds);
+    }
+    CHECK(entry.at("mean_adds_mm").get<double>() == Approx(sum / 3).epsilon(1e-4));
+    CHECK(entry.at("max_adds_mm").get<double>() == Approx(most).epsilon(1e-4));
+  }
 }
 
 TEST_CASE("track with several objects refuses what it cannot do, naming it", "[cli][multi][errors]") {
@@ -60,8 +88,8 @@ TEST_CASE("track with several objects refuses what it cannot do, naming it", "[c
   const std::pair<std::string, std::string> cases[] = {
       {base + mesh + " --object a" + mesh + " --init-from-gt", "in pairs: got 2 --mesh and 1 --object"},
       {base + mesh + " --object a" + mesh + " --object b --init-global", "--init-from-gt"},
-      {base + mesh + " --object a" + mesh + " --object b --init-from-gt --overlay " + (dir / "ov").string(),
-       "--overlay is for one object"},
+      {base + mesh + " --object a" + mesh + " --object b --init-from-gt --bop-out " + (dir / "b.csv").string(),
+       "--bop-out is for one object"},
       {base + mesh + " --object a" + mesh + " --object b --init-from-gt --mutual-occlusion maybe",
        "--mutual-occlusion takes on or off, not 'maybe'"},
   };

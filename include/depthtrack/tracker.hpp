@@ -12,6 +12,7 @@
 #include <depthtrack/tracker_config.hpp>
 #include <functional>
 #include <memory>
+#include <numbers>
 #include <utility>
 
 namespace depthtrack {
@@ -79,10 +80,12 @@ struct Estimate {
   size_t search_poses = 0;  // poses this frame's global search scored (0: none ran)
 };
 
-// Spread of the initial particle cloud: per-axis standard deviations.
+// Spread of the initial particle cloud: per-axis standard deviations. The defaults are those of
+// `depthtrack track --init-spread` and of Tracker.initialize in Python: 1 cm and 5 degrees.
 struct InitialSpread {
-  double metres = 0.01;
-  double radians = 0.05;
+  static constexpr double kDefaultMetres = 0.01, kDefaultDegrees = 5.0;
+  double metres = kDefaultMetres;
+  double radians = kDefaultDegrees * std::numbers::pi / 180.0;
 };
 
 class FilterBackend;    // the per-backend implementation (reference, compute layer)

@@ -50,3 +50,16 @@ def test_config_file_errors_name_the_key(tmp_path):
         raise AssertionError("no error")
     except depthtrack.InputError as e:
         assert "unknown key 'motion.dampng'" in str(e) and "c.json" in str(e)
+
+
+def test_initialize_spread_defaults_are_track_s():
+    """Tracker.initialize and MultiTracker.initialize start the cloud as `track --init-spread`'s default does."""
+    import math
+    import re
+    helptext = subprocess.run([cli(), "track", "--help"], check=True, capture_output=True, text=True).stdout
+    metres, degrees = map(float, re.search(r"--init-spread TEXT=([0-9.]+) ([0-9.]+) ", helptext).groups())
+    assert (metres, degrees) == (0.01, 5.0)
+    for method in (depthtrack.Tracker.initialize, depthtrack.MultiTracker.initialize):
+        doc = method.__doc__
+        assert float(re.search(r"spread_metres: float = ([0-9.e-]+)", doc).group(1)) == metres
+        assert float(re.search(r"spread_radians: float = ([0-9.e-]+)", doc).group(1)) == math.radians(degrees)

@@ -1,5 +1,6 @@
 // depthtrack bench: the thesis' evaluation on the devices present, as results.json and PNG figures;
 // depthtrack bench compare: the cross-vendor table of several results.json files.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include "bench_commit.h"  // DEPTHTRACK_COMMIT, generated at build time
 #include "bench_rows.hpp"
@@ -15,6 +17,8 @@
 #include "cli/bench_results.hpp"
 #include "cli/bench_suite.hpp"
 #include "cli/commands.hpp"
+#include "cli/progress.hpp"
+#include "cli/python_plots.hpp"
 #include "cli/staged_outputs.hpp"
 #include "compute/queue.hpp"
 
@@ -27,7 +31,7 @@ namespace {
 struct BenchArgs {
   std::vector<std::string> backends;
   std::string renderer = "kernel", out;
-  bool quick = false, test_grid = false;
+  bool quick = false, test_grid = false, no_figures = false;
   int frames = 0;
   double max_seconds = 0;
   CLI::Option *frames_option = nullptr, *max_seconds_option = nullptr;  // given or not
@@ -54,6 +58,7 @@ std::vector<BenchMesh> load_meshes(int frames, std::vector<std::string>& notes) 
   for (const auto& [name, relative] : wanted) {
     const fs::path path = data / relative;
     if (fs::exists(path)) {
+      const ProgressWait wait(std::string("bench: preparing ") + name + " and its sequence");
       meshes.push_back(make_bench_mesh(name, Mesh::load(path), frames));
       continue;
     }
@@ -65,7 +70,29 @@ std::vector<BenchMesh> load_meshes(int frames, std::vector<std::string>& notes) 
   return meshes;
 }
 
+// The time a case should take on a target: the slowest rate (seconds per particle per pixel-or-triangle)
+// of the cases run on it so far, times the case's work; 0 before any ran.
+struct CaseClock {
+  std::map<std::string, double> rate;
+  static double work(const BenchCase& c) {
+    return static_cast<double>(c.particles) *
+           (static_cast<double>(c.width) * c.height + static_cast<double>(c.mesh->mesh.triangles.size()));
+  }
+  double expected(const std::string& backend, const BenchCase& c) const {
+    const auto it = rate.find(backend);
+    return it == rate.end() ? 0 : it->second * work(c);
+  }
+  void ran(const std::string& backend, const BenchCase& c, double seconds) {
+    double& r = rate[backend];
+    r = std::max(r, seconds / work(c));
+  }
+};
+
 void run_bench(const BenchArgs& a) {
+  const auto start = std::chrono::steady_clock::now();  // --max-seconds counts from here
+  const auto since_start = [&start] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   if (a.out.empty()) throw InputError("bench needs --out DIR (where results.json and the figures go)");
   renderer_from_string(a.renderer);  // InputError naming the choices
   BenchGrid grid = a.test_grid ? test_grid() : a.quick ? quick_grid() : full_grid();
@@ -80,6 +107,9 @@ void run_bench(const BenchArgs& a) {
     throw InputError("--max-seconds " + std::to_string(a.max_seconds) +
                      " is not a time limit: give a positive number of seconds, or leave it out for none");
   check_writable(a.out);
+  // The figures need python3 with matplotlib: checked before any case runs.
+  std::optional<PlotRunner> plots;
+  if (!a.no_figures) plots = find_plot_runner("bench (for its figures; --no-figures leaves them out)");
   // Every backend is opened before any case runs, so a wrong name fails at once.
   std::vector<std::string> backends = a.backends;
   if (backends.empty()) {
@@ -96,44 +126,81 @@ void run_bench(const BenchArgs& a) {
   const std::vector<BenchCase> cases = grid_cases(grid, meshes);
   std::vector<CaseResult> outcomes;
   std::map<std::string, double> reference_ms;
-  const auto start = std::chrono::steady_clock::now();
+  CaseClock clock;
+  ProgressBar bar("bench", static_cast<int>(targets.size() * cases.size()));
+  int done = 0, skipped_for_time = 0;
+  char limit[32];
+  std::snprintf(limit, sizeof limit, "%g", a.max_seconds);
   for (const BenchTarget& target : targets) {
     for (const BenchCase& c : cases) {
+      bar.update(done++, target.backend);
       const std::string what = target.backend + " " + c.test();
-      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double elapsed = since_start(), expected = clock.expected(target.backend, c);
       std::string skip;
-      if (a.max_seconds > 0 && elapsed > a.max_seconds)
-        skip = "skipped: --max-seconds " + std::to_string(a.max_seconds) + " passed";
-      else if (target.cpu && static_cast<double>(c.particles) * c.width * c.height > grid.cpu_max_work)
+      if (a.max_seconds > 0 && elapsed + expected > a.max_seconds) {
+        char reason[160];
+        if (expected > 0)
+          std::snprintf(reason, sizeof reason,
+                        "skipped: %.2f s passed and it would take about %.2f s (--max-seconds %s)", elapsed, expected,
+                        limit);
+        else
+          std::snprintf(reason, sizeof reason, "skipped: %.2f s passed (--max-seconds %s)", elapsed, limit);
+        skip = reason;
+        ++skipped_for_time;
+      } else if (target.cpu && static_cast<double>(c.particles) * c.width * c.height > grid.cpu_max_work) {
         skip = "skipped on a CPU: particles x pixels beyond this grid's CPU limit";
+      }
       if (!skip.empty()) {
         results.notes.push_back(what + ": " + skip);
+        bar.note("bench: " + results.notes.back());
         continue;
       }
       const auto ref = reference_ms.find(c.test());
       try {
+        const double before = since_start();
         const CaseResult r = run_case(c, target, a.renderer, grid.frames, DEPTHTRACK_COMMIT,
                                       ref == reference_ms.end() ? NAN : ref->second, results.rows);
+        clock.ran(target.backend, c, since_start() - before);
         if (target.backend == "reference") reference_ms[c.test()] = r.frame_ms;
         outcomes.push_back(r);
-        std::fprintf(stderr, "bench: %s: %.3f ms per frame\n", what.c_str(), r.frame_ms);
+        char line[64];
+        std::snprintf(line, sizeof line, ": %.3f ms per frame", r.frame_ms);
+        bar.note("bench: " + what + line);
       } catch (const Error& e) {
         const std::string reason = e.what();
         results.notes.push_back(what + ": failed: " + reason.substr(0, reason.find('\n')));
-        std::fprintf(stderr, "bench: %s\n", results.notes.back().c_str());
+        bar.note("bench: " + results.notes.back());
       }
     }
   }
+  bar.update(done);
+  bar.finish();
+  if (skipped_for_time > 0)
+    std::fprintf(stderr,
+                 "bench: %d case%s skipped to stay within --max-seconds %s (the notes in results.json list them)\n",
+                 skipped_for_time, skipped_for_time == 1 ? "" : "s", limit);
   if (results.rows.empty()) throw Error("no case ran (see the notes above); " + a.out + "/results.json not written");
   // results.json and the figures replace an earlier run's together, once all are written.
   StagedOutputs outputs;
   const fs::path json = fs::path(a.out) / "results.json";
   write_results(results, outputs.add("--out", json));
-  const auto figures =
-      write_bench_figures(outcomes, a.out, [&outputs](const fs::path& file) { return outputs.add("--out", file); });
+  const fs::path cases_csv = fs::path(a.out) / "cases.csv";
+  const fs::path cases_partial = outputs.add("--out", cases_csv);
+  write_bench_cases(outcomes, cases_partial);
+  std::vector<fs::path> figures;
+  if (plots) {
+    std::vector<std::string> arguments{"bench", cases_partial.string()};
+    for (const std::string& sweep : figure_sweeps(outcomes)) {
+      figures.push_back(fs::path(a.out) / (sweep + ".png"));
+      arguments.push_back(sweep + "=" + outputs.add("--out", figures.back()).string());
+    }
+    const ProgressWait wait("bench: drawing the figures");
+    if (!figures.empty()) run_plots(*plots, arguments);
+  }
   outputs.commit();
   std::printf("%s", compare_table({{json.string(), results}}).c_str());
-  std::printf("wrote %s (%zu rows, %zu notes)", json.c_str(), results.rows.size(), results.notes.size());
+  std::printf("wrote %s (%zu rows, %zu notes), %s", json.c_str(), results.rows.size(), results.notes.size(),
+              cases_csv.filename().c_str());
   for (const auto& f : figures) std::printf(", %s", f.filename().c_str());
   std::printf("\n");
 }
@@ -152,18 +219,23 @@ void add_bench_command(CLI::App& app) {
       "bench",
       "Run the thesis' evaluation (frame time vs particles, resolution, triangles; occlusion modes' time and "
       "memory; per-step split with bytes moved and GB/s; speedup over the reference) on the devices present; "
-      "write DIR/results.json and PNG figures");
+      "write DIR/results.json, DIR/cases.csv (a row per case) and PNG figures (python3 with matplotlib draws them)");
   c->add_option("--backend", args->backends,
                 "Backend to measure, repeatable: reference, cpu, cpu:N or a device (default: the reference, cpu and "
                 "every device `depthtrack info` lists)");
   c->add_option("--renderer", args->renderer, "Atlas renderer of device backends: kernel (default), gl, cpu");
-  c->add_option("--out", args->out, "Folder for results.json and the figures (created)");
+  c->add_option("--out", args->out, "Folder for results.json, cases.csv and the figures (created)");
   c->add_flag("--quick", args->quick, "The small grid: a few minutes on a 2-core CPU (PoCL and the reference)");
   c->add_flag("--test-grid", args->test_grid, "The tiniest grid, for the test suite (seconds)");
   args->frames_option =
       c->add_option("--frames", args->frames, "Frames per case, the first two not timed (default: the grid's)");
   args->max_seconds_option =
-      c->add_option("--max-seconds", args->max_seconds, "Skip the cases left once this many seconds have passed");
+      c->add_option("--max-seconds", args->max_seconds,
+                    "Time limit of the run: a case is skipped (and said so on stderr and in the notes) when the "
+                    "time passed plus its expected time (from the cases run before it on the same backend) "
+                    "would exceed it; the figures are drawn after");
+  c->add_flag("--no-figures", args->no_figures,
+              "Write results.json and cases.csv but no PNG figures (which need python3 with matplotlib)");
   CLI::App* compare =
       c->add_subcommand("compare", "Print the cross-vendor table of results.json files, ratios to the first");
   compare->add_option("files", args->compare_files, "results.json files")->required()->check(CLI::ExistingFile);

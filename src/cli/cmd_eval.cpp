@@ -15,9 +15,10 @@
 #include "cli/commands.hpp"
 #include "cli/eval_frames_csv.hpp"
 #include "cli/eval_report.hpp"
+#include "cli/init_spread.hpp"
 #include "cli/mesh_scale_warning.hpp"
 #include "cli/progress.hpp"
-#include "cli/reliability_plot.hpp"
+#include "cli/python_plots.hpp"
 #include "cli/staged_outputs.hpp"
 #include "cli/tracker_options.hpp"
 #include "eval/clip_objects.hpp"
@@ -34,7 +35,7 @@ constexpr double kPerturbMetres = 0.01, kPerturbDegrees = 5.0;
 
 struct EvalArgs {
   std::string sequence, mesh_dir, mesh, cases = "perturbed,box,gap", gaps = "0.5,2", frames_out, reliability,
-                                        init_spread = "0.01 5";
+                                        init_spread = default_init_spread();
   std::vector<std::string> objects;
   int seeds = 3, gap_before = 6;
   double unit_scale = 1.0;
@@ -232,13 +233,12 @@ void run_eval(const EvalArgs& a) {
       std::any_of(cases.begin(), cases.end(), [](const EvalCase& c) { return c.kind == CaseKind::Box; });
   TrackerConfig config = a.tracker.resolve();
   if (a.no_recover) config.recovery.enabled = false;
-  const auto spread_values = parse_numbers(a.init_spread, 2, "--init-spread");
-  const InitialSpread spread{spread_values[0], spread_values[1] * std::numbers::pi / 180.0};
+  const InitialSpread spread = parse_init_spread(a.init_spread);
   std::optional<PlotRunner> plot;
   if (!a.reliability.empty()) {
     if (fs::path(a.reliability).extension() != ".png")
       throw InputError("--reliability '" + a.reliability + "' must name a .png file");
-    plot = find_plot_runner();
+    plot = find_plot_runner("--reliability");
   }
   const std::vector<EvalObject> objects = eval_objects(a, with_box);
   const bool with_gap =
@@ -298,7 +298,7 @@ void run_eval(const EvalArgs& a) {
   if (plot) {
     const fs::path rows = csv->path();
     try {
-      draw_reliability(*plot, rows, png_path);
+      std::printf("%s\n", run_plots(*plot, {"reliability", rows.string(), png_path.string()}).c_str());
     } catch (...) {
       if (a.frames_out.empty()) fs::remove(rows);
       throw;

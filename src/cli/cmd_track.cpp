@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "cli/commands.hpp"
+#include "cli/init_spread.hpp"
 #include "cli/mesh_scale_warning.hpp"
 #include "cli/overlay_writer.hpp"
 #include "cli/progress.hpp"
@@ -28,8 +29,8 @@ namespace {
 struct TrackArgs {
   std::vector<std::string> meshes, objects;  // in pairs when there are several
   std::string mutual_occlusion = "on";
-  std::string mesh, sequence, out, object, init, init_perturb, init_spread = "0.01 5", init_box, summary, overlay,
-                                                               bop_out;
+  std::string mesh, sequence, out, object, init, init_perturb, init_spread = default_init_spread(), init_box, summary,
+                                                               overlay, bop_out;
   std::string quaternion = "wxyz";
   double unit_scale = 1.0;
   bool init_from_gt = false, init_global = false, no_recover = false;
@@ -85,6 +86,7 @@ InitHint init_hint(const TrackArgs& a) {
 // default (or given) simplification thins it (TrackerConfig::simplify_error), and whether its back faces
 // can be culled (an open scan's cannot), so that a run's speed and a fine mesh's precision are not a surprise.
 Mesh load_mesh(const std::string& path, double unit_scale, const TrackerConfig& config) {
+  const ProgressWait wait("reading and checking '" + path + "'");
   const Mesh mesh = Mesh::load(path, unit_scale);
   warn_if_mesh_scale_unusual(mesh, path, unit_scale);
   if (mesh.dropped_degenerate > 0)
@@ -141,14 +143,14 @@ void run_track_objects(const TrackArgs& a) {
   for (const auto& [set, name] : {std::pair{!a.init.empty(), "--init"},
                                   {!a.init_box.empty(), "--init-box"},
                                   {a.init_global, "--init-global"},
-                                  {!a.overlay.empty(), "--overlay"},
-                                  {!a.bop_out.empty(), "--bop-out"},
-                                  {!a.summary.empty(), "--summary"}})
+                                  {!a.bop_out.empty(), "--bop-out"}})
     if (set) throw InputError(std::string(name) + " is for one object; not with several --mesh/--object pairs");
   const bool mutual = on_off(a.mutual_occlusion, "--mutual-occlusion");
   StagedOutputs outputs;
   add_argument_inputs(a, outputs);
   const std::filesystem::path csv_path = outputs.add("--out", a.out);
+  const std::filesystem::path summary_path =
+      a.summary.empty() || a.summary == "-" ? std::filesystem::path(a.summary) : outputs.add("--summary", a.summary);
   TrackerConfig config = a.tracker.resolve();
   if (a.no_recover) config.recovery.enabled = false;
   std::vector<TrackedObject> objects;
@@ -168,17 +170,49 @@ void run_track_objects(const TrackArgs& a) {
                        [](const auto& f) { return f.ground_truth.has_value(); });
   });
   TrackingCsvWriter csv(csv_path, with_truth && !frames0.empty(), quaternion_order(a.quaternion), true);
-  const auto spread_values = parse_numbers(a.init_spread, 2, "--init-spread");
-  const InitialSpread spread{spread_values[0], spread_values[1] * std::numbers::pi / 180.0};
+  const InitialSpread spread = parse_init_spread(a.init_spread);
+  // Every object's estimate on one picture per frame, drawn once the frame's last object is tracked.
+  std::optional<OverlayWriter> overlay;
+  std::vector<const Mesh*> meshes;
+  std::vector<std::string> names;
+  for (const TrackedObject& o : objects) {
+    meshes.push_back(&o.mesh);
+    names.push_back(o.name);
+  }
+  if (!a.overlay.empty())
+    overlay.emplace(stage_overlay(a.overlay, objects.front().sequence, outputs), meshes, objects.front().sequence);
+  std::vector<TrackedFrame> current(objects.size());
+  double overlay_seconds = 0;
   ProgressBar bar("tracking", static_cast<int>(frames0.size()));
   const auto begin = std::chrono::steady_clock::now();
+  std::optional<ProgressWait> preparing(std::in_place, "preparing the models");  // until the first frame is out
   const auto results = track_objects(objects, config, spread, mutual, [&](size_t i, size_t j, const TrackedFrame& f) {
+    preparing.reset();
     csv.write(f, objects[j].name);
-    if (j + 1 == objects.size()) bar.update(static_cast<int>(i + 1), "");
+    if (j + 1 < objects.size()) {
+      if (overlay) current[j] = f;
+      return;
+    }
+    bar.update(static_cast<int>(i + 1), "");
+    if (!overlay) return;
+    const auto drawing = std::chrono::steady_clock::now();
+    current[j] = f;
+    std::vector<const TrackedFrame*> frames;
+    for (const TrackedFrame& c : current) frames.push_back(&c);
+    overlay->write(i, frames, names, config.particles);
+    overlay_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - drawing).count();
   });
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  // Frames per second of the tracking, not of drawing the pictures.
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count() - overlay_seconds;
   bar.finish();
   csv.finish();
+  if (!a.summary.empty()) {
+    std::vector<ObjectStats> stats;
+    for (size_t j = 0; j < objects.size(); ++j)
+      stats.push_back({objects[j].name, a.meshes[j], run_stats(results[j], seconds)});
+    write_summary(summary_path, objects_summary_json(stats, frames0.size(), seconds, config, a.sequence));
+  }
   outputs.commit();
   std::printf("%zu objects, %zu frames in %.2f s: %.1f frames per second (mutual occlusion %s)\n", objects.size(),
               frames0.size(), seconds, seconds > 0 ? static_cast<double>(frames0.size()) / seconds : 0.0,
@@ -227,16 +261,20 @@ void run_track(TrackArgs a) {
   const Mesh mesh = load_mesh(a.mesh, unit_scale, config);
   const bool global = !a.init_box.empty() || a.init_global;
   const InitHint hint = init_hint(a);
-  const auto spread_values = parse_numbers(a.init_spread, 2, "--init-spread");
-  const InitialSpread spread{spread_values[0], spread_values[1] * std::numbers::pi / 180.0};
+  const InitialSpread spread = parse_init_spread(a.init_spread);
 
   std::optional<OverlayWriter> overlay;
-  if (!a.overlay.empty()) overlay.emplace(overlay_files, mesh, seq);
+  if (!a.overlay.empty()) overlay.emplace(overlay_files, std::vector<const Mesh*>{&mesh}, seq);
   double overlay_seconds = 0;
 
   ProgressBar bar("tracking", static_cast<int>(seq.frames.size()));
   const auto begin = std::chrono::steady_clock::now();
+  // Until the first frame is out: the model's preparation and, with --init-box or --init-global, the search.
+  std::optional<ProgressWait> preparing(
+      std::in_place,
+      global ? "preparing the model and searching the first frame for the object" : "preparing the model");
   const auto on_frame = [&](size_t i, const TrackedFrame& f) {
+    preparing.reset();
     csv.write(f);
     char text[64] = "";
     if (f.ground_truth) std::snprintf(text, sizeof text, "err %.1f mm", 1000 * f.translation_error);
@@ -297,10 +335,12 @@ void add_track_command(CLI::App& app) {
       ->required();
   c->add_option("--summary", args->summary,
                 "Also write a one-line JSON summary of the run (frames, mean/max errors, fps, backend) to this "
-                "file; - prints it");
+                "file; - prints it. With several objects: the run's figures and an `objects` array, one entry "
+                "(object, mesh, frames, mean/max errors) per object");
   c->add_option("--overlay", args->overlay,
                 "Also draw each frame's estimate (silhouette, outline, depth edges) over its colour image, or "
-                "its depth in colour, with frame, error and ESS, as DIR/<frame>.png (DIR is created)");
+                "its depth in colour, with frame, error and ESS, as DIR/<frame>.png (DIR is created); with several "
+                "objects, all of them on each picture, a text line per object");
   c->add_option("--quaternion", args->quaternion,
                 "Quaternion component order of --init and the CSV: wxyz (depthtrack, Eigen) or xyzw (ROS, tf2)")
       ->capture_default_str();

@@ -20,17 +20,25 @@ std::vector<std::string> overlay_text(const TrackedFrame& frame, int particles);
 std::vector<std::filesystem::path> stage_overlay(const std::filesystem::path& dir, const Sequence& sequence,
                                                  StagedOutputs& outputs);
 
+// Several objects' text: the frame and time, then per object its name with its errors and state.
+std::vector<std::string> overlay_text(const std::vector<const TrackedFrame*>& frames,
+                                      const std::vector<std::string>& names, int particles);
+
 class OverlayWriter {
  public:
-  // files: where frame i's picture goes (stage_overlay's answer).
-  OverlayWriter(std::vector<std::filesystem::path> files, const Mesh& mesh, const Sequence& sequence);
-  // Writes frame i's picture.
-  void write(size_t i, const TrackedFrame& frame, int particles) const;
+  // files: where frame i's picture goes (stage_overlay's answer); meshes: the objects drawn, one or several.
+  OverlayWriter(std::vector<std::filesystem::path> files, const std::vector<const Mesh*>& meshes,
+                const Sequence& sequence);
+  // Writes frame i's picture with each object's estimate (frames[j] of meshes[j]); names label the text
+  // lines when there are several.
+  void write(size_t i, const std::vector<const TrackedFrame*>& frames, const std::vector<std::string>& names,
+             int particles) const;
+  void write(size_t i, const TrackedFrame& frame, int particles) const { write(i, {&frame}, {""}, particles); }
 
  private:
   std::vector<std::filesystem::path> files_;
   const Sequence& sequence_;
-  viz::OverlayPainter painter_;
+  std::vector<viz::OverlayPainter> painters_;
 };
 
 }  // namespace depthtrack::cli

@@ -32,17 +32,19 @@ RunStats run_stats(const std::vector<TrackedFrame>& frames, double seconds) {
   return s;
 }
 
-std::string summary_json(const RunStats& s, const TrackerConfig& config, const std::string& sequence,
-                         const std::string& mesh) {
-  nlohmann::ordered_json j;
-  j["sequence"] = sequence;
-  j["mesh"] = mesh;
+namespace {
+
+void add_run(nlohmann::ordered_json& j, const TrackerConfig& config, size_t frames, double seconds,
+             double frames_per_second) {
   j["backend"] = config.resolved_backend();
   j["particles"] = config.particles;
   j["resolution"] = std::to_string(config.width) + "x" + std::to_string(config.height);
-  j["frames"] = s.frames;
-  j["seconds"] = s.seconds;
-  j["fps"] = s.frames_per_second;
+  j["frames"] = frames;
+  j["seconds"] = seconds;
+  j["fps"] = frames_per_second;
+}
+
+void add_errors(nlohmann::ordered_json& j, const RunStats& s) {
   j["mean_ess"] = s.mean_ess;
   if (s.ground_truth) {
     j["mean_err_t_mm"] = s.mean_err_t_mm;
@@ -51,6 +53,34 @@ std::string summary_json(const RunStats& s, const TrackerConfig& config, const s
     j["max_err_r_deg"] = s.max_err_r_deg;
     j["mean_adds_mm"] = s.mean_adds_mm;
     j["max_adds_mm"] = s.max_adds_mm;
+  }
+}
+
+}  // namespace
+
+std::string summary_json(const RunStats& s, const TrackerConfig& config, const std::string& sequence,
+                         const std::string& mesh) {
+  nlohmann::ordered_json j;
+  j["sequence"] = sequence;
+  j["mesh"] = mesh;
+  add_run(j, config, s.frames, s.seconds, s.frames_per_second);
+  add_errors(j, s);
+  return j.dump();
+}
+
+std::string objects_summary_json(const std::vector<ObjectStats>& objects, size_t frames, double seconds,
+                                 const TrackerConfig& config, const std::string& sequence) {
+  nlohmann::ordered_json j;
+  j["sequence"] = sequence;
+  add_run(j, config, frames, seconds, seconds > 0 ? static_cast<double>(frames) / seconds : 0);
+  j["objects"] = nlohmann::ordered_json::array();
+  for (const ObjectStats& o : objects) {
+    nlohmann::ordered_json one;
+    one["object"] = o.object;
+    one["mesh"] = o.mesh;
+    one["frames"] = o.stats.frames;
+    add_errors(one, o.stats);
+    j["objects"].push_back(one);
   }
   return j.dump();
 }

@@ -21,6 +21,15 @@ RunStats run_stats(const std::vector<TrackedFrame>& frames, double seconds);
 std::string summary_json(const RunStats& stats, const TrackerConfig& config, const std::string& sequence,
                          const std::string& mesh);
 
+// Several objects tracked together (track with --mesh/--object pairs): the run's frames, seconds and
+// frames per second and what was run, then per object its name, mesh and stats, as one line of JSON.
+struct ObjectStats {
+  std::string object, mesh;
+  RunStats stats;
+};
+std::string objects_summary_json(const std::vector<ObjectStats>& objects, size_t frames, double seconds,
+                                 const TrackerConfig& config, const std::string& sequence);
+
 // Writes text and a newline to path, or to stdout when path is "-".
 void write_summary(const std::filesystem::path& path, const std::string& text);
 

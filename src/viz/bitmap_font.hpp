@@ -1,6 +1,6 @@
 #pragma once
-// A built-in 5x7 pixel font (upper case, digits, common punctuation) for labels in overlays and
-// plots, so pictures need no font library. Lower case is drawn as upper case; other characters as '?'.
+// A built-in 5x7 pixel font (upper case, digits, common punctuation) for the text of track's overlay
+// pictures, so they need no font library. Lower case is drawn as upper case; other characters as '?'.
 #include <string>
 
 #include "viz/rgb_image.hpp"

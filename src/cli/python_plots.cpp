@@ -1,4 +1,4 @@
-#include "cli/reliability_plot.hpp"
+#include "cli/python_plots.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -20,14 +20,22 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The program's exit status (127: it could not be started), its output silenced when quiet.
-int run_program(const std::vector<std::string>& arguments, bool quiet) {
+// Runs a program; its exit status (127: it could not be started, 128: it was killed). Its standard output
+// and error are kept in output when output is given, else dropped.
+int run_program(const std::vector<std::string>& arguments, std::string* output) {
   std::vector<char*> argv;
   for (const auto& a : arguments) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
+  int pipe_ends[2] = {-1, -1};
+  if (output && pipe(pipe_ends) != 0) return 127;
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  if (quiet) {
+  if (output) {
+    posix_spawn_file_actions_addclose(&actions, pipe_ends[0]);
+    posix_spawn_file_actions_adddup2(&actions, pipe_ends[1], 1);
+    posix_spawn_file_actions_adddup2(&actions, pipe_ends[1], 2);
+    posix_spawn_file_actions_addclose(&actions, pipe_ends[1]);
+  } else {
     posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
     posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
   }
@@ -35,6 +43,17 @@ int run_program(const std::vector<std::string>& arguments, bool quiet) {
   pid_t pid = 0;
   const int failed = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
+  if (output) {
+    close(pipe_ends[1]);
+    char buffer[4096];
+    for (ssize_t n; failed == 0 && (n = read(pipe_ends[0], buffer, sizeof buffer)) != 0;) {
+      if (n > 0)
+        output->append(buffer, static_cast<size_t>(n));
+      else if (errno != EINTR)
+        break;
+    }
+    close(pipe_ends[0]);
+  }
   if (failed != 0) return 127;
   int status = 0;
   while (waitpid(pid, &status, 0) < 0)
@@ -66,7 +85,7 @@ std::vector<fs::path> module_candidates() {
 
 }  // namespace
 
-PlotRunner find_plot_runner() {
+PlotRunner find_plot_runner(const std::string& what) {
   PlotRunner runner;
   std::string looked;
   for (const fs::path& place : module_candidates()) {
@@ -78,7 +97,7 @@ PlotRunner find_plot_runner() {
     looked += (looked.empty() ? "" : ", ") + place.string();
   }
   if (runner.module.empty())
-    throw InputError("--reliability: cannot find depthtrack/plots.py (looked in " +
+    throw InputError(what + ": cannot find depthtrack/plots.py (looked in " +
                      (looked.empty() ? std::string("no place") : looked) +
                      "): put the folder holding depthtrack/ on PYTHONPATH");
   std::vector<std::string> interpreters;
@@ -92,24 +111,31 @@ PlotRunner find_plot_runner() {
   }
   std::string tried;
   for (const std::string& python : interpreters) {
-    const int status = run_program({python, "-c", "import matplotlib"}, true);
+    const int status = run_program({python, "-c", "import matplotlib"}, nullptr);
     if (status == 0) {
       runner.python = python;
       return runner;
     }
     tried += (tried.empty() ? "" : "; ") + python + (status == 127 ? " was not found" : " lacks matplotlib");
   }
-  throw InputError("--reliability needs python3 with matplotlib (" + tried +
+  throw InputError(what + " needs python3 with matplotlib (" + tried +
                    "): install it (Debian: apt install python3-matplotlib) or name an interpreter that has it in "
                    "$DEPTHTRACK_PYTHON");
 }
 
-void draw_reliability(const PlotRunner& runner, const fs::path& csv, const fs::path& png) {
-  const int status =
-      run_program({runner.python, runner.module.string(), "reliability", csv.string(), png.string()}, false);
+std::string run_plots(const PlotRunner& runner, const std::vector<std::string>& arguments) {
+  std::vector<std::string> command{runner.python, runner.module.string()};
+  command.insert(command.end(), arguments.begin(), arguments.end());
+  std::string output;
+  const int status = run_program(command, &output);
+  while (!output.empty() && (output.back() == '\n' || output.back() == '\r')) output.pop_back();
+  const std::string prefix = "depthtrack.plots: error: ";
+  if (status == 1 && output.find(prefix) != std::string::npos)
+    throw InputError(output.substr(output.find(prefix) + prefix.size()));
   if (status != 0)
-    throw Error("drawing the reliability diagram failed: " + runner.python + " " + runner.module.string() +
-                " exited with status " + std::to_string(status));
+    throw Error("drawing the figure failed: " + runner.python + " " + runner.module.string() + " exited with status " +
+                std::to_string(status) + (output.empty() ? "" : ":\n" + output));
+  return output;
 }
 
 }  // namespace depthtrack::cli
