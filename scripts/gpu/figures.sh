@@ -10,8 +10,8 @@
 #     memory (/usr/bin/time -v), latency_ms against the bench's frame;
 #   - three ycbv-0000 objects against one;
 #   - with depthtrack_tests in BIN (or TESTS=1 when building), [device],[atlas],[kernels],[refine] on both.
-# BIN=<folder> holds depthtrack, depthtrack_bench and libdepthtrack.so.0 built elsewhere (the design notes,
-# "A short device budget"); without it this tree is built in build-gpu. Carry .devdeps, .device, .devdata.
+# BIN=<folder> holds depthtrack, depthtrack_bench and libdepthtrack.so.0 built elsewhere (a short device
+# budget); without it this tree is built in build-gpu. Carry .devdeps, .device, .devdata.
 set -uo pipefail
 source .device/enter .devdeps
 export DEPTHTRACK_DATA_DIR=$PWD/.devdata POCL_CACHE_DIR=/tmp/pocl-cache

@@ -42,7 +42,7 @@ def strip_code(text):
 LINK = re.compile(r"\[[^\]]*\]\(\s*<?([^)\s>]+)>?(?:\s+\"[^\"]*\")?\s*\)")
 # A repository path written out in the prose or in code spans: its folder is one of the tree's.
 REPO_PATH = re.compile(
-    r"(?<![\w./-])((?:docs|scripts|src|include|cl|tests|bench|python|fuzz|cmake|shaders)/[\w./-]*\w\.(?:md|sh|py|cpp|hpp|h|cl|txt|cmake|json|png))\b")
+    r"(?<![\w./-])((?:docs|scripts|src|include|cl|tests|bench|python|fuzz|cmake|shaders)/[\w./-]*\w\.(?:md|sh|py|cpp|hpp|h|cl|txt|cmake|json|png))(?![\w/-]|\.\w)")
 
 
 def check_links(root):
