@@ -159,7 +159,9 @@ def check_words(root):
         files = [base] if base.is_file() else sorted(p for p in base.rglob("*") if p.is_file())
         for f in files:
             rel = f.relative_to(root)
-            if "__pycache__" in rel.parts or "corpus" in rel.parts:
+            # Caches, hidden folders (.pytest_cache) and fuzz corpora (random bytes) are not the project's text.
+            if "__pycache__" in rel.parts or "corpus" in rel.parts or any(
+                    part.startswith(".") for part in rel.parts[1:]):
                 continue
             if HISTORY.search(str(rel)):
                 problems.append(f"{rel}: the file's name numbers a work item; name it by what it does")
