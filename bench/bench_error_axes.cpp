@@ -1,4 +1,4 @@
-// Where the error of a tracked real sequence lies (issue 8): per frame, the rotation error's axis in
+// Where the error of a tracked real sequence lies: per frame, the rotation error's axis in
 // the object frame (angle-axis of R_est^T R_gt), the translation error of the mesh's centre in camera
 // coordinates split into along / across the viewing ray (a depth bias is along it), and the refined
 // covariance's weakest axes. Starts from ground truth moved by 1 cm / 5 deg, as tests/test_accuracy.cpp.

@@ -1,4 +1,4 @@
-// Where a short run's start-up goes (issue 13's off-screen start: `track --init "1e7 0 0.06 1 0 0 0"
+// Where a short run's start-up goes (the off-screen start: `track --init "1e7 0 0.06 1 0 0 0"
 // --particles 1`): opening the device, each kernel program's build or binary load, the rest of the
 // Tracker's construction (buffers, mesh upload), the start and each frame; wall and process CPU
 // milliseconds (the CPU of every thread: PoCL's workers too). Run it twice, and once with

@@ -43,7 +43,7 @@ struct Case {
 // two updates is not the tracker's time, and it leaves the host's caches cold for the driver's calls.
 struct Feed {
   double pace_ms = 0;              // > 0: each frame handed over this long after the last returned
-  bool synthesize_inline = false;  // each frame drawn just before its update (as before round 2, session 21)
+  bool synthesize_inline = false;  // each frame drawn just before its update (the bench's earlier default)
 };
 
 // The reference filter and its threaded form (cpu, cpu:N) run on the host: no renderer, the CPU's name.
@@ -195,8 +195,8 @@ const char* const kUsage =
     "                         stream does (the device idles between frames; back to back, each frame's calls\n"
     "                         meet the last one's work still running): total_ms is then the latency a tracker\n"
     "                         fed at sensor rate sees; named in the test column\n"
-    "  --synthesize-inline    draw each synthetic frame just before its update (as the bench did before round 2,\n"
-    "                         session 21), not all before the timed frames; named in the test column\n"
+    "  --synthesize-inline    draw each synthetic frame just before its update (the bench's earlier default),\n"
+    "                         not all before the timed frames; named in the test column\n"
     "  --no-global            leave out the global initialization rows (box hint and no hint, 80x60)\n"
     "  --multi-objects        instead: one object against three in one process at 80x60 (ycbv-0000's, else\n"
     "                         the handset thrice), mutual occlusion off and on: multi_object_ratio rows (and\n"
@@ -241,7 +241,7 @@ void run_global(const Mesh& mesh, const std::string& mesh_name, const std::strin
   }
 }
 
-// The off-screen start (issue 13): one particle whose start projects 10,000 km to the side of an
+// The off-screen start: one particle whose start projects 10,000 km to the side of an
 // 80x60 image, as `track --init "1e7 0 0.06 1 0 0 0" --particles 1`; the rasterizers clamp its box,
 // so the whole run (construction, start, `frames` frames) takes well under a second where it once took
 // minutes. The recovery's search is off (as with --no-recover): once lost (the third frame) it would

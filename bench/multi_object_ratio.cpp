@@ -34,7 +34,7 @@ size_t forth_and_back(size_t i, size_t n) {
   return k < n ? k : period - k;
 }
 
-// ycbv-0000's three objects (as scripts/gpu-multi.sh tracked them), `frames` frames of its clip played
+// ycbv-0000's three objects (as scripts/gpu/multi.sh tracked them), `frames` frames of its clip played
 // forth and back, one frame period apart; false when the data folder lacks them.
 bool load_ycbv(Scene& scene, int frames) {
   const auto clip = data_dir() / "sequences/ycbv-0000";

@@ -1,5 +1,5 @@
 #pragma once
-// Several objects against one (issue 10: three objects x 2,000 particles at 80x60 in one process within
+// Several objects against one (the target: three objects x 2,000 particles at 80x60 in one process within
 // 1.5x one object's time): rows multi_object_ratio and the two medians it divides.
 #include <depthtrack/tracker_config.hpp>
 #include <string>

@@ -225,9 +225,9 @@ TEST_CASE("YCB-Video clip 0000: each object from ground truth perturbed by 1 cm 
 }
 
 // ViSP's simulated castle (noise-free depth, exact ground truth; 40 frames, the camera circling it):
-// the sequence issue 8's first precision figures came from (then 300 particles: 3.6 mm / 1.5 deg).
+// the sequence the first precision figures came from (then 300 particles: 3.6 mm / 1.5 deg).
 // ViSP's own dense-depth fitter on these frames: 0.84-1.01 mm / 0.37-0.48 deg mean, at 160x120 to
-// 640x480 (scripts/compare-peers.sh, design notes).
+// 640x480 (scripts/compare-peers.sh; docs/performance.md).
 TEST_CASE("ViSP's simulated castle from ground truth perturbed by 1 cm and 5 degrees: 200 particles at 160x120",
           "[accuracy][visp]") {
   const auto castle = test::shared_data("sequences/visp-castle-simu");

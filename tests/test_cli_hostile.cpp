@@ -1,4 +1,4 @@
-// depthtrack track on hostile input and output places (issue 13): each is a clear error with a
+// depthtrack track on hostile input and output places: each is a clear error with a
 // non-zero exit, or correct output; none is exit 0 with NaN rows or a cut file.
 #include <catch2/catch.hpp>
 #include <chrono>

@@ -1,5 +1,5 @@
 // The cpu backend: the reference filter's per-particle loops on a thread pool, equal to the sequential
-// reference bit for bit (issue 12 item 5).
+// reference bit for bit.
 #include <atomic>
 #include <chrono>
 #include <functional>

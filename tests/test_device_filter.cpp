@@ -234,9 +234,9 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
       // CUDA's kernel atlas: up to 3.1 % on the handset (H200, 1 December 2026; the same with and without
       // --prec-div/--prec-sqrt), where the poses still agree within 1e-5 m: as with GL, a pixel more or
       // less in the fit's H. NVIDIA OpenCL stayed within 0.1 % in one group, and left it once Auto spread
-      // its fit too (session 8): the spread sums' float order on a GPU, as on CUDA; the one-launch
-      // layout's there 0.7 % (H100, round 2 session 18), and the one group's 0.7 % too on an H100 with
-      // driver 580 (round 2, session 26, the build of session 25 as well as this one's). So every GPU is
+      // its fit too: the spread sums' float order on a GPU, as on CUDA; the one-launch
+      // layout's there 0.7 % (H100), and the one group's 0.7 % too on an H100 with
+      // driver 580 (two builds). So every GPU is
       // held to 5 %; PoCL, any layout, stays within 0.1 %, and is held to it.
       const bool cuda = config.backend.rfind("cuda", 0) == 0;
       const double sd_tolerance = renderer == "gl" || cuda || info.is_gpu ? 5e-2 : 1e-3;
@@ -341,7 +341,7 @@ TEST_CASE("with an automatic window growing as the object nears the device filte
 // An automatic window's rows hold half as much again as its window: while the window stays within that
 // (an estimate settling after its start, an object nearing a little) no state row is allocated again.
 // Each reallocation's free waits for the device (every object's work queued on it) and changes the
-// frame's graph: session 13's H200 trace of ycbv-0000's first ten frames found such spikes in three
+// frame's graph: an H200 trace of ycbv-0000's first ten frames found such spikes in three
 // objects' enqueue. The same nearing path.
 TEST_CASE("an automatic window's rows have room for half as much again: growing within it allocates nothing",
           "[device][kernel][window]") {

@@ -120,7 +120,7 @@ TEST_CASE("YCB-Video clip 0000: each object found from its 2D box in the first f
   }
 }
 
-// Issue 9: the grid's centres lie behind measured points along their rays; with the bar across the
+// The grid's centres lie behind measured points along their rays; with the bar across the
 // handset's middle (frame 0) or the handset tilted in depth (frame 30) none came near its centre and
 // the box search landed 163 and 108 mm off (search::box_centre_points).
 TEST_CASE("synthetic handset behind a bar found from its box", "[global][accuracy]") {

@@ -1,5 +1,5 @@
 // Mesh import that cannot take the process down: crashes, aborts and endless loops of the importer
-// become InputErrors in bounded time (issue 13), and out-of-range indices are caught by validation.
+// become InputErrors in bounded time, and out-of-range indices are caught by validation.
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <csignal>

@@ -1,4 +1,4 @@
-// The Tracker on hostile but valid input (issue 13): far readings, sensor dropouts, sequences
+// The Tracker on hostile but valid input: far readings, sensor dropouts, sequences
 // without any data. Each gives a finite estimate or a clear error, never a NaN row.
 #include <catch2/catch.hpp>
 #include <depthtrack/error.hpp>

@@ -1,4 +1,4 @@
-// Input that used to be accepted silently and then gave garbage with exit 0 (issue 13): each is now
+// Input that used to be accepted silently and then gave garbage with exit 0: each is now
 // refused with an error naming the problem, or handled (a huge time gap is capped).
 #include <catch2/catch.hpp>
 #include <chrono>

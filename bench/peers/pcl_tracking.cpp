@@ -55,7 +55,7 @@ struct Options {
   double normal_weight = 0.0;     // NormalCoherence weight (0 = off)
   double roi_margin = 0.03;       // metres beyond the mesh's radius around the previous estimate
   double visible_tolerance = 0.005;
-  double alpha = 30.0;  // PCL's default 15; 30 measured a little better, 5, 20, 60, 120 worse (design notes)
+  double alpha = 30.0;  // PCL's default 15; 30 measured a little better, 5, 20, 60, 120 worse
   double motion_ratio = 0.25;
   // nanoflann, kdtree, octree (exact nearest pairs) or approx (PCL's approximate octree)
   std::string search = "nanoflann";

@@ -76,7 +76,7 @@ struct Refinement {
   // use (the filter's sigma is wide, so that the cloud does not collapse onto a wrong pose). Below 1 the
   // fit gives pixels a few millimetres off (edges, the model's own error) less say: at 0.5 the mean error
   // fell on every accuracy sequence, but under a moving occluder a frame now and then strayed further
-  // (docs/design-notes.md, "The fit's own noise"), so 1 stays the default. The covariance and the
+  // (docs/user/configuration.md, `refine.noise_scale`), so 1 stays the default. The covariance and the
   // confidence's band stay at the filter's sigma.
   double noise_scale = 1.0;
   RefineLayout layout = RefineLayout::Auto;  // device backends only: the same fit, laid out differently
@@ -91,8 +91,8 @@ struct LossModel {
   double found_outline = 0.5;  // and this share of its outline sees past its edge (TrackSupervisor::found)
 };
 
-// Where each particle keeps its per-pixel occlusion state (docs/design-notes.md, "The occlusion state
-// window"): a window of the working image, centred each frame on the previous estimate's projected mesh
+// Where each particle keeps its per-pixel occlusion state (docs/architecture.md, "The occlusion
+// state window"): a window of the working image, centred each frame on the previous estimate's projected mesh
 // centre and clamped inside the image. Its pixels keep the model's state from frame to frame; every other
 // pixel is taken as fresh (occlusion.initial at time 0, aged to now) and still adds its likelihood term,
 // so only the memory of occlusion outside the window is given up, for memory and traffic proportional to
@@ -160,7 +160,7 @@ struct TrackerConfig {
   // command fills this from $DEPTHTRACK_DEVICE when --backend is not given.
   std::string backend;
   // Who draws the device filters' pose atlas: Kernel (a compute kernel on the filter's device,
-  // the fastest everywhere measured: docs/design-notes.md), Gl (OpenGL, headless: EGL device,
+  // the fastest everywhere measured: docs/performance.md), Gl (OpenGL, headless: EGL device,
   // EGL surfaceless or OSMesa, gl_path picks one; the atlas reaches the kernels by CUDA-GL
   // interop, a GL-OpenCL bridge or a staged copy) or Cpu (the reference rasterizer on the host).
   Renderer renderer = Renderer::Kernel;

@@ -1,5 +1,5 @@
 """python/examples/track_ycbv_objects.py against `depthtrack track` on ycbv-0000's three objects: the
-same seeds and starts, so each object's last-frame ADD-S must be the CLI's (issue 10: within 0.5 mm), with
+same seeds and starts, so each object's last-frame ADD-S must be the CLI's (within 0.5 mm), with
 mutual occlusion on and off; without it, also each object's own single-object run. Skips without the data."""
 import csv
 import os

@@ -1,6 +1,6 @@
 // A CUDA timeline without Nsight Systems (the GPU machine has none): a CUPTI injection library that
 // records every kernel, copy and driver call with its start and end on CUPTI's one clock, and writes them
-// as CSV when the process exits. Not part of the build; made by hand and used by scripts/gpu-tile-variants.sh:
+// as CSV when the process exits. Not part of the build; made by hand and used by scripts/gpu/tile-variants.sh:
 //   g++ -O2 -shared -fPIC -I$CUDA/include scripts/probes/cuda_timeline.cpp -o libtimeline.so -L$CUDA/lib -lcupti \
 //     -Wl,-rpath,'$ORIGIN' && cp $CUDA/lib/libcupti.so.13 .   (the GPU machine has no CUPTI of its own)
 //   CUDA_INJECTION64_PATH=$PWD/libtimeline.so DT_TIMELINE_OUT=timeline.csv ./depthtrack_bench ...

@@ -4,7 +4,7 @@
 On the GPU machine, after a run with the cache on (XDG_CACHE_HOME=DIR): each cache entry holds the
 compiled program, PTX text for NVIDIA OpenCL, a cubin or PTX for CUDA (NVRTC). PTX goes through
 `ptxas -v` for the given architecture, cubins through `cuobjdump -res-usage`, so both backends' builds of
-one kernel source can be set side by side (issue 12 item 4: where CUDA and NVIDIA OpenCL differ).
+one kernel source can be set side by side (where CUDA and NVIDIA OpenCL differ).
 
 usage: kernel_resources.py CACHE_FOLDER [--arch sm_90]
 """

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Write variants of render_weigh's kernel text, each a folder for DEPTHTRACK_KERNEL_DIR (the files it
-changes; the rest stay the embedded ones), timed against the embedded text by scripts/gpu-tile-variants.sh.
+changes; the rest stay the embedded ones), timed against the embedded text by scripts/gpu/tile-variants.sh.
 Ablations leave one stage out, for timing only (their results are wrong by design): where a frame's weigh
 spends its time, measured as differences, on a GPU with no hardware counters. Candidates are changes
 that keep the results, tried before they are built into cl/.

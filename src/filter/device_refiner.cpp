@@ -40,12 +40,12 @@ size_t round_up(size_t n, size_t multiple) {
 //   handset (842 triangles): PoCL (2 cores) 1.14 / 1.34 ms; H200 CUDA 0.202 / 0.149; H200 NVIDIA
 //     OpenCL 0.168 / 0.176 (its launches cost more than CUDA's);
 //   YCB mug (16,384): PoCL 6.1 / 2.7; H200 CUDA 1.01 / 0.150; NVIDIA OpenCL 0.92 / 0.149.
-// (H200: the 19-launch layout with a fence in place of the rows' stamps, docs/design-notes.md.) The
+// (H200: the 19-launch layout with a fence in place of the rows' stamps.) The
 // threshold lies between the two meshes and was not measured itself. With 4 pixels a work-item in the
-// sums (5 rows for the last group, session 8), spread is faster on NVIDIA OpenCL too: handset 0.138 /
+// sums (5 rows for the last group), spread is faster on NVIDIA OpenCL too: handset 0.138 /
 // 0.158 ms spread / one group, the mug simplified to 3,196 triangles 0.153 / 0.271; so every GPU spreads.
-// Round 2, session 18: the spread layout's draw and sums in one group (one-launch) against spread,
-// untimed frame at 2,000 particles (H100, docs/design-notes.md): NVIDIA OpenCL handset 0.46-0.55 ->
+// Measured: the spread layout's draw and sums in one group (one-launch) against spread,
+// untimed frame at 2,000 particles (H100): NVIDIA OpenCL handset 0.46-0.55 ->
 // 0.38-0.42 ms, the mug simplified to 412 / 1,120 / 3,196 triangles 0.45-0.47 -> 0.42-0.43, 0.47-0.54 ->
 // 0.43-0.44, 0.48-0.54 -> 0.49-0.56 (its host's launches are the frame's cost there); CUDA, whose graphs make launches cheap, slower
 // for every mesh (handset 0.24-0.27 -> 0.24-0.32). PoCL (2 cores) handset refine_ms 0.79-0.81 against

@@ -68,7 +68,7 @@ RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceIn
 // the group's otherwise idle work-items (floor(group / triangles): a mesh of as many triangles as the group
 // has work-items is drawn whole, as before). Every slice repeats the triangle's set-up: with 2,048 items in
 // one group, about 10 a work-item for the handset's 842 triangles against 3-4, NVIDIA OpenCL's one-launch
-// fit at 80x60 took 0.19 -> 0.21 ms a frame (H100, round 2, session 27). At most one per row of the image
+// fit at 80x60 took 0.19 -> 0.21 ms a frame (H100). At most one per row of the image
 // and kMaxDrawSlices. 1 on a CPU, whose work-items run in turn anyway.
 constexpr size_t kFitDrawItems = 2048;
 constexpr unsigned kMaxDrawSlices = 64;

@@ -1,6 +1,6 @@
 #pragma once
 // ViSP's simulated depth sequences (the castle its model-based tracker's depth tutorials track, which
-// issue 8's precision figures were first measured on), converted into depthtrack's own layout so that
+// the refinement's precision was first measured on), converted into depthtrack's own layout so that
 // every tool reads them as it reads a synthesized sequence:
 //   Depth/Depth_NNNN.bin       uint32 height, uint32 width, then height * width uint16, all little-endian;
 //                              metres = value * metres_per_unit, 0 = background (no measurement)

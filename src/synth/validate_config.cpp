@@ -8,7 +8,7 @@
 namespace depthtrack::synth {
 
 namespace {
-// "name = value must ..." with the value printed as given (std::to_string would round 1e-5 to 0).
+// "name = value must ..." with the value printed as given (std::to_string would print 1e-5 as 0.000010).
 [[noreturn]] void fail(const std::string& name, double value, const std::string& requirement) {
   std::ostringstream message;
   message << "synthetic sequence: " << name << " = " << value << " " << requirement;

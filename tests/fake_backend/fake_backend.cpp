@@ -1,5 +1,5 @@
 // A compute backend that lives outside the library: host memory, no kernels. It shows what adding a backend
-// takes (docs/design-notes.md, "Layers, backends and the build"): this folder and one CMake line
+// takes (docs/architecture.md, "Adding a compute backend"): this folder and one CMake line
 // (tests/CMakeLists.txt); registered (test_backend_registry.cpp), the registry lists it, selection opens it,
 // and its errors list its devices.
 #include "fake_backend.hpp"

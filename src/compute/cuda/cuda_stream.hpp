@@ -9,7 +9,7 @@
 // ycbv-0000 objects at 2,000 particles over one, mutual occlusion off / on): 1.99x / 2.81x at one
 // priority, 1.86x / 2.47x ranked. Graphs launched into a stream take its priority.
 // DEPTHTRACK_CUDA_STREAM_PRIORITIES=0 or off (read when a queue is made): every stream at the default
-// priority, for comparison (scripts/gpu-small-frame.sh times both).
+// priority, for comparison (scripts/gpu/small-frame.sh times both).
 #include <cuda.h>
 
 namespace depthtrack::compute::cuda {

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# On the lent GPU machine, one call (about 8 minutes): the 2,000-particle frame (issue 12's 0.25 ms) and
-# three objects against one (issue 10's 1.5x), then the kernels' and the filter's equivalence tests on each
-# backend (TESTS=0 leaves them out), after where a single frame's enqueue goes (scripts/gpu-enqueue-profile.sh;
+# On the lent GPU machine, one call (about 8 minutes): the 2,000-particle frame (target 0.25 ms) and
+# three objects against one (target 1.5x), then the kernels' and the filter's equivalence tests on each
+# backend (TESTS=0 leaves them out), after where a single frame's enqueue goes (scripts/gpu/enqueue-profile.sh;
 # PROFILE=0 leaves it out). OLD=<commit> also builds that commit and alternates it with this tree, so both
 # see the same host (its tree from .devvariants/old where carried, prepared with `mkdir -p .devvariants/old
 # && git archive <commit> | tar -x -C .devvariants/old`, as the device's copy may hold no git history; else
@@ -41,7 +41,7 @@ for rep in $(seq "${REPS:-2}"); do
   done
 done
 # The handset's frames handed over 5 ms apart, as a sensor stream leaves the device idle between frames
-# (back to back, each frame's calls meet the last one's work: round 2, session 20's enqueue profile).
+# (back to back, each frame's calls meet the last one's work, as the enqueue profile found).
 for b in cuda opencl:nvidia; do
   echo "$b handset paced 5 ms: $(build-gpu/depthtrack_bench --backend "$b" --particles 2000 --frames 60 --no-global \
     --untimed-steps --pace 5 | grep -E "$rows" | cut -d, -f6,8 | tr '\n' ' ')"
@@ -54,7 +54,7 @@ for b in cuda opencl:nvidia; do
       cut -d, -f5-
   done
 done
-# CUDA's streams at one priority (as before round 2, session 20) against the queues' ranked priorities.
+# CUDA's streams at one priority (the earlier default) against the queues' ranked priorities.
 for priorities in off on; do
   echo "cuda three ycbv objects, stream priorities $priorities:"
   DEPTHTRACK_CUDA_STREAM_PRIORITIES=$priorities build-gpu/depthtrack_bench --multi-objects --backend cuda \
@@ -82,7 +82,7 @@ for b in cuda opencl:nvidia; do
   build-gpu/depthtrack_bench --multi-objects --backend "$b" --particles 2000 --untimed-steps \
     --simplify-error 0.0005 --frames 40 --refine-layout one-launch | grep -E "multi_object_ratio" | cut -d, -f5-
 done
-if [[ ${PROFILE:-1} == 1 ]]; then bash scripts/gpu-enqueue-profile.sh; fi
+if [[ ${PROFILE:-1} == 1 ]]; then bash scripts/gpu-run.sh enqueue-profile; fi
 [[ ${TESTS:-1} == 1 ]] || exit 0
 source scripts/lib/device-tests.sh
 device_tests build-gpu/tests/depthtrack_tests "[kernels],[refine],[device],[multi]"

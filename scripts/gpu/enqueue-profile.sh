@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # On the lent GPU machine (a few minutes): where DeviceFilter::enqueue_update's host time goes in the
 # single-object bench, whose enqueue took 0.17-0.22 ms on an H100 against 0.035-0.05 ms for the same
-# filter inside `--multi-objects` (round 2, session 20). A copy of this tree gets
+# filter inside `--multi-objects`. A copy of this tree gets
 # scripts/probes/enqueue-profile.patch (a stopwatch lap after each part of enqueue_update, their
 # medians and means printed per filter at exit when DT_ENQUEUE_PROFILE is set; not for the tree itself),
 # then the handset and the gelatin box run on both backends, and the several-object bench (ycbv-0000's
-# three objects: which object's enqueue costs what; round 2, session 22). Carry .devdeps, .device and .devdata.
+# three objects: which object's enqueue costs what). Carry .devdeps, .device and .devdata.
 set -uo pipefail
 source .device/enter .devdeps
 export DEPTHTRACK_DATA_DIR=$PWD/.devdata POCL_CACHE_DIR=/tmp/pocl-cache

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# On the lent GPU machine, one call (about 4 minutes): the open issues' GPU bars at the current commit.
-#   issue 8:  refine_share at 2,000 particles, 80x60, handset, auto layout (bar <= 30 %), per backend;
-#   issue 12: the 2,000-particle frame (bar 0.25 ms), 100,000 particles (CUDA / OpenCL throughput >= 1.0),
-#             1,000,000 particles, and the bars' 1,500,000 at 80x60 and 30,000 at 640x480 (<= 33 ms each),
-#             with the default (automatic) occlusion state window and over the whole image (`full`);
-#   issue 10: three ycbv objects against one (bar <= 1.5x), per backend;
+# On the lent GPU machine, one call (about 4 minutes): the GPU targets at the current commit.
+#   refinement:  refine_share at 2,000 particles, 80x60, handset, auto layout (bar <= 30 %), per backend;
+#   frame:       the 2,000-particle frame (bar 0.25 ms), 100,000 particles (CUDA / OpenCL throughput >= 1.0),
+#                1,000,000 particles, and the bars' 1,500,000 at 80x60 and 30,000 at 640x480 (<= 33 ms each),
+#                with the default (automatic) occlusion state window and over the whole image (`full`);
+#   objects:     three ycbv objects against one (bar <= 1.5x), per backend;
 #   and the [device] equivalence tests on each backend.
-# Carry .devdeps, .device and .devdata (as scripts/gpu-run.sh). Logs into $OUT; SKIP_TESTS=1 leaves out the tests.
+# Carry .devdeps, .device and .devdata (as scripts/gpu/tests.sh). Logs into $OUT; SKIP_TESTS=1 leaves out the tests.
 set -uo pipefail
 source .device/enter .devdeps
 out=${OUT:-/tmp/depthtrack-gpu}

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # On the lent GPU machine: one object against ycbv-0000's three in one process, 2,000 particles each at
-# 80x60, per backend (issue 10: three objects <= 1.5x one): `depthtrack_bench --multi-objects` prints
+# 80x60, per backend (target: three objects <= 1.5x one): `depthtrack_bench --multi-objects` prints
 # multi_object_ratio rows (the median frame of one object and of three, and three / one) with mutual
 # occlusion off and on, three over the mean of the three objects alone (multi_object_ratio_to_mean), the
 # same without the host thread pool, and each stage's median: untimed, as a

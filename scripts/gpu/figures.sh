@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# On the lent GPU machine, one call (about 5 minutes with carried binaries): every GPU bar of issue 12 at
-# this commit, and `depthtrack bench`'s figures.
+# On the lent GPU machine, one call (about 5 minutes with carried binaries): every GPU throughput and latency
+# target at this commit, and `depthtrack bench`'s figures.
 #   - `depthtrack bench` (full grid) on CUDA, NVIDIA OpenCL and the reference: results.json, the PNGs and
 #     the table, packed into $OUT/bench.tar.gz;
 #   - the 2,000-particle frame, depth in to pose out (update_ms), back to back and paced 5 ms apart, three times;
@@ -8,10 +8,10 @@
 #     were; NVIDIA OpenCL on an H100 draws 640x480's atlas in two and three turns);
 #   - `track` with 1,000,000 particles at 80x60 on a synthesized handset sequence: wall time, peak resident
 #     memory (/usr/bin/time -v), latency_ms against the bench's frame;
-#   - three ycbv-0000 objects against one (issue 10);
+#   - three ycbv-0000 objects against one;
 #   - with depthtrack_tests in BIN (or TESTS=1 when building), [device],[atlas],[kernels],[refine] on both.
-# BIN=<folder> holds depthtrack, depthtrack_bench and libdepthtrack.so.0 built elsewhere (the design notes,
-# "A short device budget"); without it this tree is built in build-gpu. Carry .devdeps, .device, .devdata.
+# BIN=<folder> holds depthtrack, depthtrack_bench and libdepthtrack.so.0 built elsewhere (a short device
+# budget); without it this tree is built in build-gpu. Carry .devdeps, .device, .devdata.
 set -uo pipefail
 source .device/enter .devdeps
 export DEPTHTRACK_DATA_DIR=$PWD/.devdata POCL_CACHE_DIR=/tmp/pocl-cache

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# On the lent GPU machine, one call: where CUDA and NVIDIA OpenCL differ on the same kernel source (issue 12
-# item 4). Times CASES on both backends with every step's row, keeping each backend's compiled programs in a
+# On the lent GPU machine, one call: where CUDA and NVIDIA OpenCL differ on the same kernel source.
+# Times CASES on both backends with every step's row, keeping each backend's compiled programs in a
 # fresh program cache, then sets the two builds of every kernel side by side (registers, spills, shared
 # memory: scripts/probes/kernel_resources.py) and packs the cache (PTX and cubins) into $OUT/programs.tar.gz.
 #   CASES  semicolon-separated depthtrack_bench argument lists (default: 2,000 and 100,000 particles, handset,

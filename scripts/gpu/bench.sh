@@ -2,7 +2,7 @@
 # On the lent GPU machine: build, run `depthtrack bench` (the full grid) on CUDA, NVIDIA OpenCL and the
 # reference, print the frame times side by side, and pack results.json and the PNG figures into one tar
 # in $OUT (the device tool brings back at most 8 files). Carry .devdeps, .device and .devdata as for
-# scripts/gpu-run.sh. BENCH_BACKENDS, BENCH_MAX_SECONDS and BENCH_FLAGS (e.g. --quick) adjust the run.
+# scripts/gpu/tests.sh. BENCH_BACKENDS, BENCH_MAX_SECONDS and BENCH_FLAGS (e.g. --quick) adjust the run.
 set -uo pipefail
 source .device/enter .devdeps
 out=${OUT:-/tmp/depthtrack-gpu}

@@ -11,7 +11,7 @@
 #   ROWS      the rows printed (an extended regex; all go to variants.csv).
 #   BACKENDS  default "cuda opencl:nvidia". TESTS: a Catch test spec run per backend on the embedded
 #             kernels afterwards (default: none). MULTI=1 adds `--multi-objects` per variant, every row.
-# Carry .devdeps, .device and .devdata (as scripts/gpu-run.sh), and any variant folders. Logs into $OUT.
+# Carry .devdeps, .device and .devdata (as scripts/gpu/tests.sh), and any variant folders. Logs into $OUT.
 set -uo pipefail
 source .device/enter .devdeps
 out=${OUT:-/tmp/depthtrack-gpu}

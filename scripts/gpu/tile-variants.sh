@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# On the GPU machine (issue 10's 1.5x): builds and kernel variants of the several-object frame, timed on
+# On the GPU machine (the three-object target, 1.5x one): builds and kernel variants of the several-object frame, timed on
 # ycbv-0000's three objects. Carry .devdeps, .device, .devdata and build-carry-bin with one folder per
 # build (depthtrack_bench and libdepthtrack.so.0 each, built on the CPU machine) and probe/libtimeline.so
 # (scripts/probes/cuda_timeline.cpp). VARIANTS names them: a build's folder ("new"), or a build and one

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# On the lent GPU machine (about 3 minutes with a carried binary): issue 12's depth in to pose out at
-# 2,000 particles, 80x60, and where issue 10's three objects spend their device time.
+# On the lent GPU machine (about 3 minutes with a carried binary): the depth in to pose out at
+# 2,000 particles, 80x60, and where three objects spend their device time.
 # - The handset's frame as the caller sees Tracker::update (update_ms) and as the filter times it
-#   (total_ms): frames drawn before the timed loop (the bench's default since round 2, session 21),
+#   (total_ms): frames drawn before the timed loop (the bench's default),
 #   drawn just before each update (--synthesize-inline, as before), and handed over 5 ms apart (--pace 5).
 # - Each ycbv-0000 mesh's timed steps on the synthetic sequence, the fit's looser stop (2e-4 m) timed.
 # - The three objects against one.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# On the lent GPU machine: the pose refinement's device layouts (issue 8's cost bar, issue 12's
-# latency): `depthtrack_bench` at 2,000 particles, 80x60, for the handset (842 triangles) and the YCB mug
+# On the lent GPU machine: the pose refinement's device layouts (their share of the frame and
+# its latency): `depthtrack_bench` at 2,000 particles, 80x60, for the handset (842 triangles) and the YCB mug
 # (16,384), each backend, refinement one-group / spread / one-launch / off, rows refine_ms, refine_share,
 # refine_iterations, total_ms; then the equivalence tests with refinement on each backend (every layout:
 # the "each refinement layout auto does not pick" test runs the ones auto leaves out). Carry .devdeps, .device
