@@ -10,6 +10,7 @@
 #define DT_STREAM_INIT 0u
 #define DT_STREAM_MOTION 1u
 #define DT_STREAM_RESAMPLE 2u
+#define DT_STREAM_RESIZE 3u /* the host filter changing its particle count */
 
 typedef struct {
   dt_u32 v[4];

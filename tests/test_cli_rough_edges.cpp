@@ -127,7 +127,7 @@ TEST_CASE("the benchmarks answer --help and refuse malformed numbers", "[cli][be
     return !program.empty();
   };
   for (const char* program : {"depthtrack_bench", "depthtrack_bench_atlas", "depthtrack_bench_soak",
-                              "depthtrack_bench_startup", "depthtrack_bench_error_axes"}) {
+                              "depthtrack_bench_startup", "depthtrack_bench_error_axes", "depthtrack_bench_budget"}) {
     if (!built(program)) continue;
     const auto [status, help] = run(program, "--help");
     INFO(program << "\n" << help);
@@ -157,6 +157,8 @@ TEST_CASE("the benchmarks answer --help and refuse malformed numbers", "[cli][be
       {"depthtrack_bench_error_axes", "--refine maybe", "--refine takes on or off, not 'maybe'"},
       {"depthtrack_bench_error_axes", "--sigma-angular -0.1", "--sigma-angular: '-0.1' is not a number >= 0"},
       {"depthtrack_bench_error_axes", "--fine-refit 320", "is not of the form WxH"},
+      {"depthtrack_bench_budget", "--budget-ms -1", "--budget-ms: '-1' is not a number >= 0"},
+      {"depthtrack_bench_budget", "--particles 0", "--particles: '0' is not a positive integer"},
   };
   for (const Case& c : cases) {
     if (!built(c.program)) continue;

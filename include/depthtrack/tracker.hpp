@@ -78,6 +78,7 @@ struct Estimate {
   TrackStatus status = TrackStatus::Tracking;
   bool recovered = false;   // this frame re-seeded the filter: a search while lost found it, or after a gap in time
   size_t search_poses = 0;  // poses this frame's global search scored (0: none ran)
+  int particles = 0;        // particles this frame's update ran with
 };
 
 // Spread of the initial particle cloud: per-axis standard deviations. The defaults are those of
@@ -90,6 +91,7 @@ struct InitialSpread {
 
 class FilterBackend;    // the per-backend implementation (reference, compute layer)
 class TrackSupervisor;  // confidence, loss and global search (backend-independent)
+class ParticleBudget;   // each frame's particle count under TrackerConfig::budget_ms
 
 class Tracker {
  public:
@@ -137,8 +139,15 @@ class Tracker {
   // Width and height of the occlusion state window of the last frame (TrackerConfig::occlusion_window:
   // the automatic one's size at the start and as it grew; the image's with `full`).
   std::pair<int, int> occlusion_window_size() const;
+  // The following frames run with `count` particles, 1 to config.particles (host backends, reference and
+  // cpu; the others throw InputError): the cloud is resampled to that many from its weights. With
+  // config.budget_ms the tracker sets the count itself before each frame (Estimate::particles says it),
+  // and this is an InputError.
+  void set_particle_count(int count);
 
  private:
+  // With a budget: the next frame's particle count, set on the filter; reseed: it starts a new cloud.
+  void choose_particle_count(bool reseed);
   // The working-resolution frame (decimated only when needed); InputError for a wrong size.
   const DepthImage& working_frame(const DepthImage& depth, DepthImage& storage) const;
   // The working-resolution frame of a view, read in one pass; InputError for a wrong size.
@@ -162,6 +171,7 @@ class Tracker {
   // own state only, may run on another thread, side by side with other trackers' assessments.
   Estimate collect_frame();
   void assess_frame(Estimate& e, const DepthImage& working);
+  void assess_confidence(Estimate& e, const DepthImage& working);  // assess_frame before the budget's look
   // The working-resolution depth of the mesh at `pose` (0 where it covers nothing): the confidence's
   // own rendering when it drew that very pose last, else drawn now by the same rasterizer.
   const std::vector<float>& silhouette(const Pose& pose);
@@ -178,6 +188,8 @@ class Tracker {
   std::shared_ptr<Device> device_;
   std::unique_ptr<FilterBackend> backend_;
   std::unique_ptr<TrackSupervisor> supervisor_;
+  std::unique_ptr<ParticleBudget> budget_;  // null without config.budget_ms
+  int particle_count_ = 0;                  // what the filter runs now
   Camera sensor_;
   Camera working_;
   TrackerConfig config_;

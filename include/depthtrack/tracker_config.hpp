@@ -139,6 +139,13 @@ struct TrackerConfig {
   // exact synthetic depth of a fine mesh, where the fit resolves tenths of a millimetre.
   double simplify_error = 0.0005;
   int particles = 200;
+  // Milliseconds a frame may take; 0 (the default): off, every frame runs `particles`. On (host backends:
+  // reference, cpu), each frame's particle count is chosen from the tracker's own measured times (per
+  // particle and per frame, smoothed) to finish within it, between min_particles and particles: fewer
+  // while the estimate is confident, up to what the budget affords when confidence falls, after a gap
+  // or while lost (src/tracker/particle_budget.hpp).
+  double budget_ms = 0;
+  int min_particles = 10;  // the fewest particles a budgeted frame runs
   // Device backends with the kernel renderer, where a tile does not fit in work-group memory (above
   // 80x60): the pose atlas holds at most this many particles' tiles (particles x pixels floats in all:
   // 37 GB for 30,000 particles at 640x480), drawn and weighed in turns, the same numbers as all at once.

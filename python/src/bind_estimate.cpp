@@ -71,6 +71,8 @@ void bind_estimate(py::module_& m) {
       .def_readonly("recovered", &Estimate::recovered,
                     "this frame re-seeded the filter: a search while lost found it, or after a gap in time")
       .def_readonly("search_poses", &Estimate::search_poses, "poses this frame's global search scored")
+      .def_readonly("particles", &Estimate::particles,
+                    "particles this frame ran with (config.budget_ms: the count the budget chose)")
       .def("__repr__", [](const Estimate& e) {
         const auto& t = e.pose.translation;
         return "Estimate(status=" + std::string(to_string(e.status)) + ", translation=[" + std::to_string(t.x()) +

@@ -68,6 +68,11 @@ class PyTracker {
     return tracker_.initialize_global(in.view, timestamp, hint);
   }
 
+  void set_particle_count(int count) {
+    const std::lock_guard lock(*mutex_);
+    tracker_.set_particle_count(count);
+  }
+
   Camera working_camera() const { return tracker_.working_camera(); }
   TrackerConfig config() const { return tracker_.config(); }
   std::string backend_description() const { return tracker_.backend_description(); }
@@ -103,6 +108,9 @@ void bind_tracker(py::module_& m) {
            py::arg("metres_per_unit") = py::none(), py::arg("box") = py::none(), py::arg("point") = py::none(),
            "Finds the object in this frame without a pose, inside box (u0, v0, u1, v1: inclusive sensor pixels) "
            "or near point (camera frame, metres) when given, and runs the frame")
+      .def("set_particle_count", &PyTracker::set_particle_count, py::arg("count"),
+           "The following frames run with count particles, 1 to config.particles (reference and cpu backends; "
+           "not with config.budget_ms, which chooses the count itself)")
       .def_property_readonly("working_camera", &PyTracker::working_camera)
       .def_property_readonly("config", &PyTracker::config, "a copy of the configuration")
       .def_property_readonly("backend_description", &PyTracker::backend_description)

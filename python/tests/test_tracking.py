@@ -106,6 +106,7 @@ def test_estimate_carries_every_field_of_the_cpp_estimate(scene):
     assert 1 <= e.effective_sample_size <= PARTICLES and e.ess == e.effective_sample_size
     assert e.max_log_likelihood >= e.mean_log_likelihood
     assert isinstance(e.resampled, bool) and isinstance(e.recovered, bool) and e.search_poses == 0
+    assert e.particles == PARTICLES  # no budget: the configured count
     assert 0.5 <= e.confidence <= 1 and e.status == "tracking"  # tracking means a supported pose
     ev = e.evidence  # what the confidence rests on: shares of the silhouette's measured pixels
     assert ev.pixels > 0 and ev.visible + ev.occluded + ev.contradicted == pytest.approx(1.0)
@@ -113,6 +114,40 @@ def test_estimate_carries_every_field_of_the_cpp_estimate(scene):
     t = e.timings
     assert t.total_ms > 0 and t.weigh_ms > 0 and t.refine_ms > 0 and t.search_ms == 0
     assert t.propagate_ms >= 0 and t.render_ms >= 0 and t.handoff_ms == 0 and t.resample_ms >= 0
+
+
+def test_a_budgeted_run_is_replayed_by_its_particle_counts(scene):
+    """budget_ms chooses each frame's count; the reference given the same counts by hand gives the same poses."""
+    scale = scene["manifest"]["metres_per_unit"]
+    cam = scene["manifest"]["camera"]
+    camera = depthtrack.Camera(cam["width"], cam["height"], cam["fx"], cam["fy"], cam["cx"], cam["cy"])
+    mesh = depthtrack.Mesh.load(str(scene["mesh"]))
+
+    def tracker(budget_ms, backend):
+        config = depthtrack.TrackerConfig()
+        config.particles, config.width, config.height, config.seed = PARTICLES, 80, 60, SEED
+        config.budget_ms, config.min_particles, config.backend = budget_ms, 5, backend
+        return depthtrack.Tracker(mesh, camera, config)
+
+    budgeted = tracker(1e4, "cpu:2")  # ample: the counts follow the estimate alone
+    first_pose = scene["first_pose"]
+    spread = dict(spread_metres=SPREAD_METRES, spread_radians=math.radians(SPREAD_DEGREES))
+    budgeted.initialize(first_pose, **spread)
+    chosen = [budgeted.update(units, t, metres_per_unit=scale) for t, units in scene["frames"]]
+    counts = [e.particles for e in chosen]
+    assert counts[0] == 5 and counts[1] == PARTICLES and len(set(counts)) >= 2
+    with pytest.raises(depthtrack.InputError, match="budget"):
+        budgeted.set_particle_count(7)
+    replay = tracker(0, "reference")
+    replay.set_particle_count(counts[0])
+    replay.initialize(first_pose, **spread)
+    for i, (t, units) in enumerate(scene["frames"]):
+        if i > 0:
+            replay.set_particle_count(counts[i])
+        e = replay.update(units, t, metres_per_unit=scale)
+        assert e.particles == counts[i]
+        np.testing.assert_array_equal(e.pose, chosen[i].pose)
+        assert e.confidence == chosen[i].confidence
 
 
 def test_initialize_global_with_a_box_gives_the_cli_pose(scene, tmp_path):

@@ -33,7 +33,19 @@ void TrackerOptions::add_to(CLI::App& command) {
   gl_option = command.add_option("--gl", flags.gl_path,
                                  "The gl renderer's headless OpenGL: auto (EGL device, EGL surfaceless, then OSMesa), "
                                  "egl-device, egl-surfaceless or osmesa; default: $DEPTHTRACK_GL, else auto");
-  particles_option = command.add_option("--particles", flags.particles, "Number of particles")->capture_default_str();
+  particles_option =
+      command
+          .add_option("--particles", flags.particles, "Number of particles (with --budget-ms: the most a frame runs)")
+          ->capture_default_str();
+  budget_option = command
+                      .add_option("--budget-ms", flags.budget_ms,
+                                  "Milliseconds a frame may take (reference and cpu backends): each frame's particle "
+                                  "count is chosen from the tracker's measured times, fewer while the estimate is "
+                                  "confident, more when it is not; 0: off, every frame runs --particles")
+                      ->capture_default_str();
+  min_particles_option =
+      command.add_option("--min-particles", flags.min_particles, "With --budget-ms: the fewest particles a frame runs")
+          ->capture_default_str();
   resolution_option =
       command
           .add_option("--resolution", resolution,
@@ -81,6 +93,8 @@ TrackerConfig TrackerOptions::resolve() const {
   if (!given(gl_option) && c.gl_path == "auto") c.gl_path = gl_path_from_environment();
   if (given(renderer_option)) c.renderer = renderer_from_string(renderer);
   if (given(particles_option)) c.particles = flags.particles;
+  if (given(budget_option)) c.budget_ms = flags.budget_ms;
+  if (given(min_particles_option)) c.min_particles = flags.min_particles;
   if (given(resolution_option)) std::tie(c.width, c.height) = parse_resolution(resolution);
   if (given(occlusion_option)) c.occlusion_storage = occlusion_storage_from_string(occlusion);
   if (given(occlusion_window_option)) {

@@ -21,7 +21,7 @@ struct TrackerOptions {
   CLI::Option *backend_option = nullptr, *renderer_option = nullptr, *gl_option = nullptr, *particles_option = nullptr,
               *resolution_option = nullptr, *occlusion_option = nullptr, *occlusion_window_option = nullptr,
               *refine_option = nullptr, *refine_iterations_option = nullptr, *seed_option = nullptr,
-              *simplify_option = nullptr;
+              *simplify_option = nullptr, *budget_option = nullptr, *min_particles_option = nullptr;
 
   void add_to(CLI::App& command);
   // The --config file's configuration (the defaults without one) with the flags given on the command

@@ -95,6 +95,10 @@ std::string TrackerConfig::resolved_backend() const {
 
 void TrackerConfig::validate() const {
   require(particles > 0, "particle count " + std::to_string(particles) + " must be at least 1");
+  require(std::isfinite(budget_ms) && budget_ms >= 0, "frame budget must be finite and >= 0 ms (0: off)");
+  require(min_particles >= 1 && (budget_ms == 0 || min_particles <= particles),
+          "min particles " + std::to_string(min_particles) +
+              " must be in [1, particles = " + std::to_string(particles) + "]");
   require(atlas_particles >= 0,
           "atlas particles " + std::to_string(atlas_particles) + " must not be negative (0: as many as fit)");
   require(std::isfinite(simplify_error) && simplify_error >= 0 && simplify_error <= 1,

@@ -143,7 +143,10 @@ inline auto fields_of(const TrackerConfig*) {
       field("simplify_error", &S::simplify_error, "m",
             "the mesh is drawn simplified to within this distance of its surface (m; at most 2 % of its radius); "
             "0: as given"),
-      field("particles", &S::particles, "particles", "number of particles"),
+      field("particles", &S::particles, "particles", "number of particles (with budget_ms: the most a frame runs)"),
+      field("budget_ms", &S::budget_ms, "ms",
+            "host backends: the particle count follows each frame's need within this many ms a frame; 0: off"),
+      field("min_particles", &S::min_particles, "particles", "with budget_ms: the fewest particles a frame runs"),
       field("atlas_particles", &S::atlas_particles, "particles",
             "kernel renderer above 80x60: the pose atlas holds at most this many tiles, drawn and weighed in "
             "turns; 0: as many as one device buffer holds"),

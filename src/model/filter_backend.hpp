@@ -50,6 +50,18 @@ class FilterBackend {
     return e;
   }
   virtual std::string description() const = 0;
+  // The working-resolution depth of the drawn mesh at `pose` when the last update drew exactly that pose
+  // (the host filters' refinement, whose last step was kept), else null: the confidence then need not
+  // draw it again. Valid until the next update.
+  virtual const std::vector<float>* rendering_of(const Pose&) const { return nullptr; }
+  // The following updates run with `count` particles, 1 to the configuration's `particles`: the cloud is
+  // drawn from its current weights by systematic resampling (its own random stream), every child then
+  // weighing the same. The same count is nothing. Only the host filters change their count; the others
+  // throw InputError.
+  virtual void set_particle_count(int count) {
+    throw InputError(description() + " runs a fixed particle count (" + std::to_string(count) +
+                     " asked): changing it (set_particle_count, budget_ms) needs the reference or cpu backend");
+  }
   // Width and height of the occlusion state window the last frame kept (TrackerConfig::occlusion_window;
   // 0 x 0 for a filter without one).
   virtual std::pair<int, int> occlusion_window_size() const { return {0, 0}; }

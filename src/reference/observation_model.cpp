@@ -16,13 +16,11 @@ BandSide band_side(const ObservationModel& m, double pixel_sigmas, double y, dou
   return y > y_hat + band ? BandSide::Behind : BandSide::Within;
 }
 
-PixelDensities pixel_densities(const ObservationModel& m, double y, double y_hat) {
+ObservedDepth observed_depth(const ObservationModel& m, double y) {
   const double sigma = depth_sigma(m, y);
   const double tail = m.tail_weight / m.max_depth;
   const double keep = 1.0 - m.tail_weight;
   const double lambda = m.occluder_rate;
-  const double z = (y - y_hat) / sigma;
-  const double gaussian = std::exp(-0.5 * z * z) / (std::sqrt(2.0 * std::numbers::pi) * sigma);
   // The exponential occluder prior on [0, infinity) convolved with the sensor's gaussian, what a pixel
   // without the object sees: lambda exp(exponent). exp overflows once sigma grows large (y beyond
   // ~250 m in double, ~150 m in float), so all three densities are stored divided by exp(log_scale):
@@ -30,12 +28,35 @@ PixelDensities pixel_densities(const ObservationModel& m, double y, double y_hat
   const double exponent = lambda * (0.5 * lambda * sigma * sigma - y);
   const double log_scale = std::max(0.0, exponent);
   const double scale = std::exp(-log_scale);
-  const double background = keep * lambda * std::exp(exponent - log_scale);
+  ObservedDepth o;
+  o.y = y;
+  o.sigma = sigma;
+  o.gaussian_norm = std::sqrt(2.0 * std::numbers::pi) * sigma;
+  o.erfc_shift = lambda * sigma * sigma;
+  o.erfc_width = std::numbers::sqrt2 * sigma;
+  o.scale = scale;
+  o.log_scale = log_scale;
+  o.tail_scaled = tail * scale;
+  o.background = keep * lambda * std::exp(exponent - log_scale);
+  return o;
+}
+
+PixelDensities pixel_densities(const ObservationModel& m, const ObservedDepth& o, double y_hat) {
+  const double tail = m.tail_weight / m.max_depth;
+  const double keep = 1.0 - m.tail_weight;
+  const double lambda = m.occluder_rate;
+  const double z = (o.y - y_hat) / o.sigma;
+  const double gaussian = std::exp(-0.5 * z * z) / o.gaussian_norm;
   // The same prior on [0, y_hat]: the background's times the part of it in front of y_hat,
   // erfc(-x) / (2 (1 - exp(-lambda y_hat))), which no longer overflows.
-  const double in_front = std::erfc(-(y_hat - y + lambda * sigma * sigma) / (std::numbers::sqrt2 * sigma)) /
-                          (-2.0 * std::expm1(-lambda * y_hat));
-  return {(tail + keep * gaussian) * scale, tail * scale + background * in_front, tail * scale + background, log_scale};
+  const double in_front =
+      std::erfc(-(y_hat - o.y + o.erfc_shift) / o.erfc_width) / (-2.0 * std::expm1(-lambda * y_hat));
+  return {(tail + keep * gaussian) * o.scale, o.tail_scaled + o.background * in_front, o.tail_scaled + o.background,
+          o.log_scale};
+}
+
+PixelDensities pixel_densities(const ObservationModel& m, double y, double y_hat) {
+  return pixel_densities(m, observed_depth(m, y), y_hat);
 }
 
 double pixel_log_ratio(const PixelDensities& d, double p) {

@@ -69,7 +69,9 @@ PoseRefiner::PoseRefiner(const Mesh& mesh, const Camera& camera, const TrackerCo
 NormalEquations PoseRefiner::normal_equations(const Pose& pose, const DepthImage& depth,
                                               std::span<const double> occlusion) const {
   NormalEquations e;
+  rendered_pose_.reset();  // until the rendering is done
   const PixelBox box = rasterizer_.render(pose, rendered_, triangle_ids_);
+  rendered_pose_ = pose;
   const Eigen::Matrix3d rotation = pose.rotation.toRotationMatrix();
   const Eigen::Vector3d centre = pose.apply(centre_);
   const ObservationModel& m = config_.observation;
@@ -100,6 +102,12 @@ NormalEquations PoseRefiner::normal_equations(const Pose& pose, const DepthImage
   }
   e.h = e.h.selfadjointView<Eigen::Lower>();
   return e;
+}
+
+const std::vector<float>* PoseRefiner::rendering_of(const Pose& pose) const {
+  const bool same = rendered_pose_ && rendered_pose_->translation == pose.translation &&
+                    rendered_pose_->rotation.coeffs() == pose.rotation.coeffs();
+  return same ? &rendered_ : nullptr;
 }
 
 RefinedPose PoseRefiner::refine(const Pose& start, const DepthImage& depth, std::span<const double> occlusion) const {

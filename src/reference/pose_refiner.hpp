@@ -9,6 +9,7 @@
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/pose.hpp>
 #include <depthtrack/tracker_config.hpp>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -66,6 +67,9 @@ class PoseRefiner {
   // log-likelihood (more than rounding could); it stops early when the next step would move no mesh
   // point more than config.refine.converged_motion. The result is the last pose kept.
   RefinedPose refine(const Pose& start, const DepthImage& depth, std::span<const double> occlusion) const;
+  // The depth the last normal_equations drew, when it drew exactly `pose` (a refined pose whose last
+  // step was kept): Rasterizer::render's at that pose, bit for bit. Null otherwise.
+  const std::vector<float>* rendering_of(const Pose& pose) const;
 
  private:
   TrackerConfig config_;
@@ -76,6 +80,7 @@ class PoseRefiner {
   std::vector<float> planes_;            // per triangle: object-frame unit normal and offset
   mutable std::vector<float> rendered_;  // scratch
   mutable std::vector<int> triangle_ids_;
+  mutable std::optional<Pose> rendered_pose_;  // what rendered_ holds
 };
 
 // The step the damped system gives: (h + lambda diag(h)) step = g; zero when it is singular.

@@ -34,6 +34,46 @@ inline bool owns_edge(double au, double av, double bu, double bv) {
   const double dv = bv - av, du = bu - au;
   return dv < 0 || (dv == 0 && du > 0);
 }
+
+// Where a triangle can cover pixel centres: its doubled signed area (oriented as the vertices come) and
+// the box of pixels around it.
+struct Cover {
+  double area;
+  int u_min, u_max, v_min, v_max;
+};
+
+// ceil(lowest) clamped to [0, size] and floor(highest) to [-1, size - 1], compared before the conversion
+// to int (undefined beyond int's range): a box off the image comes out empty whatever the vertices'
+// magnitude. The vertices are finite (a non-finite one makes the area non-finite), and within the clamps
+// the conversion's truncation is the floor, so no ceil or floor is needed.
+inline int first_pixel(double lowest, int size) {
+  if (!(lowest > 0)) return 0;
+  if (lowest >= size) return size;
+  const int t = static_cast<int>(lowest);
+  return t + (static_cast<double>(t) < lowest ? 1 : 0);
+}
+inline int last_pixel(double highest, int size) {
+  if (!(highest >= 0)) return -1;
+  if (highest >= size - 1) return size - 1;
+  return static_cast<int>(highest);
+}
+
+// False for a triangle that covers no pixel centre for sure: of zero or non-finite area, facing away
+// (cull), or with no pixel centre in its box. At 80x60 that is most triangles of a fine mesh, so this
+// runs inline, before anything else is computed.
+template <typename Vertex>
+inline bool may_cover(const Vertex& a, const Vertex& b, const Vertex& c, bool cull, int width, int height,
+                      Cover& cover) {
+  cover.area = edge(a.u, a.v, b.u, b.v, c.u, c.v);
+  // Facing the camera, a triangle wound outward runs clockwise in the image (v down): area < 0.
+  if (cover.area == 0 || !std::isfinite(cover.area) || (cull && cover.area > 0)) return false;
+  cover.u_min = first_pixel(std::min(std::min(a.u, b.u), c.u), width);
+  cover.u_max = last_pixel(std::max(std::max(a.u, b.u), c.u), width);
+  if (cover.u_min > cover.u_max) return false;
+  cover.v_min = first_pixel(std::min(std::min(a.v, b.v), c.v), height);
+  cover.v_max = last_pixel(std::max(std::max(a.v, b.v), c.v), height);
+  return cover.v_min <= cover.v_max;
+}
 }  // namespace
 
 void Rasterizer::split_over(std::shared_ptr<ThreadPool> pool) {
@@ -62,16 +102,18 @@ void Rasterizer::draw_triangles(size_t begin, size_t end, std::span<float> depth
   for (size_t index = begin; index < end; ++index) {
     const Eigen::Vector3i& t = triangles_[index];
     const int id = static_cast<int>(index);
-    const std::array<Eigen::Vector3d, 3> p{transformed_[static_cast<size_t>(t[0])],
-                                           transformed_[static_cast<size_t>(t[1])],
-                                           transformed_[static_cast<size_t>(t[2])]};
-    const int in_front = (p[0].z() >= near_) + (p[1].z() >= near_) + (p[2].z() >= near_);
+    const size_t i0 = static_cast<size_t>(t[0]), i1 = static_cast<size_t>(t[1]), i2 = static_cast<size_t>(t[2]);
+    const int in_front =
+        (transformed_[i0].z() >= near_) + (transformed_[i1].z() >= near_) + (transformed_[i2].z() >= near_);
     if (in_front == 0) continue;
     if (in_front == 3) {
-      rasterize_triangle(screen_[static_cast<size_t>(t[0])], screen_[static_cast<size_t>(t[1])],
-                         screen_[static_cast<size_t>(t[2])], id, depth, triangle_ids, box);
+      Cover cover;
+      if (may_cover(screen_[i0], screen_[i1], screen_[i2], cull_back_faces_, camera_.width, camera_.height, cover))
+        fill_triangle(screen_[i0], screen_[i1], screen_[i2], cover.area, cover.u_min, cover.u_max, cover.v_min,
+                      cover.v_max, id, depth, triangle_ids, box);
       continue;
     }
+    const std::array<Eigen::Vector3d, 3> p{transformed_[i0], transformed_[i1], transformed_[i2]};
     // Cut the triangle at z = near (Sutherland-Hodgman against one plane): 3 or 4 vertices remain.
     std::array<Eigen::Vector3d, 4> clipped;
     int n = 0;
@@ -139,30 +181,22 @@ PixelBox Rasterizer::render_split(const Eigen::Matrix3d& rotation, const Eigen::
   return box;
 }
 
-void Rasterizer::rasterize_triangle(const ScreenVertex& a, const ScreenVertex& b_in, const ScreenVertex& c_in,
-                                    int triangle, std::span<float> depth, std::span<int> triangle_ids,
-                                    PixelBox& box) const {
+void Rasterizer::rasterize_triangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, int triangle,
+                                    std::span<float> depth, std::span<int> triangle_ids, PixelBox& box) const {
+  Cover cover;
+  if (may_cover(a, b, c, cull_back_faces_, camera_.width, camera_.height, cover))
+    fill_triangle(a, b, c, cover.area, cover.u_min, cover.u_max, cover.v_min, cover.v_max, triangle, depth,
+                  triangle_ids, box);
+}
+
+void Rasterizer::fill_triangle(const ScreenVertex& a, const ScreenVertex& b_in, const ScreenVertex& c_in, double area,
+                               int u_min, int u_max, int v_min, int v_max, int triangle, std::span<float> depth,
+                               std::span<int> triangle_ids, PixelBox& box) const {
   ScreenVertex b = b_in, c = c_in;
-  double area = edge(a.u, a.v, b.u, b.v, c.u, c.v);
-  // Facing the camera, a triangle wound outward runs clockwise in the image (v down): area < 0.
-  if (area == 0 || !std::isfinite(area) || (cull_back_faces_ && area > 0)) return;
   if (area < 0) {  // give every triangle drawn the same orientation
     std::swap(b, c);
     area = -area;
   }
-  // Clamped to [-1, size] before the conversion to int, which is undefined beyond int's range: a box
-  // off the image comes out empty (u_min > u_max) whatever the vertices' magnitude.
-  auto first = [](double lowest, int size) {
-    return static_cast<int>(std::clamp(std::ceil(lowest), 0.0, static_cast<double>(size)));
-  };
-  auto last = [](double highest, int size) {
-    return static_cast<int>(std::clamp(std::floor(highest), -1.0, static_cast<double>(size - 1)));
-  };
-  const int u_min = first(std::min({a.u, b.u, c.u}), camera_.width);
-  const int u_max = last(std::max({a.u, b.u, c.u}), camera_.width);
-  const int v_min = first(std::min({a.v, b.v, c.v}), camera_.height);
-  const int v_max = last(std::max({a.v, b.v, c.v}), camera_.height);
-  if (u_min > u_max || v_min > v_max) return;
   const bool own_bc = owns_edge(b.u, b.v, c.u, c.v), own_ca = owns_edge(c.u, c.v, a.u, a.v),
              own_ab = owns_edge(a.u, a.v, b.u, b.v);
   for (int v = v_min; v <= v_max; ++v) {

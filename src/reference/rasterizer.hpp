@@ -58,6 +58,11 @@ class Rasterizer {
   ScreenVertex to_screen(const Eigen::Vector3d& p) const;
   void rasterize_triangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, int triangle,
                           std::span<float> depth, std::span<int> triangle_ids, PixelBox& box) const;
+  // rasterize_triangle's pixels, once the triangle's area and pixel box [u_min, u_max] x [v_min, v_max]
+  // say it may cover some.
+  void fill_triangle(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, double area, int u_min,
+                     int u_max, int v_min, int v_max, int triangle, std::span<float> depth, std::span<int> triangle_ids,
+                     PixelBox& box) const;
 
   std::vector<Eigen::Vector3d> vertices_;
   std::vector<Eigen::Vector3i> triangles_;

@@ -53,9 +53,9 @@ void check_host_memory(const TrackerConfig& config, const Camera& camera, const 
   if (memory.available > 0 && needed > 0.8 * memory.available) {
     std::ostringstream m;
     m.precision(3);
-    m << model::particles_and_window(config, camera, window) << " need " << needed / (1 << 30) << " GiB of memory for the reference filter but this machine has "
-      << memory.available / (1 << 30) << " GiB; at most about "
-      << static_cast<long long>(0.8 * memory.available / per_particle) << " particles fit";
+    m << model::particles_and_window(config, camera, window) << " need " << needed / (1 << 30)
+      << " GiB of memory for the reference filter but this machine has " << memory.available / (1 << 30)
+      << " GiB; at most about " << static_cast<long long>(0.8 * memory.available / per_particle) << " particles fit";
     throw InputError(m.str());
   }
 }
@@ -115,7 +115,8 @@ void ReferenceFilter::initialize_modes(std::span<const Pose> modes, const Initia
   window_ = next_window_ = model::start_state_window(config_, extent_, modes.front(), camera_);
   check_host_memory(config_, camera_, window_);  // an automatic window's size is known now
   const size_t kept = particles_.size() * window_.pixels();
-  if (config_.occlusion_storage != OcclusionStorage::Off) occlusion_.assign(kept, static_cast<float>(config_.occlusion.initial));
+  if (config_.occlusion_storage != OcclusionStorage::Off)
+    occlusion_.assign(kept, static_cast<float>(config_.occlusion.initial));
   if (config_.occlusion_storage == OcclusionStorage::PerPixelTime) occlusion_time_.assign(kept, 0.0f);
   frame_ = 0;
   time_ = 0;
@@ -177,7 +178,8 @@ double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double
         p = model::propagate_occlusion(config_.occlusion, occlusion[j], time_ - occlusion_time[j]);
       else if (config_.occlusion_storage == OcclusionStorage::GlobalTime)
         p = occlusion[j];
-      const PixelDensities d = pixel_densities(config_.observation, y, y_hat);
+      const PixelDensities d = kept ? pixel_densities(config_.observation, observed_[j], y_hat)
+                                    : pixel_densities(config_.observation, y, y_hat);
       const double term = pixel_log_ratio(d, p);
       if (config_.refine.enabled) lane.weighing.push_back({k, p});
       log_likelihood += term;
@@ -222,25 +224,42 @@ void ReferenceFilter::move_state_window() {
 void ReferenceFilter::resample(const std::vector<double>& normalized) {
   const dt_philox4 words = dt_random_words(config_.seed, 0u, frame_, DT_STREAM_RESAMPLE, 0u);
   last_parents_ = systematic_resample(normalized, dt_uniform01(words.v[0]));
-  const size_t pixels = window_.pixels();
-  // Children are gathered into the scratch copies, which then become the state (one copy, no allocation).
-  auto gather = [&](std::vector<float>& state, std::vector<float>& scratch) {
+  gather(last_parents_);
+}
+
+void ReferenceFilter::gather(const std::vector<int>& parents) {
+  const size_t pixels = window_.pixels(), children = parents.size();
+  // Children are gathered into the scratch copies, which then become the state (one copy; no allocation
+  // while the count stays).
+  auto gather_rows = [&](std::vector<float>& state, std::vector<float>& scratch) {
     if (state.empty()) return;
-    scratch.resize(state.size());
-    for_chunks(particles_.size(), [&](Lane&, size_t, size_t first, size_t last) {
+    scratch.resize(children * pixels);
+    for_chunks(children, [&](Lane&, size_t, size_t first, size_t last) {
       for (size_t child = first; child < last; ++child)
-        std::copy_n(state.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(last_parents_[child]) * pixels),
-                    pixels, scratch.begin() + static_cast<std::ptrdiff_t>(child * pixels));
+        std::copy_n(state.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(parents[child]) * pixels), pixels,
+                    scratch.begin() + static_cast<std::ptrdiff_t>(child * pixels));
     });
     state.swap(scratch);
   };
-  gather(occlusion_, scratch_occlusion_);
-  gather(occlusion_time_, scratch_occlusion_time_);
-  scratch_particles_.resize(particles_.size());
-  for (size_t child = 0; child < particles_.size(); ++child)
-    scratch_particles_[child] = particles_[static_cast<size_t>(last_parents_[child])];
+  gather_rows(occlusion_, scratch_occlusion_);
+  gather_rows(occlusion_time_, scratch_occlusion_time_);
+  scratch_particles_.resize(children);
+  for (size_t child = 0; child < children; ++child)
+    scratch_particles_[child] = particles_[static_cast<size_t>(parents[child])];
   particles_.swap(scratch_particles_);
-  std::fill(log_weights_.begin(), log_weights_.end(), 0.0);
+  log_weights_.assign(children, 0.0);
+}
+
+void ReferenceFilter::set_particle_count(int count) {
+  if (count < 1 || count > config_.particles)
+    throw InputError("particle count " + std::to_string(count) +
+                     " must be in [1, particles = " + std::to_string(config_.particles) + "]");
+  if (static_cast<size_t>(count) == particles_.size()) return;
+  // The weights the next resampling would draw from; frame_ is the next update's, so the words differ
+  // from any resampling's.
+  const WeightSummary weights = summarize_log_weights(log_weights_);
+  const dt_philox4 words = dt_random_words(config_.seed, 0u, frame_, DT_STREAM_RESIZE, 0u);
+  gather(systematic_resample(weights.normalized, dt_uniform01(words.v[0]), static_cast<size_t>(count)));
 }
 
 // The prior, not the posterior: the posterior already holds this frame's evidence as seen from the
@@ -282,6 +301,17 @@ size_t ReferenceFilter::weigh_all(const DepthImage& depth, double dt, Estimate& 
   last_log_likelihoods_.resize(particles_.size());
   last_magnitudes_.resize(particles_.size());
   for (Lane& lane : lanes_) lane.render_ms = 0;
+  // The state window's valid pixels' observed-depth terms, for every particle (weigh_particle).
+  observed_.resize(window_.pixels());
+  for_chunks(static_cast<size_t>(window_.height), [&](Lane&, size_t, size_t first, size_t last) {
+    for (size_t row = first; row < last; ++row) {
+      const int v = window_.v0 + static_cast<int>(row);
+      for (int u = window_.u0; u < window_.u0 + window_.width; ++u) {
+        const float y = depth.at(u, v);
+        if (DepthImage::is_valid(y)) observed_[window_.index(u, v)] = observed_depth(config_.observation, y);
+      }
+    }
+  });
   chunk_heaviest_.resize(chunk_count(particles_.size()));
   for_chunks(particles_.size(), [&](Lane& lane, size_t c, size_t first, size_t last) {
     ChunkHeaviest& mine = chunk_heaviest_[c];

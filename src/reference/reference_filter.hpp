@@ -13,6 +13,7 @@
 #include "model/filter_backend.hpp"
 #include "model/particle.hpp"
 #include "model/state_window.hpp"
+#include "reference/observation_model.hpp"
 #include "reference/pose_refiner.hpp"
 #include "reference/pose_score.hpp"
 #include "reference/rasterizer.hpp"
@@ -33,6 +34,8 @@ class ReferenceFilter final : public FilterBackend {
   Estimate update(const DepthImage& depth, double dt) override;
   std::string description() const override;
   std::pair<int, int> occlusion_window_size() const override { return {window_.width, window_.height}; }
+  void set_particle_count(int count) override;
+  const std::vector<float>* rendering_of(const Pose& pose) const override { return refiner_.rendering_of(pose); }
 
   // What the last update computed, for comparing backends: per particle, before resampling.
   const std::vector<double>& last_log_likelihoods() const { return last_log_likelihoods_; }
@@ -89,6 +92,8 @@ class ReferenceFilter final : public FilterBackend {
   // as a sequential scan does), whose priors end in priors_; returns it.
   size_t weigh_all(const DepthImage& depth, double dt, Estimate& e);
   void resample(const std::vector<double>& normalized);
+  // Every particle and its occlusion rows replaced by parents[child]'s (as many children as parents has).
+  void gather(const std::vector<int>& parents);
   // Moves every particle's occlusion rows to next_window_: pixels new to the window start fresh.
   void move_state_window();
   // A fresh pixel's occlusion probability now: occlusion.initial at time 0, aged to time_.
@@ -121,6 +126,7 @@ class ReferenceFilter final : public FilterBackend {
   std::vector<float> scratch_occlusion_, scratch_occlusion_time_;  // resampling's gather targets
   std::vector<PixelPrior> priors_;                                 // the heaviest particle's
   std::vector<ChunkHeaviest> chunk_heaviest_;                      // weigh_all's, per chunk
+  std::vector<ObservedDepth> observed_;  // this frame's, per state window pixel with a valid depth
 
   std::vector<double> last_log_likelihoods_, last_magnitudes_;
   std::vector<int> last_parents_;

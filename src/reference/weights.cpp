@@ -24,12 +24,16 @@ WeightSummary summarize_log_weights(std::span<const double> log_weights) {
 }
 
 std::vector<int> systematic_resample(std::span<const double> normalized, double u) {
+  return systematic_resample(normalized, u, normalized.size());
+}
+
+std::vector<int> systematic_resample(std::span<const double> normalized, double u, size_t children) {
   const size_t n = normalized.size();
-  std::vector<int> parents(n);
+  std::vector<int> parents(children);
   double cumulative = normalized[0];
   size_t parent = 0;
-  for (size_t child = 0; child < n; ++child) {
-    const double position = (u + static_cast<double>(child)) / static_cast<double>(n);
+  for (size_t child = 0; child < children; ++child) {
+    const double position = (u + static_cast<double>(child)) / static_cast<double>(children);
     while (cumulative <= position && parent + 1 < n) cumulative += normalized[++parent];
     parents[child] = static_cast<int>(parent);
   }

@@ -17,5 +17,7 @@ WeightSummary summarize_log_weights(std::span<const double> log_weights);
 // Low-variance resampling: child j takes the first parent whose cumulative weight exceeds
 // (u + j) / N, u in [0, 1). Returns each child's parent index.
 std::vector<int> systematic_resample(std::span<const double> normalized, double u);
+// The same with `children` children ((u + j) / children), from N parents: what changes the particle count.
+std::vector<int> systematic_resample(std::span<const double> normalized, double u, size_t children);
 
 }  // namespace depthtrack::reference

@@ -10,7 +10,12 @@ SilhouetteShares silhouette_shares(const reference::Rasterizer& rasterizer, cons
                                    double pixel_sigmas, const Pose& pose, const DepthImage& depth,
                                    std::span<float> scratch) {
   const reference::PixelBox box = rasterizer.render(pose, scratch);
-  const int width = rasterizer.camera().width;
+  return silhouette_shares(scratch, box, model, pixel_sigmas, depth);
+}
+
+SilhouetteShares silhouette_shares(std::span<const float> scratch, const reference::PixelBox& box,
+                                   const ObservationModel& model, double pixel_sigmas, const DepthImage& depth) {
+  const int width = depth.width();
   int visible = 0, occluded = 0, contradicted = 0, missing = 0;
   double visible_squares = 0;
   for (int v = box.v0; v < box.v1; ++v)
@@ -38,7 +43,7 @@ SilhouetteShares silhouette_shares(const reference::Rasterizer& rasterizer, cons
       }
     }
   // The outline: each uncovered 4-neighbour of a covered pixel, once per covered neighbour.
-  const int height = rasterizer.camera().height;
+  const int height = depth.height();
   int outline = 0, past_edge = 0, nearer = 0;
   for (int v = box.v0; v < box.v1; ++v)
     for (int u = box.u0; u < box.u1; ++u) {

@@ -18,5 +18,9 @@ struct SilhouetteShares : PoseEvidence {
 SilhouetteShares silhouette_shares(const reference::Rasterizer& rasterizer, const ObservationModel& model,
                                    double pixel_sigmas, const Pose& pose, const DepthImage& depth,
                                    std::span<float> scratch);
+// The same from a rendering already drawn (depth's size; 0 where the mesh covers nothing) whose covered
+// pixels lie in box.
+SilhouetteShares silhouette_shares(std::span<const float> rendered, const reference::PixelBox& box,
+                                   const ObservationModel& model, double pixel_sigmas, const DepthImage& depth);
 
 }  // namespace depthtrack

@@ -188,10 +188,16 @@ std::vector<Pose> TrackSupervisor::seeds(const search::SearchResult& result) {
   return out;
 }
 
-SilhouetteShares TrackSupervisor::assess(const Pose& pose, const DepthImage& working) {
+SilhouetteShares TrackSupervisor::assess(const Pose& pose, const DepthImage& working, const std::vector<float>* drawn) {
   drawn_.reset();  // until the rendering is done
-  const SilhouetteShares shares =
-      silhouette_shares(rasterizer_, config_.observation, config_.loss.pixel_sigmas, pose, working, scratch_);
+  SilhouetteShares shares;
+  if (drawn && drawn->size() == scratch_.size()) {
+    std::copy(drawn->begin(), drawn->end(), scratch_.begin());  // silhouette() hands it out
+    const reference::PixelBox whole{0, 0, working.width(), working.height()};
+    shares = silhouette_shares(scratch_, whole, config_.observation, config_.loss.pixel_sigmas, working);
+  } else {
+    shares = silhouette_shares(rasterizer_, config_.observation, config_.loss.pixel_sigmas, pose, working, scratch_);
+  }
   drawn_ = pose;
   return shares;
 }

@@ -40,7 +40,9 @@ class TrackSupervisor {
   // The candidates to seed the filter with: the best, and the runners-up nearly as likely.
   static std::vector<Pose> seeds(const search::SearchResult& result);
 
-  SilhouetteShares assess(const Pose& pose, const DepthImage& working);
+  // drawn, when given: the mesh's working-resolution depth at pose as the filter drew it
+  // (FilterBackend::rendering_of), not drawn again.
+  SilhouetteShares assess(const Pose& pose, const DepthImage& working, const std::vector<float>* drawn = nullptr);
   // The working-resolution depth of the mesh at pose (0 where it covers nothing): assess()'s rendering
   // when it drew that very pose last, else drawn now. Valid until the next assess() or silhouette().
   const std::vector<float>& silhouette(const Pose& pose);

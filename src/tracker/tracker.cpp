@@ -10,6 +10,7 @@
 #include "core/timestamp_limits.hpp"
 #include "tracker/confidence_model.hpp"
 #include "tracker/make_filter_backend.hpp"
+#include "tracker/particle_budget.hpp"
 #include "tracker/track_supervisor.hpp"
 
 namespace depthtrack {
@@ -71,6 +72,28 @@ void Tracker::construct(const Device& device, const Mesh& checked, const Tracker
   drawn_triangles_ = drawn.mesh.triangles.size();
   backend_ = make_filter_backend(device, drawn.mesh, working_, config);
   supervisor_ = std::make_unique<TrackSupervisor>(*backend_, drawn.mesh, sensor_, working_, decimation_, config);
+  particle_count_ = config.particles;
+  if (config.budget_ms > 0) {
+    if (device.context())
+      throw InputError("a frame budget (budget_ms " + std::to_string(config.budget_ms) +
+                       ") needs the reference or cpu backend: " + backend_->description() +
+                       " runs a fixed particle count");
+    budget_ = std::make_unique<ParticleBudget>(config.budget_ms, config.min_particles, config.particles,
+                                               config.loss.lost_below);
+  }
+}
+
+void Tracker::set_particle_count(int count) {
+  if (budget_) throw InputError("set_particle_count: the frame budget (budget_ms) chooses the particle count");
+  backend_->set_particle_count(count);
+  particle_count_ = count;
+}
+
+void Tracker::choose_particle_count(bool reseed) {
+  if (!budget_) return;
+  const int count = budget_->next(reseed);
+  backend_->set_particle_count(count);
+  particle_count_ = count;
 }
 
 Tracker::~Tracker() = default;
@@ -103,6 +126,7 @@ void Tracker::initialize(const Pose& pose, const InitialSpread& spread) {
       << " m) and a full turn (2 pi rad)";
     throw InputError(m.str());
   }
+  choose_particle_count(true);
   backend_->initialize(start, spread);
   supervisor_->reset();
   initialized_ = true;
@@ -148,6 +172,7 @@ Estimate Tracker::initialize_global(const DepthImage& depth, double timestamp, c
         "global initialization: nothing in the frame stands out in front of its surroundings by half the "
         "object's size; give a box or a point");
   const std::vector<Pose> seeds = TrackSupervisor::seeds(found);
+  choose_particle_count(true);
   backend_->initialize_modes(seeds, kSearchSpread);
   const double search_ms = clock.elapsed_ms();
   supervisor_->reset();
@@ -193,6 +218,7 @@ void Tracker::start_frame(const DepthImage& working, const std::function<const D
   PendingFrame search;
   gap_pending_ = gap_pending_ || (has_previous_ && timestamp - previous_timestamp_ > config_.max_time_step);
   const bool gap = gap_pending_;
+  choose_particle_count(gap || (config_.recovery.enabled && supervisor_->should_search()));
   if (config_.recovery.enabled && working.valid_count() > 0 && (gap || supervisor_->should_search())) {
     gap_pending_ = false;
     const Stopwatch clock;
@@ -248,6 +274,7 @@ Estimate Tracker::collect_frame() {
   frame_pending_ = false;
   const double timestamp = pending_.timestamp;
   Estimate e = backend_->collect();
+  e.particles = particle_count_;
   e.recovered = pending_.recovered;
   e.search_poses = pending_.search_poses;
   e.timings.search_ms += pending_.search_ms;
@@ -267,6 +294,11 @@ Estimate Tracker::collect_frame() {
 }
 
 void Tracker::assess_frame(Estimate& e, const DepthImage& working) {
+  assess_confidence(e, working);
+  if (budget_) budget_->observe(e);
+}
+
+void Tracker::assess_confidence(Estimate& e, const DepthImage& working) {
   // A dropout: every pixel adds 0 to every particle's log-likelihood, so the weights stay as they
   // are and resampling, decided on them, cannot trigger: the filter propagates only.
   if (working.valid_count() == 0) {
@@ -276,7 +308,7 @@ void Tracker::assess_frame(Estimate& e, const DepthImage& working) {
     return;
   }
   const Stopwatch clock;
-  e.evidence = supervisor_->assess(e.pose, working);
+  e.evidence = supervisor_->assess(e.pose, working, backend_->rendering_of(e.pose));
   e.confidence = pose_confidence(e.evidence);
   e.status = supervisor_->observe(e.confidence);
   e.timings.confidence_ms = clock.elapsed_ms();

@@ -1,0 +1,225 @@
+// Accuracy against time per frame on the host backends, for fixed particle counts and for frame budgets
+// (TrackerConfig::budget_ms): mean ADD-S over each YCB-Video clip's objects (ycbv-0000, ycbv-0049) and on
+// the synthetic occluded handset, with the frame time's median and 95th percentile and the mean count.
+// Starts from ground truth moved by 1 cm and 5 degrees (as tests/test_accuracy.cpp), at 80x60.
+// The frame time is the tracker's (Estimate::timings.total_ms: filter, confidence and a lost track's search;
+// frame_p95_without_search leaves the search out, as the budget does: it has its own); latency adds the
+// decimation of the 640x480 frame; png_decode_ms is a depth PNG's decoding (the reading path, on a reader
+// thread beside the tracker in track_sequence). Prints CSV rows.
+//   depthtrack_bench_budget [--backend reference,cpu] [--particles 200,50,20] [--budget-ms 5,10]
+//                           [--synthetic-frames N] [--objects NAME,...] [--seed N]
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <depthtrack/error.hpp>
+#include <depthtrack/evaluation.hpp>
+#include <depthtrack/synth.hpp>
+#include <filesystem>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "bench_args.hpp"
+#include "bench_rows.hpp"
+#include "core/stopwatch.hpp"
+
+using namespace depthtrack;
+
+namespace {
+
+struct Setting {
+  int particles = 200;
+  double budget_ms = 0;  // 0: the fixed count
+  std::string name() const {
+    return budget_ms > 0 ? "budget" + bench::compact_number(budget_ms) + "ms" : std::to_string(particles) + "p";
+  }
+};
+
+struct Outcome {
+  std::vector<double> adds_mm, frame_ms, tracked_ms, latency_ms, particles;
+};
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  const size_t k = static_cast<size_t>(std::ceil(q * static_cast<double>(v.size()))) - 1;
+  return v[std::min(k, v.size() - 1)];
+}
+
+double mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? NAN : s / static_cast<double>(v.size());
+}
+
+// The objects each clip's ground truth holds.
+std::vector<std::string> clip_objects(const std::filesystem::path& clip) {
+  if (clip.filename() == "ycbv-0000") return {"009_gelatin_box", "025_mug", "061_foam_brick"};
+  return {"004_sugar_box", "007_tuna_fish_can", "010_potted_meat_can", "024_bowl"};
+}
+
+TrackerConfig config_for(const std::string& backend, const Setting& s, uint64_t seed) {
+  TrackerConfig config;
+  config.backend = backend;
+  config.seed = seed;
+  if (s.budget_ms > 0) {
+    config.particles = 200;  // the most a budgeted frame runs
+    config.budget_ms = s.budget_ms;
+  } else {
+    config.particles = s.particles;
+  }
+  return config;
+}
+
+void add_frame(Outcome& o, const Estimate& e, double adds_m, double latency_ms) {
+  o.adds_mm.push_back(1000 * adds_m);
+  o.frame_ms.push_back(e.timings.total_ms);
+  o.tracked_ms.push_back(e.timings.total_ms - e.timings.search_ms);  // what the budget covers
+  o.latency_ms.push_back(latency_ms);
+  o.particles.push_back(e.particles);
+}
+
+// One object of a clip, from ground truth moved by 1 cm and 5 degrees.
+void track_clip_object(const std::filesystem::path& clip, const std::string& object, const TrackerConfig& config,
+                       Outcome& o) {
+  const Mesh mesh = Mesh::load(bench::data_dir() / "meshes/ycb" / (object + ".obj"));
+  const Sequence sequence = load_sequence(clip, object);
+  const Pose& truth0 = *sequence.frames.front().ground_truth;
+  const Pose start = perturb_pose(truth0, mesh.centre().cast<double>(), 0.01, 5.0, 1);
+  const auto frames = track_sequence(sequence, mesh, config, start, InitialSpread{0.01, 5.0 * std::numbers::pi / 180});
+  for (const TrackedFrame& f : frames) add_frame(o, f.estimate, f.adds, f.latency_ms);
+}
+
+void track_synthetic(const Mesh& mesh, const std::vector<SynthFrame>& frames, const SynthConfig& synth,
+                     const TrackerConfig& config, Outcome& o) {
+  const AddsMetric adds(mesh);
+  Tracker tracker(mesh, synth.camera, config);
+  const Pose start = perturb_pose(frames.front().ground_truth, mesh.centre().cast<double>(), 0.01, 5.0, 1);
+  tracker.initialize(start, InitialSpread{0.01, 5.0 * std::numbers::pi / 180});
+  for (const SynthFrame& f : frames) {
+    const Stopwatch clock;
+    const Estimate e = tracker.update(f.depth, f.timestamp);
+    add_frame(o, e, adds(e.pose, f.ground_truth), clock.elapsed_ms());
+  }
+}
+
+void print(const std::string& backend, const std::string& name, const std::string& test, const Outcome& o) {
+  const std::string platform = "cpu";
+  const std::string device = bench::cpu_name();
+  const auto row = [&](const char* metric, const char* unit, double value) {
+    bench::print_row({backend, platform, device, "-", test, metric, unit, value});
+  };
+  (void)name;
+  row("adds_mean", "mm", mean(o.adds_mm));
+  row("frame_p50", "ms", percentile(o.frame_ms, 0.5));
+  row("frame_p95", "ms", percentile(o.frame_ms, 0.95));
+  row("frame_mean", "ms", mean(o.frame_ms));
+  row("frame_p95_without_search", "ms", percentile(o.tracked_ms, 0.95));
+  row("latency_p95", "ms", percentile(o.latency_ms, 0.95));
+  row("particles_mean", "particles", mean(o.particles));
+  row("frames", "frames", static_cast<double>(o.adds_mm.size()));
+}
+
+const char* const kUsage =
+    "usage: depthtrack_bench_budget [--backend NAME[,NAME...]] [--particles N[,N...]] [--budget-ms MS[,MS...]]\n"
+    "                               [--synthetic-frames N] [--objects NAME[,NAME...]] [--seed N]\n"
+    "Mean ADD-S against frame time (median, 95th percentile) at 80x60 for fixed particle counts and frame\n"
+    "budgets, per YCB-Video object (ycbv-0000, ycbv-0049) and on the synthetic occluded handset; prints CSV rows\n"
+    "backend,platform,device,driver,test,metric,unit,value.\n"
+    "  --backend     host backends to run: reference (one core), cpu (every core), cpu:N (default reference,cpu)\n"
+    "  --particles   fixed counts (default 200,50,20)\n"
+    "  --budget-ms   frame budgets, each with at most 200 particles (default 5,10)\n"
+    "  --synthetic-frames N   frames of the synthetic sequence (default 60)\n"
+    "  --objects     YCB-Video objects to track (default every object of both clips)\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    std::vector<std::string> backends = {"reference", "cpu"};
+    std::vector<Setting> settings;
+    std::vector<int> counts = {200, 50, 20};
+    std::vector<double> budgets = {5, 10};
+    int synthetic_frames = 60;
+    uint64_t seed = 1;
+    std::vector<std::string> only_objects;
+    bench::ArgReader args(argc, argv);
+    for (std::string option = args.next(); !option.empty(); option = args.next()) {
+      if (option == "--help") {
+        std::fputs(kUsage, stdout);
+        return 0;
+      } else if (option == "--backend") {
+        backends = bench::split(args.value());
+      } else if (option == "--particles") {
+        counts.clear();
+        for (const std::string& n : bench::split(args.value())) counts.push_back(bench::parse_positive(n, option));
+      } else if (option == "--budget-ms") {
+        budgets.clear();
+        for (const std::string& n : bench::split(args.value()))
+          budgets.push_back(bench::parse_nonnegative_double(n, option));
+      } else if (option == "--synthetic-frames") {
+        synthetic_frames = bench::parse_positive(args.value(), option);
+      } else if (option == "--objects") {
+        only_objects = bench::split(args.value());
+      } else if (option == "--seed") {
+        seed = static_cast<uint64_t>(bench::parse_positive(args.value(), option));
+      } else {
+        throw bench::UsageError{"unknown option '" + option + "'"};
+      }
+    }
+    for (const int n : counts) settings.push_back(Setting{n, 0});
+    for (const double ms : budgets)
+      if (ms > 0) settings.push_back(Setting{200, ms});
+
+    bench::print_header();
+    // The reading path: one depth PNG of the clip decoded, the median of its frames.
+    const std::filesystem::path clips[] = {bench::data_dir() / "sequences/ycbv-0000",
+                                           bench::data_dir() / "sequences/ycbv-0049"};
+    if (std::filesystem::exists(clips[0])) {
+      const Sequence s = load_sequence(clips[0], "025_mug");
+      std::vector<double> decode;
+      for (size_t i = 0; i < s.frames.size(); ++i) {
+        const Stopwatch clock;
+        const DepthImage d = s.load_depth(i);
+        decode.push_back(clock.elapsed_ms());
+      }
+      bench::print_row(
+          {"-", "cpu", bench::cpu_name(), "-", "ycbv-0000_640x480", "png_decode_ms", "ms", bench::median(decode)});
+    }
+    std::string handset_name;
+    const Mesh handset = bench::bench_mesh(handset_name);
+    SynthConfig synth;
+    synth.frames = synthetic_frames;
+    synth.occluder_fraction = 0.3;
+    std::vector<SynthFrame> synthetic;
+    {
+      const Synthesizer scene(handset, synth);
+      for (int i = 0; i < synthetic_frames; ++i) synthetic.push_back(scene.frame(i));
+    }
+    for (const std::string& backend : backends)
+      for (const Setting& s : settings) {
+        const TrackerConfig config = config_for(backend, s, seed);
+        for (const auto& clip : clips) {
+          if (!std::filesystem::exists(clip)) continue;
+          for (const std::string& object : clip_objects(clip)) {
+            if (!only_objects.empty() &&
+                std::find(only_objects.begin(), only_objects.end(), object) == only_objects.end())
+              continue;
+            Outcome o;
+            track_clip_object(clip, object, config, o);
+            print(backend, object, clip.filename().string() + "_" + object + "_80x60_" + s.name(), o);
+          }
+        }
+        Outcome o;
+        track_synthetic(handset, synthetic, synth, config, o);
+        print(backend, handset_name, "synthetic_occluded_" + handset_name + "_80x60_" + s.name(), o);
+      }
+    return 0;
+  } catch (const bench::UsageError& e) {
+    std::fprintf(stderr, "depthtrack_bench_budget: %s\n%s", e.message.c_str(), kUsage);
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "depthtrack_bench_budget: %s\n", e.what());
+    return 1;
+  }
+}

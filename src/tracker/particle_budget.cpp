@@ -1,0 +1,69 @@
+#include "tracker/particle_budget.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <depthtrack/error.hpp>
+
+namespace depthtrack {
+
+namespace {
+constexpr double kSmoothing = 0.25;  // weight of the newest frame in the smoothed times
+constexpr double kKeepShare = 0.8;   // a frame keeps at least this share of the last one's particles
+}  // namespace
+
+ParticleBudget::ParticleBudget(double budget_ms, int min_particles, int max_particles, double lost_below)
+    : budget_ms_(budget_ms), min_(min_particles), max_(max_particles), lost_below_(lost_below), last_(max_particles) {
+  if (!(std::isfinite(budget_ms) && budget_ms > 0) || min_particles < 1 || max_particles < min_particles)
+    throw InputError("particle budget needs a positive time and 1 <= min particles <= particles");
+}
+
+int ParticleBudget::afforded() const {
+  if (!timed_) return max_;
+  const double room = budget_ms_ - fixed_ms_ - miss_ms_;
+  if (!(per_particle_ms_ > 0)) return max_;
+  const double n = std::floor(room / per_particle_ms_);
+  return n >= max_ ? max_ : n <= 0 ? 0 : static_cast<int>(n);
+}
+
+int ParticleBudget::next(bool reseed) {
+  if (reseed) settle_left_ = kSettleFrames + 1;  // the new cloud's frame and kSettleFrames after it
+  const bool settling = settle_left_ > 0;
+  const double need = settling ? 1.0 : need_;
+  int wanted = min_ + static_cast<int>(std::lround(need * (max_ - min_)));
+  if (!settling) wanted = std::max(wanted, static_cast<int>(std::ceil(kKeepShare * last_)));
+  // Before any frame is timed, the first runs the fewest: its time then sizes the next.
+  const int afforded_now = timed_ ? afforded() : min_;
+  last_ = std::clamp(std::min(wanted, afforded_now), min_, max_);
+  return last_;
+}
+
+void ParticleBudget::observe(const Estimate& e) {
+  if (settle_left_ > 0) --settle_left_;
+  const StepTimings& t = e.timings;
+  if (e.particles > 0) {
+    const double loops_ms = t.propagate_ms + t.render_ms + t.weigh_ms + t.resample_ms;
+    const double per = loops_ms / e.particles;
+    const double fixed = std::max(0.0, t.total_ms - t.search_ms - loops_ms);
+    if (std::isfinite(per) && std::isfinite(fixed)) {
+      if (!timed_) {
+        per_particle_ms_ = per;
+        fixed_ms_ = fixed;
+        timed_ = true;
+      } else {
+        const double predicted = fixed_ms_ + per_particle_ms_ * e.particles;
+        const double miss = std::abs(t.total_ms - t.search_ms - predicted);
+        miss_ms_ += kSmoothing * (miss - miss_ms_);
+        per_particle_ms_ += kSmoothing * (per - per_particle_ms_);
+        fixed_ms_ += kSmoothing * (fixed - fixed_ms_);
+      }
+    }
+  }
+  if (e.status == TrackStatus::NoData) return;  // nothing seen: the need stays
+  if (e.status == TrackStatus::Lost || e.recovered) {
+    need_ = 1;
+    return;
+  }
+  need_ = std::clamp((kConfident - e.confidence) / (kConfident - std::min(lost_below_, kConfident - 1e-3)), 0.0, 1.0);
+}
+
+}  // namespace depthtrack

@@ -1,0 +1,188 @@
+// The frame budget (TrackerConfig::budget_ms): the count it chooses from measured times and the
+// estimate's state, the host filter's change of particle count, and a budgeted run replayed on the
+// sequential reference with the same counts, estimate for estimate.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <depthtrack/error.hpp>
+#include <depthtrack/synth.hpp>
+#include <depthtrack/tracker.hpp>
+#include <set>
+#include <vector>
+
+#include "reference/reference_filter.hpp"
+#include "reference/weights.hpp"
+#include "synth_frames.hpp"
+#include "tracker/particle_budget.hpp"
+
+using namespace depthtrack;
+using Catch::Matchers::Contains;
+
+namespace {
+
+// A frame of `particles` whose particle loops took loops_ms (split over the four steps) of total_ms.
+Estimate timed_frame(int particles, double loops_ms, double total_ms, double confidence,
+                     TrackStatus status = TrackStatus::Tracking) {
+  Estimate e;
+  e.particles = particles;
+  e.timings.propagate_ms = 0.1 * loops_ms;
+  e.timings.render_ms = 0.4 * loops_ms;
+  e.timings.weigh_ms = 0.4 * loops_ms;
+  e.timings.resample_ms = 0.1 * loops_ms;
+  e.timings.total_ms = total_ms;
+  e.confidence = confidence;
+  e.status = status;
+  return e;
+}
+
+}  // namespace
+
+TEST_CASE("a particle budget affords what its measured times allow and follows the confidence", "[budget]") {
+  ParticleBudget budget(10.0, 10, 200, 0.5);
+  // Untimed, the first frame (a new cloud) runs the fewest; its time sizes the next.
+  CHECK(budget.next(true) == 10);
+  // 100 particles: loops 9 ms (0.09 ms each), 3 ms besides: (10 - 3) / 0.09 = 77.8 afforded.
+  budget.observe(timed_frame(100, 9.0, 12.0, 0.95));
+  CHECK(budget.per_particle_ms() == Approx(0.09));
+  CHECK(budget.fixed_ms() == Approx(3.0));
+  CHECK(budget.afforded() == 77);
+  // The new cloud settles for kSettleFrames more frames on what the budget affords, though confident.
+  for (int i = 0; i < ParticleBudget::kSettleFrames; ++i) {
+    CHECK(budget.next(false) == 77);
+    budget.observe(timed_frame(77, 77 * 0.09, 3 + 77 * 0.09, 0.95));
+  }
+  CHECK(budget.afforded() == 77);
+  // Confident: down by at most a fifth a frame (ceil 0.8 * 77 = 62, then 50, 40, ...) to the fewest.
+  CHECK(budget.next(false) == 62);
+  CHECK(budget.next(false) == 50);
+  CHECK(budget.next(false) == 40);
+  for (int i = 0; i < 20; ++i) budget.next(false);
+  CHECK(budget.next(false) == 10);
+  // The same time again: the model's miss is 0, the afforded count stays.
+  budget.observe(timed_frame(10, 0.9, 3.9, 0.7));
+  CHECK(budget.afforded() == 77);
+  // Confidence 0.7, halfway from kConfident (0.9) to lost (0.5): 10 + 0.5 * 190 = 105 wanted, 77 afforded.
+  CHECK(budget.next(false) == 77);
+  // Lost: the most the budget affords; and when frames get slower, fewer.
+  budget.observe(timed_frame(77, 77 * 0.09, 3 + 77 * 0.09, 0.2, TrackStatus::Lost));
+  CHECK(budget.next(false) == 77);
+  budget.observe(timed_frame(77, 77 * 0.2, 3 + 77 * 0.2, 0.2, TrackStatus::Lost));
+  // per particle 0.09 + 0.25 (0.2 - 0.09) = 0.1175; the miss 0.25 * 77 * 0.11 = 2.1175 is kept free.
+  CHECK(budget.per_particle_ms() == Approx(0.1175));
+  CHECK(budget.afforded() == static_cast<int>((10.0 - 3.0 - 0.25 * 77 * 0.11) / 0.1175));
+  CHECK(budget.next(false) == budget.afforded());
+  // A search takes its own budget: it does not count as the frame's fixed time.
+  Estimate searched = timed_frame(77, 77 * 0.1175, 3 + 77 * 0.1175 + 400, 0.95);
+  searched.timings.search_ms = 400;
+  const double fixed_before = budget.fixed_ms();
+  budget.observe(searched);
+  CHECK(budget.fixed_ms() == Approx(fixed_before + 0.25 * (3.0 - fixed_before)));
+  // A budget below the fixed time runs the fewest.
+  ParticleBudget tight(2.0, 10, 200, 0.5);
+  tight.next(true);
+  tight.observe(timed_frame(10, 1.0, 4.0, 0.95));
+  CHECK(tight.afforded() == 0);
+  CHECK(tight.next(true) == 10);
+  CHECK_THROWS_AS(ParticleBudget(0.0, 10, 200, 0.5), InputError);
+  CHECK_THROWS_AS(ParticleBudget(5.0, 20, 10, 0.5), InputError);
+}
+
+TEST_CASE("the reference filter changes its particle count by resampling its weighted cloud", "[budget][filter]") {
+  const Mesh mesh = builtin_demo_mesh();
+  const SynthConfig synth = test::small_scene(3);
+  const auto frames = test::synthesize(mesh, synth);
+  TrackerConfig config;
+  config.particles = 40;
+  reference::ReferenceFilter filter(mesh, synth.camera, config);
+  filter.initialize(frames[0].ground_truth, InitialSpread{0.01, 0.05});
+  filter.update(frames[0].depth, 0.0);
+  const auto before = filter.particles();
+  const std::vector<double> weights = reference::summarize_log_weights(filter.log_weights()).normalized;
+  filter.set_particle_count(40);  // the same count: nothing changes
+  CHECK(filter.particles().size() == 40);
+  CHECK(filter.particles()[7].pose.translation == before[7].pose.translation);
+  filter.set_particle_count(13);
+  REQUIRE(filter.particles().size() == 13);
+  CHECK(filter.log_weights() == std::vector<double>(13, 0.0));
+  CHECK(filter.occlusion_state().size() == 13 * filter.state_window().pixels());
+  // Every child is a particle of the cloud before, and the heaviest one is among them.
+  const size_t heaviest = static_cast<size_t>(std::max_element(weights.begin(), weights.end()) - weights.begin());
+  bool heaviest_kept = false;
+  for (const auto& child : filter.particles()) {
+    const auto parent = std::find_if(before.begin(), before.end(), [&](const auto& p) {
+      return p.pose.translation == child.pose.translation && p.pose.rotation.coeffs() == child.pose.rotation.coeffs();
+    });
+    CHECK(parent != before.end());
+    heaviest_kept = heaviest_kept || static_cast<size_t>(parent - before.begin()) == heaviest;
+  }
+  CHECK(heaviest_kept);
+  filter.update(frames[1].depth, frames[1].timestamp - frames[0].timestamp);
+  CHECK(filter.last_log_likelihoods().size() == 13);
+  filter.set_particle_count(40);  // back up to the most
+  CHECK(filter.particles().size() == 40);
+  filter.update(frames[2].depth, frames[2].timestamp - frames[1].timestamp);
+  CHECK(filter.last_log_likelihoods().size() == 40);
+  for (const int bad : {0, -1, 41}) {
+    INFO(bad);
+    CHECK_THROWS_WITH(filter.set_particle_count(bad), Contains("particle count") && Contains("[1, particles = 40]"));
+  }
+}
+
+TEST_CASE("a budgeted cpu run equals the sequential reference replaying its particle counts", "[budget][cpu]") {
+  const Mesh mesh = builtin_demo_mesh();
+  const SynthConfig synth = test::small_scene(14);
+  const auto frames = test::synthesize(mesh, synth);
+  TrackerConfig config;
+  config.particles = 48;
+  config.min_particles = 6;
+  config.seed = 3;
+  // Ample: the counts follow the estimate (the fewest at the start, the most while settling, fewer as it
+  // stays confident), whatever this machine's speed.
+  config.budget_ms = 1e4;
+  config.backend = "cpu:2";
+  Tracker budgeted(mesh, synth.camera, config);
+  budgeted.initialize(frames[0].ground_truth);
+  std::vector<Estimate> chosen;
+  for (const SynthFrame& f : frames) chosen.push_back(budgeted.update(f.depth, f.timestamp));
+  std::set<int> counts;
+  for (const Estimate& e : chosen) counts.insert(e.particles);
+  CHECK(chosen.front().particles == 6);
+  CHECK(chosen[1].particles == 48);
+  CHECK(counts.size() >= 3);  // the replay below is of a varying count
+  CHECK_THROWS_WITH(budgeted.set_particle_count(10), Contains("budget"));
+
+  config.budget_ms = 0;
+  config.backend = "reference";
+  Tracker replay(mesh, synth.camera, config);
+  replay.set_particle_count(chosen.front().particles);
+  replay.initialize(frames[0].ground_truth);
+  for (size_t i = 0; i < frames.size(); ++i) {
+    INFO("frame " << i << ", " << chosen[i].particles << " particles");
+    if (i > 0) replay.set_particle_count(chosen[i].particles);
+    const Estimate e = replay.update(frames[i].depth, frames[i].timestamp);
+    CHECK(e.particles == chosen[i].particles);
+    CHECK(e.pose.translation == chosen[i].pose.translation);
+    CHECK(e.pose.rotation.coeffs() == chosen[i].pose.rotation.coeffs());
+    CHECK(e.effective_sample_size == chosen[i].effective_sample_size);
+    CHECK(e.confidence == chosen[i].confidence);
+    CHECK(e.status == chosen[i].status);
+  }
+}
+
+TEST_CASE("without a budget every frame runs the configured count; a bad budget is refused", "[budget]") {
+  const Mesh mesh = builtin_demo_mesh();
+  const SynthConfig synth = test::small_scene(3);
+  const auto frames = test::synthesize(mesh, synth);
+  TrackerConfig config;
+  config.particles = 30;
+  Tracker tracker(mesh, synth.camera, config);
+  tracker.initialize(frames[0].ground_truth);
+  for (const SynthFrame& f : frames) CHECK(tracker.update(f.depth, f.timestamp).particles == 30);
+  CHECK_THROWS_WITH(tracker.set_particle_count(31), Contains("[1, particles = 30]"));
+  config.budget_ms = -1;
+  CHECK_THROWS_WITH(config.validate(), Contains("frame budget"));
+  config.budget_ms = 5;
+  config.min_particles = 31;
+  CHECK_THROWS_WITH(config.validate(), Contains("min particles 31") && Contains("particles = 30"));
+  config.budget_ms = 0;  // without a budget the fewest is not used
+  CHECK_NOTHROW(config.validate());
+}
