@@ -10,7 +10,8 @@
 #define DT_STREAM_INIT 0u
 #define DT_STREAM_MOTION 1u
 #define DT_STREAM_RESAMPLE 2u
-#define DT_STREAM_RESIZE 3u /* the host filter changing its particle count */
+#define DT_STREAM_SEARCH 3u /* the global search's perturbations */
+#define DT_STREAM_RESIZE 4u /* the host filter changing its particle count */
 
 typedef struct {
   dt_u32 v[4];

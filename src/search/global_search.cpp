@@ -15,8 +15,8 @@
 namespace depthtrack::search {
 
 namespace {
-// Philox stream of the search's perturbations (0-2 are the filter's: init, motion, resampling).
-constexpr dt_u32 kSearchStream = 3u;
+// Philox stream of the search's perturbations (cl/philox.h lists every stream).
+constexpr dt_u32 kSearchStream = DT_STREAM_SEARCH;
 
 // The pose that puts the object's centre at `centre` (camera frame) with rotation q.
 Pose centred_pose(const Eigen::Quaterniond& q, const Eigen::Vector3d& centre, const SearchObject& object) {
