@@ -20,7 +20,7 @@
 /* One item of a fit's drawing of pose: items are the triangles times draw_slices, item i draws triangle
  * i mod triangle_count's rows i / triangle_count, then every draw_slices-th (tile, ids and nearest as
  * for dt_raster_triangle_rows). A work-item per whole triangle left a coarse mesh's few large triangles
- * looping over their pixels while the rest of the device waited (H100, round 2, session 27: the fit's
+ * looping over their pixels while the rest of the device waited (H100: the fit's
  * drawing of the gelatin box's 234 triangles took 12 us, of the mug's 3,196 5 us). The depths kept are
  * the same whatever the split: the atomic minimum does not depend on the order. */
 DT_DEVICE_FN void dt_refine_draw_item(dt_rigid pose, __global const float* vertices, __global const uint* triangles,

@@ -100,10 +100,10 @@ __kernel DT_RESIDENCY void render_weigh(__global float* states, __global const f
      * arguments, so every work-item meets every barrier (PoCL faults on barriers that a value from
      * memory decides on). Every triangle that draws is listed, even one of a single candidate pixel: drawn
      * where it was found instead, the group's rows waited on the work-items that found the most (H100,
-     * round 2, session 25: the mug's weigh 240 -> 195 us listed). A work-item's triangles follow one
+     * the mug's weigh 240 -> 195 us listed). A work-item's triangles follow one
      * another through the chunks, and each one's corners are loaded while the one before it is tested (the
      * next chunk's first while this chunk's rows are drawn): waiting for those loads was a sixth of the
-     * mug's stalls (Nsight Compute, H100, round 2, session 26). */
+     * mug's stalls (Nsight Compute, H100). */
     uint next0 = 0, next1 = 0, next2 = 0; /* the corners of this work-item's next triangle */
     if (projected && lid < triangle_count) {
       next0 = triangles[3 * lid];

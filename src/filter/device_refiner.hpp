@@ -51,7 +51,8 @@ struct SummaryInputs {
 };
 
 // The layout Auto picks: Spread for meshes of kSpreadTriangles triangles or more on every device, and
-// for smaller ones on CUDA and on GPUs over kOneLaunchGpuPixels; OneLaunch for smaller meshes elsewhere (measured on PoCL and NVIDIA's
+// for smaller ones on devices whose queue replays its launches (DeviceInfo::replayed_launches: CUDA's graphs) and
+// on GPUs over kOneLaunchGpuPixels; OneLaunch for smaller meshes elsewhere (measured on PoCL and NVIDIA's
 // CUDA and OpenCL: device_refiner.cpp); OneGroup on devices without 64-bit atomic min
 // (DeviceInfo::int64_atomics), where Spread or OneLaunch asked for is an InputError.
 constexpr size_t kSpreadTriangles = 2048;
@@ -68,7 +69,7 @@ RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceIn
 // the group's otherwise idle work-items (floor(group / triangles): a mesh of as many triangles as the group
 // has work-items is drawn whole, as before). Every slice repeats the triangle's set-up: with 2,048 items in
 // one group, about 10 a work-item for the handset's 842 triangles against 3-4, NVIDIA OpenCL's one-launch
-// fit at 80x60 took 0.19 -> 0.21 ms a frame (H100, round 2, session 27). At most one per row of the image
+// fit at 80x60 took 0.19 -> 0.21 ms a frame (H100). At most one per row of the image
 // and kMaxDrawSlices. 1 on a CPU, whose work-items run in turn anyway.
 constexpr size_t kFitDrawItems = 2048;
 constexpr unsigned kMaxDrawSlices = 64;
@@ -96,7 +97,7 @@ class DeviceRefiner {
 
   RefineLayout layout() const { return layout_; }  // never Auto
   unsigned draw_slices() const { return draw_slices_; }
-  double radius() const { return radius_; }        // the mesh's (model::pose_covariance's pivot)
+  double radius() const { return radius_; }  // the mesh's (model::pose_covariance's pivot)
 
  private:
   std::vector<compute::EventPtr> refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in,
