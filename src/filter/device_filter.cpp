@@ -173,18 +173,21 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   if (plan_.summary != SummaryStep::InsideFit) batch.flush();
   // Before the resampling overwrites parents with this frame's choice.
   if (refiner_) {
-    const RefineInputs inputs{buffers_.state,
-                              buffers_.observed,
-                              rows_.scratch_occlusion,
-                              rows_.scratch_time,
-                              frame_times_->device(),
-                              buffers_.parents,
-                              in.window,
-                              time_,
-                              dt};
-    const SummaryInputs summary{
-        buffers_.log_weight, buffers_.log_likelihood, buffers_.weights, static_cast<unsigned>(plan_.particles), centre,
-        kl_threshold};
+    const RefineInputs inputs{.states = buffers_.state,
+                              .observed = buffers_.observed,
+                              .occlusion = rows_.scratch_occlusion,
+                              .occlusion_time = rows_.scratch_time,
+                              .frame_times = frame_times_->device(),
+                              .parents = buffers_.parents,
+                              .window = in.window,
+                              .time = time_,
+                              .dt = dt};
+    const SummaryInputs summary{.log_weight = buffers_.log_weight,
+                                .log_likelihood = buffers_.log_likelihood,
+                                .weights = buffers_.weights,
+                                .count = static_cast<unsigned>(plan_.particles),
+                                .centre = centre,
+                                .kl_threshold = kl_threshold};
     events.refined =
         refiner_->refine(buffers_.estimate, inputs, plan_.summary == SummaryStep::InsideFit ? &summary : nullptr);
   }
