@@ -118,12 +118,17 @@ TEST_CASE("where launches are not replayed a small mesh's fit summarizes inside 
 }
 
 TEST_CASE("a CPU device keeps the filter's group for the summary and draws inside weigh", "[plan]") {
-  const FramePlan plan = make_frame_plan(config_of(200), cpu_device(), sizes_80x60());
+  // Without the fit, summarize.cl's one group: 128 work-items, the filter's, whatever the device allows.
+  const FramePlan plan = make_frame_plan(config_of(200, Renderer::Kernel, false), cpu_device(), sizes_80x60());
+  CHECK(plan.summary == SummaryStep::OneGroup);
   CHECK(plan.summary_group == 128);
   // 80x60's tile (19,200 bytes) and the pose box's reduction (2,560) fit in CUDA's static 48 KiB.
   CHECK(plan.weigh == WeighStep::RenderWeigh);
-  CHECK(*plan.refine == RefineLayout::OneLaunch);
-  CHECK(plan.summary == SummaryStep::InsideFit);
+  // With the fit, a small mesh on a CPU fits in one launch, which summarizes first: no group of its own.
+  const FramePlan fitted = make_frame_plan(config_of(200), cpu_device(), sizes_80x60());
+  CHECK(*fitted.refine == RefineLayout::OneLaunch);
+  CHECK(fitted.summary == SummaryStep::InsideFit);
+  CHECK(fitted.summary_group == 0);
 }
 
 TEST_CASE("an atlas drawn apart is weighed from its tiles, in turns where it holds fewer", "[plan]") {
