@@ -1,6 +1,6 @@
 /* A pose moved about the mesh's centre by a displacement and a rotation vector, both in the object's
  * local frame, stored into a particle's state: the one step of the motion model and the initial draw.
- * Reference: reference::move_about_centre (src/reference/particle.cpp). */
+ * Reference: reference::move_about_centre (src/model/particle.cpp). */
 #ifndef DT_POSE_MOVE_H
 #define DT_POSE_MOVE_H
 #include "dt_prelude.h"

@@ -1,4 +1,4 @@
-/* The motion model for one particle (MODEL.md "State and motion"; reference: src/reference/particle.cpp):
+/* The motion model for one particle (MODEL.md "State and motion"; reference: src/model/particle.cpp):
  * propagate.cl runs it a work-item per particle; render_weigh.cl runs it at the start of each particle's
  * group, which saves the frame a launch. */
 #ifndef DT_PROPAGATE_H

@@ -10,6 +10,10 @@
  * and fits only up to about 100x100 pixels. DT_GROUP_SIZE: work-items per group.
  * Reference: Rasterizer::render. */
 #include "dt_prelude.h"
+#include "dt_launch.h"
+#ifndef DT_GROUP_SIZE
+#define DT_GROUP_SIZE DT_FILTER_GROUP
+#endif
 #include "dt_atlas.h"
 #include "dt_quaternion.h"
 #include "dt_state.h"
@@ -361,7 +365,7 @@ DT_DEVICE_FN uint dt_box_pixel(dt_pixel_box box, uint k, dt_camera cam) {
  * The atlas is written as the floats' bits. With
  * boxed, only the pose's box (dt_pose_box) of each tile is cleared and written, and the box goes to
  * boxes (4 per particle: u0, v0, width, height): the rest of the tile is left as it was, and whoever
- * reads the tile takes pixels outside the box as empty (weigh.cl, DeviceFilter::last_atlas). At 640x480
+ * reads the tile takes pixels outside the box as empty (weigh.cl, DeviceFilterProbe::last_atlas). At 640x480
  * the object's box is a few percent of the tile, which every frame was cleared, finished and read. */
 __kernel DT_RESIDENCY void rasterize(__global const float* states, __global const float* vertices,
                                      __global const uint* triangles, __global const float* planes, uint triangle_count,

@@ -18,6 +18,10 @@
  * weighed in turns: TrackerConfig::atlas_particles); boxes are the particles'.
  * Reference: ReferenceFilter::weigh_particle (and its resampling's gather). */
 #include "dt_prelude.h"
+#include "dt_launch.h"
+#ifndef DT_GROUP_SIZE
+#define DT_GROUP_SIZE DT_FILTER_GROUP
+#endif
 #include "dt_atlas.h"
 #include "dt_weigh.h" /* shared with render_weigh.cl */
 

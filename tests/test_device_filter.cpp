@@ -7,6 +7,7 @@
 
 #include "device_support.hpp"
 #include "filter/device_filter.hpp"
+#include "filter/device_filter_probe.hpp"
 #include "filter/device_refiner.hpp"
 #include "filter/wide_summary.hpp"
 #include "model/occlusion_chain.hpp"
@@ -119,7 +120,7 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
     config.occlusion_window = window;
     reference::ReferenceFilter reference(scene.mesh, scene.working, config);
     DeviceFilter device(compute::open_device(config.backend), scene.mesh, scene.working, config);
-    device.keep_atlas(true);  // a flipped pixel is checked against the tile the device weighed
+    DeviceFilterProbe(device).keep_atlas(true);  // a flipped pixel is checked against the tile the device weighed
     const InitialSpread spread{0.01, 0.05};
     reference.initialize(scene.frames[0].ground_truth, spread);
     device.initialize(scene.frames[0].ground_truth, spread);
@@ -135,14 +136,14 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
       const Estimate b = device.update(scene.frames[f].depth, dt);
       INFO(scene.name << ", " << to_string(mode) << ", frame " << f);
       // Both place the state window from their own estimates, the same pixel.
-      REQUIRE(device.state_window() == reference.state_window());
+      REQUIRE(DeviceFilterProbe(device).state_window() == reference.state_window());
       window_moves += !(reference.state_window() == window_before);
       window_growths += reference.state_window().pixels() > window_before.pixels() && f > 0;
       const auto& ll_ref = reference.last_log_likelihoods();
       const auto& scale = reference.last_log_likelihood_magnitudes();
-      const auto ll_dev = device.last_log_likelihoods();
-      const auto weighed = device.weighed_particles();
-      const auto atlas = device.last_atlas();
+      const auto ll_dev = DeviceFilterProbe(device).last_log_likelihoods();
+      const auto weighed = DeviceFilterProbe(device).weighed_particles();
+      const auto atlas = DeviceFilterProbe(device).last_atlas();
       const size_t pixels = static_cast<size_t>(scene.working.pixel_count());
       bool flipped = false;
       for (size_t i = 0; i < ll_ref.size(); ++i) {
@@ -171,7 +172,7 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
         worst_ll = std::max(worst_ll, relative);
       }
       REQUIRE(a.resampled == b.resampled);
-      const auto parents_ref = reference.last_parents(), parents_dev = device.last_parents();
+      const auto parents_ref = reference.last_parents(), parents_dev = DeviceFilterProbe(device).last_parents();
       if (parents_ref != parents_dev && !flipped) {
         // Allowed only where the device's own likelihoods, resampled by the reference's algorithm in
         // double, pick exactly the device's parents: the difference then lies wholly in likelihoods
@@ -188,8 +189,8 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
       // After a tie or a coverage flip the device restarts from the reference's state, so every
       // later frame is again compared from a common state.
       if (parents_ref != parents_dev || flipped)
-        device.set_state(reference.particles(), reference.occlusion_state(), reference.occlusion_times(),
-                         reference.log_weights());
+        DeviceFilterProbe(device).set_state(reference.particles(), reference.occlusion_state(),
+                                            reference.occlusion_times(), reference.log_weights());
       resamplings += a.resampled;
       if (flipped) continue;  // a weighty particle's weight differs by the flipped pixel: not comparable
       ++compared_frames;
@@ -215,8 +216,8 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
       // particle's row where its parent's was until the next weigh copies it): the reference's, but
       // for the odd pixel of a particle whose silhouette flipped without weight to matter.
       if (mode != OcclusionStorage::Off) {
-        const auto p_ref = reference.occlusion_state(), p_dev = device.occlusion_state();
-        const auto t_ref = reference.occlusion_times(), t_dev = device.occlusion_times();
+        const auto p_ref = reference.occlusion_state(), p_dev = DeviceFilterProbe(device).occlusion_state();
+        const auto t_ref = reference.occlusion_times(), t_dev = DeviceFilterProbe(device).occlusion_times();
         REQUIRE(p_dev.size() == p_ref.size());
         REQUIRE(t_dev.size() == t_ref.size());
         size_t differing = 0;
@@ -266,10 +267,10 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
         "%d resamplings, ancestry identical but for %d numerical ties; %d silhouette coverage flips; "
         "ancestry and estimates compared in %d of %zu frames; state window %dx%d moved %d times, grew %d times\n",
         scene.name.c_str(), to_string(mode), renderer.c_str(),
-        to_string(resolved_refine_layout(layout, info, scene.mesh.triangles.size(), scene_pixels(scene))), device.description().c_str(),
-        worst_ll, worst_t, worst_r, worst_ess, worst_sd, undetermined_axes, worst_confidence, resamplings, ties,
-        coverage_flips, compared_frames, scene.frames.size(), reference.state_window().width,
-        reference.state_window().height, window_moves, window_growths);
+        to_string(resolved_refine_layout(layout, info, scene.mesh.triangles.size(), scene_pixels(scene))),
+        device.description().c_str(), worst_ll, worst_t, worst_r, worst_ess, worst_sd, undetermined_axes,
+        worst_confidence, resamplings, ties, coverage_flips, compared_frames, scene.frames.size(),
+        reference.state_window().width, reference.state_window().height, window_moves, window_growths);
     CHECK(resamplings > 0);
     if (window.width > 0) CHECK(window_moves > 0);  // the rows followed the estimate
     CHECK(window_growths >= min_growths);
@@ -353,20 +354,20 @@ TEST_CASE("an automatic window's rows have room for half as much again: growing 
   config.backend = test::device_selector();
   DeviceFilter device(compute::open_device(config.backend), scene.mesh, scene.working, config);
   device.initialize(scene.frames[0].ground_truth, {0.01, 0.05});
-  const size_t start_pixels = device.state_window().pixels();
+  const size_t start_pixels = DeviceFilterProbe(device).state_window().pixels();
   // Probabilities and times, each in the current buffer (the start) and the scratch one (the first frame).
-  const size_t first_frame_allocations = device.state_row_allocations() + 2;
+  const size_t first_frame_allocations = DeviceFilterProbe(device).state_row_allocations() + 2;
   bool grown_past_room = false;
   for (size_t f = 0; f < scene.frames.size(); ++f) {
     const double dt = frame_dt(scene, f);
     device.update(scene.frames[f].depth, dt);
-    const size_t pixels = device.state_window().pixels();  // the rows this frame wrote
+    const size_t pixels = DeviceFilterProbe(device).state_window().pixels();  // the rows this frame wrote
     INFO("frame " << f << ": " << pixels << " pixels, " << start_pixels << " at the start");
     if (2 * pixels <= 3 * start_pixels) {
-      CHECK(device.state_row_allocations() == first_frame_allocations);
+      CHECK(DeviceFilterProbe(device).state_row_allocations() == first_frame_allocations);
     } else {
       grown_past_room = true;
-      CHECK(device.state_row_allocations() > first_frame_allocations);
+      CHECK(DeviceFilterProbe(device).state_row_allocations() > first_frame_allocations);
       break;
     }
   }
@@ -378,11 +379,11 @@ TEST_CASE("an automatic window's rows have room for half as much again: growing 
 // CI's default renderer).
 // The rule behind Auto, from the measured costs in device_refiner.cpp: large meshes spread everywhere,
 // small ones only on GPUs (PoCL's launches cost more than one group's loops).
-TEST_CASE(
-    "the refinement layout auto spreads large meshes everywhere and small ones on GPUs, given 64-bit atomics",
-    "[refine]") {
+TEST_CASE("the refinement layout auto spreads large meshes everywhere and small ones on GPUs, given 64-bit atomics",
+          "[refine]") {
   compute::DeviceInfo cuda_gpu, opencl_gpu, opencl_cpu;
   cuda_gpu.backend = "cuda";
+  cuda_gpu.replayed_launches = true;  // what CUDA's queue reports: batches replayed as graphs
   cuda_gpu.is_gpu = true;
   opencl_gpu.backend = "opencl";
   opencl_gpu.is_gpu = true;
@@ -398,7 +399,8 @@ TEST_CASE(
   CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, kSpreadTriangles - 1, small) == RefineLayout::OneLaunch);
   CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, kSpreadTriangles, small) == RefineLayout::Spread);
   // A GPU spreads a large image's pixels over its groups; a CPU runs a group in sequence anyway.
-  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, handset, kOneLaunchGpuPixels) == RefineLayout::OneLaunch);
+  CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, handset, kOneLaunchGpuPixels) ==
+        RefineLayout::OneLaunch);
   CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_gpu, handset, large) == RefineLayout::Spread);
   CHECK(resolved_refine_layout(RefineLayout::Auto, opencl_cpu, handset, large) == RefineLayout::OneLaunch);
   // A layout asked for is kept.
@@ -450,8 +452,8 @@ void each_frame_from_common_state(const Scene& scene, const TrackerConfig& confi
   device.initialize(scene.frames[0].ground_truth, spread);
   for (size_t f = 0; f < scene.frames.size(); ++f) {
     INFO(scene.name << ", frame " << f);
-    device.set_state(reference.particles(), reference.occlusion_state(), reference.occlusion_times(),
-                     reference.log_weights());
+    DeviceFilterProbe(device).set_state(reference.particles(), reference.occlusion_state(), reference.occlusion_times(),
+                                        reference.log_weights());
     const double dt = frame_dt(scene, f);
     const Estimate a = reference.update(scene.frames[f].depth, dt);
     const Estimate b = device.update(scene.frames[f].depth, dt);
@@ -552,13 +554,14 @@ TEST_CASE("clouds past the small-cloud folds, the prefix sum over one work-group
             // hundreds of nats carry ~3e-5 of it: 1-3 children a frame here, as many with one group at 16,383
             // particles). The prefix sum itself is held to exact ancestry on given weights (test_kernels.cpp).
             std::vector<double> w = reference.last_normalized_weights();
-            const auto ll_ref = reference.last_log_likelihoods(), ll_dev = device.last_log_likelihoods();
+            const auto ll_ref = reference.last_log_likelihoods(),
+                       ll_dev = DeviceFilterProbe(device).last_log_likelihoods();
             double sum = 0;
             for (size_t i = 0; i < w.size(); ++i) sum += w[i] *= std::exp(ll_dev[i] - ll_ref[i]);
             for (double& x : w) x /= sum;
             const double u =
                 dt_uniform01(dt_random_words(config.seed, 0u, static_cast<dt_u32>(f), DT_STREAM_RESAMPLE, 0u).v[0]);
-            const auto expected = reference::systematic_resample(w, u), got = device.last_parents();
+            const auto expected = reference::systematic_resample(w, u), got = DeviceFilterProbe(device).last_parents();
             size_t differing = 0;
             for (size_t i = 0; i < expected.size(); ++i) differing += expected[i] != got[i];
             CHECK(differing <= expected.size() / 1000);
@@ -626,13 +629,13 @@ TEST_CASE("an atlas of fewer tiles than particles, drawn and weighed in turns, g
     const Estimate a = whole.update(scene.frames[f].depth, dt);
     const Estimate b = chunked.update(scene.frames[f].depth, dt);
     // The same kernels on the same tiles, only launched in turns: the same numbers, bit for bit.
-    CHECK(whole.last_log_likelihoods() == chunked.last_log_likelihoods());
-    CHECK(whole.last_parents() == chunked.last_parents());
+    CHECK(DeviceFilterProbe(whole).last_log_likelihoods() == DeviceFilterProbe(chunked).last_log_likelihoods());
+    CHECK(DeviceFilterProbe(whole).last_parents() == DeviceFilterProbe(chunked).last_parents());
     CHECK(a.pose.translation == b.pose.translation);
     CHECK(a.pose.rotation.coeffs() == b.pose.rotation.coeffs());
     CHECK(a.refine_iterations == b.refine_iterations);
   }
-  CHECK_THROWS_WITH(chunked.last_atlas(), Catch::Contains("drawn in turns"));
+  CHECK_THROWS_WITH(DeviceFilterProbe(chunked).last_atlas(), Catch::Contains("drawn in turns"));
   // And against the reference, as every layout is.
   each_frame_from_common_state(scene, turns, [&](size_t, const Estimate& a, const Estimate& b, auto&, auto&) {
     CHECK(translation_error(a.pose, b.pose) <= 1e-5);

@@ -6,14 +6,15 @@
 
 #include "device_support.hpp"
 #include "filter/device_filter.hpp"
+#include "filter/device_filter_probe.hpp"
 #include "reference/reference_filter.hpp"
 
 using namespace depthtrack;
 
 namespace {
-void require_same_start(const reference::ReferenceFilter& reference, const DeviceFilter& device) {
+void require_same_start(const reference::ReferenceFilter& reference, DeviceFilter& device) {
   const auto expected = reference.particles();
-  const auto drawn = device.particles();
+  const auto drawn = DeviceFilterProbe(device).particles();
   REQUIRE(drawn.size() == expected.size());
   double worst_t = 0, worst_r = 0;
   for (size_t i = 0; i < drawn.size(); ++i) {
@@ -25,8 +26,8 @@ void require_same_start(const reference::ReferenceFilter& reference, const Devic
   // The tolerances of the frame-by-frame equivalence test (float poses against double ones).
   CHECK(worst_t <= 1e-5);
   CHECK(worst_r <= 1e-4);
-  CHECK(device.occlusion_state() == reference.occlusion_state());
-  CHECK(device.occlusion_times() == reference.occlusion_times());
+  CHECK(DeviceFilterProbe(device).occlusion_state() == reference.occlusion_state());
+  CHECK(DeviceFilterProbe(device).occlusion_times() == reference.occlusion_times());
 }
 }  // namespace
 
@@ -54,7 +55,7 @@ TEST_CASE("initial particles and occlusion state drawn on the device equal the r
     device.initialize(turned, spread);
     require_same_start(reference, device);
     // The spread is really drawn: the particles are not all the start pose.
-    const auto drawn = device.particles();
+    const auto drawn = DeviceFilterProbe(device).particles();
     CHECK(translation_error(drawn[0].pose, drawn[1].pose) > 1e-3);
 
     // A second initialize() after frames have changed every buffer starts afresh.

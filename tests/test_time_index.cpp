@@ -11,6 +11,7 @@
 #include "dt_state.h"
 #include "dt_time_index.h"
 #include "filter/device_filter.hpp"
+#include "filter/device_filter_probe.hpp"
 #include "filter/frame_time_table.hpp"
 #include "reference/reference_filter.hpp"
 
@@ -118,7 +119,7 @@ TEST_CASE("a device filter retires time indices unseen for 32,768 frames and sti
     device.update(depth, f == 0 ? 0.0 : dt);
   }
   // Retired: the pixels seen at the start read time 0 on the device, their own time on the reference.
-  const auto device_times = device.occlusion_times(), reference_times = reference.occlusion_times();
+  const auto device_times = DeviceFilterProbe(device).occlusion_times(), reference_times = reference.occlusion_times();
   REQUIRE(device_times.size() == reference_times.size());
   size_t retired = 0;
   for (size_t k = 0; k < device_times.size(); ++k) {
@@ -129,6 +130,6 @@ TEST_CASE("a device filter retires time indices unseen for 32,768 frames and sti
   // The depth comes back: the same likelihoods and estimate.
   const Estimate a = reference.update(seen, dt), b = device.update(seen, dt);
   CHECK(translation_error(a.pose, b.pose) <= 1e-5);
-  const auto ll_ref = reference.last_log_likelihoods(), ll_dev = device.last_log_likelihoods();
+  const auto ll_ref = reference.last_log_likelihoods(), ll_dev = DeviceFilterProbe(device).last_log_likelihoods();
   for (size_t i = 0; i < ll_ref.size(); ++i) CHECK(ll_dev[i] == Approx(ll_ref[i]).epsilon(1e-4));
 }

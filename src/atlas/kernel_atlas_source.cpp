@@ -8,6 +8,7 @@
 #include "atlas/atlas_source.hpp"
 #include "atlas/raster_inputs.hpp"
 #include "compute/program_cache.hpp"
+#include "dt_launch.h"
 #include "dt_state.h"
 #include "model/kernel_params.hpp"
 
@@ -15,8 +16,9 @@ namespace depthtrack {
 
 namespace {
 // Work-items per particle, striding over the triangles. On the H100, 128 is the fastest for the
-// handset at 80x60 (64: 10 % slower; 256 gains only at 640x480, 5-17 %); PoCL does not care.
-constexpr size_t kGroupSize = 128;
+// handset at 80x60 (64: 10 % slower; 256 gains only at 640x480, 5-17 %); PoCL does not care. The
+// filter's group (cl/dt_launch.h), as render_weigh draws with.
+constexpr size_t kGroupSize = DT_FILTER_GROUP;
 
 class KernelAtlasSource final : public AtlasSource {
  public:

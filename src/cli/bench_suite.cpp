@@ -2,13 +2,14 @@
 
 #include <cmath>
 #include <depthtrack/tracker.hpp>
+#include <optional>
 
 #include "bench_rows.hpp"
 #include "cli/environment_defaults.hpp"
 #include "cli/step_bytes.hpp"
 #include "compute/queue.hpp"
 #include "core/stopwatch.hpp"
-#include "filter/device_filter.hpp"
+#include "filter/frame_plan.hpp"
 #include "tracker/make_filter_backend.hpp"
 
 namespace depthtrack::cli {
@@ -48,11 +49,11 @@ BenchTarget describe_target(const std::string& backend) {
   if (backend == "reference") return {backend, "cpu", bench::cpu_name(), "-", true, false};
   // The reference on a thread pool (cpu, cpu:N): no compute device to open; the count is checked here.
   if (backend == "cpu" || backend.rfind("cpu:", 0) == 0)
-    return {backend, "cpu", bench::cpu_name() + ", " + std::to_string(cpu_backend_threads(backend)) + " threads", "-",
-            true, false};
+    return {backend, "cpu", bench::cpu_name() + ", " + std::to_string(cpu_backend_threads(backend)) + " threads",
+            "-",     true,  false};
   const auto queue = compute::open_device(backend);
   const compute::DeviceInfo& info = queue->info();
-  return {backend, info.platform, info.name, info.driver, !info.is_gpu, true, info.local_memory, info.max_allocation};
+  return {backend, info.platform, info.name, info.driver, !info.is_gpu, true, info};
 }
 
 std::string BenchCase::test() const {
@@ -106,14 +107,15 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
                     p95, static_cast<int>(samples)});
   };
   const size_t pixels = static_cast<size_t>(c.width) * static_cast<size_t>(c.height);
-  const bool inside_weigh =
-      target.on_device && renders_inside_weigh(config.renderer, pixels, target.local_memory);
+  // The frame the device filter ran: its plan, as the filter made it.
+  std::optional<FramePlan> plan;
+  if (target.on_device)
+    plan = make_frame_plan(config, target.info, frame_sizes(c.mesh->mesh, tracker.working_camera(), config));
+  const bool inside_weigh = plan && plan->weigh == WeighStep::RenderWeigh;
   // The occlusion state the filter kept: its (automatic) window at the last frame.
   const auto [window_width, window_height] = tracker.occlusion_window_size();
   const size_t state_pixels = static_cast<size_t>(window_width) * static_cast<size_t>(window_height);
-  const bool weigh_propagates =
-      target.on_device &&
-      propagates_inside_weigh(config.renderer, pixels, target.local_memory, static_cast<size_t>(c.particles));
+  const bool weigh_propagates = plan && plan->propagate_in_weigh;
   const StepBytes b =
       step_bytes(static_cast<size_t>(c.particles), pixels, c.mode, target.on_device && renderer == "gl",
                  config.refine.enabled ? config.refine.iterations : 0, inside_weigh, state_pixels, weigh_propagates);
@@ -133,10 +135,7 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
   if (target.on_device) {
     // The kernel renderer's atlas as the filter sizes it; the GL and cpu renderers' holds every particle's tile.
     const size_t particles = static_cast<size_t>(c.particles);
-    const size_t atlas_tiles =
-        config.renderer == Renderer::Kernel
-            ? kernel_renderer_atlas_tiles(config, pixels, target.local_memory, target.max_allocation)
-            : particles;
+    const size_t atlas_tiles = config.renderer == Renderer::Kernel ? plan->atlas_tiles : particles;
     result.memory_mib = filter_memory_mib(particles, pixels, c.mode, atlas_tiles, state_pixels);
     row("device_memory", "MiB", result.memory_mib, result.memory_mib, 1);
     row("state_window_pixels", "pixels", static_cast<double>(state_pixels), static_cast<double>(state_pixels), 1);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/bench_results.hpp"
+#include "compute/device_info.hpp"
 
 namespace depthtrack::cli {
 
@@ -18,8 +19,8 @@ struct BenchGrid {
   std::vector<std::pair<int, int>> resolutions;
   int particles_at_resolution = 0, particles_at_triangles = 0, particles_at_occlusion = 0;
   int particles_at_latency = 0;  // the latency case: 80x60, steps untimed, as a tracker runs
-  int frames = 0;           // per case, the first two not timed
-  double cpu_max_work = 0;  // particles x pixels above which the reference and CPU devices skip a case
+  int frames = 0;                // per case, the first two not timed
+  double cpu_max_work = 0;       // particles x pixels above which the reference and CPU devices skip a case
 };
 BenchGrid quick_grid();
 BenchGrid full_grid();
@@ -37,10 +38,9 @@ BenchMesh make_bench_mesh(const std::string& name, Mesh mesh, int frames);
 // with the facts results.json names it by.
 struct BenchTarget {
   std::string backend, platform, device, driver;
-  bool cpu = true;          // the reference or a CPU device: cases beyond cpu_max_work are skipped
-  bool on_device = false;   // a compute device's filter: device_memory is reported
-  size_t local_memory = 0;  // its bytes per work-group: whether the kernel renderer draws inside weigh
-  size_t max_allocation = 0;  // its largest buffer: how many tiles the kernel renderer's atlas holds
+  bool cpu = true;             // the reference or a CPU device: cases beyond cpu_max_work are skipped
+  bool on_device = false;      // a compute device's filter: device_memory is reported
+  compute::DeviceInfo info{};  // what the device reports: the filter's FramePlan, which the rows' sizes follow
 };
 // Opens each device once (InputError from the compute layer for an unknown or absent one; cpu:N
 // with an impossible N).

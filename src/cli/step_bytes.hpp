@@ -26,7 +26,7 @@ StepBytes step_bytes(size_t particles, size_t pixels, OcclusionStorage mode, boo
 // Device memory the filter's buffers take without GL pages, MiB (device_filter_bytes_per_particle), with
 // an atlas of atlas_tiles tiles (none given: every particle's; 0 where it is drawn inside weigh;
 // kernel_atlas_tiles where it is drawn in turns) and the state window's rows as it needs them: an
-// automatic window's buffers hold room for up to half as many again (DeviceFilter::reserve_state_rows),
+// automatic window's buffers hold room for up to half as many again (StateRows, filter/state_rows.cpp),
 // which this leaves out.
 double filter_memory_mib(size_t particles, size_t pixels, OcclusionStorage mode,
                          std::optional<size_t> atlas_tiles = std::nullopt,

@@ -32,8 +32,11 @@ struct DeviceInfo {
   bool gl_sharing = false;       // cl_khr_gl_sharing / CUDA-GL interop
   bool external_memory = false;  // cl_khr_external_memory(_opaque_fd) / CUDA external memory
   bool fp64 = false;
-  bool subgroups = false;               // cl_khr_subgroups or warps
-  bool int64_atomics = false;           // 64-bit atomic min: cl_khr_int64_extended_atomics / CUDA
+  bool subgroups = false;      // cl_khr_subgroups or warps
+  bool int64_atomics = false;  // 64-bit atomic min: cl_khr_int64_extended_atomics / CUDA
+  // The queue replays a batch of launches as one unit (Queue::begin_batch: CUDA graphs), so a launch
+  // costs the host little and many short launches beat one group's long loop (the fit's layout).
+  bool replayed_launches = false;
   std::vector<std::string> extensions;  // the full list, where the API has one
   // The GPU's UUID (cuDeviceGetUuid, cl_khr_device_uuid), to find the EGL device on the same GPU.
   std::optional<std::array<unsigned char, 16>> uuid;

@@ -6,15 +6,17 @@
 #include "atlas/raster_inputs.hpp"
 #include "compute/program_cache.hpp"
 #include "core/pose_state.hpp"
+#include "dt_launch.h"
 #include "dt_state.h"
+#include "filter/kernels/score_args.hpp"
 #include "model/kernel_params.hpp"
 #include "model/occlusion_chain.hpp"
 
 namespace depthtrack {
 
 namespace {
-constexpr size_t kScoreGroup = 128;      // work-items per pose in cl/score.cl, as in weigh
-constexpr size_t kRasterizeGroup = 128;  // work-items per pose in cl/rasterize.cl, as the kernel atlas source
+constexpr size_t kScoreGroup = DT_FILTER_GROUP;      // work-items per pose in cl/score.cl, as in weigh
+constexpr size_t kRasterizeGroup = DT_FILTER_GROUP;  // per pose in cl/rasterize.cl, as the kernel atlas source
 // Poses per launch at most: enough to fill a GPU at 80x60; a CPU device gains nothing from more.
 constexpr size_t kGpuBatch = 4096, kCpuBatch = 256;
 
@@ -71,11 +73,27 @@ std::vector<double> DevicePoseScorer::score(std::span<const Pose> poses, const D
     const size_t n = std::min(batch_, poses.size() - first);
     for (size_t i = 0; i < n; ++i) write_pose(poses[first + i], packed.data() + i * DT_STATE_STRIDE);
     states_.upload(std::span<const float>(packed.data(), n * DT_STATE_STRIDE));
-    queue_.launch(*rasterize_, compute::NdRange::linear(n * kRasterizeGroup, kRasterizeGroup), states_, mesh_.vertices,
-                  mesh_.triangles, mesh_.planes, mesh_.triangle_count(), mesh_.vertex_count(), camera_,
-                  layout_.kernel_args(), atlas_, unused_boxes_, 0u, 0u);
-    queue_.launch(*score_, compute::NdRange::linear(n * kScoreGroup, kScoreGroup), atlas_, observed_, scores_,
-                  static_cast<unsigned>(pixels_), model, p, layout_.kernel_args());
+    kernels::launch({queue_, *rasterize_, compute::NdRange::linear(n * kRasterizeGroup, kRasterizeGroup)},
+                    kernels::RasterizeArgs{.states = states_,
+                                           .vertices = mesh_.vertices,
+                                           .triangles = mesh_.triangles,
+                                           .planes = mesh_.planes,
+                                           .triangle_count = mesh_.triangle_count(),
+                                           .vertex_count = mesh_.vertex_count(),
+                                           .cam = camera_,
+                                           .layout = layout_.kernel_args(),
+                                           .atlas = atlas_,
+                                           .boxes = unused_boxes_,
+                                           .boxed = 0u,
+                                           .first = 0u});
+    kernels::launch({queue_, *score_, compute::NdRange::linear(n * kScoreGroup, kScoreGroup)},
+                    kernels::ScoreArgs{.atlas = atlas_,
+                                       .observed = observed_,
+                                       .scores = scores_,
+                                       .pixels = static_cast<unsigned>(pixels_),
+                                       .model = model,
+                                       .p = p,
+                                       .layout = layout_.kernel_args()});
     scores_.download(std::span<float>(scores.data(), n));
     out.insert(out.end(), scores.begin(), scores.begin() + static_cast<std::ptrdiff_t>(n));
   }

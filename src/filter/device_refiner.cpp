@@ -6,8 +6,10 @@
 #include <stdexcept>
 
 #include "compute/program_cache.hpp"
+#include "dt_launch.h"
 #include "dt_refine_state.h"
 #include "dt_state.h"
+#include "filter/kernels/refine_args.hpp"
 #include "model/fit_noise.hpp"
 #include "model/kernel_params.hpp"
 
@@ -18,8 +20,8 @@ namespace {
 // pixels and ~7 triangles per rendering in sequence; 256 halves that and keeps the 29 sums' local
 // memory (29.7 KB) within CUDA's 48 KB of static shared memory and the registers within a
 // multiprocessor. The spread layout's sums kernel uses the same size (its per-group tree).
-constexpr size_t kRefineGroup = 256;
-constexpr size_t kLinearGroup = 64;  // the spread layout's draws: a work-item per triangle and slice
+constexpr size_t kRefineGroup = DT_REFINE_GROUP;
+constexpr size_t kLinearGroup = DT_LINEAR_GROUP;  // the spread layout's draws: a work-item per triangle and slice
 // The spread sums kernel: enough groups for every pixel of the image to have its own work-item, at
 // most this many rows of partials for its last group to add (beyond 256 x 256 pixels a work-item
 // sums several).
@@ -47,12 +49,13 @@ size_t round_up(size_t n, size_t multiple) {
 // Measured: the spread layout's draw and sums in one group (one-launch) against spread,
 // untimed frame at 2,000 particles (H100): NVIDIA OpenCL handset 0.46-0.55 ->
 // 0.38-0.42 ms, the mug simplified to 412 / 1,120 / 3,196 triangles 0.45-0.47 -> 0.42-0.43, 0.47-0.54 ->
-// 0.43-0.44, 0.48-0.54 -> 0.49-0.56 (its host's launches are the frame's cost there); CUDA, whose graphs make launches cheap, slower
-// for every mesh (handset 0.24-0.27 -> 0.24-0.32). PoCL (2 cores) handset refine_ms 0.79-0.81 against
+// 0.43-0.44, 0.48-0.54 -> 0.49-0.56 (its host's launches are the frame's cost there); CUDA, whose graphs make launches
+// cheap, slower for every mesh (handset 0.24-0.27 -> 0.24-0.32). PoCL (2 cores) handset refine_ms 0.79-0.81 against
 // 1.16-1.35 one group and 1.31-1.60 spread; the 16,384-triangle mug 3.4-3.5 against spread's 2.7-3.4.
 // Once OpenCL's transfers went through pinned memory (0.1 ms less host time a frame for either layout)
 // the one group's device time decided the 3,196-triangle mug: 0.455 ms against spread's 0.44-0.51
-// before. So below 2,048 triangles every device but CUDA fits in one launch (not measured between
+// before. So below 2,048 triangles every device whose launches are not replayed (CUDA's are:
+// DeviceInfo::replayed_launches) fits in one launch (not measured between
 // 1,120 and 3,196). PoCL at 200 particles, refine_ms one-launch / spread / one-group: 160x120 0.99 / 1.99 /
 // 1.46, 320x240 1.83 / 4.00 / 2.78; on a GPU the one group's pixel loop grows with the image
 // (kOneLaunchGpuPixels).
@@ -64,7 +67,7 @@ RefineLayout resolved_refine_layout(RefineLayout layout, const compute::DeviceIn
                      " does not list; use --refine-layout one-group or auto");
   if (layout != RefineLayout::Auto) return layout;
   if (!device.int64_atomics) return RefineLayout::OneGroup;
-  if (triangle_count >= kSpreadTriangles || device.backend == "cuda") return RefineLayout::Spread;
+  if (triangle_count >= kSpreadTriangles || device.replayed_launches) return RefineLayout::Spread;
   if (device.is_gpu && pixel_count > kOneLaunchGpuPixels) return RefineLayout::Spread;
   return RefineLayout::OneLaunch;
 }
@@ -87,9 +90,9 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
       radius_(mesh.radius()),
       layout_(resolved_refine_layout(config.refine.layout, queue.info(), mesh.triangles.size(),
                                      static_cast<size_t>(camera.pixel_count()))),
-      draw_slices_(draw_slices > 0 ? draw_slices
-                                   : refine_draw_slices(layout_, mesh.triangles.size(), camera.height,
-                                                        queue.info().is_gpu)),
+      draw_slices_(draw_slices > 0
+                       ? draw_slices
+                       : refine_draw_slices(layout_, mesh.triangles.size(), camera.height, queue.info().is_gpu)),
       program_(programs.program(layout_ == RefineLayout::OneGroup ? "refine.cl" : "refine_spread.cl",
                                 {"DT_GROUP_SIZE=" + std::to_string(kRefineGroup), occlusion_definition})),
       mesh_(queue, mesh),
@@ -129,27 +132,48 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
   const dt_refine_args args = model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time,
                                                    in.dt, config_.loss.pixel_sigmas, draw_slices_);
   if (layout_ == RefineLayout::Spread) return refine_spread(estimate, in, args);
-  const auto one_group = compute::NdRange::linear(kRefineGroup, kRefineGroup);
+  const kernels::Launch one_group{queue_, *refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup),
+                                  config_.step_timings};
+  const kernels::FitFrame frame{in.states, in.observed, in.occlusion, in.occlusion_time, in.frame_times, in.parents};
+  const kernels::FitMesh mesh{mesh_.vertices, mesh_.triangles, mesh_.planes, mesh_.triangle_count()};
   const dt_camera cam = model::camera_params(camera_, config_, mesh_.cull_back_faces);
   const dt_model model = model::model_params(config_);
   compute::EventPtr fit;
   if (layout_ == RefineLayout::OneLaunch) {
     // Without a summary to make, its buffers are not read: estimate stands in for them.
-    const compute::Buffer<float>& log_weight = summary ? summary->log_weight : estimate;
-    const compute::Buffer<float>& log_likelihood = summary ? summary->log_likelihood : estimate;
-    compute::Buffer<float>& weights = summary ? summary->weights : estimate;
     const Eigen::Vector3f centre = summary ? summary->centre : Eigen::Vector3f::Zero();
-    fit = compute::launch_timed_if(config_.step_timings, queue_, *refine_, one_group, log_weight, log_likelihood,
-                                   weights, summary ? summary->count : 0u, centre.x(), centre.y(), centre.z(),
-                                   summary ? summary->kl_threshold : 0.0f, static_cast<unsigned>(summary != nullptr),
-                                   fit_state_, estimate, in.states, in.observed, in.occlusion, in.occlusion_time,
-                                   in.frame_times, in.parents, mesh_.vertices, mesh_.triangles, mesh_.planes,
-                                   mesh_.triangle_count(), cam, model, args, in.window, nearest_, correction_);
+    fit = kernels::launch(one_group,
+                          kernels::RefineOneLaunchArgs{.log_weight = summary ? summary->log_weight : estimate,
+                                                       .log_likelihood = summary ? summary->log_likelihood : estimate,
+                                                       .weights = summary ? summary->weights : estimate,
+                                                       .count = summary ? summary->count : 0u,
+                                                       .centre_x = centre.x(),
+                                                       .centre_y = centre.y(),
+                                                       .centre_z = centre.z(),
+                                                       .kl_threshold = summary ? summary->kl_threshold : 0.0f,
+                                                       .summarize = static_cast<unsigned>(summary != nullptr),
+                                                       .fit_state = fit_state_,
+                                                       .estimate = estimate,
+                                                       .frame = frame,
+                                                       .mesh = mesh,
+                                                       .cam = cam,
+                                                       .model = model,
+                                                       .args = args,
+                                                       .window = in.window,
+                                                       .nearest = nearest_,
+                                                       .correction = correction_});
   } else {
-    fit = compute::launch_timed_if(config_.step_timings, queue_, *refine_, one_group, estimate, in.states, in.observed,
-                                   in.occlusion, in.occlusion_time, in.frame_times, in.parents, mesh_.vertices,
-                                   mesh_.triangles, mesh_.planes, mesh_.triangle_count(), cam, model, args, pose_,
-                                   tile_, ids_, correction_, in.window);
+    fit = kernels::launch(one_group, kernels::RefineOneGroupArgs{.estimate = estimate,
+                                                                 .frame = frame,
+                                                                 .mesh = mesh,
+                                                                 .cam = cam,
+                                                                 .model = model,
+                                                                 .args = args,
+                                                                 .pose_state = pose_,
+                                                                 .tile = tile_,
+                                                                 .ids = ids_,
+                                                                 .correction = correction_,
+                                                                 .window = in.window});
   }
   if (!fit) return {};
   return {fit};
@@ -171,13 +195,26 @@ std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<floa
   // begin (dt_refine_state), so that only begin's arguments change from frame to frame.
   std::vector<compute::EventPtr> events;
   const bool timed = config_.step_timings;
-  if (compute::EventPtr begun = compute::launch_timed_if(timed, queue_, *begin_, compute::NdRange::linear(1, 1),
-                                                         fit_state_, estimate, in.states, args, in.window))
+  if (compute::EventPtr begun = kernels::launch(
+          {queue_, *begin_, compute::NdRange::linear(1, 1), timed},
+          kernels::RefineBeginArgs{
+              .fit_state = fit_state_, .estimate = estimate, .states = in.states, .args = args, .window = in.window}))
     events.push_back(std::move(begun));
-  compute::set_launch_args(*draw_, fit_state_, mesh_.vertices, mesh_.triangles, mesh_.planes, triangles, cam, nearest_);
-  compute::set_launch_args(*sums_, fit_state_, estimate, in.states, in.observed, in.occlusion, in.occlusion_time,
-                           in.frame_times, in.parents, mesh_.planes, triangles, cam, model, nearest_, partials_,
-                           correction_);
+  kernels::set_args(*draw_, kernels::RefineDrawArgs{.fit_state = fit_state_,
+                                                    .mesh = {mesh_.vertices, mesh_.triangles, mesh_.planes, triangles},
+                                                    .cam = cam,
+                                                    .nearest = nearest_});
+  kernels::set_args(*sums_, kernels::RefineSumsArgs{.fit_state = fit_state_,
+                                                    .estimate = estimate,
+                                                    .frame = {in.states, in.observed, in.occlusion, in.occlusion_time,
+                                                              in.frame_times, in.parents},
+                                                    .planes = mesh_.planes,
+                                                    .triangle_count = triangles,
+                                                    .cam = cam,
+                                                    .model = model,
+                                                    .nearest = nearest_,
+                                                    .partials = partials_,
+                                                    .correction = correction_});
   for (int evaluation = 0; evaluation <= config_.refine.iterations; ++evaluation) {
     queue_.launch_untimed(*draw_, per_item);
     if (compute::EventPtr last =

@@ -51,7 +51,8 @@ struct SummaryInputs {
 };
 
 // The layout Auto picks: Spread for meshes of kSpreadTriangles triangles or more on every device, and
-// for smaller ones on CUDA and on GPUs over kOneLaunchGpuPixels; OneLaunch for smaller meshes elsewhere (measured on PoCL and NVIDIA's
+// for smaller ones on devices whose queue replays its launches (DeviceInfo::replayed_launches: CUDA's graphs) and
+// on GPUs over kOneLaunchGpuPixels; OneLaunch for smaller meshes elsewhere (measured on PoCL and NVIDIA's
 // CUDA and OpenCL: device_refiner.cpp); OneGroup on devices without 64-bit atomic min
 // (DeviceInfo::int64_atomics), where Spread or OneLaunch asked for is an InputError.
 constexpr size_t kSpreadTriangles = 2048;
@@ -96,7 +97,7 @@ class DeviceRefiner {
 
   RefineLayout layout() const { return layout_; }  // never Auto
   unsigned draw_slices() const { return draw_slices_; }
-  double radius() const { return radius_; }        // the mesh's (model::pose_covariance's pivot)
+  double radius() const { return radius_; }  // the mesh's (model::pose_covariance's pivot)
 
  private:
   std::vector<compute::EventPtr> refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in,

@@ -3,6 +3,8 @@
 #include <algorithm>
 
 #include "dt_summary.h"
+#include "filter/kernels/resample_args.hpp"
+#include "filter/kernels/summary_args.hpp"
 
 namespace depthtrack {
 
@@ -43,15 +45,36 @@ std::vector<compute::EventPtr> WideSummary::summarize(const compute::Buffer<floa
   const auto grid = compute::NdRange::linear(groups_ * kGroupSize, kGroupSize);
   const unsigned count = static_cast<unsigned>(particles_);
   // Timed by its first and last launch (Event::elapsed_since_ms), as the spread refinement is.
-  const compute::EventPtr first = queue_.launch(*max_, grid, log_weight, log_likelihood, count, partials_);
-  queue_.launch_untimed(*sum_, grid, log_weight, count, partials_);
-  queue_.launch_untimed(*weights_, grid, states, log_weight, log_likelihood, weights, count, centre_x, centre_y,
-                        centre_z, partials_);
+  const compute::EventPtr first = kernels::launch(
+      {queue_, *max_, grid},
+      kernels::SummarizeMaxArgs{
+          .log_weight = log_weight, .log_likelihood = log_likelihood, .count = count, .partials = partials_});
+  kernels::launch({queue_, *sum_, grid, false},
+                  kernels::SummarizeSumArgs{.log_weight = log_weight, .count = count, .partials = partials_});
+  kernels::launch({queue_, *weights_, grid, false}, kernels::SummarizeWeightsArgs{.state = states,
+                                                                                  .log_weight = log_weight,
+                                                                                  .log_likelihood = log_likelihood,
+                                                                                  .weights = weights,
+                                                                                  .count = count,
+                                                                                  .centre_x = centre_x,
+                                                                                  .centre_y = centre_y,
+                                                                                  .centre_z = centre_z,
+                                                                                  .partials = partials_});
   for (unsigned step = 0; step < karcher_steps; ++step)
-    queue_.launch_untimed(*karcher_, grid, states, weights, count, step, partials_);
-  return {first, queue_.launch(*finish_, compute::NdRange::linear(kGroupSize, kGroupSize), states, estimate, count,
-                               static_cast<unsigned>(groups_), centre_x, centre_y, centre_z, kl_threshold, partials_,
-                               karcher_steps)};
+    kernels::launch({queue_, *karcher_, grid, false},
+                    kernels::SummarizeKarcherArgs{
+                        .state = states, .weights = weights, .count = count, .iteration = step, .partials = partials_});
+  return {first, kernels::launch({queue_, *finish_, compute::NdRange::linear(kGroupSize, kGroupSize)},
+                                 kernels::SummarizeFinishArgs{.state = states,
+                                                              .estimate = estimate,
+                                                              .count = count,
+                                                              .groups = static_cast<unsigned>(groups_),
+                                                              .centre_x = centre_x,
+                                                              .centre_y = centre_y,
+                                                              .centre_z = centre_z,
+                                                              .kl_threshold = kl_threshold,
+                                                              .partials = partials_,
+                                                              .karcher_steps = karcher_steps})};
 }
 
 std::vector<compute::EventPtr> WideSummary::prefix_sum(const compute::Buffer<float>& weights,
@@ -59,8 +82,14 @@ std::vector<compute::EventPtr> WideSummary::prefix_sum(const compute::Buffer<flo
                                                        const compute::Buffer<float>& estimate) {
   const auto grid = compute::NdRange::linear(groups_ * kGroupSize, kGroupSize);
   const unsigned count = static_cast<unsigned>(particles_);
-  return {queue_.launch(*totals_, grid, weights, count, range_totals_, estimate),
-          queue_.launch(*ranges_, grid, weights, cumulative, count, range_totals_, estimate)};
+  return {kernels::launch({queue_, *totals_, grid},
+                          kernels::PrefixSumTotalsArgs{
+                              .values = weights, .count = count, .totals = range_totals_, .estimate = estimate}),
+          kernels::launch({queue_, *ranges_, grid}, kernels::PrefixSumRangesArgs{.values = weights,
+                                                                                 .cumulative = cumulative,
+                                                                                 .count = count,
+                                                                                 .totals = range_totals_,
+                                                                                 .estimate = estimate})};
 }
 
 }  // namespace depthtrack

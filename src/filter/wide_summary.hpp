@@ -12,6 +12,7 @@
 
 #include "compute/buffer.hpp"
 #include "compute/program_cache.hpp"
+#include "dt_launch.h"
 
 namespace depthtrack {
 
@@ -24,7 +25,7 @@ class WideSummary {
   WideSummary(compute::Queue& queue, compute::ProgramCache& programs, const std::string& occlusion_definition,
               size_t particles);
 
-  static constexpr size_t kGroupSize = 128;
+  static constexpr size_t kGroupSize = DT_FILTER_GROUP;
   // Groups for a cloud: about 8 particles a work-item, at most 1,024 groups (the partial rows each later
   // pass combines).
   static size_t groups_for(size_t particles);

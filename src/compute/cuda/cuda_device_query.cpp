@@ -62,8 +62,9 @@ DeviceInfo query_device(const DriverApi& api, int ordinal) {
   info.gl_sharing = true;       // CUDA-GL interop (cuGraphicsGLRegisterImage) is part of every Linux driver
   info.external_memory = true;  // cuImportExternalMemory (opaque fd)
   info.fp64 = true;
-  info.int64_atomics = true;  // atomicMin on unsigned long long: sm_35 on, below what NVRTC targets
-  info.subgroups = true;      // warps
+  info.int64_atomics = true;      // atomicMin on unsigned long long: sm_35 on, below what NVRTC targets
+  info.subgroups = true;          // warps
+  info.replayed_launches = true;  // the queue's batches become graphs (cuda_launch_graph.hpp)
   CUuuid uuid{};
   if (api.cuDeviceGetUuid && api.cuDeviceGetUuid(&uuid, device) == CUDA_SUCCESS) {
     info.uuid.emplace();

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <sstream>
 #include <string>
 
@@ -105,6 +106,14 @@ DeviceInfo query_device(cl_platform_id platform, cl_device_id device, unsigned p
     if (clGetDeviceInfo(device, CL_DEVICE_UUID_KHR, uuid.size(), uuid.data(), nullptr) == CL_SUCCESS) info.uuid = uuid;
   }
   return info;
+}
+
+std::optional<std::pair<unsigned, unsigned>> device_indices(const DeviceInfo& device) {
+  unsigned platform_index = 0, device_index = 0;
+  if (device.backend != "opencl" ||
+      std::sscanf(device.selector.c_str(), "opencl:%u.%u", &platform_index, &device_index) != 2)
+    return std::nullopt;
+  return std::pair{platform_index, device_index};
 }
 
 }  // namespace depthtrack::compute::opencl

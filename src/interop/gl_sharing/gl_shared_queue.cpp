@@ -3,7 +3,6 @@
 #include <CL/cl_gl.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <depthtrack/error.hpp>
 #include <vector>
 
@@ -32,10 +31,9 @@ std::vector<cl_device_id> devices_for_gl_context(cl_platform_id platform,
 }  // namespace
 
 std::unique_ptr<compute::Queue> open_gl_shared_queue(const compute::DeviceInfo& device, const render::GlContext& gl) {
-  unsigned platform_index = 0, device_index = 0;
-  if (device.backend != "opencl" ||
-      std::sscanf(device.selector.c_str(), "opencl:%u.%u", &platform_index, &device_index) != 2)
-    throw BackendError("cl_khr_gl_sharing is OpenCL's; " + device.selector + " is not an OpenCL device");
+  const auto indices = compute::opencl::device_indices(device);
+  if (!indices) throw BackendError("cl_khr_gl_sharing is OpenCL's; " + device.selector + " is not an OpenCL device");
+  const auto [platform_index, device_index] = *indices;
   if (std::find(device.extensions.begin(), device.extensions.end(), "cl_khr_gl_sharing") == device.extensions.end())
     throw BackendError(device.selector + " (" + device.platform + ") does not list cl_khr_gl_sharing");
   const std::vector<cl_context_properties> shared = gl_sharing_properties(gl.native());
