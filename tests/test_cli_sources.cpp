@@ -184,8 +184,10 @@ TEST_CASE("track reads ViSP's simulated layout as it reads the same frames conve
     std::string bytes;
     put_le(bytes, static_cast<uint32_t>(depth.height()), 4);
     put_le(bytes, static_cast<uint32_t>(depth.width()), 4);
-    for (float z : depth.data())
-      put_le(bytes, DepthImage::is_valid(z) ? static_cast<uint32_t>(std::lround(z * 32768.0)) : 0u, 2);
+    for (float z : depth.data()) {
+      const long units = DepthImage::is_valid(z) ? std::lround(z * 32768.0) : 0;
+      put_le(bytes, units <= 65535 ? static_cast<uint32_t>(units) : 0u, 2);  // beyond 2 m: no measurement
+    }
     char name[64];
     std::snprintf(name, sizeof name, "Depth_%04zu.bin", i + 1);
     std::ofstream(visp / "Depth" / name, std::ios::binary) << bytes;

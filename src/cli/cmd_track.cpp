@@ -154,8 +154,9 @@ void add_argument_inputs(const TrackArgs& a, const FramesFrom& from, StagedOutpu
 Sequence load_frames(const TrackArgs& a, const FramesFrom& from, const std::string& object) {
   const Sequence seq = load_sequence(from.folder, object);
   if (a.frames.empty()) return seq;
+  const FrameRange range = parse_frame_range(a.frames);
   try {
-    return frames_in(seq, parse_frame_range(a.frames));
+    return frames_in(seq, range);
   } catch (const InputError& e) {
     throw InputError("--frames " + a.frames + ": " + e.what());
   }
