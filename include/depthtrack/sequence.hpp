@@ -1,9 +1,7 @@
 #pragma once
-// Depth sequences on disk: depthtrack's own layout (what `depthtrack synth` writes), the
-// YCB-Video clip layout (NNNNNN-depth.png + gt.json), a BOP scene (scene_camera.json,
-// scene_gt.json, depth/NNNNNN.png) and ViSP's simulated sequences (Depth/Depth_NNNN.bin,
-// CameraPose/Camera_NNN.txt, Config/*_depth.xml; the castle). To track frames from elsewhere (a
-// stream, a camera), see depthtrack/frame_source.hpp.
+// Depth sequences on disk: depthtrack's own layout (what `depthtrack synth` writes; 16-bit PNG or .f32 depth),
+// the YCB-Video clip layout (NNNNNN-depth.png + gt.json), a BOP scene (scene_camera.json, scene_gt.json,
+// depth/NNNNNN.png) and ViSP's simulated sequences (Depth/, CameraPose/, Config/). Streams: frame_source.hpp.
 #include <depthtrack/camera.hpp>
 #include <depthtrack/depth_image.hpp>
 #include <depthtrack/pose.hpp>
@@ -30,9 +28,7 @@ struct Sequence {
   double metres_per_unit = 0.001;  // 16-bit PNG value -> metres
   std::vector<SequenceFrame> frames;
 
-  // Loads frame i's depth image and checks its size against camera: a 16-bit PNG (metres_per_unit), a
-  // raw little-endian float32 file of metres when its name ends in .f32 (DepthImage::load_float32), or
-  // a ViSP .bin file.
+  // Loads frame i's depth image (16-bit PNG, float32 metres named *.f32, or ViSP's .bin) and checks its size.
   DepthImage load_depth(size_t i) const;
 };
 
@@ -40,14 +36,11 @@ struct Sequence {
 // object in a multi-object clip (YCB-Video: a name; BOP: the obj_id); it may be omitted when the
 // clip has only one.
 // Throws InputError for a missing folder, unknown layout, corrupt manifest or unknown object
-// (the message lists the objects present).
-// ViSP's simulated sequences are read with the castle's depth camera offset (5 cm along -x of the
-// colour camera whose poses the files hold) and 30 Hz timestamps.
+// (the message lists the objects present). ViSP's: the castle's depth camera offset (5 cm along -x), 30 Hz.
 Sequence load_sequence(const std::filesystem::path& dir, const std::string& object = "");
 
 // depthtrack's own layout: dir/sequence.json (camera, scale, frames with timestamps and optional
-// ground truth, row-major 4x4) beside the depth files it names: 16-bit PNGs, or float32 metres
-// named *.f32.
+// ground truth, row-major 4x4) beside the depth files it names: 16-bit PNGs, or float32 metres named *.f32.
 void write_sequence_manifest(const std::filesystem::path& dir, const Sequence& sequence);
 
 }  // namespace depthtrack
