@@ -152,8 +152,7 @@ TEST_CASE("track reads float32 depth files (.f32) as the PNGs they were made fro
   for (size_t i = 0; i < s.frames.size(); ++i) {
     std::string bytes;
     const DepthImage depth = s.load_depth(i);
-    for (float z : depth.data())
-      put_le(bytes, std::bit_cast<uint32_t>(DepthImage::is_valid(z) ? z : 0.0f), 4);
+    for (float z : depth.data()) put_le(bytes, std::bit_cast<uint32_t>(DepthImage::is_valid(z) ? z : 0.0f), 4);
     s.frames[i].depth_path = dir / "f32" / (s.frames[i].name + "-depth.f32");
     fs::create_directories(dir / "f32");
     std::ofstream(s.frames[i].depth_path, std::ios::binary) << bytes;
