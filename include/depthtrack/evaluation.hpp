@@ -2,6 +2,7 @@
 // Running a tracker over a sequence and scoring it against ground truth.
 #include <cmath>
 #include <cstdint>
+#include <depthtrack/frame_source.hpp>
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/pose.hpp>
 #include <depthtrack/sequence.hpp>
@@ -25,9 +26,23 @@ struct TrackedFrame {
   double latency_ms = NAN;         // wall time from the decoded depth image handed in to the pose out
 };
 
-// Tracks every frame of the sequence from the given initial pose; on_frame(i, frame) is called
-// after each frame (progress, printing). Depth images are decoded on a reader thread a few frames
-// ahead, so that decoding overlaps the tracker's work.
+/// Tracks every frame of source, from the given initial pose, until the source ends; on_frame(i, frame) is
+/// called after each frame (progress, printing, writing as frames arrive). Frames with ground truth are
+/// scored. InputError for a frame that cannot be read (the source's) or whose depth is not the camera's
+/// size, and when no frame had a valid depth pixel.
+std::vector<TrackedFrame> track_source(FrameSource& source, const Mesh& mesh, const TrackerConfig& config,
+                                       const Pose& initial, const InitialSpread& spread,
+                                       const std::function<void(size_t, const TrackedFrame&)>& on_frame = {});
+
+/// As track_source, without an initial pose: the first frame is searched within hint
+/// (Tracker::initialize_global), the rest are tracked.
+std::vector<TrackedFrame> track_source_global(FrameSource& source, const Mesh& mesh, const TrackerConfig& config,
+                                              const InitHint& hint,
+                                              const std::function<void(size_t, const TrackedFrame&)>& on_frame = {});
+
+// Tracks every frame of the sequence (through sequence_source) from the given initial pose; on_frame(i, frame) is
+// called after each frame (progress, printing). Depth images are decoded on a reader thread a few frames ahead, so that
+// decoding overlaps the tracker's work.
 std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config,
                                          const Pose& initial, const InitialSpread& spread,
                                          const std::function<void(size_t, const TrackedFrame&)>& on_frame = {});

@@ -1,7 +1,7 @@
 #pragma once
-// Depth sequences on disk: depthtrack's own layout (what `depthtrack synth` writes), the
-// YCB-Video clip layout (NNNNNN-depth.png + gt.json) and a BOP scene (scene_camera.json,
-// scene_gt.json, depth/NNNNNN.png).
+// Depth sequences on disk: depthtrack's own layout (what `depthtrack synth` writes; 16-bit PNG or .f32 depth),
+// the YCB-Video clip layout (NNNNNN-depth.png + gt.json), a BOP scene (scene_camera.json, scene_gt.json,
+// depth/NNNNNN.png) and ViSP's simulated sequences (Depth/, CameraPose/, Config/). Streams: frame_source.hpp.
 #include <depthtrack/camera.hpp>
 #include <depthtrack/depth_image.hpp>
 #include <depthtrack/pose.hpp>
@@ -21,14 +21,14 @@ struct SequenceFrame {
 };
 
 struct Sequence {
-  std::string format;              // "depthtrack", "ycb-video" or "bop"
+  std::string format;              // "depthtrack", "ycb-video", "bop" or "visp-simulated"
   std::string object;              // the object whose ground truth the frames carry ("" if none; BOP: its obj_id)
   int scene_id = 0;                // BOP: the scene folder's number
   Camera camera;                   // intrinsics of the depth images
   double metres_per_unit = 0.001;  // 16-bit PNG value -> metres
   std::vector<SequenceFrame> frames;
 
-  // Loads frame i's depth image and checks its size against camera.
+  // Loads frame i's depth image (16-bit PNG, float32 metres named *.f32, or ViSP's .bin) and checks its size.
   DepthImage load_depth(size_t i) const;
 };
 
@@ -36,11 +36,11 @@ struct Sequence {
 // object in a multi-object clip (YCB-Video: a name; BOP: the obj_id); it may be omitted when the
 // clip has only one.
 // Throws InputError for a missing folder, unknown layout, corrupt manifest or unknown object
-// (the message lists the objects present).
+// (the message lists the objects present). ViSP's: the castle's depth camera offset (5 cm along -x), 30 Hz.
 Sequence load_sequence(const std::filesystem::path& dir, const std::string& object = "");
 
 // depthtrack's own layout: dir/sequence.json (camera, scale, frames with timestamps and optional
-// ground truth, row-major 4x4) beside the 16-bit depth PNGs it names.
+// ground truth, row-major 4x4) beside the depth files it names: 16-bit PNGs, or float32 metres named *.f32.
 void write_sequence_manifest(const std::filesystem::path& dir, const Sequence& sequence);
 
 }  // namespace depthtrack

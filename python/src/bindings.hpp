@@ -16,5 +16,6 @@ void bind_tracker(py::module_& m);        // Tracker
 void bind_multi_tracker(py::module_& m);  // MultiTracker
 void bind_devices(py::module_& m);        // Device, devices()
 void bind_evaluation(py::module_& m);     // Sequence, perturb_pose, AddsMetric
+void bind_frame_source(py::module_& m);   // Frame, FrameSource, open_source
 
 }  // namespace depthtrack::python

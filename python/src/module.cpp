@@ -13,4 +13,5 @@ PYBIND11_MODULE(_depthtrack, m) {
   bind_tracker(m);
   bind_multi_tracker(m);
   bind_evaluation(m);
+  bind_frame_source(m);
 }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <depthtrack/error.hpp>
 #include <depthtrack/evaluation.hpp>
+#include <depthtrack/frame_source.hpp>
 #include <iostream>
 #include <memory>
 #include <numbers>
@@ -29,8 +30,8 @@ namespace {
 struct TrackArgs {
   std::vector<std::string> meshes, objects;  // in pairs when there are several
   std::string mutual_occlusion = "on";
-  std::string mesh, sequence, out, object, init, init_perturb, init_spread = default_init_spread(), init_box, summary,
-                                                               overlay, bop_out;
+  std::string mesh, sequence, source, frames, out, object, init, init_perturb, init_spread = default_init_spread(),
+                                                                               init_box, summary, overlay, bop_out;
   std::string quaternion = "wxyz";
   double unit_scale = 1.0;
   bool init_from_gt = false, init_global = false, no_recover = false;
@@ -52,8 +53,8 @@ Pose initial_pose(const TrackArgs& a, const Sequence& seq, const Mesh& mesh, uin
     return Pose({v[0], v[1], v[2]}, Eigen::Quaterniond(v[3], v[4], v[5], v[6]));
   }
   if (seq.frames.empty() || !seq.frames.front().ground_truth)
-    throw InputError("--init-from-gt: the first frame of '" + a.sequence + "' has no ground truth" +
-                     (seq.object.empty() ? "" : " for object '" + seq.object + "'"));
+    throw InputError("--init-from-gt: the first frame of '" + (a.sequence.empty() ? a.source : a.sequence) +
+                     "' has no ground truth" + (seq.object.empty() ? "" : " for object '" + seq.object + "'"));
   Pose pose = *seq.frames.front().ground_truth;
   if (!a.init_perturb.empty()) {
     const auto v = parse_numbers(a.init_perturb, 2, "--init-perturb");
@@ -110,14 +111,57 @@ Mesh load_mesh(const std::string& path, double unit_scale, const TrackerConfig& 
   return mesh;
 }
 
+// Where the frames come from: a folder (--sequence DIR, --source folder:DIR or --source DIR) or another kind of
+// source (--source raw:-), which is read as a stream.
+struct FramesFrom {
+  std::string spec;              // as given, for messages and the summary
+  std::filesystem::path folder;  // set for a folder
+  std::string location;          // the stream's location (after "KIND:") otherwise
+  bool is_folder() const { return !folder.empty(); }
+};
+
+FramesFrom frames_from(const TrackArgs& a) {
+  if (a.sequence.empty() == a.source.empty())
+    throw InputError(a.sequence.empty() ? "give the frames: --sequence DIR or --source KIND:LOCATION (e.g. raw:-)"
+                                        : "--sequence and --source exclude each other: give one");
+  if (!a.sequence.empty()) return {a.sequence, a.sequence, ""};
+  for (const auto& [kind, description] : frame_source_kinds()) {
+    const std::string prefix = kind + ":";
+    if (a.source.rfind(prefix, 0) != 0) continue;
+    if (kind == "folder") return {a.source, a.source.substr(prefix.size()), ""};
+    return {a.source, "", a.source.substr(prefix.size())};
+  }
+  // A folder; or, when no such path exists and it reads KIND:..., a kind open_frame_source names as unknown.
+  std::error_code error;
+  if (a.source.find(':') != std::string::npos && !std::filesystem::exists(a.source, error))
+    return {a.source, "", a.source};
+  return {a.source, a.source, ""};
+}
+
 // The files a run reads, which no output may name: the meshes, the --config file, the sequence's manifests
-// (before loading it) and, once loaded, each frame's images.
-void add_argument_inputs(const TrackArgs& a, StagedOutputs& outputs) {
+// (before loading it) or the stream's file and, once loaded, each frame's images.
+void add_argument_inputs(const TrackArgs& a, const FramesFrom& from, StagedOutputs& outputs) {
   for (const std::string& mesh : a.meshes) outputs.add_input(mesh);
   outputs.add_input(a.tracker.config_file);
+  if (!from.is_folder()) {
+    if (from.location != "-") outputs.add_input(from.location);
+    return;
+  }
   for (const char* manifest :
        {io::kDepthtrackManifest, io::kYcbVideoManifest, io::kBopManifest, "scene_gt.json", "scene_gt_info.json"})
-    outputs.add_input(std::filesystem::path(a.sequence) / manifest);
+    outputs.add_input(from.folder / manifest);
+}
+
+// The folder's sequence, cut to --frames when given.
+Sequence load_frames(const TrackArgs& a, const FramesFrom& from, const std::string& object) {
+  const Sequence seq = load_sequence(from.folder, object);
+  if (a.frames.empty()) return seq;
+  const FrameRange range = parse_frame_range(a.frames);
+  try {
+    return frames_in(seq, range);
+  } catch (const InputError& e) {
+    throw InputError("--frames " + a.frames + ": " + e.what());
+  }
 }
 
 void add_sequence_inputs(const Sequence& sequence, StagedOutputs& outputs) {
@@ -146,8 +190,11 @@ void run_track_objects(const TrackArgs& a) {
                                   {!a.bop_out.empty(), "--bop-out"}})
     if (set) throw InputError(std::string(name) + " is for one object; not with several --mesh/--object pairs");
   const bool mutual = on_off(a.mutual_occlusion, "--mutual-occlusion");
+  const FramesFrom from = frames_from(a);
+  if (!from.is_folder())
+    throw InputError("several objects are tracked through a sequence folder, not through '" + from.spec + "'");
   StagedOutputs outputs;
-  add_argument_inputs(a, outputs);
+  add_argument_inputs(a, from, outputs);
   const std::filesystem::path csv_path = outputs.add("--out", a.out);
   const std::filesystem::path summary_path =
       a.summary.empty() || a.summary == "-" ? std::filesystem::path(a.summary) : outputs.add("--summary", a.summary);
@@ -157,7 +204,7 @@ void run_track_objects(const TrackArgs& a) {
   for (size_t i = 0; i < a.meshes.size(); ++i) {
     TrackArgs one = a;
     one.object = a.objects[i];
-    TrackedObject o{a.objects[i], {}, load_sequence(a.sequence, a.objects[i]), {}};
+    TrackedObject o{a.objects[i], {}, load_frames(a, from, a.objects[i]), {}};
     add_sequence_inputs(o.sequence, outputs);
     const bool bop_units = o.sequence.format == "bop" && a.unit_scale_option->count() == 0;
     o.mesh = load_mesh(a.meshes[i], bop_units ? 0.001 : a.unit_scale, config);
@@ -225,6 +272,15 @@ void run_track_objects(const TrackArgs& a) {
   std::printf("wrote %s\n", a.out.c_str());
 }
 
+// A stream's restrictions: what needs the frames beforehand (ground truth, names, files) is refused.
+void check_stream_options(const TrackArgs& a, const FramesFrom& from) {
+  if (a.init_from_gt)
+    throw InputError("--init-from-gt needs the first frame's ground truth beforehand, which '" + from.spec +
+                     "' does not give: start with --init, --init-box or --init-global");
+  for (const auto& [set, name] : {std::pair{!a.overlay.empty(), "--overlay"}, {!a.bop_out.empty(), "--bop-out"}})
+    if (set) throw InputError(std::string(name) + " is for a sequence folder, not for '" + from.spec + "'");
+}
+
 void run_track(TrackArgs a) {
   if (a.meshes.size() > 1 || a.objects.size() > 1) return run_track_objects(a);
   a.mesh = a.meshes.empty() ? "" : a.meshes.front();
@@ -233,28 +289,42 @@ void run_track(TrackArgs a) {
   if (starts == 0) throw InputError("give --init POSE, --init-from-gt, --init-box \"u0 v0 u1 v1\" or --init-global");
   if (starts > 1) throw InputError("--init, --init-from-gt, --init-box and --init-global exclude each other");
   const QuaternionOrder order = quaternion_order(a.quaternion);
+  const FramesFrom from = frames_from(a);
+  if (!from.is_folder()) check_stream_options(a, from);
+  const std::optional<FrameRange> range =
+      a.frames.empty() ? std::nullopt : std::optional<FrameRange>(parse_frame_range(a.frames));
   // Every output is checked before any work and written beside its place; all replace the earlier files
   // together once the run succeeded (outputs.commit()), none when it fails.
   StagedOutputs outputs;
-  add_argument_inputs(a, outputs);
+  add_argument_inputs(a, from, outputs);
   const std::filesystem::path csv_path = outputs.add("--out", a.out);
   const std::filesystem::path bop_path = a.bop_out.empty() ? "" : outputs.add("--bop-out", a.bop_out);
   const std::filesystem::path summary_path =
       a.summary.empty() || a.summary == "-" ? std::filesystem::path(a.summary) : outputs.add("--summary", a.summary);
   TrackerConfig config = a.tracker.resolve();
   if (a.no_recover) config.recovery.enabled = false;  // else as the --config file says
-  const Sequence seq = load_sequence(a.sequence, a.object);
-  add_sequence_inputs(seq, outputs);
-  if (!a.bop_out.empty()) check_bop_exportable(seq);
+  // A folder is loaded whole (its ground truth, names and files known beforehand); any other source is
+  // opened as a stream, read frame by frame.
+  std::optional<Sequence> seq;
+  std::unique_ptr<FrameSource> source;
+  if (from.is_folder()) {
+    seq = load_frames(a, from, a.object);
+    add_sequence_inputs(*seq, outputs);
+    if (!a.bop_out.empty()) check_bop_exportable(*seq);
+  } else {
+    source = open_frame_source(from.spec, FrameSourceOptions{a.object});
+    if (range) source = frames_in(std::move(source), *range);
+  }
   const std::vector<std::filesystem::path> overlay_files =
-      a.overlay.empty() ? std::vector<std::filesystem::path>{} : stage_overlay(a.overlay, seq, outputs);
+      a.overlay.empty() ? std::vector<std::filesystem::path>{} : stage_overlay(a.overlay, *seq, outputs);
   // Rows are streamed as frames are tracked.
-  TrackingCsvWriter csv(csv_path,
-                        !seq.frames.empty() && std::all_of(seq.frames.begin(), seq.frames.end(),
-                                                           [](const auto& f) { return f.ground_truth.has_value(); }),
-                        order);
+  TrackingCsvWriter csv(
+      csv_path,
+      seq && !seq->frames.empty() &&
+          std::all_of(seq->frames.begin(), seq->frames.end(), [](const auto& f) { return f.ground_truth.has_value(); }),
+      order);
   // BOP models are in millimetres by the format's definition.
-  const bool bop_units = seq.format == "bop" && a.unit_scale_option->count() == 0;
+  const bool bop_units = seq && seq->format == "bop" && a.unit_scale_option->count() == 0;
   const double unit_scale = bop_units ? 0.001 : a.unit_scale;
   if (bop_units)
     std::fprintf(stderr, "depthtrack: note: BOP scene: reading the mesh in millimetres (--unit-scale 0.001)\n");
@@ -262,12 +332,16 @@ void run_track(TrackArgs a) {
   const bool global = !a.init_box.empty() || a.init_global;
   const InitHint hint = init_hint(a);
   const InitialSpread spread = parse_init_spread(a.init_spread);
+  const Pose initial = global ? Pose()
+                       : seq  ? initial_pose(a, *seq, mesh, config.seed)
+                              : initial_pose(a, Sequence{}, mesh, 0);
 
   std::optional<OverlayWriter> overlay;
-  if (!a.overlay.empty()) overlay.emplace(overlay_files, std::vector<const Mesh*>{&mesh}, seq);
+  if (!a.overlay.empty()) overlay.emplace(overlay_files, std::vector<const Mesh*>{&mesh}, *seq);
   double overlay_seconds = 0;
 
-  ProgressBar bar("tracking", static_cast<int>(seq.frames.size()));
+  if (seq) source = sequence_source(*seq);  // decoding starts while the tracker starts up
+  ProgressBar bar("tracking", static_cast<int>(source->size().value_or(0)));
   const auto begin = std::chrono::steady_clock::now();
   // Until the first frame is out: the model's preparation and, with --init-box or --init-global, the search.
   std::optional<ProgressWait> preparing(
@@ -284,17 +358,16 @@ void run_track(TrackArgs a) {
     overlay->write(i, f, config.particles);
     overlay_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - drawing).count();
   };
-  const auto frames =
-      global ? track_sequence_global(seq, mesh, config, hint, on_frame)
-             : track_sequence(seq, mesh, config, initial_pose(a, seq, mesh, config.seed), spread, on_frame);
+  const auto frames = global ? track_source_global(*source, mesh, config, hint, on_frame)
+                             : track_source(*source, mesh, config, initial, spread, on_frame);
   // Frames per second of the tracking, not of drawing the pictures.
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count() - overlay_seconds;
   bar.finish();
   csv.finish();
-  if (!a.bop_out.empty()) write_bop_csv(bop_path, seq, frames);
+  if (!a.bop_out.empty()) write_bop_csv(bop_path, *seq, frames);
   const RunStats stats = run_stats(frames, seconds);
-  if (!a.summary.empty()) write_summary(summary_path, summary_json(stats, config, a.sequence, a.mesh));
+  if (!a.summary.empty()) write_summary(summary_path, summary_json(stats, config, from.spec, a.mesh));
   outputs.commit();
   print_summary(stats, frames.empty() ? nullptr : &frames.back());
   if (global && !frames.empty())
@@ -323,10 +396,18 @@ void add_track_command(CLI::App& app) {
                     "Multiply mesh coordinates by this to get metres (default 1; 0.001 for a BOP scene, whose "
                     "models are in mm)");
   c->add_option("--sequence", args->sequence,
-                "Sequence folder: depthtrack's own (sequence.json, what `depthtrack synth` writes) or a "
-                "YCB-Video clip (NNNNNN-depth.png + gt.json) or a BOP scene (scene_camera.json, scene_gt.json, "
-                "depth/)")
-      ->required();
+                "Sequence folder: depthtrack's own (sequence.json, what `depthtrack synth` writes; 16-bit PNG or "
+                "float32 .f32 depth), a YCB-Video clip (NNNNNN-depth.png + gt.json), a BOP scene "
+                "(scene_camera.json, scene_gt.json, depth/) or a ViSP simulated sequence (Depth/, CameraPose/, "
+                "Config/); or give --source");
+  c->add_option("--source", args->source,
+                std::string("Where the frames come from instead of --sequence: folder:DIR, or raw:FILE, raw:FIFO or "
+                            "raw:- (stdin) for the raw depth stream, read as it arrives (no ground truth; start with "
+                            "--init, --init-box or --init-global). ") +
+                    raw_stream_format());
+  c->add_option("--frames", args->frames,
+                "Track only frames A:B: A up to but not including B, counted from 0 (A: to the end, :B the first "
+                "B); a range past the sequence's end is an error");
   c->add_option("--out", args->out,
                 "CSV to write: frame,timestamp,tx,ty,tz,qw,qx,qy,qz,ess (camera-from-object, metres), plus "
                 "err_t_mm,err_r_deg,adds_mm when ground truth is known, then latency_ms (depth in to pose out), "

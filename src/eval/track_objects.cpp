@@ -2,11 +2,11 @@
 #include <depthtrack/device.hpp>
 #include <depthtrack/error.hpp>
 #include <depthtrack/evaluation.hpp>
+#include <depthtrack/frame_source.hpp>
 #include <depthtrack/multi_tracker.hpp>
 #include <optional>
 
 #include "core/stopwatch.hpp"
-#include "eval/frame_reader.hpp"
 #include "eval/score_frame.hpp"
 
 namespace depthtrack {
@@ -20,7 +20,8 @@ std::vector<std::vector<TrackedFrame>> track_objects(
     if (o.sequence.frames.size() != clip.frames.size())
       throw InputError("object '" + o.name + "': its sequence has " + std::to_string(o.sequence.frames.size()) +
                        " frames, the first object's " + std::to_string(clip.frames.size()));
-  FrameReader reader(clip);  // first, so that the first frames decode while the trackers start up
+  // The source first, so that the first frames decode while the trackers start up.
+  const std::unique_ptr<FrameSource> source = sequence_source(clip);
   std::vector<Mesh> meshes;
   for (const TrackedObject& o : objects) meshes.push_back(o.mesh);
   MultiTracker tracker(Device::open(config.resolved_backend()), meshes, clip.camera, config, mutual_occlusion);
@@ -29,7 +30,9 @@ std::vector<std::vector<TrackedFrame>> track_objects(
   std::vector<std::vector<TrackedFrame>> frames(objects.size());
   std::vector<std::optional<AddsMetric>> adds(objects.size());
   for (size_t i = 0; i < clip.frames.size(); ++i) {
-    const DepthImage depth = reader.next();
+    const std::optional<Frame> frame = source->next();
+    if (!frame) throw InputError("the clip ended after " + std::to_string(i) + " frames");
+    const DepthImage& depth = frame->depth;
     const Stopwatch latency;
     const std::vector<Estimate> estimates = tracker.update(depth, clip.frames[i].timestamp);
     const double latency_ms = latency.elapsed_ms();  // depth in to every object's pose out

@@ -6,6 +6,7 @@
 #include "core/timestamp_limits.hpp"
 #include "io/png_depth.hpp"
 #include "io/sequence_formats.hpp"
+#include "io/visp_simulated_sequence.hpp"
 
 namespace depthtrack {
 
@@ -36,8 +37,10 @@ Sequence load_any(const std::filesystem::path& dir, const std::string& object) {
   if (std::filesystem::exists(dir / io::kDepthtrackManifest, error)) return io::load_depthtrack_sequence(dir, object);
   if (std::filesystem::exists(dir / io::kYcbVideoManifest, error)) return io::load_ycb_video_sequence(dir, object);
   if (std::filesystem::exists(dir / io::kBopManifest, error)) return io::load_bop_sequence(dir, object);
+  if (io::is_visp_simulated_folder(dir)) return io::load_visp_simulated_sequence(dir, io::castle_options());
   throw InputError("sequence folder '" + dir.string() + "' has none of " + io::kDepthtrackManifest + " (depthtrack), " +
-                   io::kYcbVideoManifest + " (YCB-Video) and " + io::kBopManifest + " (BOP)");
+                   io::kYcbVideoManifest + " (YCB-Video), " + io::kBopManifest +
+                   " (BOP) and Depth/ + CameraPose/ + Config/ (ViSP simulated)");
 }
 
 }  // namespace
@@ -51,6 +54,9 @@ DepthImage Sequence::load_depth(size_t i) const {
     throw InputError("frame index " + std::to_string(i) + " is out of range: the sequence has " +
                      std::to_string(frames.size()) + " frames");
   const auto& path = frames[i].depth_path;
+  if (format == io::kVispSimulatedFormat)
+    return io::read_visp_depth(path, metres_per_unit, camera.width, camera.height);
+  if (path.extension() == ".f32") return DepthImage::load_float32(path, camera.width, camera.height);
   // The size is checked from the header, before a wrong (or hostile, 16384x16384) image is decoded.
   return io::load_depth_png(path, metres_per_unit, io::ImageSize{camera.width, camera.height});
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <depthtrack/error.hpp>
@@ -142,19 +143,29 @@ Camera read_visp_camera(const std::filesystem::path& xml, int width, int height)
   }
 }
 
-Sequence import_visp_simulated_sequence(const std::filesystem::path& in, const std::filesystem::path& out,
-                                        const VispSimulatedImport& options) {
+VispSimulatedImport castle_options() {
+  VispSimulatedImport options;
+  options.depth_from_colour = Pose(Eigen::Vector3d(-0.05, 0, 0), Eigen::Quaterniond::Identity());
+  return options;
+}
+
+bool is_visp_simulated_folder(const std::filesystem::path& dir) {
+  std::error_code error;
+  return std::filesystem::is_directory(dir / "Depth", error) &&
+         std::filesystem::is_directory(dir / "CameraPose", error) &&
+         std::filesystem::is_directory(dir / "Config", error);
+}
+
+Sequence load_visp_simulated_sequence(const std::filesystem::path& in, const VispSimulatedImport& options) {
   if (!(options.rate > 0) || !std::isfinite(options.rate)) throw InputError("the frame rate must be positive");
   const auto depths = numbered_files(in / "Depth", "Depth_", ".bin");
   const auto poses = numbered_files(in / "CameraPose", "Camera_", ".txt");
   const DepthImage first = read_visp_depth(depths.begin()->second, options.metres_per_unit);
 
   Sequence sequence;
-  sequence.format = "depthtrack";
+  sequence.format = kVispSimulatedFormat;
   sequence.camera = read_visp_camera(depth_config(in / "Config"), first.width(), first.height());
   sequence.metres_per_unit = options.metres_per_unit;
-  // Every file is read and checked before anything is written, so that a bad input leaves an earlier
-  // import in `out` whole (its depths are read again below, one at a time, rather than all held).
   for (const auto& [number, path] : depths) {
     const auto pose = poses.find(number);
     if (pose == poses.end())
@@ -165,18 +176,28 @@ Sequence import_visp_simulated_sequence(const std::filesystem::path& in, const s
     SequenceFrame frame;
     frame.name = name;
     frame.timestamp = static_cast<double>(sequence.frames.size()) / options.rate;
-    frame.depth_path = out / (frame.name + "-depth.png");
+    frame.depth_path = path;
     frame.ground_truth = options.depth_from_colour * read_visp_pose(pose->second);
-    read_visp_depth(path, options.metres_per_unit, first.width(), first.height());
     sequence.frames.push_back(frame);
   }
+  return sequence;
+}
+
+Sequence import_visp_simulated_sequence(const std::filesystem::path& in, const std::filesystem::path& out,
+                                        const VispSimulatedImport& options) {
+  Sequence sequence = load_visp_simulated_sequence(in, options);
+  // Every file is read and checked before anything is written, so that a bad input leaves an earlier
+  // import in `out` whole (its depths are read again below, one at a time, rather than all held).
+  for (size_t i = 0; i < sequence.frames.size(); ++i) sequence.load_depth(i);
+  const std::vector<SequenceFrame> read = sequence.frames;
+  sequence.format = "depthtrack";
+  for (SequenceFrame& frame : sequence.frames) frame.depth_path = out / (frame.name + "-depth.png");
   std::error_code error;
   std::filesystem::create_directories(out, error);
   if (error) throw InputError("cannot create sequence folder '" + out.string() + "': " + error.message());
-  size_t k = 0;
-  for (const auto& numbered : depths)
-    read_visp_depth(numbered.second, options.metres_per_unit)
-        .save_png(sequence.frames[k++].depth_path, options.metres_per_unit);
+  for (size_t k = 0; k < read.size(); ++k)
+    read_visp_depth(read[k].depth_path, options.metres_per_unit)
+        .save_png(sequence.frames[k].depth_path, options.metres_per_unit);
   write_sequence_manifest(out, sequence);
   return sequence;
 }

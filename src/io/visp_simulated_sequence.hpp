@@ -1,7 +1,6 @@
 #pragma once
-// ViSP's simulated depth sequences (the castle its model-based tracker's depth tutorials track, which
-// the refinement's precision was first measured on), converted into depthtrack's own layout so that
-// every tool reads them as it reads a synthesized sequence:
+// ViSP's simulated depth sequences (the castle its model-based tracker's depth tutorials track), read as
+// they are (load_sequence detects the folder) or converted into depthtrack's own layout:
 //   Depth/Depth_NNNN.bin       uint32 height, uint32 width, then height * width uint16, all little-endian;
 //                              metres = value * metres_per_unit, 0 = background (no measurement)
 //   CameraPose/Camera_NNN.txt  the colour camera's pose cMo (4x4, metres), NNN the depth's frame number
@@ -30,6 +29,19 @@ Pose read_visp_pose(const std::filesystem::path& path);
 
 // The intrinsics of a ViSP tracker configuration's <camera> block, for images of width x height.
 Camera read_visp_camera(const std::filesystem::path& xml, int width, int height);
+
+inline constexpr const char* kVispSimulatedFormat = "visp-simulated";
+
+// The castle's: depth camera 5 cm along -x of the colour camera, 30 Hz, 1/32768 m per unit.
+VispSimulatedImport castle_options();
+
+// Whether dir holds the Depth/, CameraPose/ and Config/ folders of a ViSP simulated sequence.
+bool is_visp_simulated_folder(const std::filesystem::path& dir);
+
+// The folder `in` as a Sequence of format kVispSimulatedFormat whose frames name the Depth_NNNN.bin files
+// (Sequence::load_depth reads them, checking each against the first frame's size). The poses and the
+// intrinsics are read and checked here; InputError naming the file for a malformed or missing one.
+Sequence load_visp_simulated_sequence(const std::filesystem::path& in, const VispSimulatedImport& options);
 
 // Writes every frame of the folder `in` as a 16-bit PNG plus sequence.json into `out` (created). Every
 // input file is checked before anything is written: a malformed one leaves `out` as it was. Returns
