@@ -28,7 +28,7 @@ struct GlAtlasDevice;  // a GL tracker's GL context and compute context (src/atl
 struct DeviceDescription {
   std::string selector;  // opens exactly this device: "opencl:0.1", "cuda:0"
   std::string backend;   // "opencl", "cuda"
-  std::string name;      // e.g. "NVIDIA H200", "cpu-haswell-AMD EPYC ..."
+  std::string name;      // the device's own name, e.g. a GPU's model or "cpu-haswell-<processor>"
   std::string platform;  // e.g. "Portable Computing Language", "NVIDIA CUDA"
   bool is_gpu = false;
 };

@@ -27,7 +27,7 @@ struct Mesh {
 };
 
 // A procedural, asymmetric object (two joined boxes, about 16 x 9 x 6 cm) for the demo and tests:
-// the real meshes in ../shared cannot be shipped.
+// the real meshes (YCB) are licensed separately and not shipped with the library.
 Mesh builtin_demo_mesh();
 // An axis-aligned box centred at the origin with the given edge lengths (12 triangles).
 Mesh make_box(const Eigen::Vector3f& size, const Eigen::Vector3f& centre = Eigen::Vector3f::Zero());

@@ -1,5 +1,6 @@
 #pragma once
-// Every parameter of the tracking model (../shared/docs/MODEL.md) with the defaults of dbot.
+/// @file
+/// Every parameter of the tracking model, with the defaults of dbot; each comment gives its meaning and units.
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -131,10 +132,9 @@ struct TrackerConfig {
   // Metres: the tracker draws the mesh simplified by quadric edge collapse (meshoptimizer) while its
   // estimate of the surface's displacement stays within this (the farthest original vertex then lies
   // up to about twice as far); 0 draws it as given. The default is a sixth of the least depth noise the
-  // observation model assumes (sigma_constant, 3 mm): ycbv-0000's 16k-triangle scans keep 234-3,196
-  // triangles (Tracker::drawn_triangles), a frame of 2,000 particles on the H200 takes 0.19-0.26 ms instead
-  // of 0.51-0.56 (CUDA) and 0.28-0.43 instead of 0.62-0.69 (NVIDIA OpenCL), and their ADD-S over three
-  // seeds is level with the mesh as given (README, "Simplified mesh").
+  // observation model assumes (sigma_constant, 3 mm): it draws scanned meshes of many thousand triangles
+  // with a few hundred to a few thousand (Tracker::drawn_triangles), frames take markedly less time, and
+  // ADD-S stays level with the mesh as given (the measurements: README, "Simplified mesh").
   // A small part is simplified within 2 % of its radius at most, so that it keeps its shape. Set 0 for
   // exact synthetic depth of a fine mesh, where the fit resolves tenths of a millimetre.
   double simplify_error = 0.0005;
@@ -179,8 +179,8 @@ struct TrackerConfig {
   // Compute backends: time each step of a frame on the device (StepTimings' propagate, render, weigh,
   // resample and refine), for profiling (depthtrack bench and depthtrack_bench turn it on). Off, those
   // read 0 and the frame goes without their timing records (two per step on the device, and their
-  // reading after it: 0.03-0.07 ms of a 2,000-particle frame on the H200; from 16,384 particles the
-  // many-group summary keeps its own two); total_ms and the host's times stay. The host backends time
+  // reading after it, a small share of a frame; from 16,384 particles the many-group summary keeps its
+  // own two); total_ms and the host's times stay. The host backends time
   // their steps either way.
   bool step_timings = false;
 

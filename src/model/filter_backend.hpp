@@ -6,8 +6,10 @@
 #include <depthtrack/camera.hpp>
 #include <depthtrack/depth_image.hpp>
 #include <depthtrack/error.hpp>
+#include <depthtrack/estimate.hpp>
+#include <depthtrack/initial_spread.hpp>
 #include <depthtrack/mesh.hpp>
-#include <depthtrack/tracker.hpp>
+#include <depthtrack/tracker_config.hpp>
 #include <memory>
 #include <optional>
 #include <span>

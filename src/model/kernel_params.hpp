@@ -3,7 +3,7 @@
 // function here, for the device filter, the kernel rasterizer and the pose scorer alike.
 #include <cstddef>
 #include <depthtrack/camera.hpp>
-#include <depthtrack/tracker.hpp>
+#include <depthtrack/initial_spread.hpp>
 #include <depthtrack/tracker_config.hpp>
 #include <string>
 

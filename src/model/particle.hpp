@@ -2,8 +2,8 @@
 // One particle's kinematic state, the motion model that moves it and the initial draw around a pose
 // (MODEL.md, "State and motion"): the reference filter runs these in double; the device filter's
 // kernels (cl/propagate.cl, cl/initialize.cl) run the same steps in float from the same constants.
+#include <depthtrack/initial_spread.hpp>
 #include <depthtrack/pose.hpp>
-#include <depthtrack/tracker.hpp>
 #include <depthtrack/tracker_config.hpp>
 #include <span>
 
