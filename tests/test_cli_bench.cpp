@@ -293,3 +293,23 @@ TEST_CASE("bench refuses bad arguments and corrupt results with a clear error", 
     CHECK_THAT(output, Catch::Contains(expected));
   }
 }
+
+TEST_CASE("a bench whose figures fail leaves the earlier results, cases and figures as they were", "[bench][cli]") {
+  const auto dir = test::temp_dir("bench_failed_figures");
+  const auto out = dir / "out";
+  std::filesystem::create_directories(out);
+  for (const char* name : {"results.json", "cases.csv", "particles.png"}) std::ofstream(out / name) << "earlier\n";
+  // An interpreter that passes the matplotlib check, then fails to draw: the run fails after its cases.
+  const auto python = dir / "failing-python";
+  std::ofstream(python) << "#!/bin/sh\n[ \"$1\" = -c ] && exit 0\nexit 3\n";
+  std::filesystem::permissions(python, std::filesystem::perms::owner_all);
+  const auto [status, output] =
+      test::run_cli("bench --test-grid --frames 3 --backend reference --out " + out.string(), dir / "log.txt",
+                    "DEPTHTRACK_PYTHON=" + python.string());
+  INFO(output);
+  CHECK(status == 1);
+  CHECK_THAT(output, Catch::Contains("drawing the figure failed"));
+  for (const char* name : {"results.json", "cases.csv", "particles.png"}) CHECK(text_of(out / name) == "earlier\n");
+  for (const auto& entry : std::filesystem::directory_iterator(out))
+    CHECK(entry.path().filename().string().find(".partial") == std::string::npos);
+}
