@@ -303,9 +303,8 @@ TEST_CASE("a bench whose figures fail leaves the earlier results, cases and figu
   const auto python = dir / "failing-python";
   std::ofstream(python) << "#!/bin/sh\n[ \"$1\" = -c ] && exit 0\nexit 3\n";
   std::filesystem::permissions(python, std::filesystem::perms::owner_all);
-  const auto [status, output] =
-      test::run_cli("bench --test-grid --frames 3 --backend reference --out " + out.string(), dir / "log.txt",
-                    "DEPTHTRACK_PYTHON=" + python.string());
+  const auto [status, output] = test::run_cli("bench --test-grid --frames 3 --backend reference --out " + out.string(),
+                                              dir / "log.txt", "DEPTHTRACK_PYTHON=" + python.string());
   INFO(output);
   CHECK(status == 1);
   CHECK_THAT(output, Catch::Contains("drawing the figure failed"));

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <vector>
 
+#include "core/timestamp_limits.hpp"
+
 namespace depthtrack {
 
 const char* raw_stream_format() {
@@ -29,9 +31,7 @@ namespace {
 constexpr const char* kMagic = "depthtrack-raw-depth";
 constexpr int kVersion = 1;
 constexpr size_t kMaxLine = 512;
-constexpr int kMaxSide = 16384;            // a header beyond this is corrupt, not a camera
-constexpr double kMaxAbsTimestamp = 1e10;  // seconds, as load_sequence's
-constexpr double kMaxTimeStep = 86400;     // seconds between frames: a day
+constexpr int kMaxSide = 16384;  // a header beyond this is corrupt, not a camera
 
 class RawDepthStream final : public FrameSource {
  public:
