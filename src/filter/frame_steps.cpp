@@ -252,21 +252,22 @@ void FrameSteps::resample(unsigned frame, const Eigen::Vector3f& centre, const c
   const unsigned count = static_cast<unsigned>(plan_.particles);
   const float u = dt_uniform01(words.v[0]);
   std::vector<compute::EventPtr>& out = events.resampling;
-  if (plan_.resample == ResampleStep::Scanning) {
-    out.push_back(kernels::launch({queue_, *k_->resample_scanning, plan_.scanning(), config_.step_timings},
-                                  kernels::ResampleScanningArgs{.weights = b_.weights,
-                                                                .parents = b_.parents,
-                                                                .count = count,
-                                                                .u = u,
-                                                                .estimate = b_.estimate,
-                                                                .from = b_.state,
-                                                                .to = b_.scratch_state,
-                                                                .log_weight = b_.log_weight,
-                                                                .correction = correction,
-                                                                .centre_x = centre.x(),
-                                                                .centre_y = centre.y(),
-                                                                .centre_z = centre.z(),
-                                                                .shift = static_cast<unsigned>(shift)}));
+  const bool scanning = plan_.resample == ResampleStep::Scanning;
+  const kernels::ResampleArgs args{.weights = scanning ? b_.weights : b_.cumulative,
+                                   .parents = b_.parents,
+                                   .count = count,
+                                   .u = u,
+                                   .estimate = b_.estimate,
+                                   .from = b_.state,
+                                   .to = b_.scratch_state,
+                                   .log_weight = b_.log_weight,
+                                   .correction = correction,
+                                   .centre_x = centre.x(),
+                                   .centre_y = centre.y(),
+                                   .centre_z = centre.z(),
+                                   .shift = static_cast<unsigned>(shift)};
+  if (scanning) {
+    out.push_back(kernels::launch({queue_, *k_->resample_scanning, plan_.scanning(), config_.step_timings}, args));
   } else {
     if (plan_.resample == ResampleStep::WidePrefixSum)
       out = wide_->prefix_sum(b_.weights, b_.cumulative, b_.estimate);
@@ -275,20 +276,7 @@ void FrameSteps::resample(unsigned frame, const Eigen::Vector3f& centre, const c
           {queue_, *k_->prefix_sum, plan_.one_group(kFilterGroup), config_.step_timings},
           kernels::PrefixSumArgs{
               .values = b_.weights, .cumulative = b_.cumulative, .count = count, .estimate = b_.estimate}));
-    out.push_back(kernels::launch({queue_, *k_->resample_particles, plan_.per_particle(), config_.step_timings},
-                                  kernels::ResampleParticlesArgs{.cumulative = b_.cumulative,
-                                                                 .parents = b_.parents,
-                                                                 .count = count,
-                                                                 .u = u,
-                                                                 .estimate = b_.estimate,
-                                                                 .from = b_.state,
-                                                                 .to = b_.scratch_state,
-                                                                 .log_weight = b_.log_weight,
-                                                                 .correction = correction,
-                                                                 .centre_x = centre.x(),
-                                                                 .centre_y = centre.y(),
-                                                                 .centre_z = centre.z(),
-                                                                 .shift = static_cast<unsigned>(shift)}));
+    out.push_back(kernels::launch({queue_, *k_->resample_particles, plan_.per_particle(), config_.step_timings}, args));
   }
   std::swap(b_.state, b_.scratch_state);
 }

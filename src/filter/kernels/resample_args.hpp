@@ -28,26 +28,11 @@ struct PrefixSumRangesArgs {
   auto in_order() const { return std::tie(values, cumulative, count, totals, estimate); }
 };
 
-// The gather of the children's states from `from` into `to`, moved by the correction where shift.
-struct ResampleParticlesArgs {
-  Buf<float> cumulative;
-  Buf<unsigned> parents;  // written
-  unsigned count;
-  float u;
-  Buf<float> estimate, from;
-  Buf<float> to, log_weight;  // written
-  Buf<float> correction;
-  float centre_x, centre_y, centre_z;
-  unsigned shift;
-  auto in_order() const {
-    return std::tie(cumulative, parents, count, u, estimate, from, to, log_weight, correction, centre_x, centre_y,
-                    centre_z, shift);
-  }
-};
-
-// resample_particles' gather, each group scanning the weights itself.
-struct ResampleScanningArgs {
-  Buf<float> weights;
+// The gather of the children's states from `from` into `to`, moved by the correction where shift:
+// resample_particles (after a prefix sum) and resample_scanning (each group scanning the weights itself)
+// take the same arguments but the first.
+struct ResampleArgs {
+  Buf<float> weights;     // resample_scanning: the weights; resample_particles: their prefix sum
   Buf<unsigned> parents;  // written
   unsigned count;
   float u;
