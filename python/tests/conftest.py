@@ -2,6 +2,7 @@
 `depthtrack track` (the C++ API behind the command line) estimates on it."""
 import csv
 import json
+import math
 import os
 import subprocess
 
@@ -50,6 +51,19 @@ def scene(tmp_path_factory):
         rows = list(csv.DictReader(f))
     return {"mesh": mesh, "sequence": sequence, "manifest": manifest, "frames": frames, "rows": rows,
             "first_pose": np.array(manifest["frames"][0]["T_cam_obj"], float).reshape(4, 4)}
+
+
+def make_tracker(scene):
+    """A tracker on the scene's camera and mesh, started at its first pose as `depthtrack track` starts."""
+    import depthtrack
+
+    cam = scene["manifest"]["camera"]
+    camera = depthtrack.Camera(cam["width"], cam["height"], cam["fx"], cam["fy"], cam["cx"], cam["cy"])
+    config = depthtrack.TrackerConfig()
+    config.particles, config.width, config.height, config.seed = PARTICLES, 80, 60, SEED
+    tracker = depthtrack.Tracker(depthtrack.Mesh.load(str(scene["mesh"])), camera, config)
+    tracker.initialize(scene["first_pose"], spread_metres=SPREAD_METRES, spread_radians=math.radians(SPREAD_DEGREES))
+    return tracker
 
 
 def csv_pose(row):

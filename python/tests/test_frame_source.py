@@ -1,12 +1,11 @@
 """Frame sources from Python: a raw depth stream written here and the synthesized folder give the same frames,
 and tracking them (or a generator's frames) through track_frames gives `depthtrack track`'s poses."""
-import math
 
 import numpy as np
 import pytest
 
 import depthtrack
-from conftest import PARTICLES, SEED, SPREAD_DEGREES, SPREAD_METRES, csv_pose
+from conftest import csv_pose, make_tracker
 
 
 def metres_of(units, scale):
@@ -29,16 +28,6 @@ def write_raw_stream(path, scene):
             else:
                 out.write(("%r u16 %r\n" % (timestamp, scale)).encode())
                 out.write(units.astype("<u2").tobytes())
-
-
-def make_tracker(scene):
-    cam = scene["manifest"]["camera"]
-    camera = depthtrack.Camera(cam["width"], cam["height"], cam["fx"], cam["fy"], cam["cx"], cam["cy"])
-    config = depthtrack.TrackerConfig()
-    config.particles, config.width, config.height, config.seed = PARTICLES, 80, 60, SEED
-    tracker = depthtrack.Tracker(depthtrack.Mesh.load(str(scene["mesh"])), camera, config)
-    tracker.initialize(scene["first_pose"], spread_metres=SPREAD_METRES, spread_radians=math.radians(SPREAD_DEGREES))
-    return tracker
 
 
 def assert_cli_poses(scene, estimates):

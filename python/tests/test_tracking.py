@@ -8,17 +8,7 @@ import numpy as np
 import pytest
 
 import depthtrack
-from conftest import PARTICLES, SEED, SPREAD_DEGREES, SPREAD_METRES, cli, csv_pose
-
-
-def make_tracker(scene):
-    cam = scene["manifest"]["camera"]
-    camera = depthtrack.Camera(cam["width"], cam["height"], cam["fx"], cam["fy"], cam["cx"], cam["cy"])
-    config = depthtrack.TrackerConfig()
-    config.particles, config.width, config.height, config.seed = PARTICLES, 80, 60, SEED
-    tracker = depthtrack.Tracker(depthtrack.Mesh.load(str(scene["mesh"])), camera, config)
-    tracker.initialize(scene["first_pose"], spread_metres=SPREAD_METRES, spread_radians=math.radians(SPREAD_DEGREES))
-    return tracker
+from conftest import PARTICLES, SEED, SPREAD_DEGREES, SPREAD_METRES, cli, csv_pose, make_tracker
 
 
 def track(scene, to_input):
