@@ -24,19 +24,22 @@ std::vector<std::string> words_of(const std::string& line) {
 struct CsvFrame {
   std::string frame, status, within;
   double timestamp = 0, adds_mm = 0, confidence = 0;
+  std::string d2, dof, within_95;  // the covariance's check, empty without one
 };
 
 // The frames CSV's rows by case, in order.
 std::map<std::string, std::vector<CsvFrame>> frames_by_case(const std::filesystem::path& path) {
   const auto lines = test::lines_of(path);
   REQUIRE(!lines.empty());
-  CHECK(lines[0] == "object,case,frame,timestamp,adds_mm,confidence,status,within_tolerance");
+  CHECK(
+      lines[0] ==
+      "object,case,frame,timestamp,adds_mm,confidence,status,within_tolerance,covariance_d2,covariance_dof,within_95");
   std::map<std::string, std::vector<CsvFrame>> cases;
   for (size_t i = 1; i < lines.size(); ++i) {
     const auto c = test::cells_of(lines[i]);
-    REQUIRE(c.size() == 8);
+    REQUIRE(c.size() == 11);
     CHECK(c[0] == "object");
-    cases[c[1]].push_back({c[2], c[6], c[7], std::stod(c[3]), std::stod(c[4]), std::stod(c[5])});
+    cases[c[1]].push_back({c[2], c[6], c[7], std::stod(c[3]), std::stod(c[4]), std::stod(c[5]), c[8], c[9], c[10]});
   }
   return cases;
 }
@@ -59,7 +62,7 @@ TEST_CASE("eval prints a row per case whose figures its frames CSV reproduces", 
   REQUIRE(cases.count("gap+0.5s") == 1);
 
   std::stringstream lines(output);
-  size_t rows = 0, wrong_total = 0;
+  size_t rows = 0, wrong_total = 0, coverage_rows = 0;
   bool header = false, summary = false;
   for (std::string line; std::getline(lines, line);) {
     const auto w = words_of(line);
@@ -115,6 +118,26 @@ TEST_CASE("eval prints a row per case whose figures its frames CSV reproduces", 
       for (size_t i = 0; i < frames.size(); ++i)
         CHECK(frames[i].timestamp == Approx(i / 30.0 + (w[1] == "gap+0.5s" && i >= 3 ? 0.5 : 0.0)).margin(1e-6));
     }
+    if (w.size() == 6 && w[0] == "object" && cases.count(w[1])) {  // the covariance's coverage row
+      ++coverage_rows;
+      INFO(line);
+      size_t checked = 0, inside = 0;
+      for (const CsvFrame& f : cases.at(w[1])) {
+        if (f.within_95.empty()) continue;
+        ++checked;
+        inside += f.within_95 == "1";
+        // Inside exactly when d2 is at most the chi-squared 95 % quantile of its degrees of freedom.
+        const double quantile[6] = {3.841459, 5.991465, 7.814728, 9.487729, 11.070498, 12.591587};
+        const int dof = std::stoi(f.dof);
+        REQUIRE(dof >= 1);
+        REQUIRE(dof <= 6);
+        CHECK((std::stod(f.d2) <= quantile[dof - 1]) == (f.within_95 == "1"));
+      }
+      CHECK(checked == 12);  // refinement is on: every frame with ground truth has a covariance
+      CHECK(std::stoul(w[2]) == checked);
+      CHECK(std::stoul(w[3]) == inside);
+      CHECK(std::stod(w[4]) == Approx(static_cast<double>(inside) / checked).margin(0.0006));
+    }
     if (line.rfind("summary:", 0) == 0) {
       summary = true;
       CHECK(line.find("confident-wrong frames " + std::to_string(wrong_total) + ";") != std::string::npos);
@@ -124,6 +147,7 @@ TEST_CASE("eval prints a row per case whose figures its frames CSV reproduces", 
   }
   CHECK(header);
   CHECK(rows == 2);
+  CHECK(coverage_rows == 2);
   CHECK(summary);
   CHECK(output.find("confidence reliability over 24 frames") != std::string::npos);
   CHECK(output.find("expected calibration error") != std::string::npos);

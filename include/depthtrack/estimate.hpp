@@ -55,13 +55,14 @@ struct Estimate {
   double max_log_likelihood = 0;                               // best particle's log L of this frame
   double mean_log_likelihood = 0;                              // weighted mean of log L
   bool resampled = false;
-  // Covariance of the refined pose from the fit's normal equations (inverse Gauss-Newton Hessian of
-  // the log-likelihood), as a twist in the camera frame about the mesh's centre: rows/columns
-  // 0-2 the centre's position (m), 3-5 the rotation vector (rad). It treats pixels as independent,
-  // so it is a lower bound on the real uncertainty. An axis the pixels cannot determine (a flat face
-  // seen face-on: sliding along it, turning about its normal) has +infinity on the diagonal and 0
-  // elsewhere in its row and column; the other entries then hold with that axis fixed. NaN when
-  // refinement is off or the fit had too few pixels.
+  // Covariance of the refined pose's error, as a twist in the camera frame about the mesh's centre:
+  // rows/columns 0-2 the centre's position (m), 3-5 the rotation vector (rad). The fit's normal
+  // equations (inverse Gauss-Newton Hessian of the log-likelihood) scaled by the depth residual at the
+  // pose, its pixel-to-pixel noise and its smooth share counted apart, so that the 95 % region holds
+  // the true error on about 95 % of frames (docs/covariance.md has the coverage per sequence). An axis
+  // the pixels cannot determine (a flat face seen face-on: sliding along it, turning about its normal)
+  // has +infinity on the diagonal and 0 elsewhere in its row and column; the other entries then hold
+  // with that axis fixed. NaN when refinement is off or the fit had too few pixels.
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Constant(std::nan(""));
   StepTimings timings;
   int refine_iterations = 0;  // steps the refinement tried (each one rendering of the pose); 0 when off

@@ -59,7 +59,9 @@ void bind_estimate(py::module_& m) {
       .def_readonly("resampled", &Estimate::resampled)
       .def_readonly("covariance", &Estimate::covariance,
                     "6x6 covariance of the refined pose: centre position (m), rotation vector (rad), camera frame; "
-                    "inf on the diagonal (0 across) for an axis the depth cannot determine; NaN with refinement off")
+                    "scaled by the depth residual so that its 95 % region holds the error on about 95 % of frames "
+                    "(docs/covariance.md); inf on the diagonal (0 across) for an axis the depth cannot determine; NaN "
+                    "with refinement off")
       .def_readonly("refine_iterations", &Estimate::refine_iterations, "refinement steps tried this frame")
       .def_readonly("timings", &Estimate::timings)
       .def_readonly("confidence", &Estimate::confidence,

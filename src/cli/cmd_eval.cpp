@@ -264,6 +264,8 @@ void run_eval(const EvalArgs& a) {
   EvalTable table(width);
   table.print_header();
   std::vector<ConfidenceOutcome> outcomes;
+  std::vector<CoverageRow> coverage_rows;
+  std::vector<CovarianceCheck> all_checks;
   for (const EvalObject& o : objects)
     for (const EvalCase& c : cases) {
       ProgressBar bar(o.name + " " + c.name, static_cast<int>(o.sequence.frames.size()));
@@ -282,10 +284,19 @@ void run_eval(const EvalArgs& a) {
                                   : std::nullopt;
       row.scores = score_case(frames, o.tolerance, recovery_from);
       table.print_row(row);
+      std::vector<CovarianceCheck> checks;
       for (const TrackedFrame& f : frames) {
-        if (csv) csv->write(o.name, c.name, f, o.tolerance);
+        const std::optional<CovarianceCheck> check =
+            f.ground_truth
+                ? check_covariance(pose_error_twist(f.estimate.pose, *f.ground_truth, o.mesh.centre().cast<double>()),
+                                   f.estimate.covariance)
+                : std::nullopt;
+        if (check) checks.push_back(*check);
+        if (csv) csv->write(o.name, c.name, f, o.tolerance, check);
         if (!std::isnan(f.adds)) outcomes.push_back({f.estimate.confidence, f.adds <= o.tolerance});
       }
+      coverage_rows.push_back({o.name, c.name, coverage(checks)});
+      all_checks.insert(all_checks.end(), checks.begin(), checks.end());
     }
   table.print_summary();
   std::printf(
@@ -294,6 +305,8 @@ void run_eval(const EvalArgs& a) {
       1000 * kConfidentWrongAdds, kConfidentAbove, kRecoveryFrames, a.gap_before + static_cast<int>(kRecoveryFrames),
       1000 * kEndsWithin);
   print_reliability(reliability(outcomes));
+  coverage_rows.push_back({"all", "", coverage(all_checks)});
+  print_coverage(coverage_rows, width);
   if (csv) csv->finish();
   if (plot) {
     const fs::path rows = csv->path();
@@ -349,7 +362,9 @@ void add_eval_command(CLI::App& app) {
   c->add_flag("--no-recover", args->no_recover, "Do not search for the object again while it is lost");
   c->add_option("--frames-out", args->frames_out,
                 "CSV with a row per frame of every case: object,case,frame,timestamp,adds_mm,confidence,status,"
-                "within_tolerance (written to FILE.partial and renamed at the end)");
+                "within_tolerance,covariance_d2,covariance_dof,within_95 (the error's squared Mahalanobis distance "
+                "under Estimate::covariance, its determined axes, and whether it lies inside the 95 % region; written "
+                "to FILE.partial and renamed at the end)");
   c->add_option("--reliability", args->reliability,
                 "Draw the confidence's reliability diagram as this PNG (python3 with matplotlib runs "
                 "depthtrack/plots.py on the frames)");

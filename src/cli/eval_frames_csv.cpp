@@ -18,7 +18,8 @@ EvalFramesCsv::EvalFramesCsv(const fs::path& path) : path_(path), partial_(path.
   listed_ = PartialFile(partial_);
   out_.open(partial_, std::ios::out | std::ios::trunc);
   if (!out_) throw InputError("cannot write '" + partial_.string() + "': " + std::strerror(errno));
-  out_ << "object,case,frame,timestamp,adds_mm,confidence,status,within_tolerance\n";
+  out_ << "object,case,frame,timestamp,adds_mm,confidence,status,within_tolerance,covariance_d2,covariance_dof,within_"
+          "95\n";
   out_.precision(9);
 }
 
@@ -30,11 +31,16 @@ EvalFramesCsv::~EvalFramesCsv() {
 }
 
 void EvalFramesCsv::write(const std::string& object, const std::string& case_name, const TrackedFrame& f,
-                          double tolerance) {
+                          double tolerance, const std::optional<CovarianceCheck>& check) {
   out_ << object << "," << case_name << "," << f.name << "," << f.timestamp << ",";
   if (!std::isnan(f.adds)) out_ << f.adds * 1000.0;
   out_ << "," << f.estimate.confidence << "," << to_string(f.estimate.status) << ",";
   if (!std::isnan(f.adds)) out_ << (f.adds <= tolerance ? 1 : 0);
+  out_ << ",";
+  if (check)
+    out_ << check->d2 << "," << check->dof << "," << (check->inside ? 1 : 0);
+  else
+    out_ << ",,";
   out_ << "\n";
   if (!out_) throw Error("failed writing '" + partial_.string() + "' (disk full?)");
 }

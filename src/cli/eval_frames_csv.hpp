@@ -6,13 +6,15 @@
 #include <string>
 
 #include "core/partial_files.hpp"
+#include "eval/covariance_coverage.hpp"
 
 namespace depthtrack::cli {
 
-// object,case,frame,timestamp,adds_mm,confidence,status,within_tolerance (adds_mm and within_tolerance
-// empty where the frame has no ground truth; within_tolerance 1 or 0). As TrackingCsvWriter: the place
-// is checked at construction, before any tracking; rows go to PATH.partial, which finish() renames to
-// PATH; without finish() the partial file is removed and an earlier PATH stays.
+// object,case,frame,timestamp,adds_mm,confidence,status,within_tolerance,covariance_d2,covariance_dof,
+// within_95 (adds_mm and within_tolerance empty where the frame has no ground truth; within_tolerance 1
+// or 0; the covariance's three empty where the frame has no check: no ground truth or no covariance). As
+// TrackingCsvWriter: the place is checked at construction, before any tracking; rows go to PATH.partial, which finish()
+// renames to PATH; without finish() the partial file is removed and an earlier PATH stays.
 class EvalFramesCsv {
  public:
   explicit EvalFramesCsv(const std::filesystem::path& path);
@@ -20,7 +22,8 @@ class EvalFramesCsv {
   EvalFramesCsv(const EvalFramesCsv&) = delete;
   EvalFramesCsv& operator=(const EvalFramesCsv&) = delete;
 
-  void write(const std::string& object, const std::string& case_name, const TrackedFrame& frame, double tolerance);
+  void write(const std::string& object, const std::string& case_name, const TrackedFrame& frame, double tolerance,
+             const std::optional<CovarianceCheck>& check);
   void finish();
   const std::filesystem::path& path() const { return path_; }
 

@@ -87,4 +87,23 @@ void print_reliability(const Reliability& r) {
   std::printf("expected calibration error %.3f\n", r.ece);
 }
 
+void print_coverage(const std::vector<CoverageRow>& rows, size_t object_width) {
+  std::printf(
+      "covariance coverage (frames with ground truth and a covariance whose error, as a twist about the mesh's "
+      "centre, lies inside the reported 95 %% region; undetermined axes left out):\n");
+  const int w = static_cast<int>(std::max<size_t>(object_width, 6));
+  std::printf("%-*s %-12s %7s %7s %7s %15s\n", w, "object", "case", "checked", "inside", "share", "wilson_95");
+  for (const CoverageRow& r : rows) {
+    const Coverage& c = r.coverage;
+    if (c.checked == 0) {
+      std::printf("%-*s %-12s %7zu %7s %7s %15s\n", w, r.object.c_str(), r.name.c_str(), c.checked, "-", "-", "-");
+      continue;
+    }
+    char interval[32];
+    std::snprintf(interval, sizeof interval, "%.3f-%.3f", c.low, c.high);
+    std::printf("%-*s %-12s %7zu %7zu %7.3f %15s\n", w, r.object.c_str(), r.name.c_str(), c.checked, c.inside, c.share,
+                interval);
+  }
+}
+
 }  // namespace depthtrack::cli

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "eval/case_scores.hpp"
+#include "eval/covariance_coverage.hpp"
 
 namespace depthtrack::cli {
 
@@ -33,5 +34,12 @@ class EvalTable {
 };
 
 void print_reliability(const Reliability& r);
+
+// The covariance's coverage per case: the share of frames whose error lies inside the reported 95 % region.
+struct CoverageRow {
+  std::string object, name;
+  Coverage coverage;
+};
+void print_coverage(const std::vector<CoverageRow>& rows, size_t object_width);
 
 }  // namespace depthtrack::cli

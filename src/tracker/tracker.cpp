@@ -8,9 +8,11 @@
 #include "core/mesh_simplify.hpp"
 #include "core/stopwatch.hpp"
 #include "core/timestamp_limits.hpp"
+#include "model/covariance_calibration.hpp"
 #include "tracker/confidence_model.hpp"
 #include "tracker/make_filter_backend.hpp"
 #include "tracker/particle_budget.hpp"
+#include "tracker/residual_structure.hpp"
 #include "tracker/track_supervisor.hpp"
 
 namespace depthtrack {
@@ -308,7 +310,12 @@ void Tracker::assess_confidence(Estimate& e, const DepthImage& working) {
     return;
   }
   const Stopwatch clock;
-  e.evidence = supervisor_->assess(e.pose, working, backend_->rendering_of(e.pose));
+  const std::vector<float>* drawn = backend_->rendering_of(e.pose);
+  e.evidence = supervisor_->assess(e.pose, working, drawn);
+  // The fit's covariance scaled by what the residual at the estimate says (model/covariance_calibration.hpp).
+  const ResidualStructure residual = residual_structure(drawn ? *drawn : supervisor_->silhouette(e.pose),
+                                                        config_.observation, config_.loss.pixel_sigmas, working);
+  e.covariance = model::calibrated_covariance(e.covariance, residual.white, residual.smooth(), residual.pixels);
   e.confidence = pose_confidence(e.evidence);
   e.status = supervisor_->observe(e.confidence);
   e.timings.confidence_ms = clock.elapsed_ms();

@@ -1,0 +1,40 @@
+#pragma once
+// Whether the reported covariance holds: per frame, the estimate's error against the ground truth in the
+// covariance's own parametrization, its Mahalanobis distance, and whether it falls inside the 95 % region;
+// per run, the share of frames that do.
+#include <Eigen/Core>
+#include <depthtrack/estimate.hpp>
+#include <depthtrack/pose.hpp>
+#include <optional>
+#include <vector>
+
+namespace depthtrack {
+
+// The error of estimate against truth as Estimate::covariance parametrizes it: a camera-frame twist about
+// the mesh's centre (object frame), rows 0-2 the centre's displacement (m), 3-5 the rotation vector of
+// R_estimate R_truth^T (rad).
+Eigen::Matrix<double, 6, 1> pose_error_twist(const Pose& estimate, const Pose& truth, const Eigen::Vector3d& centre);
+
+// The 0.95 quantile of the chi-squared distribution with dof degrees of freedom (1 to 6).
+double chi2_95(int dof);
+
+struct CovarianceCheck {
+  double d2 = 0;        // e^T Sigma^-1 e over the determined axes
+  int dof = 0;          // how many: the axes with a finite variance
+  bool inside = false;  // d2 <= chi2_95(dof)
+};
+
+// The check of error against covariance; axes with +infinity on the diagonal (undetermined) are left out.
+// nullopt when the covariance has a NaN (refinement off, too few pixels), no finite axis, or its finite
+// block is not positive definite.
+std::optional<CovarianceCheck> check_covariance(const Eigen::Matrix<double, 6, 1>& error,
+                                                const Eigen::Matrix<double, 6, 6>& covariance);
+
+// The share of checked frames inside their 95 % region, with its Wilson score interval at 95 %.
+struct Coverage {
+  size_t checked = 0, inside = 0;
+  double share = NAN, low = NAN, high = NAN;
+};
+Coverage coverage(const std::vector<CovarianceCheck>& checks);
+
+}  // namespace depthtrack
