@@ -100,10 +100,10 @@ struct Sample {
 void print_row(const std::string& clip, const std::string& object, const std::string& frame, const std::string& kind,
                double start_mm, double start_deg, double adds_m, double diameter, const PoseEvidence& e,
                double confidence, const char* status) {
-  std::printf("%s,%s,%s,%s,%.1f,%.1f,%.3f,%.1f,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%s\n", clip.c_str(),
+  std::printf("%s,%s,%s,%s,%.1f,%.1f,%.3f,%.1f,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%s\n", clip.c_str(),
               object.c_str(), frame.c_str(), kind.c_str(), start_mm, start_deg, 1000.0 * adds_m, 1000.0 * diameter,
               e.pixels, e.visible, e.occluded, e.contradicted, e.missing, e.separated, e.outline_nearer, e.visible_rms,
-              confidence, status);
+              e.plane_rms, confidence, status);
 }
 
 // The tracker's estimates, frame by frame, from the starts a user gives it.
@@ -145,7 +145,7 @@ int main(int argc, char** argv) try {
   config.refine.iterations = 16;  // as the search's fit of its candidates
   std::printf(
       "clip,object,frame,kind,start_mm,start_deg,adds_mm,diameter_mm,pixels,visible,occluded,contradicted,missing,"
-      "separated,outline_nearer,visible_rms,confidence,status\n");
+      "separated,outline_nearer,visible_rms,plane_rms,confidence,status\n");
   // Every object's sequence (the same frames, each with its own truth) for placing one on another.
   std::vector<Sequence> sequences;
   std::vector<std::string> found;

@@ -29,18 +29,22 @@ def features(row):
     measured pixels depart from it.
     """
     nearer = float(row["outline_nearer"])
+    rms = min(float(row["visible_rms"]), 3.0)
     return [
         1.0,
         float(row["occluded"]),
         float(row["contradicted"]),
-        min(float(row["visible_rms"]), 3.0),
+        rms,
         # The outline's share that sees past the edge, of the whole outline: the part hidden by nearer
         # surfaces says nothing.
         float(row["separated"]) * (1.0 - nearer),
+        # The relief: how far the seen surface departs from a plane beyond the pose's own residual
+        # (surface_relief in the code).
+        max(0.0, min(float(row["plane_rms"]), 3.0) - rms),
     ]
 
 
-NAMES = ["bias", "occluded", "contradicted", "visible_rms", "separated_free"]
+NAMES = ["bias", "occluded", "contradicted", "visible_rms", "separated_free", "relief"]
 
 
 def load(path):

@@ -84,6 +84,43 @@ TEST_CASE("silhouette shares: an object before a wall stands out and an occluder
   CHECK(pose_confidence(blind) == 0.0);
 }
 
+TEST_CASE("silhouette shares: the plane's residual is the object's relief, none for a flat surface", "[confidence]") {
+  Scene scene;
+  // Turned to show two faces at once: its depths no longer lie on one plane.
+  scene.pose.rotation = Eigen::AngleAxisd(0.8, Eigen::Vector3d(1, 1, 0).normalized());
+  scene.box = scene.rasterizer.render(scene.pose, scene.rendered);
+  const double sigma = reference::depth_sigma(scene.config.observation, 0.8);
+  // The object itself: its pixels fit the pose exactly and no plane through them does.
+  const SilhouetteShares own = scene.shares(scene.object_on(1.6f));
+  INFO("own surface: plane_rms " << own.plane_rms);
+  REQUIRE(own.pixels >= static_cast<int>(kPlanePixels));
+  CHECK(own.visible_rms < 0.01);
+  CHECK(own.plane_rms > 1.0);
+  // Facing the camera (its front nearly flat, within a third of a sigma), behind a tilted plane through
+  // its nearest point, 0.2 mm deeper per pixel to the right: the seen pixels lie on that plane, which
+  // fits them to float rounding, better than the pose does.
+  Scene facing;
+  float front = 10;
+  for (float z : facing.rendered)
+    if (z > 0) front = std::min(front, z);
+  std::vector<float> tilted(facing.rendered.size());
+  for (int v = 0; v < facing.camera.height; ++v)
+    for (int u = 0; u < facing.camera.width; ++u)
+      tilted[static_cast<size_t>(v * facing.camera.width + u)] =
+          front + 0.0002f * static_cast<float>(u - facing.box.u0);
+  const SilhouetteShares flat = facing.shares(tilted);
+  REQUIRE(flat.visible * flat.pixels >= static_cast<double>(kPlanePixels));
+  CHECK(flat.plane_rms < 0.1e-3 / sigma);
+  CHECK(flat.plane_rms < flat.visible_rms);
+  // Too few pixels seen: no plane is fitted, the pose's own residual stands in.
+  std::vector<float> hidden = scene.object_on(1.6f);
+  int kept = 0;
+  for (size_t k = 0; k < hidden.size(); ++k)
+    if (scene.rendered[k] > 0 && kept++ >= 5) hidden[k] = 0.3f;  // a near occluder over all but five
+  const SilhouetteShares few = scene.shares(hidden);
+  CHECK(few.plane_rms == few.visible_rms);
+}
+
 // The filters with refinement report the fit's counts at the refined pose as their estimate's visible
 // share: the counts must be the silhouette shares'.
 TEST_CASE("the refinement's counts at a pose are the confidence's: pixels measured and within the band",

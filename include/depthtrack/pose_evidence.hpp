@@ -20,6 +20,11 @@ struct PoseEvidence {
   // Root mean square of (y - y_hat) / sigma(y) over the visible pixels: below 1 where the surface lies
   // where the pose puts it, larger where some other surface merely falls within the band.
   double visible_rms = 0;
+  // The same for the best plane through the visible pixels' measured depths (weighted least squares in
+  // pixel coordinates): near visible_rms where a flat surface (a wall, a table) explains them as well as
+  // the object does, larger where the seen surface has the object's relief (a bowl's curve, a box's two
+  // faces). visible_rms when fewer than 16 pixels are visible.
+  double plane_rms = 0;
 };
 
 }  // namespace depthtrack

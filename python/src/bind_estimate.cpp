@@ -35,7 +35,9 @@ void bind_estimate(py::module_& m) {
       .def_readonly("separated", &PoseEvidence::separated,
                     "of the outline not against nearer surfaces: the share seeing past the edge")
       .def_readonly("outline_nearer", &PoseEvidence::outline_nearer, "of the outline: seen in front of the edge")
-      .def_readonly("visible_rms", &PoseEvidence::visible_rms, "rms of (y - y_hat) / sigma(y) over visible pixels");
+      .def_readonly("visible_rms", &PoseEvidence::visible_rms, "rms of (y - y_hat) / sigma(y) over visible pixels")
+      .def_readonly("plane_rms", &PoseEvidence::plane_rms,
+                    "the same for the best plane through the visible pixels' depths");
 
   py::class_<Estimate>(m, "Estimate", "One frame's estimate")
       .def_property_readonly(

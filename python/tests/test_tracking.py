@@ -100,7 +100,7 @@ def test_estimate_carries_every_field_of_the_cpp_estimate(scene):
     assert 0.5 <= e.confidence <= 1 and e.status == "tracking"  # tracking means a supported pose
     ev = e.evidence  # what the confidence rests on: shares of the silhouette's measured pixels
     assert ev.pixels > 0 and ev.visible + ev.occluded + ev.contradicted == pytest.approx(1.0)
-    assert 0 <= ev.separated <= 1 and 0 <= ev.missing <= 1 and ev.visible_rms >= 0
+    assert 0 <= ev.separated <= 1 and 0 <= ev.missing <= 1 and ev.visible_rms >= 0 and ev.plane_rms >= 0
     t = e.timings
     assert t.total_ms > 0 and t.weigh_ms > 0 and t.refine_ms > 0 and t.search_ms == 0
     assert t.propagate_ms >= 0 and t.render_ms >= 0 and t.handoff_ms == 0 and t.resample_ms >= 0

@@ -125,32 +125,77 @@ SearchResult global_search(const SearchObject& object, const Camera& camera, std
   std::vector<double> offsets(rotations.size());
   for (size_t j = 0; j < rotations.size(); ++j) offsets[j] = centre_offset(rotations[j], object);
 
-  // Every (surface point, rotation) pair; under a budget, in a shuffled order, so that the part
-  // scored in time covers the whole grid evenly.
-  std::vector<size_t> order(surface.size() * rotations.size());
-  std::iota(order.begin(), order.end(), size_t{0});
-  if (settings.budget_ms > 0) {
-    std::mt19937_64 rng(settings.seed * 1000003u + settings.round);
-    std::shuffle(order.begin(), order.end(), rng);
-  }
   size_t region_count = 1;
   const std::vector<size_t> region = settings.by_region
                                          ? regions_of(surface, std::max(object.radius, 1e-3), region_count)
                                          : std::vector<size_t>(surface.size(), 0);
-  const size_t chunk = 2048;
   std::vector<std::vector<Candidate>> by_region(region_count);
-  for (size_t first = 0; first < order.size(); first += chunk) {
-    if (settings.budget_ms > 0 && first > 0 && clock.elapsed_ms() > 0.7 * settings.budget_ms) break;
-    const size_t last = std::min(order.size(), first + chunk);
-    std::vector<Pose> poses;
-    for (size_t k = first; k < last; ++k) {
-      const size_t i = order[k] / rotations.size(), j = order[k] % rotations.size();
-      const Eigen::Vector3d ray = surface[i].normalized();
-      poses.push_back(centred_pose(rotations[j], surface[i] + offsets[j] * ray, object));
+  // Scores (surface point, rotation) pairs, numbered point * set.size() + rotation, in chunks; under a
+  // budget, stops when its coarse share is spent. Returns the scores of those it reached.
+  const auto score_pairs = [&](std::span<const size_t> pairs, std::span<const Eigen::Quaterniond> set,
+                               std::span<const double> set_offsets) {
+    const size_t chunk = 2048;
+    std::vector<double> out;
+    for (size_t first = 0; first < pairs.size(); first += chunk) {
+      if (settings.budget_ms > 0 && first > 0 && clock.elapsed_ms() > 0.7 * settings.budget_ms) break;
+      const size_t last = std::min(pairs.size(), first + chunk);
+      std::vector<Pose> poses;
+      for (size_t k = first; k < last; ++k) {
+        const size_t i = pairs[k] / set.size(), j = pairs[k] % set.size();
+        const Eigen::Vector3d ray = surface[i].normalized();
+        poses.push_back(centred_pose(set[j], surface[i] + set_offsets[j] * ray, object));
+      }
+      const std::vector<Candidate> part = scored(std::move(poses), score);
+      for (size_t k = first; k < last; ++k) {
+        by_region[region[pairs[k] / set.size()]].push_back(part[k - first]);
+        out.push_back(part[k - first].score);
+      }
+      result.coarse_poses += part.size();
     }
-    const std::vector<Candidate> part = scored(std::move(poses), score);
-    for (size_t k = first; k < last; ++k) by_region[region[order[k] / rotations.size()]].push_back(part[k - first]);
-    result.coarse_poses += part.size();
+    return out;
+  };
+  const size_t sparse_count = rotations_for_radius(settings.sparse_radius);
+  if (settings.two_level && settings.budget_ms <= 0 && 2 * sparse_count < rotations.size()) {
+    // The sparse set first; then each point's grid rotations whose nearest sparse rotation was among
+    // the best pairs.
+    const std::vector<Eigen::Quaterniond> sparse = uniform_rotations(sparse_count);
+    std::vector<double> sparse_offsets(sparse.size());
+    for (size_t j = 0; j < sparse.size(); ++j) sparse_offsets[j] = centre_offset(sparse[j], object);
+    std::vector<size_t> pairs(surface.size() * sparse.size());
+    std::iota(pairs.begin(), pairs.end(), size_t{0});
+    const std::vector<double> first = score_pairs(pairs, sparse, sparse_offsets);
+    const size_t best =
+        std::clamp(static_cast<size_t>(std::ceil(settings.sparse_share * static_cast<double>(pairs.size()))), size_t{1},
+                   pairs.size());
+    std::vector<size_t> rank(pairs.size());
+    std::iota(rank.begin(), rank.end(), size_t{0});
+    std::nth_element(rank.begin(), rank.begin() + static_cast<std::ptrdiff_t>(best - 1), rank.end(),
+                     [&](size_t a, size_t b) { return first[a] > first[b]; });
+    std::vector<char> chosen(pairs.size(), 0);
+    for (size_t k = 0; k < best; ++k) chosen[rank[k]] = 1;
+    std::vector<size_t> nearest(rotations.size());
+    for (size_t j = 0; j < rotations.size(); ++j) {
+      double closest = -1;
+      for (size_t s = 0; s < sparse.size(); ++s) {
+        const double d = std::abs(rotations[j].dot(sparse[s]));
+        if (d > closest) closest = d, nearest[j] = s;
+      }
+    }
+    std::vector<size_t> fine;
+    for (size_t i = 0; i < surface.size(); ++i)
+      for (size_t j = 0; j < rotations.size(); ++j)
+        if (chosen[i * sparse.size() + nearest[j]]) fine.push_back(i * rotations.size() + j);
+    score_pairs(fine, rotations, offsets);
+  } else {
+    // Every pair; under a budget, in a shuffled order, so that the part scored in time covers the whole
+    // grid evenly.
+    std::vector<size_t> order(surface.size() * rotations.size());
+    std::iota(order.begin(), order.end(), size_t{0});
+    if (settings.budget_ms > 0) {
+      std::mt19937_64 rng(settings.seed * 1000003u + settings.round);
+      std::shuffle(order.begin(), order.end(), rng);
+    }
+    score_pairs(order, rotations, offsets);
   }
   result.poses_scored = result.coarse_poses;
 

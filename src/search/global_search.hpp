@@ -40,6 +40,12 @@ struct SearchSettings {
   int regions = 16, per_region = 4;
   int perturbations = 40;  // poses tried around each candidate per refinement stage
   double budget_ms = 0;    // > 0: the coarse grid is cut short to leave time for refinement
+  // On (and without a budget): the coarse grid's rotations are first scored on a sparser set (at most
+  // sparse_radius from any rotation), and only the grid rotations nearest the best sparse_share of those
+  // (point, rotation) pairs are scored after them.
+  bool two_level = false;
+  double sparse_radius = 0.4;
+  double sparse_share = 0.1;
   uint64_t seed = 1;
   unsigned round = 0;  // varies the perturbations (and the coarse order) between searches
 };

@@ -10,13 +10,20 @@ namespace {
 // visible + occluded + contradicted = 1, so visible is implied. Coefficients from
 // scripts/calibrate-confidence.py (the order it prints them in), fitted on sampled poses and tracked
 // frames of both YCB-Video clips and of synthetic handset sequences (ideal, 30 % and 90 % occluded).
+// The relief lets an object seen mostly through occluders, whose outline does not stand out (a bowl
+// low on a table), be trusted for the curve of what is seen of it.
 struct Coefficients {
-  double bias, occluded, contradicted, visible_rms, separated_free;
+  double bias, occluded, contradicted, visible_rms, separated_free, relief;
 };
-constexpr Coefficients kFitted{-0.1024, -1.7725, -11.9951, -2.1214, 6.4230};
-// visible_rms is read up to this: beyond it the surface is no longer the pose's anyway.
+constexpr Coefficients kFitted{-3.1930, 1.7135, -11.6344, -1.9042, 5.6930, 2.1661};
+// visible_rms and plane_rms are read up to this: beyond it the surface is no longer the pose's anyway.
 constexpr double kRmsCap = 3.0;
 }  // namespace
+
+double surface_relief(const PoseEvidence& e) {
+  const double rms = std::min(e.visible_rms, kRmsCap);
+  return std::max(0.0, std::min(e.plane_rms, kRmsCap) - rms);
+}
 
 double pose_confidence(const PoseEvidence& e) {
   const double measured = e.visible + e.occluded + e.contradicted;
@@ -25,7 +32,8 @@ double pose_confidence(const PoseEvidence& e) {
   // (occluders) says nothing either way.
   const double separated_free = e.separated * (1.0 - e.outline_nearer);
   const double z = kFitted.bias + kFitted.occluded * e.occluded + kFitted.contradicted * e.contradicted +
-                   kFitted.visible_rms * std::min(e.visible_rms, kRmsCap) + kFitted.separated_free * separated_free;
+                   kFitted.visible_rms * std::min(e.visible_rms, kRmsCap) + kFitted.separated_free * separated_free +
+                   kFitted.relief * surface_relief(e);
   return 1.0 / (1.0 + std::exp(-z));
 }
 

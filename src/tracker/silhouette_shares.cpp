@@ -1,10 +1,43 @@
 #include "tracker/silhouette_shares.hpp"
 
+#include <Eigen/Dense>
 #include <cmath>
+#include <vector>
 
 #include "reference/observation_model.hpp"
 
 namespace depthtrack {
+
+namespace {
+struct PlanePoint {
+  double u, v, y, sigma;
+};
+
+// Root mean square of (y - plane) / sigma for the plane y = a + b u + c v minimizing it (weights
+// 1 / sigma^2); pixel coordinates and depths are taken about their means so that the normal equations
+// stay well conditioned. A degenerate spread (all pixels on one line) keeps the line's fit.
+double plane_rms(const std::vector<PlanePoint>& points) {
+  double mu = 0, mv = 0, my = 0;
+  for (const PlanePoint& p : points) mu += p.u, mv += p.v, my += p.y;
+  const double n = static_cast<double>(points.size());
+  mu /= n, mv /= n, my /= n;
+  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+  for (const PlanePoint& p : points) {
+    const Eigen::Vector3d x(1.0, p.u - mu, p.v - mv);
+    const double w = 1.0 / (p.sigma * p.sigma);
+    normal += w * x * x.transpose();
+    rhs += w * (p.y - my) * x;
+  }
+  const Eigen::Vector3d plane = normal.completeOrthogonalDecomposition().solve(rhs);
+  double squares = 0;
+  for (const PlanePoint& p : points) {
+    const double r = (p.y - my - plane.dot(Eigen::Vector3d(1.0, p.u - mu, p.v - mv))) / p.sigma;
+    squares += r * r;
+  }
+  return std::sqrt(squares / n);
+}
+}  // namespace
 
 SilhouetteShares silhouette_shares(const reference::Rasterizer& rasterizer, const ObservationModel& model,
                                    double pixel_sigmas, const Pose& pose, const DepthImage& depth,
@@ -18,6 +51,7 @@ SilhouetteShares silhouette_shares(std::span<const float> scratch, const referen
   const int width = depth.width();
   int visible = 0, occluded = 0, contradicted = 0, missing = 0;
   double visible_squares = 0;
+  std::vector<PlanePoint> seen;
   for (int v = box.v0; v < box.v1; ++v)
     for (int u = box.u0; u < box.u1; ++u) {
       const size_t k = static_cast<size_t>(v) * static_cast<size_t>(width) + static_cast<size_t>(u);
@@ -37,8 +71,10 @@ SilhouetteShares silhouette_shares(std::span<const float> scratch, const referen
           break;
         case reference::BandSide::Within: {
           ++visible;
-          const double z = (y - y_hat) / reference::depth_sigma(model, y);
+          const double sigma = reference::depth_sigma(model, y);
+          const double z = (y - y_hat) / sigma;
           visible_squares += z * z;
+          seen.push_back({static_cast<double>(u), static_cast<double>(v), static_cast<double>(y), sigma});
         }
       }
     }
@@ -71,6 +107,7 @@ SilhouetteShares silhouette_shares(std::span<const float> scratch, const referen
   if (outline > 0) s.outline_nearer = static_cast<double>(nearer) / outline;
   s.outline = outline;
   if (visible > 0) s.visible_rms = std::sqrt(visible_squares / visible);
+  s.plane_rms = seen.size() >= kPlanePixels ? plane_rms(seen) : s.visible_rms;
   s.pixels = visible + occluded + contradicted + missing;
   const int measured = visible + occluded + contradicted;
   if (s.pixels > 0) s.missing = static_cast<double>(missing) / s.pixels;

@@ -75,6 +75,9 @@ search::SearchSettings TrackSupervisor::settings(const InitHint& hint, double bu
   settings.seed = config_.seed;
   settings.round = round;
   settings.by_region = hint.kind == InitHint::Kind::None;
+  // A box holds one object's neighbourhood: its best sparse pairs lie near the object (ycbv-0000's mug: 80,440
+  // coarse poses become 25,828, the same pose found).
+  settings.two_level = hint.kind == InitHint::Kind::Box;
   return settings;
 }
 
