@@ -197,9 +197,10 @@ TEST_CASE("track reads ViSP's simulated layout as it reads the same frames conve
     pose.precision(17);
     for (int r = 0; r < 4; ++r) pose << m(r, 0) << " " << m(r, 1) << " " << m(r, 2) << " " << m(r, 3) << "\n";
   }
+  // ViSP's simulator counts pixel centres from 0.5 (VispSimulatedImport::pixel_centre): the same camera.
   std::ofstream(visp / "Config" / "object_depth.xml")
-      << "<conf><camera><px>" << s.camera.fx << "</px><py>" << s.camera.fy << "</py><u0>" << s.camera.cx << "</u0><v0>"
-      << s.camera.cy << "</v0></camera></conf>\n";
+      << "<conf><camera><px>" << s.camera.fx << "</px><py>" << s.camera.fy << "</py><u0>" << s.camera.cx + 0.5
+      << "</u0><v0>" << s.camera.cy + 0.5 << "</v0></camera></conf>\n";
   io::import_visp_simulated_sequence(visp, dir / "converted", io::castle_options());
 
   // The same start for both (the converted manifest holds the truth as a matrix, read back to the last bit

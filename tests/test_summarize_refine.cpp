@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstring>
+#include <depthtrack/error.hpp>
 #include <depthtrack/pose.hpp>
 #include <random>
 
@@ -53,10 +54,10 @@ FitScene fit_scene(const Mesh& mesh, const TrackerConfig& config, size_t count) 
   scene.log_weight.resize(count);
   scene.log_likelihood.resize(count);
   for (size_t i = 0; i < count; ++i) {
-    scene.particles[i].pose = model::move_about_centre(
-        scene.truth, Eigen::Vector3d::Zero(),
-        Eigen::Vector3d(0.01 * normal(rng), 0.01 * normal(rng), 0.01 * normal(rng)),
-        Eigen::Vector3d(0.05 * normal(rng), 0.05 * normal(rng), 0.05 * normal(rng)));
+    scene.particles[i].pose =
+        model::move_about_centre(scene.truth, Eigen::Vector3d::Zero(),
+                                 Eigen::Vector3d(0.01 * normal(rng), 0.01 * normal(rng), 0.01 * normal(rng)),
+                                 Eigen::Vector3d(0.05 * normal(rng), 0.05 * normal(rng), 0.05 * normal(rng)));
     scene.particles[i].linear_velocity = Eigen::Vector3d(0.1 * normal(rng), 0.0, 0.05);
     scene.log_likelihood[i] = static_cast<float>(-1000.0 + 3.0 * normal(rng));
     scene.log_weight[i] = scene.log_likelihood[i] + static_cast<float>(normal(rng));
@@ -150,8 +151,7 @@ TEST_CASE("The one-launch fit's own summary equals summarize then the fit, bit f
         0.5 * translation_error(scene.particles[heaviest].pose, scene.truth));
 }
 
-TEST_CASE("The fit's drawing split over rows: at most a row per slice, more on a GPU for coarse meshes",
-          "[refine]") {
+TEST_CASE("The fit's drawing split over rows: at most a row per slice, more on a GPU for coarse meshes", "[refine]") {
   // Spread: ceil(2,048 / triangles); one group: floor(256 / triangles), its idle work-items only; at most the
   // image's rows and 64; 1 on a CPU.
   const RefineLayout spread = RefineLayout::Spread, one_launch = RefineLayout::OneLaunch;
@@ -187,8 +187,8 @@ TEST_CASE("A fit whose drawing is split over rows equals the fit drawing each tr
       INFO(mesh.triangles.size() << " triangles, layout " << to_string(layout));
       // The fit took steps and came nearer the truth, so the drawings it compares are many and differ.
       REQUIRE(whole.estimate[DT_EST_REFINE_ITERATIONS] >= 1);
-      const auto heaviest = static_cast<size_t>(
-          std::max_element(scene.log_weight.begin(), scene.log_weight.end()) - scene.log_weight.begin());
+      const auto heaviest = static_cast<size_t>(std::max_element(scene.log_weight.begin(), scene.log_weight.end()) -
+                                                scene.log_weight.begin());
       CHECK(translation_error(fitted_pose(whole.estimate), scene.truth) <
             translation_error(scene.particles[heaviest].pose, scene.truth));
       for (const unsigned slices : {2u, 7u, 60u}) {
@@ -199,4 +199,18 @@ TEST_CASE("A fit whose drawing is split over rows equals the fit drawing each tr
       }
     }
   }
+}
+
+TEST_CASE("The device fit refuses a second stage (refine.fine_noise_scale), naming the backends that fit so",
+          "[device][refine]") {
+  if (!test::device_available()) return;
+  auto q = compute::open_device(test::device_selector());
+  compute::ProgramCache programs(*q);
+  TrackerConfig config;
+  config.refine.fine_noise_scale = 0.5;
+  const Mesh mesh = builtin_demo_mesh();
+  const Camera camera = Camera::make(80, 60, 65.6, 65.6, 39.5, 29.5);
+  CHECK_THROWS_AS(DeviceRefiner(*q, programs, mesh, camera, config, "DT_OCCLUSION=0", 0), InputError);
+  CHECK_THROWS_WITH(DeviceRefiner(*q, programs, mesh, camera, config, "DT_OCCLUSION=0", 0),
+                    Catch::Contains("refine.fine_noise_scale") && Catch::Contains("reference or cpu backend"));
 }

@@ -75,8 +75,9 @@ TEST_CASE("A ViSP simulated sequence converts into depthtrack's layout with its 
   CHECK(s.camera.height == 2);
   CHECK(s.camera.fx == 100.0);
   CHECK(s.camera.fy == 110.0);
-  CHECK(s.camera.cx == 1.5);
-  CHECK(s.camera.cy == 0.5);
+  // The file's u0 v0 (1.5, 0.5) at half-integer pixel centres: depthtrack's pixel u is at u.
+  CHECK(s.camera.cx == 1.0);
+  CHECK(s.camera.cy == 0.0);
 
   // metres = value / 32768, exactly (a power of two); 0 is no measurement.
   const DepthImage d = s.load_depth(0);
@@ -178,9 +179,9 @@ TEST_CASE("The castle's ground truth, drawn with its model, lies on its depth", 
   std::vector<float> drawn(static_cast<size_t>(s.camera.pixel_count()));
   // At a pose: the median |drawn - measured| over the pixels both have (metres), and the share of the
   // drawn pixels where the sensor sees nothing (background).
-  auto agreement = [&](size_t frame, const Pose& pose) {
-    rasterizer.render(pose, drawn);
-    const DepthImage depth = s.load_depth(frame);
+  auto agreement_in = [&](const Sequence& seq, const reference::Rasterizer& drawer, size_t frame, const Pose& pose) {
+    drawer.render(pose, drawn);
+    const DepthImage depth = seq.load_depth(frame);
     std::vector<double> residuals;
     size_t covered = 0;
     for (int v = 0; v < s.camera.height; ++v)
@@ -194,11 +195,22 @@ TEST_CASE("The castle's ground truth, drawn with its model, lies on its depth", 
     std::nth_element(residuals.begin(), residuals.begin() + residuals.size() / 2, residuals.end());
     return std::pair{residuals[residuals.size() / 2], 1.0 - static_cast<double>(residuals.size()) / covered};
   };
+  auto agreement = [&](size_t frame, const Pose& pose) { return agreement_in(s, rasterizer, frame, pose); };
+  // The same files read with integer pixel centres (the file's u0 v0 as they are).
+  io::VispSimulatedImport integer_centres = castle_offset();
+  integer_centres.pixel_centre = 0;
+  const Sequence shifted =
+      io::import_visp_simulated_sequence(*castle, test::temp_dir("visp_castle_integer"), integer_centres);
+  CHECK(shifted.camera.cx == s.camera.cx + 0.5);
+  const reference::Rasterizer shifted_rasterizer(model, shifted.camera, 0.01, 2.0);
   for (size_t frame : {size_t{0}, size_t{20}, size_t{39}}) {
     INFO("frame " << s.frames[frame].name);
     const auto [residual, off_object] = agreement(frame, *s.frames[frame].ground_truth);
     CHECK(residual < 0.001);
     CHECK(off_object < 0.01);
+    // Half-integer pixel centres: at integer ones the drawn outline lies half a pixel up and left of
+    // the measured one, over more background.
+    CHECK(agreement_in(shifted, shifted_rasterizer, frame, *s.frames[frame].ground_truth).second > off_object);
     // The colour camera's pose itself (the offset undone): the flat faces still meet the depth, but the
     // model is drawn 5 cm to the side, over background.
     const Pose colour = castle_offset().depth_from_colour.inverse() * *s.frames[frame].ground_truth;

@@ -22,6 +22,9 @@ int main(int argc, char** argv) {
                  "camera's (the castle's: -0.05 0 0)")
       ->capture_default_str();
   app.add_option("--rate", options.rate, "Frames per second (the files carry no timestamps)")->capture_default_str();
+  app.add_option("--pixel-centre", options.pixel_centre,
+                 "Image coordinate of a pixel's centre in the simulator's renderer (0.5: half-integer centres)")
+      ->capture_default_str();
   return peers::run_peer_program(app, argc, argv, "import_visp_simulated", [&] {
     const auto t = cli::parse_numbers(offset, 3, "--depth-from-colour");
     options.depth_from_colour = Pose(Eigen::Vector3d(t[0], t[1], t[2]), Eigen::Quaterniond::Identity());

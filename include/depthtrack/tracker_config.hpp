@@ -80,6 +80,11 @@ struct Refinement {
   // (docs/user/configuration.md, `refine.noise_scale`), so 1 stays the default. The covariance and the
   // confidence's band stay at the filter's sigma.
   double noise_scale = 1.0;
+  // A second stage: after the steps at noise_scale, up to `iterations` more at this share of sigma(y)
+  // (0: none). The first stage's wide likelihood draws the pose in from afar, the second's narrow one
+  // then gives pixels a few millimetres off (edges, occluders' rims, the model's own error) less say,
+  // without the narrow one's smaller reach. The covariance comes from the last stage's H.
+  double fine_noise_scale = 0.0;
   RefineLayout layout = RefineLayout::Auto;  // device backends only: the same fit, laid out differently
 };
 

@@ -136,6 +136,8 @@ void TrackerConfig::validate() const {
           "refine converged motion must be >= 0 metres");
   require(probability(refine.min_incidence) && refine.min_incidence < 1, "refine min incidence must be in [0, 1)");
   require(positive(refine.noise_scale) && refine.noise_scale <= 10, "refine noise scale must be in (0, 10]");
+  require(refine.fine_noise_scale == 0 || (positive(refine.fine_noise_scale) && refine.fine_noise_scale <= 10),
+          "refine fine noise scale must be 0 (no second stage) or in (0, 10]");
   require(refine.layout == RefineLayout::Auto || refine.layout == RefineLayout::OneGroup ||
               refine.layout == RefineLayout::Spread || refine.layout == RefineLayout::OneLaunch,
           "refine layout must be auto, one-group, spread or one-launch");

@@ -91,6 +91,8 @@ inline auto fields_of(const Refinement*) {
       field("min_incidence", &S::min_incidence, "cosine", "pixels whose |cos(normal, ray)| is below this are left out"),
       field("noise_scale", &S::noise_scale, "share",
             "the fit's depth noise as a share of the observation's sigma(y), in (0, 10]; 1 fits at the filter's"),
+      field("fine_noise_scale", &S::fine_noise_scale, "share",
+            "a second stage of steps at this share of sigma(y), in [0, 10]; 0: none"),
       field("layout", &S::layout, "",
             "device backends: auto, one-group (the fit in one work-group), spread (its steps over many) or "
             "one-launch (spread's steps in one work-group)"),

@@ -34,6 +34,15 @@ static_assert(kRefineGroup >= DT_REFINE_SUMS);  // a group writes its row of par
 size_t round_up(size_t n, size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
 }
+
+// The fit's configuration (model::fit_config), refused where it asks for what the kernels do not do.
+TrackerConfig device_fit_config(const TrackerConfig& config) {
+  if (config.refine.fine_noise_scale > 0)
+    throw InputError("refine.fine_noise_scale " + std::to_string(config.refine.fine_noise_scale) +
+                     " (a second stage of the fit) needs the reference or cpu backend");
+  return model::fit_config(config);
+}
+
 }  // namespace
 
 // What each layout costs at 2,000 particles, 80x60 (refine_ms, one group / spread): the spread layout is
@@ -84,7 +93,7 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
                              const Camera& camera, const TrackerConfig& config, const std::string& occlusion_definition,
                              unsigned draw_slices)
     : queue_(queue),
-      config_(model::fit_config(config)),  // the fit's own noise (Refinement::noise_scale), as the reference's
+      config_(device_fit_config(config)),  // the fit's own noise (Refinement::noise_scale), as the reference's
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       radius_(mesh.radius()),

@@ -158,13 +158,16 @@ bool is_visp_simulated_folder(const std::filesystem::path& dir) {
 
 Sequence load_visp_simulated_sequence(const std::filesystem::path& in, const VispSimulatedImport& options) {
   if (!(options.rate > 0) || !std::isfinite(options.rate)) throw InputError("the frame rate must be positive");
+  if (!std::isfinite(options.pixel_centre)) throw InputError("the pixel centre must be a finite number");
   const auto depths = numbered_files(in / "Depth", "Depth_", ".bin");
   const auto poses = numbered_files(in / "CameraPose", "Camera_", ".txt");
   const DepthImage first = read_visp_depth(depths.begin()->second, options.metres_per_unit);
 
   Sequence sequence;
   sequence.format = kVispSimulatedFormat;
-  sequence.camera = read_visp_camera(depth_config(in / "Config"), first.width(), first.height());
+  const Camera visp = read_visp_camera(depth_config(in / "Config"), first.width(), first.height());
+  sequence.camera = Camera::make(visp.width, visp.height, visp.fx, visp.fy, visp.cx - options.pixel_centre,
+                                 visp.cy - options.pixel_centre);
   sequence.metres_per_unit = options.metres_per_unit;
   for (const auto& [number, path] : depths) {
     const auto pose = poses.find(number);

@@ -17,6 +17,12 @@ struct VispSimulatedImport {
   double metres_per_unit = 1.0 / 32768.0;  // ViSP's simulator: 0.000030518 m per unit
   Pose depth_from_colour;                  // the castle's: a translation of (-0.05, 0, 0)
   double rate = 30.0;                      // Hz: the files carry no timestamps
+  // Where the simulator's renderer puts a pixel's centre, in the image coordinates of <u0> <v0>: 0.5,
+  // the half-integer centres of a graphics renderer (the castle's u0 v0 of 320 240 is its 640x480
+  // image's middle). depthtrack's pixel u sits at coordinate u, so the principal point moves by
+  // -pixel_centre; the castle's ground truth, drawn so, meets its silhouettes (the test's share of
+  // drawn pixels over background is lowest there).
+  double pixel_centre = 0.5;
 };
 
 // One depth file, checked: its header against its size (before anything is allocated) and `expected`

@@ -57,24 +57,35 @@ double damping_after_rejection(double lambda) {
 }
 
 PoseRefiner::PoseRefiner(const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
-    : config_(model::fit_config(config)),  // the fit's own noise (Refinement::noise_scale)
+    : stages_{model::fit_config(config)},  // the fit's own noise (Refinement::noise_scale)
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       radius_(mesh.radius()),
       rasterizer_(mesh, camera, config.near_plane, config.observation.max_depth),
       planes_(render::triangle_planes(mesh)),
       rendered_(static_cast<size_t>(camera.pixel_count())),
-      triangle_ids_(static_cast<size_t>(camera.pixel_count())) {}
+      triangle_ids_(static_cast<size_t>(camera.pixel_count())) {
+  if (config.refine.fine_noise_scale > 0) {
+    TrackerConfig fine = config;
+    fine.refine.noise_scale = config.refine.fine_noise_scale;
+    stages_.push_back(model::fit_config(fine));
+  }
+}
 
 NormalEquations PoseRefiner::normal_equations(const Pose& pose, const DepthImage& depth,
                                               std::span<const double> occlusion) const {
+  return equations(stages_.back(), pose, depth, occlusion);
+}
+
+NormalEquations PoseRefiner::equations(const TrackerConfig& fit, const Pose& pose, const DepthImage& depth,
+                                       std::span<const double> occlusion) const {
   NormalEquations e;
   rendered_pose_.reset();  // until the rendering is done
   const PixelBox box = rasterizer_.render(pose, rendered_, triangle_ids_);
   rendered_pose_ = pose;
   const Eigen::Matrix3d rotation = pose.rotation.toRotationMatrix();
   const Eigen::Vector3d centre = pose.apply(centre_);
-  const ObservationModel& m = config_.observation;
+  const ObservationModel& m = fit.observation;
   const double tail = m.tail_weight / m.max_depth;
   for (int v = box.v0; v < box.v1; ++v) {
     for (int u = box.u0; u < box.u1; ++u) {
@@ -82,7 +93,7 @@ NormalEquations PoseRefiner::normal_equations(const Pose& pose, const DepthImage
       const double y_hat = rendered_[k], y = depth.data()[k];
       if (y_hat <= 0 || !DepthImage::is_valid(static_cast<float>(y))) continue;
       ++e.measured;
-      e.visible += band_side(m, config_.loss.pixel_sigmas, y, y_hat) == BandSide::Within;
+      e.visible += band_side(m, fit.loss.pixel_sigmas, y, y_hat) == BandSide::Within;
       const double p = occlusion.empty() ? 0.0 : occlusion[k];
       const PixelDensities d = pixel_densities(m, y, y_hat);
       e.objective += pixel_log_ratio(d, p);
@@ -93,7 +104,7 @@ NormalEquations PoseRefiner::normal_equations(const Pose& pose, const DepthImage
       const Eigen::Vector3d normal = rotation * Eigen::Vector3d(plane[0], plane[1], plane[2]);
       const Eigen::Vector3d ray((u - camera_.cx) / camera_.fx, (v - camera_.cy) / camera_.fy, 1.0);
       Vector6d row;
-      if (!depth_jacobian(y_hat * ray, normal, ray, centre, config_.refine.min_incidence, row)) continue;
+      if (!depth_jacobian(y_hat * ray, normal, ray, centre, fit.refine.min_incidence, row)) continue;
       const double w = responsibility / (sigma * sigma);
       e.h.selfadjointView<Eigen::Lower>().rankUpdate(row, w);
       e.g += (w * (y - y_hat)) * row;
@@ -110,30 +121,38 @@ const std::vector<float>* PoseRefiner::rendering_of(const Pose& pose) const {
   return same ? &rendered_ : nullptr;
 }
 
-RefinedPose PoseRefiner::refine(const Pose& start, const DepthImage& depth, std::span<const double> occlusion) const {
-  RefinedPose best;
-  best.pose = start;
-  NormalEquations at_best = normal_equations(start, depth, occlusion);
-  double lambda = config_.refine.damping;
-  for (int iteration = 0; iteration < config_.refine.iterations; ++iteration) {
+void PoseRefiner::steps(const TrackerConfig& fit, RefinedPose& best, NormalEquations& at_best, const DepthImage& depth,
+                        std::span<const double> occlusion) const {
+  double lambda = fit.refine.damping;
+  for (int iteration = 0; iteration < fit.refine.iterations; ++iteration) {
     const Vector6d step = damped_step(at_best, lambda);
-    if (step.isZero() || step_motion(step, radius_) < config_.refine.converged_motion) break;
+    if (step.isZero() || step_motion(step, radius_) < fit.refine.converged_motion) break;
     ++best.iterations;
     const Pose candidate = apply_twist(best.pose, centre_, step);
-    const NormalEquations at_candidate = normal_equations(candidate, depth, occlusion);
+    const NormalEquations at_candidate = equations(fit, candidate, depth, occlusion);
     if (at_candidate.objective >= at_best.objective - kStepTolerance) {
       best.pose = candidate;
       at_best = at_candidate;
-      lambda = config_.refine.damping;
+      lambda = fit.refine.damping;
       ++best.accepted_steps;
     } else {
       lambda = damping_after_rejection(lambda);  // lean towards gradient descent
     }
   }
+}
+
+RefinedPose PoseRefiner::refine(const Pose& start, const DepthImage& depth, std::span<const double> occlusion) const {
+  RefinedPose best;
+  best.pose = start;
+  NormalEquations at_best;
+  for (const TrackerConfig& fit : stages_) {
+    at_best = equations(fit, best.pose, depth, occlusion);
+    steps(fit, best, at_best, depth, occlusion);
+  }
   best.objective = at_best.objective;
   best.pixels = at_best.pixels;
   best.visible_share = at_best.visible_share();
-  best.covariance = model::fit_covariance(at_best.h, at_best.pixels, radius_, config_.refine);
+  best.covariance = model::fit_covariance(at_best.h, at_best.pixels, radius_, stages_.back().refine);
   return best;
 }
 

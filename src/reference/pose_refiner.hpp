@@ -62,17 +62,25 @@ class PoseRefiner {
   PoseRefiner(const Mesh& mesh, const Camera& camera, const TrackerConfig& config);
 
   // occlusion: each pixel's occlusion probability for this frame, or empty for none.
+  // At the last stage's noise (Refinement::fine_noise_scale when set, else noise_scale).
   NormalEquations normal_equations(const Pose& pose, const DepthImage& depth, std::span<const double> occlusion) const;
   // Up to config.refine.iterations damped steps from start, each kept unless it lowers the
   // log-likelihood (more than rounding could); it stops early when the next step would move no mesh
-  // point more than config.refine.converged_motion. The result is the last pose kept.
+  // point more than config.refine.converged_motion. With refine.fine_noise_scale, as many again from
+  // there at that noise. The result is the last pose kept.
   RefinedPose refine(const Pose& start, const DepthImage& depth, std::span<const double> occlusion) const;
   // The depth the last normal_equations drew, when it drew exactly `pose` (a refined pose whose last
   // step was kept): Rasterizer::render's at that pose, bit for bit. Null otherwise.
   const std::vector<float>* rendering_of(const Pose& pose) const;
 
  private:
-  TrackerConfig config_;
+  NormalEquations equations(const TrackerConfig& fit, const Pose& pose, const DepthImage& depth,
+                            std::span<const double> occlusion) const;
+  // One stage's steps from best (its pose and equations at fit's noise), kept in best.
+  void steps(const TrackerConfig& fit, RefinedPose& best, NormalEquations& at_best, const DepthImage& depth,
+             std::span<const double> occlusion) const;
+
+  std::vector<TrackerConfig> stages_;  // the fit's configurations (model::fit_config), coarse to fine
   Camera camera_;
   Eigen::Vector3d centre_;
   double radius_;  // largest vertex distance from centre_: how far a rotation moves the mesh
