@@ -222,3 +222,19 @@ TEST_CASE("A small part is drawn simplified within 2 % of its radius, not the de
   CHECK(tracker.drawn_triangles() == kept.mesh.triangles.size());
   CHECK(tracker.drawn_triangles() > at_default.mesh.triangles.size());
 }
+
+TEST_CASE("A frame budget draws the mesh as coarse as its radius allows, unless it is drawn as given", "[simplify]") {
+  const Mesh ball = uv_sphere(0.05f, 48, 96);  // 5 cm radius: 2 % is 1 mm
+  CHECK(budgeted_simplify_error(0.0005, 0) == 0.0005);
+  CHECK(budgeted_simplify_error(0, 5) == 0);
+  CHECK(drawing_error(ball, budgeted_simplify_error(0.0005, 5)) == Approx(0.02 * ball.radius()));
+  const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.875, 29.875);
+  TrackerConfig config;
+  const Tracker fixed(ball, camera, config);
+  config.budget_ms = 5;
+  const Tracker budgeted(ball, camera, config);
+  CHECK(budgeted.drawn_triangles() == simplify_within(ball, 0.02 * ball.radius()).mesh.triangles.size());
+  CHECK(budgeted.drawn_triangles() < fixed.drawn_triangles());
+  config.simplify_error = 0;
+  CHECK(Tracker(ball, camera, config).drawn_triangles() == ball.triangles.size());
+}

@@ -15,6 +15,11 @@ double drawing_error(const Mesh& mesh, double simplify_error) {
   return std::min(simplify_error, kMaxRadiusShare * static_cast<double>(mesh.radius()));
 }
 
+double budgeted_simplify_error(double simplify_error, double budget_ms) {
+  // 1 m is above every radius share drawing_error caps at: the cap decides.
+  return budget_ms > 0 && simplify_error > 0 ? 1.0 : simplify_error;
+}
+
 MeshSimplification simplify_for_drawing(const Mesh& mesh, double simplify_error) {
   return simplify_within(mesh, drawing_error(mesh, simplify_error));
 }

@@ -26,6 +26,12 @@ MeshSimplification simplify_within(const Mesh& mesh, double max_error);
 // binds from 2.5 cm of radius up: every mesh measured so far).
 inline constexpr double kMaxRadiusShare = 0.02;
 double drawing_error(const Mesh& mesh, double simplify_error);
+// The simplify_error a tracker draws with: simplify_error, but under a frame budget (budget_ms > 0) the
+// coarsest drawing_error allows (kMaxRadiusShare of the radius), unless simplify_error is 0 (as given).
+// At 80x60 a pixel spans millimetres: on both YCB-Video clips' seven objects this draws 52 to 690
+// triangles where the default draws 322 to 2,640, and at 200 particles mean ADD-S (3 seeds) moved
+// between -15 % (mug) and +10 % (foam brick).
+double budgeted_simplify_error(double simplify_error, double budget_ms);
 // What a tracker draws of `mesh` (validated) for TrackerConfig::simplify_error: simplify_within at
 // drawing_error. The one rule for Tracker and track's note on it.
 MeshSimplification simplify_for_drawing(const Mesh& mesh, double simplify_error);
