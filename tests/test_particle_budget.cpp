@@ -179,9 +179,8 @@ TEST_CASE("a budgeted cpu run equals the sequential reference replaying its part
 
   config.budget_ms = 0;
   config.backend = "reference";
-  config.simplify_error = 1.0;  // the budget's drawing: as coarse as the radius allows (budgeted_simplify_error)
   Tracker replay(mesh, synth.camera, config);
-  CHECK(replay.drawn_triangles() == budgeted.drawn_triangles());
+  CHECK(replay.drawn_triangles() == budgeted.drawn_triangles());  // 24: below simplify_for_budget's reach
   replay.set_particle_count(chosen.front().particles);
   replay.initialize(frames[0].ground_truth);
   for (size_t i = 0; i < frames.size(); ++i) {

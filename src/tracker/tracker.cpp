@@ -87,9 +87,9 @@ void Tracker::construct(const Device& device, const Mesh& checked, const Tracker
   config_ = config;
   centre_ = checked.centre().cast<double>();
   // Every rendering draws the simplified mesh (the given one when simplify_error is 0); a frame budget
-  // draws it coarser (budgeted_simplify_error).
-  const MeshSimplification drawn =
-      simplify_for_drawing(checked, budgeted_simplify_error(config.simplify_error, config.budget_ms));
+  // draws a fine one coarser (simplify_for_budget).
+  const MeshSimplification drawn = config.budget_ms > 0 ? simplify_for_budget(checked, config.simplify_error)
+                                                         : simplify_for_drawing(checked, config.simplify_error);
   mesh_triangles_ = checked.triangles.size();
   drawn_triangles_ = drawn.mesh.triangles.size();
   backend_ = make_filter_backend(device, drawn.mesh, working_, config);
