@@ -222,3 +222,26 @@ TEST_CASE("A small part is drawn simplified within 2 % of its radius, not the de
   CHECK(tracker.drawn_triangles() == kept.mesh.triangles.size());
   CHECK(tracker.drawn_triangles() > at_default.mesh.triangles.size());
 }
+
+TEST_CASE("A frame budget draws a fine mesh coarser, within 2 % of its radius, and a coarse one as it is", "[simplify]") {
+  const Mesh ball = uv_sphere(0.1f, 64, 128);  // 10 cm radius, 16,128 triangles: 2 % is 2 mm
+  const double radius = ball.radius();
+  const MeshSimplification usual = simplify_for_drawing(ball, 0.0005), coarse = simplify_for_budget(ball, 0.0005);
+  INFO(usual.mesh.triangles.size() << " triangles within 0.5 mm, " << coarse.mesh.triangles.size() << " for a budget");
+  CHECK(usual.mesh.triangles.size() > kBudgetTriangles);
+  CHECK(coarse.mesh.triangles.size() <= kBudgetTriangles);
+  CHECK(farthest_vertex(ball, coarse.mesh) <= 2 * 0.02 * radius);
+  CHECK(simplify_for_budget(ball, 0).mesh.triangles.size() == ball.triangles.size());  // as given
+  // A mesh already within kBudgetTriangles is drawn as without a budget.
+  const Mesh few = uv_sphere(0.05f, 12, 24);
+  const size_t few_usual = simplify_for_drawing(few, 0.0005).mesh.triangles.size();
+  CHECK(few_usual <= kBudgetTriangles);
+  CHECK(simplify_for_budget(few, 0.0005).mesh.triangles.size() == few_usual);
+  // A tracker with a budget draws it.
+  const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.875, 29.875);
+  TrackerConfig config;
+  config.budget_ms = 5;
+  CHECK(Tracker(ball, camera, config).drawn_triangles() == coarse.mesh.triangles.size());
+  config.budget_ms = 0;
+  CHECK(Tracker(ball, camera, config).drawn_triangles() == usual.mesh.triangles.size());
+}

@@ -3,6 +3,7 @@
 // sequential reference with the same counts, estimate for estimate.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <depthtrack/error.hpp>
 #include <depthtrack/synth.hpp>
 #include <depthtrack/tracker.hpp>
@@ -86,6 +87,31 @@ TEST_CASE("a particle budget affords what its measured times allow and follows t
   CHECK_THROWS_AS(ParticleBudget(5.0, 20, 10, 0.5), InputError);
 }
 
+TEST_CASE("a primed particle budget sizes the first frame from one particle's time", "[budget]") {
+  ParticleBudget budget(10.0, 10, 200, 0.5);
+  budget.prime(std::nan(""));  // ignored: unprimed, the first frame still runs the fewest
+  budget.prime(-1.0);
+  CHECK(budget.fixed_ms() == 0);
+  // 0.05 ms a particle, 10 of them fixed (0.5 ms): (10 - 0.5) / 0.05 = 190 for the first frame.
+  budget.prime(0.05);
+  CHECK(!budget.timed());
+  CHECK(budget.per_particle_ms() == Approx(0.05));
+  CHECK(budget.fixed_ms() == Approx(0.5));
+  CHECK(budget.next(true) == 190);
+  // A slow first frame (0.09 ms a particle, 3 ms fixed, 20.1 ms in all where 10 were predicted) moves the
+  // model a quarter: 0.06 ms a particle, 1.125 fixed, and a quarter of the 10.1 ms miss kept free.
+  budget.observe(timed_frame(190, 190 * 0.09, 3 + 190 * 0.09, 0.95));
+  CHECK(budget.timed());
+  CHECK(budget.per_particle_ms() == Approx(0.06));
+  CHECK(budget.fixed_ms() == Approx(1.125));
+  CHECK(budget.afforded() == static_cast<int>((10.0 - 1.125 - 0.25 * 10.1) / 0.06));
+  budget.prime(1.0);  // ignored once a frame is timed
+  CHECK(budget.per_particle_ms() == Approx(0.06));
+  // Unprimed, a first frame's times replace the model (the test above): a fresh budget's first count is min.
+  ParticleBudget unprimed(10.0, 10, 200, 0.5);
+  CHECK(unprimed.next(true) == 10);
+}
+
 TEST_CASE("the reference filter changes its particle count by resampling its weighted cloud", "[budget][filter]") {
   const Mesh mesh = builtin_demo_mesh();
   const SynthConfig synth = test::small_scene(3);
@@ -135,8 +161,8 @@ TEST_CASE("a budgeted cpu run equals the sequential reference replaying its part
   config.particles = 48;
   config.min_particles = 6;
   config.seed = 3;
-  // Ample: the counts follow the estimate (the fewest at the start, the most while settling, fewer as it
-  // stays confident), whatever this machine's speed.
+  // Ample: the counts follow the estimate (the most while settling, fewer as it stays confident),
+  // whatever this machine's speed.
   config.budget_ms = 1e4;
   config.backend = "cpu:2";
   Tracker budgeted(mesh, synth.camera, config);
@@ -145,7 +171,8 @@ TEST_CASE("a budgeted cpu run equals the sequential reference replaying its part
   for (const SynthFrame& f : frames) chosen.push_back(budgeted.update(f.depth, f.timestamp));
   std::set<int> counts;
   for (const Estimate& e : chosen) counts.insert(e.particles);
-  CHECK(chosen.front().particles == 6);
+  // Primed before the first frame (ParticleBudget::prime), the ample budget affords the most at once.
+  CHECK(chosen.front().particles == 48);
   CHECK(chosen[1].particles == 48);
   CHECK(counts.size() >= 3);  // the replay below is of a varying count
   CHECK_THROWS_WITH(budgeted.set_particle_count(10), Contains("budget"));
@@ -153,6 +180,7 @@ TEST_CASE("a budgeted cpu run equals the sequential reference replaying its part
   config.budget_ms = 0;
   config.backend = "reference";
   Tracker replay(mesh, synth.camera, config);
+  CHECK(replay.drawn_triangles() == budgeted.drawn_triangles());  // 24: below simplify_for_budget's reach
   replay.set_particle_count(chosen.front().particles);
   replay.initialize(frames[0].ground_truth);
   for (size_t i = 0; i < frames.size(); ++i) {

@@ -125,7 +125,8 @@ def test_a_budgeted_run_is_replayed_by_its_particle_counts(scene):
     budgeted.initialize(first_pose, **spread)
     chosen = [budgeted.update(units, t, metres_per_unit=scale) for t, units in scene["frames"]]
     counts = [e.particles for e in chosen]
-    assert counts[0] == 5 and counts[1] == PARTICLES and len(set(counts)) >= 2
+    # Primed before the first frame, the ample budget affords the most at once; fewer once confident.
+    assert counts[0] == PARTICLES and counts[1] == PARTICLES and len(set(counts)) >= 2
     with pytest.raises(depthtrack.InputError, match="budget"):
         budgeted.set_particle_count(7)
     replay = tracker(0, "reference")

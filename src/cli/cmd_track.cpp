@@ -95,12 +95,16 @@ Mesh load_mesh(const std::string& path, double unit_scale, const TrackerConfig& 
                  path.c_str());
   Mesh checked = mesh;
   checked.validate_and_clean(path);
-  const Mesh drawn = simplify_for_drawing(checked, config.simplify_error).mesh;
+  const MeshSimplification drawing = config.budget_ms > 0 ? simplify_for_budget(checked, config.simplify_error)
+                                                           : simplify_for_drawing(checked, config.simplify_error);
+  const Mesh& drawn = drawing.mesh;
+  // A budget's coarser drawing (simplify_for_budget) is reported by its own estimate of the error.
+  const double within = std::max(drawing_error(checked, config.simplify_error), drawing.error);
   if (drawn.triangles.size() < checked.triangles.size())
     std::fprintf(stderr,
                  "depthtrack: note: drawing '%s' simplified within %g mm: %zu of its %zu triangles "
                  "(--simplify-error 0 draws it as given)\n",
-                 path.c_str(), drawing_error(checked, config.simplify_error) * 1e3, drawn.triangles.size(),
+                 path.c_str(), within * 1e3, drawn.triangles.size(),
                  checked.triangles.size());
   if (!bounds_solid_outward(drawn))
     std::fprintf(stderr,

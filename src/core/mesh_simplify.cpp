@@ -19,7 +19,15 @@ MeshSimplification simplify_for_drawing(const Mesh& mesh, double simplify_error)
   return simplify_within(mesh, drawing_error(mesh, simplify_error));
 }
 
-MeshSimplification simplify_within(const Mesh& mesh, double max_error) {
+MeshSimplification simplify_for_budget(const Mesh& mesh, double simplify_error) {
+  MeshSimplification drawn = simplify_for_drawing(mesh, simplify_error);
+  if (simplify_error == 0 || drawn.mesh.triangles.size() <= kBudgetTriangles) return drawn;
+  MeshSimplification coarser =
+      simplify_within(mesh, kMaxRadiusShare * static_cast<double>(mesh.radius()), kBudgetTriangles);
+  return coarser.mesh.triangles.size() < drawn.mesh.triangles.size() ? coarser : drawn;
+}
+
+MeshSimplification simplify_within(const Mesh& mesh, double max_error, size_t target_triangles) {
   if (!std::isfinite(max_error) || max_error < 0)
     throw InputError("mesh simplification error " + std::to_string(max_error) + " m must be finite and >= 0");
   MeshSimplification result{mesh, 0.0, mesh.triangles.size()};
@@ -38,7 +46,8 @@ MeshSimplification simplify_within(const Mesh& mesh, double max_error) {
   float relative_error = 0;
   const size_t kept_count =
       meshopt_simplify(kept.data(), indices.data(), indices.size(), positions.data(), mesh.vertices.size(),
-                       3 * sizeof(float), 0, static_cast<float>(max_error / scale), 0, &relative_error);
+                       3 * sizeof(float), 3 * target_triangles, static_cast<float>(max_error / scale), 0,
+                       &relative_error);
   if (kept_count == 0) return result;  // nothing would be left: draw the mesh as given
   // Only the vertices still used, in their first use's order.
   std::vector<int> renumbered(mesh.vertices.size(), -1);

@@ -118,6 +118,11 @@ void ReferenceFilter::initialize_modes(std::span<const Pose> modes, const Initia
   if (config_.occlusion_storage != OcclusionStorage::Off)
     occlusion_.assign(kept, static_cast<float>(config_.occlusion.initial));
   if (config_.occlusion_storage == OcclusionStorage::PerPixelTime) occlusion_time_.assign(kept, 0.0f);
+  // The resampling twins sized and touched now, not by the first frame's gather (its page faults took
+  // most of a budgeted first frame).
+  scratch_occlusion_.assign(occlusion_.size(), 0.0f);
+  scratch_occlusion_time_.assign(occlusion_time_.size(), 0.0f);
+  scratch_particles_.resize(particles_.size());
   frame_ = 0;
   time_ = 0;
 }

@@ -18,7 +18,7 @@ ParticleBudget::ParticleBudget(double budget_ms, int min_particles, int max_part
 }
 
 int ParticleBudget::afforded() const {
-  if (!timed_) return max_;
+  if (!timed_ && !primed_) return max_;
   const double room = budget_ms_ - fixed_ms_ - miss_ms_;
   if (!(per_particle_ms_ > 0)) return max_;
   const double n = std::floor(room / per_particle_ms_);
@@ -31,10 +31,18 @@ int ParticleBudget::next(bool reseed) {
   const double need = settling ? 1.0 : need_;
   int wanted = min_ + static_cast<int>(std::lround(need * (max_ - min_)));
   if (!settling) wanted = std::max(wanted, static_cast<int>(std::ceil(kKeepShare * last_)));
-  // Before any frame is timed, the first runs the fewest: its time then sizes the next.
-  const int afforded_now = timed_ ? afforded() : min_;
+  // Before any frame is timed and unprimed, the first runs the fewest: its time then sizes the next.
+  const int afforded_now = timed_ || primed_ ? afforded() : min_;
   last_ = std::clamp(std::min(wanted, afforded_now), min_, max_);
   return last_;
+}
+
+void ParticleBudget::prime(double per_particle_ms) {
+  if (timed_ || !(std::isfinite(per_particle_ms) && per_particle_ms > 0)) return;
+  per_particle_ms_ = per_particle_ms;
+  fixed_ms_ = kPrimedFixed * per_particle_ms;
+  miss_ms_ = 0;
+  primed_ = true;
 }
 
 void ParticleBudget::observe(const Estimate& e) {
@@ -45,10 +53,9 @@ void ParticleBudget::observe(const Estimate& e) {
     const double per = loops_ms / e.particles;
     const double fixed = std::max(0.0, t.total_ms - t.search_ms - loops_ms);
     if (std::isfinite(per) && std::isfinite(fixed)) {
-      if (!timed_) {
+      if (!timed_ && !primed_) {
         per_particle_ms_ = per;
         fixed_ms_ = fixed;
-        timed_ = true;
       } else {
         const double predicted = fixed_ms_ + per_particle_ms_ * e.particles;
         const double miss = std::abs(t.total_ms - t.search_ms - predicted);
@@ -56,6 +63,7 @@ void ParticleBudget::observe(const Estimate& e) {
         per_particle_ms_ += kSmoothing * (per - per_particle_ms_);
         fixed_ms_ += kSmoothing * (fixed - fixed_ms_);
       }
+      timed_ = true;
     }
   }
   if (e.status == TrackStatus::NoData) return;  // nothing seen: the need stays

@@ -11,7 +11,8 @@
 //     after it, while the new cloud settles. It falls by at most a fifth a frame, so that one good frame
 //     does not thin a cloud that is still finding its pose.
 // The count is the lesser of the two, within [min_particles, particles]: a budget too small for
-// min_particles runs min_particles.
+// min_particles runs min_particles. Before any frame is timed: what prime's measured particle affords,
+// or without it the fewest (that frame's time then sizes the next).
 #include <depthtrack/tracker.hpp>
 
 namespace depthtrack {
@@ -25,21 +26,30 @@ class ParticleBudget {
   int next(bool reseed);
   // What the frame just run took and said (its particles, timings, confidence and status).
   void observe(const Estimate& e);
+  // Before the first frame: one particle's time measured outside the frames (a drawing and weighing of
+  // the start pose). Until a frame is timed the model is that per particle and kPrimedFixed of it fixed
+  // (the fit's and the confidence's drawings), and the frames' times are smoothed into it as into a
+  // timed model (a first frame slowed by its first touches of memory moves it a quarter). Ignored once
+  // a frame was observed, or when not positive and finite.
+  void prime(double per_particle_ms);
+  bool timed() const { return timed_; }
 
-  // The smoothed time model (ms); 0 before the first frame.
+  // The smoothed time model (ms); 0 before the first frame unless primed.
   double per_particle_ms() const { return per_particle_ms_; }
   double fixed_ms() const { return fixed_ms_; }
-  // The most particles the budget affords now (max_particles before the first frame).
+  // The most particles the budget affords now (max_particles before the first frame unless primed).
   int afforded() const;
 
-  static constexpr double kConfident = 0.9;  // from this confidence up, min_particles
-  static constexpr int kSettleFrames = 3;    // frames after a new cloud that run what the budget affords
+  static constexpr double kConfident = 0.9;   // from this confidence up, min_particles
+  static constexpr int kSettleFrames = 3;     // frames after a new cloud that run what the budget affords
+  static constexpr double kPrimedFixed = 10;  // the primed fixed time, in particles' times
 
  private:
   double budget_ms_;
   int min_, max_;
   double lost_below_;
-  bool timed_ = false;  // a frame has been observed
+  bool timed_ = false;   // a frame has been observed
+  bool primed_ = false;  // prime gave the model (until timed_)
   double per_particle_ms_ = 0, fixed_ms_ = 0, miss_ms_ = 0;
   double need_ = 1;      // the last frame's need, 0 (min_particles) to 1 (particles)
   int settle_left_ = 0;  // frames still settling after a new cloud (observe counts them)
