@@ -1,6 +1,6 @@
 #pragma once
 // The arguments of the summary's kernels: cl/summarize.cl's one group and cl/summarize_wide.cl's passes.
-#include "filter/kernels/launch.hpp"
+#include "compute/kernel_launch.hpp"
 
 namespace depthtrack::kernels {
 
