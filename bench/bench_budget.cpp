@@ -1,7 +1,7 @@
 // Accuracy against time per frame on the host backends, for fixed particle counts and for frame budgets
 // (TrackerConfig::budget_ms): mean ADD-S over each YCB-Video clip's objects (ycbv-0000, ycbv-0049) and on
 // the synthetic occluded handset, with the frame time's median and 95th percentile and the mean count.
-// Starts from ground truth moved by 1 cm and 5 degrees (as tests/test_accuracy.cpp), at 80x60.
+// Starts from ground truth moved by 1 cm and 5 degrees (as tests/eval/test_accuracy.cpp), at 80x60.
 // The frame time is the tracker's (Estimate::timings.total_ms: filter, confidence and a lost track's search;
 // frame_p95_without_search leaves the search out, as the budget does: it has its own); latency adds the
 // decimation of the 640x480 frame; png_decode_ms is a depth PNG's decoding (the reading path, on a reader

@@ -1,7 +1,7 @@
 // Where the error of a tracked real sequence lies: per frame, the rotation error's axis in
 // the object frame (angle-axis of R_est^T R_gt), the translation error of the mesh's centre in camera
 // coordinates split into along / across the viewing ray (a depth bias is along it), and the refined
-// covariance's weakest axes. Starts from ground truth moved by 1 cm / 5 deg, as tests/test_accuracy.cpp.
+// covariance's weakest axes. Starts from ground truth moved by 1 cm / 5 deg, as tests/eval/test_accuracy.cpp.
 //
 //   depthtrack_bench_error_axes --object 025_mug [--resolution 160x120] [--refine off] [--seed 1]
 //                               [--particles 200] [--clip DIR] [--mesh FILE] [--sigma-angular RAD] ...

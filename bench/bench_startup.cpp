@@ -24,6 +24,7 @@
 #include "bench_rows.hpp"
 #include "compute/program_cache.hpp"
 #include "core/stopwatch.hpp"
+#include "tracker/device_access.hpp"
 
 using namespace depthtrack;
 
@@ -123,8 +124,9 @@ int main(int argc, char** argv) {
     }
     double programs_ms = 0;
     // A GL tracker's programs are in the context its Device opened against GL, where it shares GL.
-    const auto built_on =
-        renderer == Renderer::Gl && device->context() ? device->gl_atlas(config.gl_path).compute : device->context();
+    const auto built_on = renderer == Renderer::Gl && DeviceAccess::context(*device)
+                              ? DeviceAccess::gl_atlas(*device, config.gl_path).compute
+                              : DeviceAccess::context(*device);
     if (built_on)
       for (const auto& r : built_on->programs.records()) {
         programs_ms += r.ms;

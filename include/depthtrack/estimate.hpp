@@ -20,20 +20,20 @@ namespace depthtrack {
 /// the wait for GL to finish the draw; 0 with kernel and on the reference), total_ms and search_ms.
 struct StepTimings {
   double propagate_ms = 0, render_ms = 0, handoff_ms = 0, weigh_ms = 0, resample_ms = 0, total_ms = 0;
-  // render_ms is the device's (compute event or GL timer query) rather than the host clock's.
+  /// render_ms is the device's (compute event or GL timer query) rather than the host clock's.
   bool render_on_device = false;
   double refine_ms = 0;
-  // Global search (initialize_global, or recovery while lost), wall-clock; included in total_ms.
+  /// Global search (initialize_global, or recovery while lost), wall-clock; included in total_ms.
   double search_ms = 0;
-  // The estimate's confidence and status: its silhouette drawn and compared on the host, wall-clock;
-  // included in total_ms.
+  /// The estimate's confidence and status: its silhouette drawn and compared on the host, wall-clock;
+  /// included in total_ms.
   double confidence_ms = 0;
-  // Compute backends: the frame's depth handed to the device (staged and enqueued), host wall time; included
-  // in total_ms. 0 on the host.
+  /// Compute backends: the frame's depth handed to the device (staged and enqueued), host wall time; included
+  /// in total_ms. 0 on the host.
   double upload_ms = 0;
-  // Compute backends, host wall time: handing the frame's device work over (the upload included), and
-  // then waiting for its estimate. What total_ms holds beyond these and confidence_ms is the host's
-  // reading of the results. 0 on the host.
+  /// Compute backends, host wall time: handing the frame's device work over (the upload included), and
+  /// then waiting for its estimate. What total_ms holds beyond these and confidence_ms is the host's
+  /// reading of the results. 0 on the host.
   double enqueue_ms = 0, wait_ms = 0;
 };
 
@@ -48,33 +48,33 @@ const char* to_string(TrackStatus status);
 
 /// What the tracker says about one frame: the pose, its uncertainty and confidence, and how it was computed.
 struct Estimate {
-  Pose pose;  // camera_from_object: the refined pose, or the weighted mean when refinement is off
-  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   // m/s, object's local frame
-  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // rad/s, object's local frame
-  double effective_sample_size = 0;                            // 1 / sum w^2 before resampling
-  double max_log_likelihood = 0;                               // best particle's log L of this frame
-  double mean_log_likelihood = 0;                              // weighted mean of log L
+  Pose pose;  ///< camera_from_object: the refined pose, or the weighted mean when refinement is off
+  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   ///< m/s, object's local frame
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  ///< rad/s, object's local frame
+  double effective_sample_size = 0;                            ///< 1 / sum w^2 before resampling
+  double max_log_likelihood = 0;                               ///< best particle's log L of this frame
+  double mean_log_likelihood = 0;                              ///< weighted mean of log L
   bool resampled = false;
-  // Covariance of the refined pose's error, as a twist in the camera frame about the mesh's centre:
-  // rows/columns 0-2 the centre's position (m), 3-5 the rotation vector (rad). The fit's normal
-  // equations (inverse Gauss-Newton Hessian of the log-likelihood) scaled by the depth residual at the
-  // pose, its pixel-to-pixel noise and its smooth share counted apart, so that the 95 % region holds
-  // the true error on about 95 % of frames (docs/covariance.md has the coverage per sequence). An axis
-  // the pixels cannot determine (a flat face seen face-on: sliding along it, turning about its normal)
-  // has +infinity on the diagonal and 0 elsewhere in its row and column; the other entries then hold
-  // with that axis fixed. NaN when refinement is off or the fit had too few pixels.
+  /// Covariance of the refined pose's error, as a twist in the camera frame about the mesh's centre:
+  /// rows/columns 0-2 the centre's position (m), 3-5 the rotation vector (rad). The fit's normal
+  /// equations (inverse Gauss-Newton Hessian of the log-likelihood) scaled by the depth residual at the
+  /// pose, its pixel-to-pixel noise and its smooth share counted apart, so that the 95 % region holds
+  /// the true error on about 95 % of frames (docs/covariance.md has the coverage per sequence). An axis
+  /// the pixels cannot determine (a flat face seen face-on: sliding along it, turning about its normal)
+  /// has +infinity on the diagonal and 0 elsewhere in its row and column; the other entries then hold
+  /// with that axis fixed. NaN when refinement is off or the fit had too few pixels.
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Constant(std::nan(""));
   StepTimings timings;
-  int refine_iterations = 0;  // steps the refinement tried (each one rendering of the pose); 0 when off
-  // The probability that the pose lies within tolerance of the truth (ADD-S at most 10 mm and a tenth
-  // of the object's diameter), from `evidence` by a calibrated model (docs/confidence.md); 0 for a
-  // frame without data or a silhouette that covers no measured pixel.
+  int refine_iterations = 0;  ///< steps the refinement tried (each one rendering of the pose); 0 when off
+  /// The probability that the pose lies within tolerance of the truth (ADD-S at most 10 mm and a tenth
+  /// of the object's diameter), from `evidence` by a calibrated model (docs/confidence.md); 0 for a
+  /// frame without data or a silhouette that covers no measured pixel.
   double confidence = 0;
-  PoseEvidence evidence;  // what the frame's depth says about the pose, at the working resolution
+  PoseEvidence evidence;  ///< what the frame's depth says about the pose, at the working resolution
   TrackStatus status = TrackStatus::Tracking;
-  bool recovered = false;   // this frame re-seeded the filter: a search while lost found it, or after a gap in time
-  size_t search_poses = 0;  // poses this frame's global search scored (0: none ran)
-  int particles = 0;        // particles this frame's update ran with
+  bool recovered = false;   ///< this frame re-seeded the filter: a search while lost found it, or after a gap in time
+  size_t search_poses = 0;  ///< poses this frame's global search scored (0: none ran)
+  int particles = 0;        ///< particles this frame's update ran with
 };
 
 }  // namespace depthtrack

@@ -28,6 +28,7 @@ struct Frame {
 /// A stream of depth frames from one camera, read once, in order.
 class FrameSource {
  public:
+  /// Closes the source (a reader thread, a file, a pipe).
   virtual ~FrameSource() = default;
   /// The intrinsics every frame's depth is taken with; known before the first frame.
   virtual const Camera& camera() const = 0;
@@ -71,8 +72,8 @@ const char* raw_stream_format();
 
 /// A range of frames, counted from 0: first up to but not including end (nullopt: to the end).
 struct FrameRange {
-  size_t first = 0;
-  std::optional<size_t> end;
+  size_t first = 0;           ///< the first frame kept
+  std::optional<size_t> end;  ///< the first frame not kept; nullopt: to the end
 };
 
 /// Parses "A:B", "A:" or ":B" (whole numbers, A < B). InputError naming `option` for anything else.

@@ -7,6 +7,7 @@
 
 #include "atlas/atlas_source.hpp"
 #include "atlas/raster_inputs.hpp"
+#include "atlas/rasterize_args.hpp"
 #include "compute/program_cache.hpp"
 #include "dt_launch.h"
 #include "dt_state.h"
@@ -54,11 +55,20 @@ class KernelAtlasSource final : public AtlasSource {
                        std::to_string(first + count) + " do not fit its " + std::to_string(particles_) +
                        " particles, its atlas of " + std::to_string(layout_.tiles()) +
                        " tiles, or the state or atlas buffer given");
-    // The atlas is written as the depths' bits.
-    return queue_.launch(*kernel_, compute::NdRange::linear(count * kGroupSize, kGroupSize), states, mesh_.vertices,
-                         mesh_.triangles, mesh_.planes, mesh_.triangle_count(), mesh_.vertex_count(), camera_,
-                         layout_.kernel_args(), atlas, boxes_, static_cast<unsigned>(boxed_),
-                         static_cast<unsigned>(first));
+    return kernels::launch(
+        {.queue = queue_, .kernel = *kernel_, .range = compute::NdRange::linear(count * kGroupSize, kGroupSize)},
+        kernels::RasterizeArgs{.states = states,
+                               .vertices = mesh_.vertices,
+                               .triangles = mesh_.triangles,
+                               .planes = mesh_.planes,
+                               .triangle_count = mesh_.triangle_count(),
+                               .vertex_count = mesh_.vertex_count(),
+                               .cam = camera_,
+                               .layout = layout_.kernel_args(),
+                               .atlas = atlas,
+                               .boxes = boxes_,
+                               .boxed = static_cast<unsigned>(boxed_),
+                               .first = static_cast<unsigned>(first)});
   }
 
   const MeshBuffers* device_mesh() const override { return &mesh_; }

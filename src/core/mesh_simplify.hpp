@@ -16,7 +16,7 @@ struct MeshSimplification {
 // `mesh` (validated: indices in range) simplified by collapsing edges onto their ends while
 // meshoptimizer's estimate of the distance from the original surface stays within max_error metres
 // (a quadric estimate: the kept vertices lie on the original surface, and the original vertices were
-// measured up to 1.6-2 times max_error from the faces between them, tests/test_mesh_simplify.cpp);
+// measured up to 1.6-2 times max_error from the faces between them, tests/core/test_mesh_simplify.cpp);
 // max_error 0 returns the mesh as given.
 // Throws InputError for a negative or non-finite max_error.
 // target_triangles > 0 stops the simplification there, if the error allows it that far.

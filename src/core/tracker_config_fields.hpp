@@ -2,7 +2,7 @@
 // The one list of TrackerConfig's fields: name, member, unit and a line of help for each, nested structs
 // included. The JSON configuration file (io/config_json.cpp), its equality and the Python
 // attributes (python/src/bind_config.cpp) are all generated from it; a field added to
-// tracker_config.hpp must be added here (tests/test_config_file.cpp checks none is missing).
+// tracker_config.hpp must be added here (tests/io/test_config_file.cpp checks none is missing).
 #include <depthtrack/tracker_config.hpp>
 #include <string>
 #include <tuple>

@@ -135,12 +135,23 @@ FramePlan make_frame_plan(const TrackerConfig& config, const compute::DeviceInfo
     plan.summary = SummaryStep::Wide;
   else if (plan.refine == RefineLayout::OneLaunch)
     plan.summary = SummaryStep::InsideFit;
-  if (plan.summary == SummaryStep::OneGroup) plan.summary_group = summary_group_size(device);
+  if (plan.builds_summarize()) plan.summary_group = summary_group_size(device);
   if (plan.particles <= kFusedLaunchParticles)
     plan.resample = ResampleStep::Scanning;
   else
     plan.resample = plan.summary == SummaryStep::Wide ? ResampleStep::WidePrefixSum : ResampleStep::PrefixSum;
   return plan;
+}
+
+std::optional<kernels::SummaryKernel> FramePlan::summary_kernel() const {
+  switch (summary) {
+    case SummaryStep::OneGroup:
+      return kernels::SummaryKernelOf<kernels::SummarizeArgs>{};
+    case SummaryStep::Wide:
+    case SummaryStep::InsideFit:
+      break;
+  }
+  return std::nullopt;
 }
 
 }  // namespace depthtrack

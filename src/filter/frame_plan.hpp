@@ -12,6 +12,7 @@
 #include "compute/device_info.hpp"
 #include "compute/queue.hpp"
 #include "dt_launch.h"
+#include "filter/kernels/summary_args.hpp"
 #include "model/filter_backend.hpp"
 
 namespace depthtrack {
@@ -114,7 +115,7 @@ struct FramePlan {
   size_t atlas_tiles = 0;           // the kernel renderer's separate atlas (0: drawn inside weigh, or another renderer)
 
   SummaryStep summary = SummaryStep::OneGroup;
-  size_t summary_group = 0;  // SummaryStep::OneGroup's work-items
+  size_t summary_group = 0;  // the one-launch summary's work-items (summary_kernel)
   ResampleStep resample = ResampleStep::Scanning;
   std::optional<RefineLayout> refine;  // the fit's layout, never Auto (none: the refinement is off)
 
@@ -130,7 +131,10 @@ struct FramePlan {
   bool needs_atlas() const { return weigh == WeighStep::DrawThenWeigh; }        // else one placeholder float
   // The programs a frame does not build because their work is folded into another kernel.
   bool builds_propagate() const { return !propagate_in_weigh; }
-  bool builds_summarize() const { return summary == SummaryStep::OneGroup; }
+  bool builds_summarize() const { return summary_kernel().has_value(); }
+  // The kernel of a one-launch summary (cl/summarize.cl), which FrameSteps builds and launches; none for
+  // the wide summary (WideSummary) and the one made inside the fit.
+  std::optional<kernels::SummaryKernel> summary_kernel() const;
 };
 
 // The plan for config's filter on this device and these sizes.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <variant>
 
 #include "dt_time_index.h"
 #include "filter/kernels/particle_args.hpp"
@@ -84,11 +85,12 @@ FrameSteps::FrameSteps(compute::Queue& queue, compute::ProgramCache& programs, c
     k.propagate_program = programs.program("propagate.cl", defines);
     k.propagate = k.propagate_program->kernel("propagate");
   }
-  if (plan.builds_summarize()) {
+  if (const auto summary = plan.summary_kernel()) {
     std::vector<std::string> summary_defines = defines;
     summary_defines.front() = group_size(plan.summary_group);
     k.summarize_program = programs.program("summarize.cl", summary_defines);
-    k.summarize = k.summarize_program->kernel("summarize");
+    k.summarize = k.summarize_program->kernel(
+        std::visit([](auto kernel) { return decltype(kernel)::Arguments::kernel; }, *summary));
   }
 }
 
@@ -225,20 +227,21 @@ void FrameSteps::summarize(const Eigen::Vector3f& centre, float kl_threshold, un
   if (plan_.summary == SummaryStep::Wide) {
     events.summarized = wide_->summarize(b_.state, b_.log_weight, b_.log_likelihood, b_.weights, b_.estimate,
                                          centre.x(), centre.y(), centre.z(), kl_threshold, karcher_steps);
-  } else if (plan_.summary == SummaryStep::OneGroup) {
-    events.summarized = {
-        kernels::launch({queue_, *k_->summarize, plan_.one_group(plan_.summary_group), config_.step_timings},
-                        kernels::SummarizeArgs{.state = b_.state,
-                                               .log_weight = b_.log_weight,
-                                               .log_likelihood = b_.log_likelihood,
-                                               .weights = b_.weights,
-                                               .estimate = b_.estimate,
-                                               .count = static_cast<unsigned>(plan_.particles),
-                                               .centre_x = centre.x(),
-                                               .centre_y = centre.y(),
-                                               .centre_z = centre.z(),
-                                               .kl_threshold = kl_threshold,
-                                               .karcher_steps = karcher_steps})};
+  } else if (const auto summary = plan_.summary_kernel()) {
+    const kernels::SummaryInputs inputs{.state = b_.state,
+                                        .log_weight = b_.log_weight,
+                                        .log_likelihood = b_.log_likelihood,
+                                        .weights = b_.weights,
+                                        .estimate = b_.estimate,
+                                        .count = static_cast<unsigned>(plan_.particles),
+                                        .centre_x = centre.x(),
+                                        .centre_y = centre.y(),
+                                        .centre_z = centre.z(),
+                                        .kl_threshold = kl_threshold,
+                                        .karcher_steps = karcher_steps};
+    const kernels::Launch where{queue_, *k_->summarize, plan_.one_group(plan_.summary_group), config_.step_timings};
+    events.summarized = {std::visit(
+        [&](auto kernel) { return kernels::launch(where, decltype(kernel)::Arguments::from(inputs)); }, *summary)};
   }
 }
 

@@ -2,14 +2,10 @@
 // context (with, for cl_khr_gl_sharing, a compute context against it) its GL trackers share.
 #include <depthtrack/device.hpp>
 #include <depthtrack/error.hpp>
-#include <map>
-#include <mutex>
-#include <thread>
 #include <utility>
 
-#include "atlas/gl_atlas_device.hpp"
 #include "compute/backend.hpp"
-#include "compute/program_cache.hpp"
+#include "tracker/device_access.hpp"
 #include "tracker/make_filter_backend.hpp"
 
 namespace depthtrack {
@@ -22,54 +18,72 @@ std::vector<DeviceDescription> Device::list() {
 }
 
 std::shared_ptr<Device> Device::open(const std::string& selector) {
-  if (selector == "reference") return std::shared_ptr<Device>(new Device(selector, nullptr));
+  if (selector == "reference") return std::make_shared<OpenDevice>(selector, nullptr);
   if (selector == "cpu" || selector.rfind("cpu:", 0) == 0) {
     cpu_backend_threads(selector);  // checks N
-    return std::shared_ptr<Device>(new Device(selector, nullptr));
+    return std::make_shared<OpenDevice>(selector, nullptr);
   }
   // Every other name selects a compute device of a registered backend: opencl, opencl:pocl, cuda:<n>...
   if (compute::find_backend(selector.substr(0, selector.find(':'))))
-    return std::shared_ptr<Device>(
-        new Device(selector, std::make_shared<compute::DeviceContext>(compute::open_device(selector))));
+    return std::make_shared<OpenDevice>(selector,
+                                        std::make_shared<compute::DeviceContext>(compute::open_device(selector)));
   std::string available = "reference, cpu, cpu:<threads>";
   for (const auto& backend : compute::backends()) available += ", " + backend.grammar;
   throw InputError("unknown backend '" + selector + "'; available: " + available +
                    " (`depthtrack info` lists the devices)");
 }
 
-struct Device::GlAtlases {
-  std::mutex mutex;
-  std::map<std::pair<std::string, std::thread::id>, GlAtlasDevice> made;
-};
-
-Device::Device(std::string selector, std::shared_ptr<compute::DeviceContext> context)
-    : selector_(std::move(selector)), context_(std::move(context)), gl_(std::make_unique<GlAtlases>()) {}
-
 Device::~Device() = default;
 
-GlAtlasDevice Device::gl_atlas(const std::string& gl_path) const {
-  if (!context_) throw InputError("the gl renderer draws for a compute device; '" + selector_ + "' is a host filter");
-  const std::lock_guard lock(gl_->mutex);
-  const auto key = std::make_pair(gl_path, std::this_thread::get_id());
-  if (const auto found = gl_->made.find(key); found != gl_->made.end()) return found->second;
-  return gl_->made.emplace(key, open_gl_atlas_device(context_, gl_path)).first->second;
+const std::string& Device::selector() const {
+  return DeviceAccess::of(*this).opened_selector;
 }
 
-size_t Device::gl_contexts() const {
-  const std::lock_guard lock(gl_->mutex);
-  return gl_->made.size();
+bool Device::is_host() const {
+  return !DeviceAccess::of(*this).compute_context;
 }
 
 std::string Device::name() const {
-  return context_ ? context_->queue->info().name : "host";
+  const auto& context = DeviceAccess::of(*this).compute_context;
+  return context ? context->queue->info().name : "host";
 }
 
 size_t Device::program_builds() const {
-  if (!context_) return 0;
-  size_t builds = context_->programs.builds();
-  const std::lock_guard lock(gl_->mutex);
-  for (const auto& [key, gl] : gl_->made)
-    if (gl.compute != context_) builds += gl.compute->programs.builds();
+  return DeviceAccess::of(*this).program_builds();
+}
+
+size_t Device::gl_contexts() const {
+  return DeviceAccess::of(*this).gl_contexts();
+}
+
+OpenDevice::OpenDevice(std::string opened, std::shared_ptr<compute::DeviceContext> device_context)
+    : opened_selector(std::move(opened)), compute_context(std::move(device_context)) {}
+
+// The GL sides' contexts go before the Device's own compute context.
+OpenDevice::~OpenDevice() {
+  gl_.clear();
+}
+
+GlAtlasDevice OpenDevice::gl_atlas(const std::string& gl_path) const {
+  if (!compute_context)
+    throw InputError("the gl renderer draws for a compute device; '" + opened_selector + "' is a host filter");
+  const std::lock_guard lock(mutex_);
+  const GlKey key{gl_path, std::this_thread::get_id()};
+  if (const auto found = gl_.find(key); found != gl_.end()) return found->second;
+  return gl_.emplace(key, open_gl_atlas_device(compute_context, gl_path)).first->second;
+}
+
+size_t OpenDevice::gl_contexts() const {
+  const std::lock_guard lock(mutex_);
+  return gl_.size();
+}
+
+size_t OpenDevice::program_builds() const {
+  if (!compute_context) return 0;
+  size_t builds = compute_context->programs.builds();
+  const std::lock_guard lock(mutex_);
+  for (const auto& [key, gl] : gl_)
+    if (gl.compute != compute_context) builds += gl.compute->programs.builds();
   return builds;
 }
 

@@ -7,6 +7,7 @@
 #include "core/thread_pool.hpp"
 #include "filter/device_filter.hpp"
 #include "reference/reference_filter.hpp"
+#include "tracker/device_access.hpp"
 
 namespace depthtrack {
 
@@ -26,12 +27,13 @@ std::shared_ptr<Device> open_config_device(const TrackerConfig& config) {
 
 std::unique_ptr<FilterBackend> make_filter_backend(const Device& device, const Mesh& mesh, const Camera& working_camera,
                                                    const TrackerConfig& config) {
-  if (device.context() && config.renderer == Renderer::Gl) {
+  if (DeviceAccess::context(device) && config.renderer == Renderer::Gl) {
     // The Device's GL context, and the compute context made against it where the platform shares GL.
-    const GlAtlasDevice gl = device.gl_atlas(config.gl_path);
+    const GlAtlasDevice gl = DeviceAccess::gl_atlas(device, config.gl_path);
     return std::make_unique<DeviceFilter>(gl.compute, mesh, working_camera, config, &gl);
   }
-  if (device.context()) return std::make_unique<DeviceFilter>(device.context(), mesh, working_camera, config);
+  if (const auto& context = DeviceAccess::context(device))
+    return std::make_unique<DeviceFilter>(context, mesh, working_camera, config);
   if (device.selector() == "reference")
     return std::make_unique<reference::ReferenceFilter>(mesh, working_camera, config);
   // The reference filter with its per-particle loops on a thread pool: the same results, bit for bit.

@@ -15,6 +15,7 @@
 #include "tracker/particle_budget.hpp"
 #include "tracker/residual_structure.hpp"
 #include "tracker/track_supervisor.hpp"
+#include "tracker/tracker_impl.hpp"
 
 namespace depthtrack {
 
@@ -60,33 +61,73 @@ const char* to_string(TrackStatus status) {
   return "?";
 }
 
-Tracker::Tracker(const Mesh& mesh, const Camera& sensor, const TrackerConfig& config) : sensor_(sensor) {
+Tracker::Tracker(const Mesh& mesh, const Camera& sensor, const TrackerConfig& config) {
   sensor.validate();
   config.validate();
   // Checked before the device opens, so that a bad mesh or resolution is reported as such.
   Mesh checked = mesh;
   checked.validate_and_clean("tracker mesh");
   sensor.decimation_factor_for(config.width, config.height);
-  device_ = open_config_device(config);
-  construct(*device_, checked, config);
+  impl_ = std::make_unique<Impl>(open_config_device(config), sensor, checked, config);
 }
 
-Tracker::Tracker(std::shared_ptr<Device> device, const Mesh& mesh, const Camera& sensor, const TrackerConfig& config)
-    : device_(std::move(device)), sensor_(sensor) {
-  if (!device_) throw InputError("tracker device is null: open one with Device::open");
+Tracker::Tracker(std::shared_ptr<Device> device, const Mesh& mesh, const Camera& sensor, const TrackerConfig& config) {
+  if (!device) throw InputError("tracker device is null: open one with Device::open");
   sensor.validate();
   TrackerConfig on_device = config;
-  on_device.backend = device_->selector();
+  on_device.backend = device->selector();
   on_device.validate();
   Mesh checked = mesh;
   checked.validate_and_clean("tracker mesh");
-  construct(*device_, checked, on_device);
+  impl_ = std::make_unique<Impl>(std::move(device), sensor, checked, on_device);
 }
 
-void Tracker::construct(const Device& device, const Mesh& checked, const TrackerConfig& config) {
-  decimation_ = sensor_.decimation_factor_for(config.width, config.height);
-  working_ = sensor_.decimated(decimation_);
-  config_ = config;
+Tracker::~Tracker() = default;
+Tracker::Tracker(Tracker&&) noexcept = default;
+Tracker& Tracker::operator=(Tracker&&) noexcept = default;
+
+void Tracker::initialize(const Pose& pose, const InitialSpread& spread) {
+  impl_->initialize(pose, spread);
+}
+Estimate Tracker::initialize_global(const DepthImage& depth, double timestamp, const InitHint& hint) {
+  return impl_->initialize_global(depth, timestamp, hint);
+}
+Estimate Tracker::update(const DepthImage& depth, double timestamp) {
+  if (!impl_->initialized_) throw InputError("Tracker::update called before initialize()");
+  DepthImage storage;
+  const DepthImage& working = impl_->working_frame(depth, storage);
+  return impl_->track_frame(
+      working, [&depth]() -> const DepthImage& { return depth; }, timestamp);
+}
+void Tracker::set_particle_count(int count) {
+  impl_->set_particle_count(count);
+}
+const Camera& Tracker::working_camera() const {
+  return impl_->working_;
+}
+const TrackerConfig& Tracker::config() const {
+  return impl_->config_;
+}
+std::pair<int, int> Tracker::occlusion_window_size() const {
+  return impl_->backend_->occlusion_window_size();
+}
+std::string Tracker::backend_description() const {
+  return impl_->backend_->description();
+}
+size_t Tracker::mesh_triangles() const {
+  return impl_->mesh_triangles_;
+}
+size_t Tracker::drawn_triangles() const {
+  return impl_->drawn_triangles_;
+}
+
+Tracker::Impl::Impl(std::shared_ptr<Device> device, const Camera& sensor, const Mesh& checked,
+                    const TrackerConfig& config)
+    : device_(std::move(device)),
+      sensor_(sensor),
+      decimation_(sensor.decimation_factor_for(config.width, config.height)),
+      working_(sensor.decimated(decimation_)),
+      config_(config) {
   centre_ = checked.centre().cast<double>();
   // Every rendering draws the simplified mesh (the given one when simplify_error is 0); a frame budget
   // draws a fine one coarser (simplify_for_budget).
@@ -94,11 +135,11 @@ void Tracker::construct(const Device& device, const Mesh& checked, const Tracker
                                                          : simplify_for_drawing(checked, config.simplify_error);
   mesh_triangles_ = checked.triangles.size();
   drawn_triangles_ = drawn.mesh.triangles.size();
-  backend_ = make_filter_backend(device, drawn.mesh, working_, config);
+  backend_ = make_filter_backend(*device_, drawn.mesh, working_, config);
   supervisor_ = std::make_unique<TrackSupervisor>(*backend_, drawn.mesh, sensor_, working_, decimation_, config);
   particle_count_ = config.particles;
   if (config.budget_ms > 0) {
-    if (device.context())
+    if (!device_->is_host())
       throw InputError("a frame budget (budget_ms " + std::to_string(config.budget_ms) +
                        ") needs the reference or cpu backend: " + backend_->description() +
                        " runs a fixed particle count");
@@ -107,24 +148,20 @@ void Tracker::construct(const Device& device, const Mesh& checked, const Tracker
   }
 }
 
-void Tracker::set_particle_count(int count) {
+void Tracker::Impl::set_particle_count(int count) {
   if (budget_) throw InputError("set_particle_count: the frame budget (budget_ms) chooses the particle count");
   backend_->set_particle_count(count);
   particle_count_ = count;
 }
 
-void Tracker::choose_particle_count(bool reseed) {
+void Tracker::Impl::choose_particle_count(bool reseed) {
   if (!budget_) return;
   const int count = budget_->next(reseed);
   backend_->set_particle_count(count);
   particle_count_ = count;
 }
 
-Tracker::~Tracker() = default;
-Tracker::Tracker(Tracker&&) noexcept = default;
-Tracker& Tracker::operator=(Tracker&&) noexcept = default;
-
-void Tracker::initialize(const Pose& pose, const InitialSpread& spread) {
+void Tracker::Impl::initialize(const Pose& pose, const InitialSpread& spread) {
   if (!pose.translation.allFinite() || !pose.rotation.coeffs().allFinite())
     throw InputError("initial pose is not finite");
   // A zero quaternion is no rotation at all (its rows would read q = 0); any other is normalized.
@@ -161,7 +198,7 @@ void Tracker::initialize(const Pose& pose, const InitialSpread& spread) {
   frames_since_initialize_ = 0;
 }
 
-const DepthImage& Tracker::working_frame(const DepthImage& depth, DepthImage& storage) const {
+const DepthImage& Tracker::Impl::working_frame(const DepthImage& depth, DepthImage& storage) const {
   if (depth.width() != sensor_.width || depth.height() != sensor_.height) {
     std::ostringstream m;
     m << "depth image is " << depth.width() << "x" << depth.height() << " but the camera is " << sensor_.width << "x"
@@ -187,7 +224,7 @@ const DepthImage& Tracker::working_frame(const DepthImage& depth, DepthImage& st
   return storage;
 }
 
-Estimate Tracker::initialize_global(const DepthImage& depth, double timestamp, const InitHint& hint) {
+Estimate Tracker::Impl::initialize_global(const DepthImage& depth, double timestamp, const InitHint& hint) {
   check_timestamp(timestamp);
   DepthImage storage;
   const DepthImage& working = working_frame(depth, storage);
@@ -215,22 +252,14 @@ Estimate Tracker::initialize_global(const DepthImage& depth, double timestamp, c
   return e;
 }
 
-Estimate Tracker::update(const DepthImage& depth, double timestamp) {
-  if (!initialized_) throw InputError("Tracker::update called before initialize()");
-  DepthImage storage;
-  const DepthImage& working = working_frame(depth, storage);
-  return track_frame(
-      working, [&depth]() -> const DepthImage& { return depth; }, timestamp);
-}
-
-Estimate Tracker::track_frame(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame,
-                              double timestamp) {
+Estimate Tracker::Impl::track_frame(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame,
+                                    double timestamp) {
   start_frame(working, sensor_frame, timestamp);
   return finish_frame(working);
 }
 
-void Tracker::start_frame(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame,
-                          double timestamp) {
+void Tracker::Impl::start_frame(const DepthImage& working, const std::function<const DepthImage&()>& sensor_frame,
+                                double timestamp) {
   check_timestamp(timestamp);
   if (has_previous_ && timestamp <= previous_timestamp_) {
     std::ostringstream m;
@@ -276,12 +305,12 @@ void Tracker::start_frame(const DepthImage& working, const std::function<const D
   pending_.search_poses = search.search_poses;
 }
 
-Estimate Tracker::run_frame(const DepthImage& working, double timestamp) {
+Estimate Tracker::Impl::run_frame(const DepthImage& working, double timestamp) {
   enqueue_frame(working, timestamp);
   return finish_frame(working);
 }
 
-void Tracker::enqueue_frame(const DepthImage& working, double timestamp) {
+void Tracker::Impl::enqueue_frame(const DepthImage& working, double timestamp) {
   if (frame_pending_) throw InputError("tracker: a frame was started while the previous one is not finished");
   // A gap longer than max_time_step is propagated as that long (TrackerConfig says why).
   const double dt = has_previous_ ? std::min(timestamp - previous_timestamp_, config_.max_time_step) : 0.0;
@@ -291,13 +320,13 @@ void Tracker::enqueue_frame(const DepthImage& working, double timestamp) {
   frame_pending_ = true;
 }
 
-Estimate Tracker::finish_frame(const DepthImage& working) {
+Estimate Tracker::Impl::finish_frame(const DepthImage& working) {
   Estimate e = collect_frame();
   assess_frame(e, working);
   return e;
 }
 
-Estimate Tracker::collect_frame() {
+Estimate Tracker::Impl::collect_frame() {
   if (!frame_pending_) throw InputError("tracker: finish_frame() without a started frame");
   frame_pending_ = false;
   const double timestamp = pending_.timestamp;
@@ -321,12 +350,12 @@ Estimate Tracker::collect_frame() {
   return e;
 }
 
-void Tracker::assess_frame(Estimate& e, const DepthImage& working) {
+void Tracker::Impl::assess_frame(Estimate& e, const DepthImage& working) {
   assess_confidence(e, working);
   if (budget_) budget_->observe(e);
 }
 
-void Tracker::assess_confidence(Estimate& e, const DepthImage& working) {
+void Tracker::Impl::assess_confidence(Estimate& e, const DepthImage& working) {
   // A dropout: every pixel adds 0 to every particle's log-likelihood, so the weights stay as they
   // are and resampling, decided on them, cannot trigger: the filter propagates only.
   if (working.valid_count() == 0) {
@@ -348,22 +377,8 @@ void Tracker::assess_confidence(Estimate& e, const DepthImage& working) {
   e.timings.total_ms += e.timings.confidence_ms;
 }
 
-const std::vector<float>& Tracker::silhouette(const Pose& pose) {
+const std::vector<float>& Tracker::Impl::silhouette(const Pose& pose) {
   return supervisor_->silhouette(pose);
-}
-
-const Camera& Tracker::working_camera() const {
-  return working_;
-}
-const TrackerConfig& Tracker::config() const {
-  return config_;
-}
-std::pair<int, int> Tracker::occlusion_window_size() const {
-  return backend_->occlusion_window_size();
-}
-
-std::string Tracker::backend_description() const {
-  return backend_->description();
 }
 
 }  // namespace depthtrack

@@ -4,6 +4,8 @@
 #include <optional>
 #include <sstream>
 
+#include "tracker/tracker_impl.hpp"
+
 namespace depthtrack {
 
 namespace {
@@ -18,17 +20,17 @@ void check_view(const DepthView& depth, const Camera& sensor) {
 }
 }  // namespace
 
-DepthImage Tracker::working_frame(const DepthView& depth) const {
+DepthImage Tracker::Impl::working_frame(const DepthView& depth) const {
   check_view(depth, sensor_);
   // As update(DepthImage) does: decimated, and depths beyond max_depth count as missing.
   return depth.sample(decimation_, static_cast<float>(config_.observation.max_depth));
 }
 
 Estimate Tracker::update(const DepthView& depth, double timestamp) {
-  if (!initialized_) throw InputError("Tracker::update called before initialize()");
-  const DepthImage working = working_frame(depth);
+  if (!impl_->initialized_) throw InputError("Tracker::update called before initialize()");
+  const DepthImage working = impl_->working_frame(depth);
   std::optional<DepthImage> sensor;  // converted whole only if a search needs it
-  return track_frame(
+  return impl_->track_frame(
       working,
       [&]() -> const DepthImage& {
         if (!sensor) sensor = depth.to_image();
@@ -38,7 +40,7 @@ Estimate Tracker::update(const DepthView& depth, double timestamp) {
 }
 
 Estimate Tracker::initialize_global(const DepthView& depth, double timestamp, const InitHint& hint) {
-  check_view(depth, sensor_);
+  check_view(depth, impl_->sensor_);
   return initialize_global(depth.to_image(), timestamp, hint);
 }
 

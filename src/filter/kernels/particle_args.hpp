@@ -3,8 +3,8 @@
 // resample.cl's fills.
 #include <cstdint>
 
+#include "compute/kernel_launch.hpp"
 #include "dt_params.h"
-#include "filter/kernels/launch.hpp"
 
 namespace depthtrack::kernels {
 

@@ -3,8 +3,8 @@
 // sums, and its one-launch loop.
 #include <cstdint>
 
+#include "compute/kernel_launch.hpp"
 #include "dt_params.h"
-#include "filter/kernels/launch.hpp"
 
 namespace depthtrack::kernels {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The arguments of cl/resample.cl's prefix sums and resampling gathers.
-#include "filter/kernels/launch.hpp"
+#include "compute/kernel_launch.hpp"
 
 namespace depthtrack::kernels {
 

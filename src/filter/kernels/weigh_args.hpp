@@ -2,9 +2,9 @@
 // The arguments of cl/weigh.cl's weigh and cl/render_weigh.cl's render_weigh.
 #include <cstdint>
 
+#include "compute/kernel_launch.hpp"
 #include "dt_atlas.h"
 #include "dt_params.h"
-#include "filter/kernels/launch.hpp"
 
 namespace depthtrack::kernels {
 

@@ -21,6 +21,7 @@
 #include "folded_programs.hpp"
 #include "support.hpp"
 #include "synth_frames.hpp"
+#include "tracker/device_access.hpp"
 
 using namespace depthtrack;
 namespace fs = std::filesystem;
@@ -104,18 +105,18 @@ TEST_CASE("a second Tracker loads every program from the binary cache and tracks
 
   const auto compiled_device = Device::open(config.backend);
   Tracker compiled(compiled_device, mesh, synth.camera, config);
-  const auto& compiled_programs = compiled_device->context()->programs;
+  const auto& compiled_programs = DeviceAccess::context(*compiled_device)->programs;
   // Eight programs but those whose work is folded into others here (test::programs_folded_away).
   const size_t programs =
-      8 - test::programs_folded_away(*compiled_device->context()->queue, mesh, synth.camera, config);
+      8 - test::programs_folded_away(*DeviceAccess::context(*compiled_device)->queue, mesh, synth.camera, config);
   REQUIRE(compiled_programs.builds() == programs);
   CHECK(compiled_programs.loaded_from_disk() == 0);
   REQUIRE(files_in(folder) == programs);
 
   const auto loaded_device = Device::open(config.backend);
   Tracker loaded(loaded_device, mesh, synth.camera, config);
-  CHECK(loaded_device->context()->programs.builds() == programs);
-  CHECK(loaded_device->context()->programs.loaded_from_disk() == programs);
+  CHECK(DeviceAccess::context(*loaded_device)->programs.builds() == programs);
+  CHECK(DeviceAccess::context(*loaded_device)->programs.loaded_from_disk() == programs);
   compiled.initialize(frames[0].ground_truth);
   loaded.initialize(frames[0].ground_truth);
   for (const auto& f : frames) {
@@ -132,10 +133,10 @@ TEST_CASE("a second Tracker loads every program from the binary cache and tracks
   write_all(victim, bytes);
   const auto repaired_device = Device::open(config.backend);
   Tracker repaired(repaired_device, mesh, synth.camera, config);
-  CHECK(repaired_device->context()->programs.loaded_from_disk() == programs - 1);
+  CHECK(DeviceAccess::context(*repaired_device)->programs.loaded_from_disk() == programs - 1);
   CHECK(read_all(victim) != bytes);
   CHECK(files_in(folder) == programs);
   const auto again = Device::open(config.backend);
   Tracker after_repair(again, mesh, synth.camera, config);
-  CHECK(again->context()->programs.loaded_from_disk() == programs);
+  CHECK(DeviceAccess::context(*again)->programs.loaded_from_disk() == programs);
 }

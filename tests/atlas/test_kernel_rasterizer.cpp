@@ -1,7 +1,7 @@
 // The compute-kernel atlas (cl/rasterize.cl, --renderer kernel) against the reference rasterizer,
 // pixel by pixel, then in the device filter against the host atlas. Away from edges (the pixel and
 // its 4 neighbours all covered or all uncovered in the reference, depths within 1 cm) coverage must be
-// identical and depth equal to float tolerance, as for GL (tests/test_render_atlas.cpp); at
+// identical and depth equal to float tolerance, as for GL (tests/atlas/test_render_atlas.cpp); at
 // silhouettes float and double may differ: counted and bounded.
 #include <algorithm>
 #include <catch2/catch.hpp>

@@ -55,7 +55,7 @@ TEST_CASE("device pose scores equal the reference's", "[global][device]") {
     const auto& scale = reference.last_score_magnitudes();
     double worst = 0;
     for (size_t i = 0; i < poses.size(); ++i) {
-      // Relative to the sum of |per-pixel term|, as tests/test_device_filter.cpp compares weigh.
+      // Relative to the sum of |per-pixel term|, as tests/filter/test_device_filter.cpp compares weigh.
       const double relative = std::abs(got[i] - expected[i]) / std::max(1.0, scale[i]);
       worst = std::max(worst, relative);
       CHECK(relative <= 1e-4);

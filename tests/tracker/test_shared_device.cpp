@@ -15,6 +15,7 @@
 #include "folded_programs.hpp"
 #include "same_estimate.hpp"
 #include "synth_frames.hpp"
+#include "tracker/device_access.hpp"
 
 using namespace depthtrack;
 using Catch::Matchers::Contains;
@@ -91,7 +92,8 @@ TEST_CASE("Two trackers on one Device build each program once and track as on th
   // weigh (at 80x60 render_weigh: the kernel renderer draws inside it), resample, initialize, rasterize
   // (the atlas's and the search's: one key), refine, score: six programs; and propagate and summarize
   // where their work is not folded into render_weigh and the one-launch fit (a small cloud's, one-launch).
-  const size_t folded_away = test::programs_folded_away(*device->context()->queue, mesh, synth.camera, first);
+  const size_t folded_away =
+      test::programs_folded_away(*DeviceAccess::context(*device)->queue, mesh, synth.camera, first);
   const size_t builds = device->program_builds();
   CHECK(builds == 8 - folded_away);
   Tracker b(device, mesh, synth.camera, second);
@@ -150,8 +152,8 @@ TEST_CASE("A device tracker without step timings tracks the same and times only 
 TEST_CASE("A Device's queues share memory and programs: what one writes another reads", "[device]") {
   if (!test::device_available()) return;
   const auto device = Device::open(test::device_selector());
-  compute::Queue& first = *device->context()->queue;
-  const std::unique_ptr<compute::Queue> second = device->context()->make_queue();
+  compute::Queue& first = *DeviceAccess::context(*device)->queue;
+  const std::unique_ptr<compute::Queue> second = DeviceAccess::context(*device)->make_queue();
   REQUIRE(second);  // OpenCL (PoCL) and CUDA both offer queues of their own
   CHECK(second->info().name == first.info().name);
   const std::vector<float> values = {1.5f, -2.0f, 3.25f};

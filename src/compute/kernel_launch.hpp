@@ -1,7 +1,8 @@
 #pragma once
-// A kernel's launch from a struct of its arguments, each set by name: every kernel of the filter has
-// one such struct in this folder, its fields in the kernel's parameter order (cl/*.cl), and in_order()
-// hands them to the compute layer in that order. A call site names what it passes:
+// A kernel's launch from a struct of its arguments, each set by name: every kernel has one such struct
+// (the filter's in src/filter/kernels/, the atlas rasterizer's in src/atlas/rasterize_args.hpp), its fields
+// in the kernel's parameter order (cl/*.cl), and in_order() hands them to the compute layer in that order.
+// A call site names what it passes:
 //   kernels::launch(where, kernels::PropagateArgs{.state = state, .count = n, ...});
 #include <tuple>
 

@@ -1,6 +1,6 @@
 // The no-hint search's final ranking (TrackSupervisor::finish) on ycbv-0000's first frame, from two
 // of the gelatin box's candidates the whole search produced there (reference, 80x60; the search
-// itself takes minutes, tests/test_global_init.cpp runs it opt-in).
+// itself takes minutes, tests/search/test_global_init.cpp runs it opt-in).
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <depthtrack/evaluation.hpp>

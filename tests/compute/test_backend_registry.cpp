@@ -6,11 +6,11 @@
 #include <depthtrack/tracker.hpp>
 #include <vector>
 
+#include "../fake_backend/fake_backend.hpp"
+#include "../sketch_backend/sketch_backend.hpp"
 #include "compute/backend.hpp"
 #include "compute/buffer.hpp"
 #include "compute/queue.hpp"
-#include "fake_backend/fake_backend.hpp"
-#include "sketch_backend/sketch_backend.hpp"
 
 using namespace depthtrack;
 

@@ -1,0 +1,30 @@
+#pragma once
+// The arguments of cl/rasterize.cl's rasterize, in its parameter order.
+#include "compute/kernel_launch.hpp"
+#include "dt_atlas.h"
+#include "dt_params.h"
+
+namespace depthtrack::kernels {
+
+// Draws particles (or poses) first .. first + groups into the atlas' tiles (a group per particle, striding
+// over the triangles): the kernel atlas source's and the pose scorer's launches.
+struct RasterizeArgs {
+  Buf<float> states;
+  Buf<float> vertices;      // object frame, 3 per vertex
+  Buf<unsigned> triangles;  // 3 vertex indices each
+  Buf<float> planes;        // render::triangle_planes
+  unsigned triangle_count, vertex_count;
+  dt_camera cam;
+  dt_atlas_layout layout;
+  Buf<float> atlas;     // written: each pixel's depth as its bits
+  Buf<unsigned> boxes;  // written where boxed: each tile's drawn box
+  unsigned boxed;
+  unsigned first;  // the first particle of this turn
+
+  auto in_order() const {
+    return std::tie(states, vertices, triangles, planes, triangle_count, vertex_count, cam, layout, atlas, boxes, boxed,
+                    first);
+  }
+};
+
+}  // namespace depthtrack::kernels
