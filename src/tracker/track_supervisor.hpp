@@ -35,7 +35,9 @@ class TrackSupervisor {
   search::SearchResult candidates(const DepthImage& sensor_depth, const DepthImage& working, const InitHint& hint,
                                   double budget_ms, unsigned round, bool box_regions = false) const;
   // Returns whether the evidence chose the candidates (a box's fitted poses it supports, all together).
-  bool finish(search::SearchResult& result, const DepthImage& working, const InitHint& hint, unsigned round) const;
+  // supported_apart: set where the evidence supports poses that lie apart.
+  bool finish(search::SearchResult& result, const DepthImage& working, const InitHint& hint, unsigned round,
+              bool* supported_apart = nullptr) const;
   // A box around where the object was at pose (its projection, widened by half its size on every side,
   // in the sensor's pixels): where a search after a gap in time looks. Anywhere when it is out of view.
   InitHint around(const Pose& pose) const;
@@ -67,7 +69,7 @@ class TrackSupervisor {
   void fit_best(search::SearchResult& result, const DepthImage& working) const;
   // Fits a box's best candidates, also from deeper starts, and keeps those the evidence supports when
   // they all lie together; returns whether it did.
-  bool fit_confident(search::SearchResult& result, const DepthImage& working) const;
+  bool fit_confident(search::SearchResult& result, const DepthImage& working, bool* supported_apart) const;
 
   TrackerConfig config_;
   Camera sensor_, working_;
