@@ -180,9 +180,9 @@ void TrackSupervisor::fit_best(search::SearchResult& result, const DepthImage& w
 // nearest the right one lie nearer the camera than it (the centre is put behind a measured point by
 // 2/3 of the object's front reach: short for a can seen tilted). The best candidates are fitted by
 // Gauss-Newton from where they are and from one and two translation steps deeper along the view
-// ray. When the fitted poses the evidence supports (confidence at least loss.lost_below) all lie
-// together, only they go on to the polish and seed the filter; poses it supports far apart (the bowl
-// of ycbv-0049: one 5 mm off, one 29 mm) leave the ranking to the likelihood.
+// ray. When the fitted poses the evidence supports (confidence at least loss.lost_below, kPlanePixels
+// seen) all lie together, only they go on to the polish and seed the filter; poses it supports far
+// apart (the bowl of ycbv-0049: one 5 mm off, one 29 mm) leave the ranking to the likelihood.
 bool TrackSupervisor::fit_confident(search::SearchResult& result, const DepthImage& working,
                                     bool* supported_apart) const {
   std::sort(result.candidates.begin(), result.candidates.end(),
