@@ -30,10 +30,14 @@ class TrackSupervisor {
   search::SearchResult search(const DepthImage& sensor_depth, const DepthImage& working, const InitHint& hint,
                               double budget_ms, unsigned round) const;
   // search() in two steps: the candidates of the coarse grid and its refinement, scored by the full
-  // model; then their ranking (without a hint: fitted, see fit_best) and polish.
+  // model; then their ranking (without a hint: fitted, see fit_best; in a box: see fit_confident) and
+  // polish. box_regions: a box's candidates are kept region by region, as without a hint.
   search::SearchResult candidates(const DepthImage& sensor_depth, const DepthImage& working, const InitHint& hint,
-                                  double budget_ms, unsigned round) const;
-  void finish(search::SearchResult& result, const DepthImage& working, const InitHint& hint, unsigned round) const;
+                                  double budget_ms, unsigned round, bool box_regions = false) const;
+  // Returns whether the evidence chose the candidates (a box's fitted poses it supports, all together).
+  // supported_apart: set where the evidence supports poses that lie apart.
+  bool finish(search::SearchResult& result, const DepthImage& working, const InitHint& hint, unsigned round,
+              bool* supported_apart = nullptr) const;
   // A box around where the object was at pose (its projection, widened by half its size on every side,
   // in the sensor's pixels): where a search after a gap in time looks. Anywhere when it is out of view.
   InitHint around(const Pose& pose) const;
@@ -58,10 +62,14 @@ class TrackSupervisor {
   TrackStatus status() const { return status_; }
 
  private:
-  search::SearchSettings settings(const InitHint& hint, double budget_ms, unsigned round) const;
+  search::SearchSettings settings(const InitHint& hint, double budget_ms, unsigned round,
+                                  bool box_regions = false) const;
   // Fits the best candidates to their likelihood's optimum (reference::PoseRefiner), rescored, and
   // keeps only those whose outline stands out when any does.
   void fit_best(search::SearchResult& result, const DepthImage& working) const;
+  // Fits a box's best candidates, also from deeper starts, and keeps those the evidence supports when
+  // they all lie together; returns whether it did.
+  bool fit_confident(search::SearchResult& result, const DepthImage& working, bool* supported_apart) const;
 
   TrackerConfig config_;
   Camera sensor_, working_;

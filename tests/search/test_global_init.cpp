@@ -120,6 +120,38 @@ TEST_CASE("YCB-Video clip 0000: each object found from its 2D box in the first f
   }
 }
 
+// In ycbv-0049's tuna fish can's box the likelihood prefers poses sunk into the surfaces around the can,
+// and the grid's nearest candidates lie 15-20 mm nearer the camera than it: it ended 12.5 mm off
+// (tolerance 9 mm) until the box's candidates were fitted from deeper starts too, kept by the evidence
+// (TrackSupervisor::fit_confident) and, where it supports none, searched for again region by region. The bowl's
+// evidence supports a pose 29 mm off as well as the right one; it must never be reported tracking while off.
+TEST_CASE("YCB-Video clip 0049: the tuna fish can found from its 2D box; the bowl never tracked while off",
+          "[global][accuracy]") {
+  const auto clip = test::shared_data("sequences/ycbv-0049/gt.json");
+  if (!clip) return;
+  const char* backend_env = std::getenv("DEPTHTRACK_TEST_GLOBAL_BACKEND");
+  for (const YcbObject& object : ycb_objects(*clip)) {
+    if (object.name != "007_tuna_fish_can" && object.name != "024_bowl") continue;
+    const auto mesh_path = test::shared_data("meshes/ycb/" + object.name + ".obj");
+    if (!mesh_path) return;
+    const Mesh mesh = Mesh::load(*mesh_path);
+    const AddsMetric adds(mesh);
+    const Sequence sequence = load_sequence(clip->parent_path(), object.name);
+    const auto box = test::label_box(clip->parent_path() / "000001-label.png", object.label);
+    REQUIRE(box);
+    TrackerConfig config;
+    config.backend = backend_env ? backend_env : "reference";
+    config.recovery.enabled = false;  // the start alone
+    const auto frames =
+        track_sequence_global(sequence, mesh, config, InitHint::box((*box)[0], (*box)[1], (*box)[2], (*box)[3]));
+    const double last_adds = adds(frames.back().estimate.pose, *frames.back().ground_truth);
+    std::printf("ycbv-0049 %s from its box: last frame %.1f mm ADD-S\n", object.name.c_str(), 1000 * last_adds);
+    if (object.name == "007_tuna_fish_can") CHECK(last_adds <= 0.1 * 0.0898);  // a tenth of its diameter
+    for (const TrackedFrame& f : frames)
+      if (f.estimate.status == TrackStatus::Tracking) CHECK(adds(f.estimate.pose, *f.ground_truth) <= 0.020);
+  }
+}
+
 // The grid's centres lie behind measured points along their rays; with the bar across the
 // handset's middle (frame 0) or the handset tilted in depth (frame 30) none came near its centre and
 // the box search landed 163 and 108 mm off (search::box_centre_points).

@@ -1,0 +1,117 @@
+#!/usr/bin/env python3
+"""Tries a temporal confidence on tracked frames: a two-state forward filter over "the pose is right".
+
+Reads files of depthtrack_confidence_samples --track (each run's frames in order) and, for each file held
+out in turn, picks the filter's parameters on the others (least log-loss over a small grid) and prints the
+held-out calibration before (the evidence model alone) and after. The filter, per frame:
+
+    prior_t = (1 - h_t) p_{t-1} + h_t b      h_t = 1 - (1 - h)^(elapsed frames): a gap forgets more
+    logit p_t = logit prior_t + w_t (logit q_t - logit b)
+
+q_t is the evidence model's probability (coefficients as src/tracker/confidence_model.cpp lists them), b the
+base rate its evidence is weighed against, w_t = min(1, visible pixels / n0) so a frame that sees little of
+the object says little. The gap runs jump before frame index 6 (depthtrack_confidence_samples --track).
+
+    scripts/temporal-confidence.py samples-*-track.csv
+"""
+import argparse
+import csv
+import importlib.util
+import math
+import os
+import sys
+
+import numpy as np
+
+_spec = importlib.util.spec_from_file_location(
+    "calibrate", os.path.join(os.path.dirname(os.path.abspath(__file__)), "calibrate-confidence.py"))
+calibrate = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(calibrate)
+
+COEFFICIENTS = [-3.1930, 1.7135, -11.6344, -1.9042, 5.6930, 2.1661]
+GAP_FRAMES = {"track-gap0.5": 15, "track-gap2": 60}  # frames of 1/30 s the clock jumps by
+GAP_INDEX = 6
+
+
+def logit(p):
+    p = min(max(p, 1e-9), 1 - 1e-9)
+    return math.log(p / (1 - p))
+
+
+def load_runs(path):
+    """Each run: its kind and its frames as (q, visible pixels, within tolerance, ADD-S mm)."""
+    runs, last = [], None
+    with open(path) as f:
+        for row in csv.DictReader(f):
+            key, frame = (row["object"], row["kind"]), int(row["frame"])
+            if last is None or key != last[0] or frame <= last[1]:
+                runs.append((row["kind"], []))
+            last = (key, frame)
+            pixels = int(row["pixels"])
+            q = 1 / (1 + math.exp(-float(np.dot(COEFFICIENTS, calibrate.features(row))))) if pixels > 0 else 0.0
+            seen = pixels * (1 - float(row["missing"])) * float(row["visible"])
+            tolerance = min(calibrate.TOLERANCE_MM, 0.1 * float(row["diameter_mm"]))
+            adds = float(row["adds_mm"])
+            runs[-1][1].append((q, seen, adds <= tolerance, adds))
+    return runs
+
+
+def forward(kind, frames, h, base, n0):
+    out, p = [], None
+    b = 1 / (1 + math.exp(-base))
+    for i, (q, seen, _, _) in enumerate(frames):
+        if q <= 0:
+            p = 0.0
+            out.append(0.0)
+            continue
+        w = min(1.0, seen / n0) if n0 > 0 else 1.0
+        if p is None:
+            prior = base
+        else:
+            elapsed = GAP_FRAMES.get(kind, 1) if i == GAP_INDEX else 1
+            hazard = 1 - (1 - h) ** elapsed
+            prior = logit((1 - hazard) * p + hazard * b)
+        p = 1 / (1 + math.exp(-max(-20.0, min(20.0, prior + w * (logit(q) - base)))))
+        out.append(p)
+    return out
+
+
+def score(runs, params):
+    p, y, adds = [], [], []
+    for kind, frames in runs:
+        p += forward(kind, frames, *params) if params else [f[0] for f in frames]
+        y += [f[2] for f in frames]
+        adds += [f[3] for f in frames]
+    p, y, adds = np.array(p), np.array(y, float), np.array(adds)
+    loss = -np.mean(y * np.log(np.clip(p, 1e-6, 1)) + (1 - y) * np.log(np.clip(1 - p, 1e-6, 1)))
+    bins = np.minimum((p * 10).astype(int), 9)
+    ece = worst = 0.0
+    for b in range(10):
+        m = bins == b
+        if m.any():
+            gap = abs(y[m].mean() - p[m].mean())
+            ece += m.mean() * gap
+            if m.mean() >= 0.05:
+                worst = max(worst, gap)
+    wrong = int(((adds > calibrate.WRONG_MM) & (p >= 0.5)).sum())
+    return loss, ece, worst, wrong
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("files", nargs="+")
+    args = parser.parse_args()
+    data = {f: load_runs(f) for f in args.files}
+    grid = [(h, logit(b), n0) for h in (0.01, 0.03, 0.1, 0.3) for b in (0.3, 0.5, 0.7) for n0 in (0, 30, 100)]
+    print("held out: before (ECE, worst bin of >= 5 %, confidently wrong) -> after, with the others' parameters")
+    for f in args.files:
+        others = [g for g in args.files if g != f]
+        best = min(grid, key=lambda g: sum(score(data[o], g)[0] for o in others))
+        _, e0, w0, c0 = score(data[f], None)
+        _, e1, w1, c1 = score(data[f], best)
+        print(f"{os.path.basename(f)}: {e0:.3f} {w0:.3f} {c0} -> {e1:.3f} {w1:.3f} {c1}"
+              f"  (h {best[0]}, b {1 / (1 + math.exp(-best[1])):.1f}, n0 {best[2]})")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
