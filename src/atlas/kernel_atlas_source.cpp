@@ -57,18 +57,8 @@ class KernelAtlasSource final : public AtlasSource {
                        " tiles, or the state or atlas buffer given");
     return kernels::launch(
         {.queue = queue_, .kernel = *kernel_, .range = compute::NdRange::linear(count * kGroupSize, kGroupSize)},
-        kernels::RasterizeArgs{.states = states,
-                               .vertices = mesh_.vertices,
-                               .triangles = mesh_.triangles,
-                               .planes = mesh_.planes,
-                               .triangle_count = mesh_.triangle_count(),
-                               .vertex_count = mesh_.vertex_count(),
-                               .cam = camera_,
-                               .layout = layout_.kernel_args(),
-                               .atlas = atlas,
-                               .boxes = boxes_,
-                               .boxed = static_cast<unsigned>(boxed_),
-                               .first = static_cast<unsigned>(first)});
+        kernels::rasterize_args(mesh_, camera_, layout_.kernel_args(), states, atlas, boxes_,
+                                static_cast<unsigned>(boxed_), static_cast<unsigned>(first)));
   }
 
   const MeshBuffers* device_mesh() const override { return &mesh_; }

@@ -1,5 +1,6 @@
 #pragma once
 // The arguments of cl/rasterize.cl's rasterize, in its parameter order.
+#include "atlas/raster_inputs.hpp"
 #include "compute/kernel_launch.hpp"
 #include "dt_atlas.h"
 #include "dt_params.h"
@@ -26,5 +27,23 @@ struct RasterizeArgs {
                     first);
   }
 };
+
+// The launch's arguments for one mesh on the device: its buffers and counts filled from `mesh`.
+inline RasterizeArgs rasterize_args(const MeshBuffers& mesh, const dt_camera& cam, const dt_atlas_layout& layout,
+                                    const Buf<float>& states, const Buf<float>& atlas, const Buf<unsigned>& boxes,
+                                    unsigned boxed, unsigned first) {
+  return {.states = states,
+          .vertices = mesh.vertices,
+          .triangles = mesh.triangles,
+          .planes = mesh.planes,
+          .triangle_count = mesh.triangle_count(),
+          .vertex_count = mesh.vertex_count(),
+          .cam = cam,
+          .layout = layout,
+          .atlas = atlas,
+          .boxes = boxes,
+          .boxed = boxed,
+          .first = first};
+}
 
 }  // namespace depthtrack::kernels
