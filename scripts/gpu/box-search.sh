@@ -10,11 +10,8 @@ export DEPTHTRACK_DATA_DIR=$PWD/.devdata POCL_CACHE_DIR=/tmp/pocl-cache
 out=${OUT:-/tmp/depthtrack-gpu}
 mkdir -p "$out"
 build=${BUILD_DIR:-build-gpu}
-if [[ ! -x $build/depthtrack ]]; then
-  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DDEPTHTRACK_BUILD_TESTS=OFF -DDEPTHTRACK_PYTHON=OFF \
-    >"$out/configure.log" 2>&1 && cmake --build "$build" -j"$(nproc)" --target depthtrack_cli >"$out/build.log" 2>&1 ||
-    { tail -30 "$out/build.log"; exit 1; }
-fi
+source scripts/lib/release-build.sh
+release_build "$build" "$out" depthtrack depthtrack_cli || exit 1
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader
 lscpu | grep -E '^Model name|^CPU\(s\)'
 for b in ${BACKENDS:-cuda opencl:nvidia cpu}; do

@@ -10,11 +10,8 @@ export DEPTHTRACK_DATA_DIR=$PWD/.devdata
 out=${OUT:-/tmp/depthtrack-gpu}
 mkdir -p "$out"
 build=${BUILD_DIR:-build-gpu}
-if [[ ! -x $build/depthtrack_bench ]]; then
-  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DDEPTHTRACK_BUILD_TESTS=OFF -DDEPTHTRACK_PYTHON=OFF \
-    >"$out/configure.log" 2>&1 && cmake --build "$build" -j"$(nproc)" --target depthtrack_bench >"$out/build.log" 2>&1 ||
-    { tail -30 "$out/build.log"; exit 1; }
-fi
+source scripts/lib/release-build.sh
+release_build "$build" "$out" depthtrack_bench depthtrack_bench || exit 1
 lscpu | grep -E '^Model name|^CPU\(s\)|^Thread|^Core'
 for mesh in handset 025_mug; do
   args=()
