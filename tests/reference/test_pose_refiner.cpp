@@ -24,6 +24,13 @@ const Camera kCamera = Camera::make(160, 120, 131.25, 131.25, 79.5, 59.5);
 Pose object_pose() {
   return Pose({0.02, -0.01, 0.7}, Eigen::Quaterniond(Eigen::AngleAxisd(0.6, Eigen::Vector3d(1, 2, 0.5).normalized())));
 }
+
+// The fits' start: 4 mm and about 2 degrees off `truth`, turned about `centre`.
+Pose start_off(const Pose& truth, const Eigen::Vector3d& centre) {
+  Vector6d offset;
+  offset << 0.003, -0.002, 0.0015, 0.02, -0.015, 0.02;
+  return reference::apply_twist(truth, centre, offset);
+}
 }  // namespace
 
 TEST_CASE("the depth Jacobian of the refinement equals finite differences of the rasterizer", "[refine]") {
@@ -82,9 +89,7 @@ TEST_CASE("refinement recovers the pose a noise-free scene was rendered at, also
   const Mesh mesh = builtin_demo_mesh();
   const Eigen::Vector3d centre = mesh.centre().cast<double>();
   const Pose truth = object_pose();
-  Vector6d offset;  // 4 mm and about 2 degrees off
-  offset << 0.003, -0.002, 0.0015, 0.02, -0.015, 0.02;
-  const Pose start = reference::apply_twist(truth, centre, offset);
+  const Pose start = start_off(truth, centre);
   TrackerConfig config;
   config.refine.iterations = 10;
   const reference::PoseRefiner refiner(mesh, kCamera, config);
@@ -174,9 +179,7 @@ TEST_CASE("a second stage of the fit at a finer noise goes on from where the fir
   const Mesh mesh = builtin_demo_mesh();
   const Eigen::Vector3d centre = mesh.centre().cast<double>();
   const Pose truth = object_pose();
-  Vector6d offset;  // 4 mm and about 2 degrees off
-  offset << 0.003, -0.002, 0.0015, 0.02, -0.015, 0.02;
-  const Pose start = reference::apply_twist(truth, centre, offset);
+  const Pose start = start_off(truth, centre);
   // A flat occluder over the object's leftmost third, 2 mm in front of the nearest surface it hides:
   // its pixels lie from 2 mm to centimetres in front, and the nearer ones the filter's sigma (about
   // 3.7 mm here) still counts as the object's.
