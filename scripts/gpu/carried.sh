@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# On the lent GPU machine, with binaries built on the CPU machine (no build here: the whole call goes to
+# measuring). Pack them first with scripts/pack-carried-build.sh and carry .devdeps, .device, .devdata and
+# build-carry. Parts (PARTS, default "bars box cpu tests"), each bounded so the call stays within LIMIT
+# seconds (default 570):
+#   bars   the frame rows of scripts/gpu/bars.sh (2,000 to 1,500,000 particles at 80x60, 30,000 at 640x480,
+#          three objects against one), per backend;
+#   box    the box search on ycbv-0000 and ycbv-0049 (`depthtrack eval --cases box`), per backend;
+#   cpu    the cpu backend against the reference on THREADS cores (default "1 2 8 16"), 2,000 particles;
+#   budget depthtrack_bench_budget on the GPU (BUDGET_ARGS) beside one CPU core's reference;
+#   tests  the whole test binary on CUDA and on NVIDIA OpenCL, SHARDS processes each (default 8), in the
+#          time left; each shard's tail and the failures go to $OUT.
+set -uo pipefail
+source .device/enter .devdeps >/dev/null 2>&1
+export DEPTHTRACK_DATA_DIR=$PWD/.devdata POCL_CACHE_DIR=/tmp/pocl-cache
+out=${OUT:-/tmp/depthtrack-gpu}
+mkdir -p "$out"
+started=$SECONDS
+limit=${LIMIT:-570}
+left() { echo $((limit - (SECONDS - started))); }
+# The binaries name the CPU machine's build folder (their run path, the CLI and temporary folder the tests
+# use): make that folder this carried one.
+build=/work/main/build
+if [[ $(realpath -m "$build") != $(realpath -m build-carry) ]]; then
+  mkdir -p /work/main
+  [[ -e $build && ! -L $build ]] && mv "$build" "$build.away"
+  ln -sfn "$PWD/build-carry" "$build"
+fi
+mkdir -p "$build/tests/tmp"
+nvidia-smi --query-gpu=name,driver_version --format=csv,noheader
+lscpu | grep -E '^Model name|^CPU\(s\)'
+cat build-carry/commit.txt 2>/dev/null
+parts=" ${PARTS:-bars box cpu tests} "
+if [[ $parts == *" bars "* ]]; then
+  rows=',(refine_ms|refine_share|total_ms|status),'
+  for b in cuda opencl:nvidia; do
+    timeout 60 "$build/depthtrack_bench" --backend "$b" --particles 2000,100000,1500000 --frames 10 --no-global |
+      grep -E "$rows" | cut -d, -f1,5-
+    timeout 40 "$build/depthtrack_bench" --backend "$b" --particles 30000 --resolution 640x480 --frames 6 --no-global |
+      grep -E ',(total_ms|status),' | cut -d, -f1,5-
+    timeout 40 "$build/depthtrack_bench" --multi-objects --backend "$b" --particles 2000 |
+      grep -E "multi_object_ratio|_objects?_ms," | grep -v one_host | cut -d, -f1,5-
+  done 2>&1 | tee "$out/bars.txt"
+fi
+if [[ $parts == *" box "* ]]; then
+  for b in cuda opencl:nvidia; do
+    for clip in ycbv-0000 ycbv-0049; do
+      t0=$SECONDS
+      timeout 90 "$build/depthtrack" eval --sequence ".devdata/sequences/$clip" --mesh-dir .devdata/meshes/ycb \
+        --cases box --backend "$b" >"/tmp/box-$b-$clip.log" 2>&1
+      echo "== box $b $clip (rc $?, $((SECONDS - t0)) s)"
+      grep -E 'search_ms|error' "/tmp/box-$b-$clip.log" | head -12
+    done
+  done 2>&1 | tee "$out/box.txt"
+fi
+if [[ $parts == *" cpu "* ]]; then
+  for mesh in handset 025_mug; do
+    args=()
+    [[ $mesh == handset ]] || args=(--mesh ".devdata/meshes/ycb/$mesh.obj" --simplify-error 0.0005)
+    for t in ${THREADS:-1 2 8 16}; do
+      echo "$mesh 2000 particles cpu:$t: $(timeout 60 "$build/depthtrack_bench" --backend "cpu:$t" --particles 2000 \
+        --frames 10 --no-global "${args[@]}" 2>&1 | grep -E ',(total_ms|speedup_over_reference),' | cut -d, -f1,6,8 |
+        tr '\n' ' ')"
+    done
+  done 2>&1 | tee "$out/cpu.txt"
+fi
+if [[ $parts == *" budget "* ]]; then
+  timeout 120 "$build/depthtrack_bench_budget" ${BUDGET_ARGS:---backend cuda,reference --particles 200 --budget-ms 5} \
+    2>&1 | grep -E 'adds_mean|frame_p95,|particles_mean' | cut -d, -f1,5- | tee "$out/budget.txt"
+fi
+if [[ $parts == *" tests "* ]]; then
+  shards=${SHARDS:-8}
+  # Test names as patterns: a comma, bracket, star or backslash in a name is escaped.
+  "$build/tests/depthtrack_tests" --list-test-names-only | grep -v '^$' | sed 's/[],[*\\]/\\&/g' >/tmp/names.txt
+  split -n "r/$shards" -d /tmp/names.txt /tmp/shard-
+  budget=$(($(left) - 10))
+  echo "== tests: $(wc -l </tmp/names.txt) cases, $shards shards per backend, ${budget} s"
+  for b in cuda opencl:nvidia; do
+    for f in /tmp/shard-*; do
+      (DEPTHTRACK_TEST_DEVICE=$b timeout "$budget" "$build/tests/depthtrack_tests" -f "$f" \
+        >"/tmp/log-${b//:/-}-${f##*-}.txt" 2>&1; echo "rc $?" >>"/tmp/log-${b//:/-}-${f##*-}.txt") &
+    done
+  done
+  wait
+  for b in cuda opencl:nvidia; do
+    echo "== tests on $b"
+    for log in /tmp/log-"${b//:/-}"-*.txt; do
+      echo "$(basename "$log"): $(grep -E '^test cases|^All tests' "$log" | tail -1) $(tail -1 "$log")"
+    done
+    cat /tmp/log-"${b//:/-}"-*.txt | grep -E -B3 -A12 "FAILED" | head -80
+  done 2>&1 | tee "$out/tests.txt"
+fi
+echo "== $((SECONDS - started)) s"
