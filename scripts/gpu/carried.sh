@@ -4,12 +4,14 @@
 # build-carry. Parts (PARTS, default "bars box cpu tests"), each bounded so the call stays within LIMIT
 # seconds (default 570):
 #   bars   the frame rows of scripts/gpu/bars.sh (2,000 to 1,500,000 particles at 80x60, 30,000 at 640x480,
-#          three objects against one), per backend;
+#          three objects against one), per backend; with build-base/ carried too (an earlier build packed
+#          the same way), the same rows of that build, alternating with this one's, for a before/after;
 #   box    the box search on ycbv-0000 and ycbv-0049 (`depthtrack eval --cases box`), per backend;
 #   cpu    the cpu backend against the reference on THREADS cores (default "1 2 8 16"), 2,000 particles;
 #   budget depthtrack_bench_budget on the GPU (BUDGET_ARGS) beside one CPU core's reference;
-#   tests  the whole test binary on CUDA and on NVIDIA OpenCL, SHARDS processes each (default 8), in the
-#          time left; each shard's tail and the failures go to $OUT.
+#   tests  the test binary's TEST_SPEC (default: all but the host-only [cli], [io], [viz] and [bench] cases) on
+#          CUDA and on NVIDIA OpenCL side by side, SHARDS processes each (default 8), each backend with its own
+#          temporary folder, in the time left; the failing cases are listed, the logs go to $OUT gzipped.
 set -uo pipefail
 source .device/enter .devdeps >/dev/null 2>&1
 export DEPTHTRACK_DATA_DIR=$PWD/.devdata POCL_CACHE_DIR=/tmp/pocl-cache
@@ -27,23 +29,33 @@ if [[ $(realpath -m "$build") != $(realpath -m build-carry) ]]; then
   ln -sfn "$PWD/build-carry" "$build"
 fi
 mkdir -p "$build/tests/tmp"
+# A library the carried ones need but this machine lacks (a stand-in libOSMesa) lies beside them.
+export LD_LIBRARY_PATH=$PWD/build-carry/src:${LD_LIBRARY_PATH:-}
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader
 lscpu | grep -E '^Model name|^CPU\(s\)'
 cat build-carry/commit.txt 2>/dev/null
 parts=" ${PARTS:-bars box cpu tests} "
-if [[ $parts == *" bars "* ]]; then
-  rows=',(refine_ms|refine_share|total_ms|status),'
+bars() { # BUILD_FOLDER TAG
+  local rows=',(refine_ms|refine_share|total_ms|status),' b
   for b in cuda opencl:nvidia; do
-    timeout 60 "$build/depthtrack_bench" --backend "$b" --particles 2000,100000,1500000 --frames 10 --no-global |
-      grep -E "$rows" | cut -d, -f1,5-
-    timeout 40 "$build/depthtrack_bench" --backend "$b" --particles 30000 --resolution 640x480 --frames 6 --no-global |
-      grep -E ',(total_ms|status),' | cut -d, -f1,5-
+    timeout 60 "$1/depthtrack_bench" --backend "$b" --particles 2000,100000,1500000 --frames 10 --no-global |
+      grep -E "$rows" | cut -d, -f1,5- | sed "s/^/$2 /"
+    timeout 40 "$1/depthtrack_bench" --backend "$b" --particles 30000 --resolution 640x480 --frames 6 --no-global |
+      grep -E ',(total_ms|status),' | cut -d, -f1,5- | sed "s/^/$2 /"
+  done
+}
+if [[ $parts == *" bars "* ]]; then
+  for rep in 1 2; do
+    [[ -d build-base ]] && LD_LIBRARY_PATH=$PWD/build-base/src:$LD_LIBRARY_PATH bars "$PWD/build-base" "base$rep"
+    bars "$build" "new$rep"
+  done 2>&1 | tee "$out/bars.txt"
+  for b in cuda opencl:nvidia; do
     timeout 40 "$build/depthtrack_bench" --multi-objects --backend "$b" --particles 2000 |
       grep -E "multi_object_ratio|_objects?_ms," | grep -v one_host | cut -d, -f1,5-
-  done 2>&1 | tee "$out/bars.txt"
+  done 2>&1 | tee -a "$out/bars.txt"
 fi
 if [[ $parts == *" box "* ]]; then
-  for b in cuda opencl:nvidia; do
+  for b in ${BOX_BACKENDS:-cuda opencl:nvidia}; do
     for clip in ycbv-0000 ycbv-0049; do
       t0=$SECONDS
       timeout 90 "$build/depthtrack" eval --sequence ".devdata/sequences/$clip" --mesh-dir .devdata/meshes/ycb \
@@ -71,23 +83,29 @@ fi
 if [[ $parts == *" tests "* ]]; then
   shards=${SHARDS:-8}
   # Test names as patterns: a comma, bracket, star or backslash in a name is escaped.
-  "$build/tests/depthtrack_tests" --list-test-names-only | grep -v '^$' | sed 's/[],[*\\]/\\&/g' >/tmp/names.txt
+  "$build/tests/depthtrack_tests" --list-test-names-only "${TEST_SPEC:-~[cli]~[io]~[viz]~[bench]}" | grep -v '^$' |
+    sed 's/[],[*\\]/\\&/g' >/tmp/names.txt
   split -n "r/$shards" -d /tmp/names.txt /tmp/shard-
-  budget=$(($(left) - 10))
+  budget=$(($(left) - 15))
   echo "== tests: $(wc -l </tmp/names.txt) cases, $shards shards per backend, ${budget} s"
   for b in cuda opencl:nvidia; do
+    mkdir -p "/tmp/tmp-${b//:/-}"
     for f in /tmp/shard-*; do
-      (DEPTHTRACK_TEST_DEVICE=$b timeout "$budget" "$build/tests/depthtrack_tests" -f "$f" \
-        >"/tmp/log-${b//:/-}-${f##*-}.txt" 2>&1; echo "rc $?" >>"/tmp/log-${b//:/-}-${f##*-}.txt") &
+      (DEPTHTRACK_TEST_DEVICE=$b DEPTHTRACK_TEST_TMP=/tmp/tmp-${b//:/-} timeout "$budget" \
+        "$build/tests/depthtrack_tests" -f "$f" >"/tmp/log-${b//:/-}-${f##*-}.txt" 2>&1
+        echo "rc $?" >>"/tmp/log-${b//:/-}-${f##*-}.txt") &
     done
   done
   wait
   for b in cuda opencl:nvidia; do
     echo "== tests on $b"
     for log in /tmp/log-"${b//:/-}"-*.txt; do
-      echo "$(basename "$log"): $(grep -E '^test cases|^All tests' "$log" | tail -1) $(tail -1 "$log")"
+      echo "$(basename "$log"): $(grep -a -E '^test cases|^All tests' "$log" | tail -1) $(tail -1 "$log")"
     done
-    cat /tmp/log-"${b//:/-}"-*.txt | grep -E -B3 -A12 "FAILED" | head -80
+    # Each failing case's name (between the two dashed lines above its FAILED block).
+    cat /tmp/log-"${b//:/-}"-*.txt | awk '/^-+$/ && length($0) > 70 { if (!inside) { inside = 1; name = "" } else inside = 0; next }
+      inside { name = name (name == "" ? "" : " ") $0 } /FAILED:|due to unexpected/ { print "  FAILED " name }' | sort -u | head -40
+    cat /tmp/log-"${b//:/-}"-*.txt | gzip >"$out/tests-${b//:/-}.log.gz"
   done 2>&1 | tee "$out/tests.txt"
 fi
 echo "== $((SECONDS - started)) s"

@@ -23,9 +23,11 @@ inline std::optional<std::filesystem::path> shared_data(const std::string& relat
   return std::nullopt;
 }
 
-// A fresh, empty folder for one test's files, inside the build tree.
+// A fresh, empty folder for one test's files, inside the build tree, or under DEPTHTRACK_TEST_TMP
+// when set (test runs side by side, e.g. one per device, each with its own).
 inline std::filesystem::path temp_dir(const std::string& name) {
-  const auto dir = std::filesystem::path(DEPTHTRACK_TEST_TMP) / name;
+  const char* env = std::getenv("DEPTHTRACK_TEST_TMP");
+  const auto dir = std::filesystem::path(env && *env ? env : DEPTHTRACK_TEST_TMP) / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
