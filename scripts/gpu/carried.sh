@@ -49,10 +49,14 @@ if [[ $parts == *" bars "* ]]; then
     [[ -d build-base ]] && LD_LIBRARY_PATH=$PWD/build-base/src:$LD_LIBRARY_PATH bars "$PWD/build-base" "base$rep"
     bars "$build" "new$rep"
   done 2>&1 | tee "$out/bars.txt"
-  for b in cuda opencl:nvidia; do
-    timeout 40 "$build/depthtrack_bench" --multi-objects --backend "$b" --particles 2000 |
-      grep -E "multi_object_ratio|_objects?_ms," | grep -v one_host | cut -d, -f1,5-
-  done 2>&1 | tee -a "$out/bars.txt"
+  multi() { # BUILD_FOLDER TAG
+    for b in cuda opencl:nvidia; do
+      timeout 40 "$1/depthtrack_bench" --multi-objects --backend "$b" --particles 2000 |
+        grep -E "multi_object_ratio,|_objects?_ms," | grep -v one_host | cut -d, -f1,5- | sed "s/^/$2 /"
+    done
+  }
+  { [[ -d build-base ]] && LD_LIBRARY_PATH=$PWD/build-base/src:$LD_LIBRARY_PATH multi "$PWD/build-base" base
+    multi "$build" new; } 2>&1 | tee -a "$out/bars.txt"
 fi
 if [[ $parts == *" box "* ]]; then
   for b in ${BOX_BACKENDS:-cuda opencl:nvidia}; do
