@@ -40,6 +40,7 @@ class DeviceFilterProbe {
                  const std::vector<float>& occlusion_time, const std::vector<double>& log_weights);
 
  private:
+  std::vector<model::ParticleState> current(std::vector<model::ParticleState> all) const;
   // Per-pixel rows downloaded in particle order: particle i's is row parents[i].
   template <typename T>
   std::vector<T> rows_by_parent(const compute::Buffer<T>& rows) const;

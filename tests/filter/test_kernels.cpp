@@ -314,8 +314,8 @@ TEST_CASE("summarize kernel equals the reference normalization and mean pose", "
   const float kl_threshold = 2.0f;
   if (wide) {
     WideSummary summary(*q, programs, "DT_OCCLUSION=0", count);
-    CHECK(summary.groups() > 1);
-    summary.summarize(state, lw, ll, w, est, 0.0f, 0.0f, 0.02f, kl_threshold, karcher_steps);
+    CHECK(summary.groups(count) > 1);
+    summary.summarize(count, state, lw, ll, w, est, 0.0f, 0.0f, 0.02f, kl_threshold, karcher_steps);
     q->finish();
   } else {
     auto summarize = build(*q, "summarize.cl")->kernel("summarize");
@@ -391,8 +391,8 @@ TEST_CASE("prefix-sum and resampling kernels choose the parents the reference do
       w.assign(w_float.begin(), w_float.end());
       if (wide) {
         WideSummary summary(*q, programs, "DT_OCCLUSION=0", count);
-        CHECK(summary.groups() > 1);
-        summary.prefix_sum(weights, cumulative, decision);
+        CHECK(summary.groups(count) > 1);
+        summary.prefix_sum(count, weights, cumulative, decision);
       } else {
         q->launch(*prefix, compute::NdRange::linear(kGroup, kGroup), weights, cumulative, static_cast<unsigned>(count),
                   decision);
