@@ -20,6 +20,11 @@ std::vector<double> DeviceFilterProbe::last_log_likelihoods() const {
   return std::vector<double>(ll.begin(), ll.begin() + static_cast<std::ptrdiff_t>(f_.plan_.particles));
 }
 
+std::vector<double> DeviceFilterProbe::log_weights() const {
+  const std::vector<float> lw = f_.buffers_.log_weight.download();
+  return std::vector<double>(lw.begin(), lw.begin() + static_cast<std::ptrdiff_t>(f_.plan_.particles));
+}
+
 std::vector<int> DeviceFilterProbe::last_parents() const {
   std::vector<int> parents(f_.plan_.particles);
   if (!f_.last_resampled_) {

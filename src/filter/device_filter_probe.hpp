@@ -16,6 +16,8 @@ class DeviceFilterProbe {
   std::vector<double> last_log_likelihoods() const;
   std::vector<int> last_parents() const;
   std::vector<model::ParticleState> particles() const;
+  // The log weights the next frame adds to (0 after a resampling).
+  std::vector<double> log_weights() const;
   // The particles as the last update weighed them (before it resampled).
   std::vector<model::ParticleState> weighed_particles() const;
   // Where the occlusion rows lie: the state window of the last frame (or of the start).

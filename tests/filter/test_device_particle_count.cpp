@@ -1,6 +1,7 @@
 // The device filter changing its particle count between frames (FilterBackend::set_particle_count): the
 // reference's draw of the new cloud, the plan's count-dependent layouts, and a budgeted tracker on a device
 // replayed by the reference with the same counts.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <depthtrack/error.hpp>
 #include <depthtrack/synth.hpp>
@@ -11,7 +12,9 @@
 #include "device_support.hpp"
 #include "filter/device_filter.hpp"
 #include "filter/device_filter_probe.hpp"
+#include "philox.h"
 #include "reference/reference_filter.hpp"
+#include "reference/weights.hpp"
 #include "support.hpp"
 #include "synth_frames.hpp"
 
@@ -20,8 +23,9 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-// Each frame from the reference's state: at `changes` (frame -> count) both filters change their count,
-// the device must draw the reference's children, and every frame's estimates must agree.
+// Each frame from the reference's state but at `changes` (frame -> count): there both filters change their
+// count from the states they reached themselves (so that the device's parents, the last resampling's, are
+// not the identity), the device must draw the reference's children, and every frame's estimates must agree.
 void compare_counts(const Mesh& mesh, const SynthConfig& synth, const TrackerConfig& config,
                     const std::vector<std::pair<size_t, int>>& changes) {
   const auto frames = test::synthesize(mesh, synth);
@@ -31,32 +35,55 @@ void compare_counts(const Mesh& mesh, const SynthConfig& synth, const TrackerCon
   reference.initialize(frames[0].ground_truth, spread);
   device.initialize(frames[0].ground_truth, spread);
   size_t change = 0;
-  std::set<int> resampled_at;
+  int resamplings = 0, changes_after_resampling = 0;
+  bool resampled = false;  // the last frame
   for (size_t f = 0; f < frames.size(); ++f) {
     INFO("frame " << f << ", " << to_string(config.occlusion_storage));
-    DeviceFilterProbe(device).set_state(reference.particles(), reference.occlusion_state(), reference.occlusion_times(),
-                                        reference.log_weights());
     if (change < changes.size() && changes[change].first == f) {
       const int count = changes[change++].second;
       INFO("to " << count << " particles");
+      changes_after_resampling += resampled && count != static_cast<int>(reference.particles().size());
+      const auto before = DeviceFilterProbe(device).particles();
+      const auto log_weights = DeviceFilterProbe(device).log_weights();
       reference.set_particle_count(count);
       device.set_particle_count(count);
       REQUIRE(device.plan().particles == static_cast<size_t>(count));
-      // The same children: each the copy of the same particle (its state as uploaded, in float).
+      // The reference's draw (its stream, systematic resampling) of the device's own weights, child for child.
+      const double u =
+          dt_uniform01(dt_random_words(config.seed, 0u, static_cast<dt_u32>(f), DT_STREAM_RESIZE, 0u).v[0]);
+      const auto drawn = reference::systematic_resample(reference::summarize_log_weights(log_weights).normalized, u,
+                                                        static_cast<size_t>(count));
       const auto expected = reference.particles(), got = DeviceFilterProbe(device).particles();
       REQUIRE(got.size() == expected.size());
+      size_t ties = 0;
       for (size_t i = 0; i < got.size(); ++i) {
         INFO("child " << i);
-        REQUIRE(translation_error(got[i].pose, expected[i].pose) <= 1e-6);
-        REQUIRE(rotation_error(got[i].pose, expected[i].pose) <= 1e-6);
-        REQUIRE((got[i].linear_velocity - expected[i].linear_velocity).norm() <= 1e-6);
+        const auto& parent = before[static_cast<size_t>(drawn[i])].pose;
+        REQUIRE(got[i].pose.translation == parent.translation);
+        REQUIRE(got[i].pose.rotation.coeffs() == parent.rotation.coeffs());
+        // And the reference's child, within the frames' float rounding, but where a systematic position lies
+        // within the weights' difference of a boundary: the frame before ran on each filter's own (float
+        // likelihoods, the kernel renderer's silhouettes). 300 particles drawn into 4,097 children at 40x30
+        // put 14 on the other side (PoCL); 200 at 80x60 none. A wrong stream or wrong weights moves most.
+        ties += translation_error(got[i].pose, expected[i].pose) > 1e-5 ||
+                rotation_error(got[i].pose, expected[i].pose) > 1e-4;
       }
-      // Each child reads its particle's occlusion rows (the parents the device keeps instead of copies).
+      CHECK(ties <= std::max<size_t>(1, got.size() / 100));
+      // Each child reads its particle's occlusion rows (through the parents, which the device keeps instead
+      // of copies): the reference's but for the odd silhouette pixel (test_device_filter.cpp's bound) and
+      // a tied child's rows.
       const auto p_ref = reference.occlusion_state(), p_dev = DeviceFilterProbe(device).occlusion_state();
-      REQUIRE(p_dev.size() == p_ref.size());
-      for (size_t k = 0; k < p_ref.size(); ++k) REQUIRE(std::abs(p_dev[k] - p_ref[k]) <= 1e-6f);
       const auto t_ref = reference.occlusion_times(), t_dev = DeviceFilterProbe(device).occlusion_times();
-      REQUIRE(t_dev == t_ref);
+      REQUIRE(p_dev.size() == p_ref.size());
+      REQUIRE(t_dev.size() == t_ref.size());
+      size_t differing = 0;
+      for (size_t k = 0; k < p_ref.size(); ++k)
+        differing += std::abs(p_ref[k] - p_dev[k]) > 1e-4f || (!t_ref.empty() && t_ref[k] != t_dev[k]);
+      const size_t pixels = static_cast<size_t>(synth.camera.pixel_count());
+      CHECK(differing <= static_cast<size_t>(count) * pixels / 1000 + ties * pixels);
+    } else {
+      DeviceFilterProbe(device).set_state(reference.particles(), reference.occlusion_state(),
+                                          reference.occlusion_times(), reference.log_weights());
     }
     const double dt = f == 0 ? 0.0 : frames[f].timestamp - frames[f - 1].timestamp;
     const Estimate a = reference.update(frames[f].depth, dt);
@@ -68,10 +95,12 @@ void compare_counts(const Mesh& mesh, const SynthConfig& synth, const TrackerCon
     CHECK(b.effective_sample_size == Approx(a.effective_sample_size).epsilon(1e-3).margin(1e-3));
     CHECK(a.resampled == b.resampled);
     CHECK(a.refine_iterations == b.refine_iterations);
-    if (a.resampled) resampled_at.insert(static_cast<int>(f));
+    resampled = a.resampled && b.resampled;
+    resamplings += resampled;
   }
   CHECK(change == changes.size());
-  CHECK(!resampled_at.empty());
+  CHECK(resamplings > 0);
+  CHECK(changes_after_resampling > 0);  // a change from parents other than the identity
 }
 
 }  // namespace
