@@ -24,8 +24,9 @@ namespace {
 // filter's first frames settle the rest.
 constexpr InitialSpread kSearchSpread{0.005, 0.05};
 
-// Poses a device's prime scores at once (at most the configuration's particles).
-constexpr int kDevicePrimePoses = 1024;
+// Poses a device's prime scores at once (at most the configuration's particles): a GPU scorer's batch,
+// one launch (DevicePoseScorer).
+constexpr int kDevicePrimePoses = 4096;
 
 // One particle's time for a frame budget's first frame (ParticleBudget::prime): twice the least of a few
 // drawings and weighings of the start pose against a depth image that sees the object's centre depth

@@ -120,9 +120,9 @@ TEST_CASE("with a GPU's times, flat at small counts, a budget climbs to what it 
           "[budget]") {
   const double launches = 0.2, per = 1e-4, fixed = 1.0, budget_ms = 5.0;                         // ms
   const int most = 100000, affordable = static_cast<int>((budget_ms - fixed - launches) / per);  // 38,000
-  // Primed by a device's batch of 1,024 poses scored in 0.5 ms (twice 0.5 / 1,024 a particle).
+  // Primed by a device's batch of 4,096 poses scored in 0.5 ms (twice 0.5 / 4,096 a particle).
   ParticleBudget budget(budget_ms, 10, most, 0.5);
-  budget.prime(2 * 0.5 / 1024);
+  budget.prime(2 * 0.5 / 4096);
   int count = budget.next(true);
   CHECK(count > 1000);  // the batch's prime starts far above the fewest
   for (int frame = 0; frame < 60; ++frame) {
