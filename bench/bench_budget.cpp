@@ -1,4 +1,4 @@
-// Accuracy against time per frame on the host backends, for fixed particle counts and for frame budgets
+// Accuracy against time per frame on any backend, for fixed particle counts and for frame budgets
 // (TrackerConfig::budget_ms): mean ADD-S over each YCB-Video clip's objects (ycbv-0000, ycbv-0049) and on
 // the synthetic occluded handset, with the frame time's median and 95th percentile and the mean count.
 // Starts from ground truth moved by 1 cm and 5 degrees (as tests/eval/test_accuracy.cpp), at 80x60.
@@ -7,17 +7,19 @@
 // decimation of the 640x480 frame; png_decode_ms is a depth PNG's decoding (the reading path, on a reader
 // thread beside the tracker in track_sequence; here done before each clip's tracking); update_cpu_* is the
 // thread CPU time of Tracker::update (decimation included), which other processes on the core do not
-// lengthen. Prints CSV rows.
-//   depthtrack_bench_budget [--backend reference,cpu] [--particles 200,50,20] [--budget-ms 5,10]
-//                           [--synthetic-frames N] [--objects NAME,...] [--seed N]
+// lengthen (on a device backend, the host's share of the frame). Prints CSV rows.
+//   depthtrack_bench_budget [--backend reference,cpu,cuda,...] [--particles 200,50,20] [--budget-ms 5,10]
+//                           [--max-particles N] [--synthetic-frames N] [--objects NAME,...] [--seed N]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <depthtrack/device.hpp>
 #include <depthtrack/error.hpp>
 #include <depthtrack/evaluation.hpp>
 #include <depthtrack/synth.hpp>
 #include <filesystem>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -31,12 +33,28 @@ using namespace depthtrack;
 namespace {
 
 struct Setting {
-  int particles = 200;
+  int particles = 200;   // the fixed count, or a budget's most (--max-particles)
   double budget_ms = 0;  // 0: the fixed count
+  // A budget's name carries its most where it is not the default 200.
   std::string name() const {
-    return budget_ms > 0 ? "budget" + bench::compact_number(budget_ms) + "ms" : std::to_string(particles) + "p";
+    if (!(budget_ms > 0)) return std::to_string(particles) + "p";
+    return "budget" + bench::compact_number(budget_ms) + "ms" +
+           (particles == kDefaultMostParticles ? "" : "_max" + std::to_string(particles) + "p");
   }
+  static constexpr int kDefaultMostParticles = 200;
 };
+
+// Where a backend runs, for the rows' platform and device columns: the host's CPU, or the compute
+// device the selector opens.
+struct Where {
+  std::string platform, device;
+};
+
+Where where_of(const std::string& backend) {
+  const std::shared_ptr<Device> device = Device::open(backend);
+  if (device->is_host()) return {"cpu", bench::cpu_name()};
+  return {backend, device->name()};
+}
 
 struct Outcome {
   std::vector<double> adds_mm, frame_ms, tracked_ms, latency_ms, particles;
@@ -66,12 +84,8 @@ TrackerConfig config_for(const std::string& backend, const Setting& s, uint64_t 
   TrackerConfig config;
   config.backend = backend;
   config.seed = seed;
-  if (s.budget_ms > 0) {
-    config.particles = 200;  // the most a budgeted frame runs
-    config.budget_ms = s.budget_ms;
-  } else {
-    config.particles = s.particles;
-  }
+  config.particles = s.particles;  // with a budget, the most a frame runs
+  config.budget_ms = s.budget_ms;
   return config;
 }
 
@@ -128,13 +142,10 @@ void track_synthetic(const Mesh& mesh, const std::vector<SynthFrame>& frames, co
   }
 }
 
-void print(const std::string& backend, const std::string& name, const std::string& test, const Outcome& o) {
-  const std::string platform = "cpu";
-  const std::string device = bench::cpu_name();
+void print(const std::string& backend, const Where& where, const std::string& test, const Outcome& o) {
   const auto row = [&](const char* metric, const char* unit, double value) {
-    bench::print_row({backend, platform, device, "-", test, metric, unit, value});
+    bench::print_row({backend, where.platform, where.device, "-", test, metric, unit, value});
   };
-  (void)name;
   row("adds_mean", "mm", mean(o.adds_mm));
   row("frame_p50", "ms", percentile(o.frame_ms, 0.5));
   row("frame_p95", "ms", percentile(o.frame_ms, 0.95));
@@ -149,13 +160,15 @@ void print(const std::string& backend, const std::string& name, const std::strin
 
 const char* const kUsage =
     "usage: depthtrack_bench_budget [--backend NAME[,NAME...]] [--particles N[,N...]] [--budget-ms MS[,MS...]]\n"
-    "                               [--synthetic-frames N] [--objects NAME[,NAME...]] [--seed N]\n"
+    "                               [--max-particles N] [--synthetic-frames N] [--objects NAME[,NAME...]] [--seed N]\n"
     "Mean ADD-S against frame time (median, 95th percentile) at 80x60 for fixed particle counts and frame\n"
     "budgets, per YCB-Video object (ycbv-0000, ycbv-0049) and on the synthetic occluded handset; prints CSV rows\n"
     "backend,platform,device,driver,test,metric,unit,value.\n"
-    "  --backend     host backends to run: reference (one core), cpu (every core), cpu:N (default reference,cpu)\n"
+    "  --backend     backends to run: reference (one core), cpu (every core), cpu:N, or a device (opencl,\n"
+    "                opencl:pocl, cuda, ...; the kernel renderer) (default reference,cpu)\n"
     "  --particles   fixed counts (default 200,50,20)\n"
-    "  --budget-ms   frame budgets, each with at most 200 particles (default 5,10)\n"
+    "  --budget-ms   frame budgets (default 5,10)\n"
+    "  --max-particles N   the most particles a budgeted frame runs (default 200; e.g. 100000 on a GPU)\n"
     "  --synthetic-frames N   frames of the synthetic sequence (default 60)\n"
     "  --objects     YCB-Video objects to track (default every object of both clips)\n";
 
@@ -168,6 +181,7 @@ int main(int argc, char** argv) {
     std::vector<int> counts = {200, 50, 20};
     std::vector<double> budgets = {5, 10};
     int synthetic_frames = 60;
+    int most_particles = Setting::kDefaultMostParticles;
     uint64_t seed = 1;
     std::vector<std::string> only_objects;
     bench::ArgReader args(argc, argv);
@@ -184,6 +198,8 @@ int main(int argc, char** argv) {
         budgets.clear();
         for (const std::string& n : bench::split(args.value()))
           budgets.push_back(bench::parse_nonnegative_double(n, option));
+      } else if (option == "--max-particles") {
+        most_particles = bench::parse_positive(args.value(), option);
       } else if (option == "--synthetic-frames") {
         synthetic_frames = bench::parse_positive(args.value(), option);
       } else if (option == "--objects") {
@@ -196,7 +212,7 @@ int main(int argc, char** argv) {
     }
     for (const int n : counts) settings.push_back(Setting{n, 0});
     for (const double ms : budgets)
-      if (ms > 0) settings.push_back(Setting{200, ms});
+      if (ms > 0) settings.push_back(Setting{most_particles, ms});
 
     bench::print_header();
     // The reading path: one depth PNG of the clip decoded, the median of its frames.
@@ -223,7 +239,8 @@ int main(int argc, char** argv) {
       const Synthesizer scene(handset, synth);
       for (int i = 0; i < synthetic_frames; ++i) synthetic.push_back(scene.frame(i));
     }
-    for (const std::string& backend : backends)
+    for (const std::string& backend : backends) {
+      const Where where = where_of(backend);
       for (const Setting& s : settings) {
         const TrackerConfig config = config_for(backend, s, seed);
         for (const auto& clip : clips) {
@@ -234,13 +251,14 @@ int main(int argc, char** argv) {
               continue;
             Outcome o;
             track_clip_object(clip, object, config, o);
-            print(backend, object, clip.filename().string() + "_" + object + "_80x60_" + s.name(), o);
+            print(backend, where, clip.filename().string() + "_" + object + "_80x60_" + s.name(), o);
           }
         }
         Outcome o;
         track_synthetic(handset, synthetic, synth, config, o);
-        print(backend, handset_name, "synthetic_occluded_" + handset_name + "_80x60_" + s.name(), o);
+        print(backend, where, "synthetic_occluded_" + handset_name + "_80x60_" + s.name(), o);
       }
+    }
     return 0;
   } catch (const bench::UsageError& e) {
     std::fprintf(stderr, "depthtrack_bench_budget: %s\n%s", e.message.c_str(), kUsage);

@@ -280,6 +280,17 @@ __kernel void resample_scanning(__global const float* weights, __global uint* pa
                     dt_vec3_make(centre_x, centre_y, centre_z), shift);
 }
 
+/* A new particle count between frames (the host drew each child's particle, choice[child], as the
+ * reference's set_particle_count does): the child's kinematic state copied from `from` into `to`. */
+__kernel void gather_states(__global const uint* choice, uint count, __global const float* from,
+                            __global float* to) {
+  const uint child = get_global_id(0);
+  if (child >= count) return;
+  __global const float* source = from + DT_CAST(ulong, choice[child]) * DT_STATE_STRIDE;
+  __global float* target = to + DT_CAST(ulong, child) * DT_STATE_STRIDE;
+  for (int k = 0; k < DT_STATE_STRIDE; ++k) target[k] = source[k];
+}
+
 /* Each particle its own parent: the start, and a state set from the host. */
 __kernel void identity_parents(__global uint* parents, uint count) {
   const uint i = get_global_id(0);

@@ -73,8 +73,8 @@ class Tracker {
   /// Width and height (pixels) of the occlusion state window of the last frame (TrackerConfig::occlusion_window:
   /// the automatic one's size at the start and as it grew; the image's with `full`).
   std::pair<int, int> occlusion_window_size() const;
-  /// The following frames run with `count` particles, 1 to config.particles (host backends, reference and
-  /// cpu; the others throw InputError): the cloud is resampled to that many from its weights. With
+  /// The following frames run with `count` particles, 1 to config.particles (every backend, the same draw):
+  /// the cloud is resampled to that many from its weights. With
   /// config.budget_ms the tracker sets the count itself before each frame (Estimate::particles says it),
   /// and this is an InputError.
   void set_particle_count(int count);

@@ -109,7 +109,7 @@ void bind_tracker(py::module_& m) {
            "Finds the object in this frame without a pose, inside box (u0, v0, u1, v1: inclusive sensor pixels) "
            "or near point (camera frame, metres) when given, and runs the frame")
       .def("set_particle_count", &PyTracker::set_particle_count, py::arg("count"),
-           "The following frames run with count particles, 1 to config.particles (reference and cpu backends; "
+           "The following frames run with count particles, 1 to config.particles (every backend; "
            "not with config.budget_ms, which chooses the count itself)")
       .def_property_readonly("working_camera", &PyTracker::working_camera)
       .def_property_readonly("config", &PyTracker::config, "a copy of the configuration")

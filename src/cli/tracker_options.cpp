@@ -39,7 +39,7 @@ void TrackerOptions::add_to(CLI::App& command) {
           ->capture_default_str();
   budget_option = command
                       .add_option("--budget-ms", flags.budget_ms,
-                                  "Milliseconds a frame may take (reference and cpu backends): each frame's particle "
+                                  "Milliseconds a frame may take (any backend): each frame's particle "
                                   "count is chosen from the tracker's measured times, fewer while the estimate is "
                                   "confident, more when it is not; 0: off, every frame runs --particles")
                       ->capture_default_str();

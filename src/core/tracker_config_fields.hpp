@@ -147,7 +147,7 @@ inline auto fields_of(const TrackerConfig*) {
             "0: as given"),
       field("particles", &S::particles, "particles", "number of particles (with budget_ms: the most a frame runs)"),
       field("budget_ms", &S::budget_ms, "ms",
-            "host backends: the particle count follows each frame's need within this many ms a frame; 0: off"),
+            "any backend: the particle count follows each frame's need within this many ms a frame; 0: off"),
       field("min_particles", &S::min_particles, "particles", "with budget_ms: the fewest particles a frame runs"),
       field("atlas_particles", &S::atlas_particles, "particles",
             "kernel renderer above 80x60: the pose atlas holds at most this many tiles, drawn and weighed in "

@@ -9,6 +9,8 @@
 #include "filter/device_refiner.hpp"
 #include "model/fit_noise.hpp"
 #include "model/kernel_params.hpp"
+#include "philox.h"
+#include "reference/weights.hpp"
 
 namespace depthtrack {
 
@@ -43,7 +45,9 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       mesh_(mesh),
-      plan_(make_frame_plan(config, queue_->info(), frame_sizes(mesh, camera, config))),
+      sizes_(frame_sizes(mesh, camera, config)),
+      plan_(make_frame_plan(config, queue_->info(), sizes_)),
+      layouts_(frame_plan_layouts(config, queue_->info(), sizes_)),
       extent_(model::object_extent(mesh)),
       window_(model::state_window_size(config, camera)),
       next_window_(window_),
@@ -60,8 +64,8 @@ DeviceFilter::DeviceFilter(std::shared_ptr<compute::DeviceContext> device, const
     refiner_ = std::make_unique<DeviceRefiner>(*queue_, device_->programs, mesh, camera, fit,
                                                model::occlusion_definition(config.occlusion_storage));
   }
-  steps_ = std::make_unique<FrameSteps>(*queue_, device_->programs, plan_, config_, camera_, *atlas_source_, buffers_,
-                                        rows_, *frame_times_);
+  steps_ = std::make_unique<FrameSteps>(*queue_, device_->programs, plan_, layouts_, config_, camera_, *atlas_source_,
+                                        buffers_, rows_, *frame_times_);
 }
 
 DeviceFilter::~DeviceFilter() {
@@ -110,10 +114,41 @@ void DeviceFilter::initialize_modes(std::span<const Pose> modes, const InitialSp
   rows_.check(window_);
   rows_.reserve_current(window_);
   steps_->initialize(mode_values, model::initial_params(spread, centre_, modes.size()), window_.pixels());
+  rows_particles_ = plan_.particles;
   frame_ = 0;
   time_ = 0;
   last_resampled_ = false;
   weighed_in_scratch_ = false;
+}
+
+void DeviceFilter::set_particle_count(int count) {
+  if (count < 1 || count > config_.particles)
+    throw InputError("particle count " + std::to_string(count) +
+                     " must be in [1, particles = " + std::to_string(config_.particles) + "]");
+  if (pending_) throw InputError("device filter: set_particle_count() while a frame is not collected");
+  const size_t from = plan_.particles, to = static_cast<size_t>(count);
+  if (to == from) return;
+  // The reads wait for the last frame's resampling; the log weights are 0 after a resampling, as the
+  // reference's.
+  std::vector<float> log_weight(from);
+  std::vector<unsigned> parents(from);
+  buffers_.log_weight.download(std::span<float>(log_weight));
+  buffers_.parents.download(std::span<unsigned>(parents));
+  const reference::WeightSummary weights =
+      reference::summarize_log_weights(std::vector<double>(log_weight.begin(), log_weight.end()));
+  const dt_philox4 words = dt_random_words(config_.seed, 0u, frame_, DT_STREAM_RESIZE, 0u);
+  const std::vector<int> drawn = reference::systematic_resample(weights.normalized, dt_uniform01(words.v[0]), to);
+  // Child j is particle drawn[j]: its kinematic state, and the occlusion rows that particle reads next.
+  std::vector<unsigned> choice(to), rows(to);
+  for (size_t j = 0; j < to; ++j) {
+    choice[j] = static_cast<unsigned>(drawn[j]);
+    rows[j] = parents[choice[j]];
+  }
+  plan_ = make_frame_plan(config_, queue_->info(), sizes_, to);
+  buffers_.choice.upload(std::span<const unsigned>(choice));
+  buffers_.parents.upload(std::span<const unsigned>(rows));
+  steps_->gather(buffers_.choice, to);
+  weighed_in_scratch_ = false;  // the weighed states were the last count's
 }
 
 // One enqueue sequence per frame and one wait, the estimate's read in collect(): the depth goes up
@@ -148,7 +183,7 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   if (config_.occlusion_storage == OcclusionStorage::PerPixelTime) {
     in.now_index = frame_times_->begin_frame(in.now);
     if (frame_times_->retire_due()) {
-      steps_->retire_time_indices(window_.pixels(), in.now_index);
+      steps_->retire_time_indices(rows_particles_, window_.pixels(), in.now_index);
       frame_times_->retired();
     }
   }
@@ -158,6 +193,7 @@ void DeviceFilter::enqueue_update(const DepthImage& depth, double dt) {
   in.window = model::window_params(next_window_, window_, camera_, config_);
   window_ = next_window_;
   steps_->weigh(in, keep_atlas_, events);
+  rows_particles_ = plan_.particles;
   // The device starts on propagate and weigh (most of a small frame's first half) while the host
   // records the summary, and the summary while it records the fit (on a slow host the device had
   // waited for the fit's 19 launches to be recorded). The estimate's read hands over the fit, the

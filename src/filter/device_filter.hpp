@@ -54,8 +54,13 @@ class DeviceFilter final : public FilterBackend {
   Estimate collect() override;
   std::string description() const override;
   std::pair<int, int> occlusion_window_size() const override { return {window_.width, window_.height}; }
+  // The reference's draw of the new cloud from the current weights (ReferenceFilter::set_particle_count),
+  // made on the host from the device's log weights; the kinematic states are gathered on the device and
+  // each child reads its particle's occlusion rows (the parents), so nothing is allocated: the buffers
+  // hold the configuration's particles from the start. The plan follows the count (frame_plan_layouts).
+  void set_particle_count(int count) override;
 
-  // The kernels, layouts and work sizes this filter's frame runs.
+  // The kernels, layouts and work sizes this filter's frame runs (at its current count).
   const FramePlan& plan() const { return plan_; }
 
  private:
@@ -72,7 +77,10 @@ class DeviceFilter final : public FilterBackend {
   Camera camera_;
   Eigen::Vector3d centre_;
   Mesh mesh_;  // kept for score_poses' scorer, made only when it is first called
-  FramePlan plan_;
+  FrameSizes sizes_;
+  FramePlan plan_;                  // the current count's (the configuration's until set_particle_count)
+  std::vector<FramePlan> layouts_;  // every count's layout (frame_plan_layouts), whose kernels are built
+  size_t rows_particles_ = 0;       // the particles whose occlusion rows the current rows hold
   // The state window (TrackerConfig::occlusion_window): where the occlusion rows lie (window_), and
   // where the next frame keeps them (next_window_: centred on the last estimate; an automatic window
   // sized from the object's extent).

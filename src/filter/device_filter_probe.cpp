@@ -9,9 +9,20 @@
 
 namespace depthtrack {
 
+// The buffers hold the most particles; the current count's are the first.
+std::vector<model::ParticleState> DeviceFilterProbe::current(std::vector<model::ParticleState> all) const {
+  all.resize(f_.plan_.particles);
+  return all;
+}
+
 std::vector<double> DeviceFilterProbe::last_log_likelihoods() const {
   const std::vector<float> ll = f_.buffers_.log_likelihood.download();
-  return std::vector<double>(ll.begin(), ll.end());
+  return std::vector<double>(ll.begin(), ll.begin() + static_cast<std::ptrdiff_t>(f_.plan_.particles));
+}
+
+std::vector<double> DeviceFilterProbe::log_weights() const {
+  const std::vector<float> lw = f_.buffers_.log_weight.download();
+  return std::vector<double>(lw.begin(), lw.begin() + static_cast<std::ptrdiff_t>(f_.plan_.particles));
 }
 
 std::vector<int> DeviceFilterProbe::last_parents() const {
@@ -26,12 +37,12 @@ std::vector<int> DeviceFilterProbe::last_parents() const {
 }
 
 std::vector<model::ParticleState> DeviceFilterProbe::particles() const {
-  return unpack_particles(f_.buffers_.state.download());
+  return current(unpack_particles(f_.buffers_.state.download()));
 }
 
 // Resampling gathers into the scratch buffer and swaps, so the weighed states are left there.
 std::vector<model::ParticleState> DeviceFilterProbe::weighed_particles() const {
-  return unpack_particles((f_.weighed_in_scratch_ ? f_.buffers_.scratch_state : f_.buffers_.state).download());
+  return current(unpack_particles((f_.weighed_in_scratch_ ? f_.buffers_.scratch_state : f_.buffers_.state).download()));
 }
 
 // Particle i's row is parents[i] of the buffer (cl/weigh.cl folds the gather into the next frame).
@@ -106,6 +117,7 @@ void DeviceFilterProbe::set_state(const std::vector<model::ParticleState>& parti
   if (!occlusion.empty()) f_.rows_.occlusion.upload(occlusion);
   if (!occlusion_time.empty()) f_.rows_.time.upload(f_.frame_times_->indices(occlusion_time));
   f_.steps_->identity_parents();  // in queue order before the next frame's weigh
+  f_.rows_particles_ = count;
 }
 
 }  // namespace depthtrack

@@ -16,6 +16,8 @@ class DeviceFilterProbe {
   std::vector<double> last_log_likelihoods() const;
   std::vector<int> last_parents() const;
   std::vector<model::ParticleState> particles() const;
+  // The log weights the next frame adds to (0 after a resampling).
+  std::vector<double> log_weights() const;
   // The particles as the last update weighed them (before it resampled).
   std::vector<model::ParticleState> weighed_particles() const;
   // Where the occlusion rows lie: the state window of the last frame (or of the start).
@@ -40,6 +42,7 @@ class DeviceFilterProbe {
                  const std::vector<float>& occlusion_time, const std::vector<double>& log_weights);
 
  private:
+  std::vector<model::ParticleState> current(std::vector<model::ParticleState> all) const;
   // Per-pixel rows downloaded in particle order: particle i's is row parents[i].
   template <typename T>
   std::vector<T> rows_by_parent(const compute::Buffer<T>& rows) const;

@@ -73,8 +73,9 @@ std::vector<double> DevicePoseScorer::score(std::span<const Pose> poses, const D
     const size_t n = std::min(batch_, poses.size() - first);
     for (size_t i = 0; i < n; ++i) write_pose(poses[first + i], packed.data() + i * DT_STATE_STRIDE);
     states_.upload(std::span<const float>(packed.data(), n * DT_STATE_STRIDE));
-    kernels::launch({queue_, *rasterize_, compute::NdRange::linear(n * kRasterizeGroup, kRasterizeGroup)},
-                    kernels::rasterize_args(mesh_, camera_, layout_.kernel_args(), states_, atlas_, unused_boxes_, 0u, 0u));
+    kernels::launch(
+        {queue_, *rasterize_, compute::NdRange::linear(n * kRasterizeGroup, kRasterizeGroup)},
+        kernels::rasterize_args(mesh_, camera_, layout_.kernel_args(), states_, atlas_, unused_boxes_, 0u, 0u));
     kernels::launch({queue_, *score_, compute::NdRange::linear(n * kScoreGroup, kScoreGroup)},
                     kernels::ScoreArgs{.atlas = atlas_,
                                        .observed = observed_,

@@ -1,6 +1,6 @@
 #pragma once
 // The device filter's per-particle buffers besides the occlusion rows (filter/state_rows.hpp), sized by
-// the frame's plan.
+// the plan of the most particles (TrackerConfig::particles) once: a smaller count uses their first rows.
 #include <cstddef>
 #include <vector>
 
@@ -21,6 +21,7 @@ struct FilterBuffers {
         weights(queue, plan.particles),
         estimate(queue, DT_EST_SIZE),
         parents(queue, plan.particles),
+        choice(queue, plan.particles),
         // Drawn inside weigh, the atlas is stored only when asked for (DeviceFilterProbe::keep_atlas).
         atlas(queue, plan.needs_atlas() ? atlas_floats : 1),
         observed(queue, plan.pixels),
@@ -33,6 +34,8 @@ struct FilterBuffers {
   // Particle i's parent in the last resampling (the identity after initialize and set_state): the next
   // frame's weigh reads particle i's occlusion rows from row parents[i].
   compute::Buffer<unsigned> parents;
+  // A new count's children's particles (DeviceFilter::set_particle_count), as many as the most particles.
+  compute::Buffer<unsigned> choice;
   compute::Buffer<float> atlas, observed;
   compute::Buffer<unsigned> unused_boxes;  // weigh's boxes argument where the atlas source keeps none
   compute::Buffer<float> no_correction;    // the resampling's correction argument without the refinement

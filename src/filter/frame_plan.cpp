@@ -113,9 +113,10 @@ FrameSizes frame_sizes(const Mesh& mesh, const Camera& camera, const TrackerConf
   return sizes;
 }
 
-FramePlan make_frame_plan(const TrackerConfig& config, const compute::DeviceInfo& device, const FrameSizes& sizes) {
+FramePlan make_frame_plan(const TrackerConfig& config, const compute::DeviceInfo& device, const FrameSizes& sizes,
+                          std::optional<size_t> particles) {
   FramePlan plan;
-  plan.particles = static_cast<size_t>(config.particles);
+  plan.particles = particles.value_or(static_cast<size_t>(config.particles));
   plan.pixels = static_cast<size_t>(sizes.width) * static_cast<size_t>(sizes.height);
   plan.whole_image_state = sizes.whole_image_state;
   if (sizes.device_mesh_vertices && renders_inside_weigh(config.renderer, plan.pixels, device.local_memory)) {
@@ -141,6 +142,23 @@ FramePlan make_frame_plan(const TrackerConfig& config, const compute::DeviceInfo
   else
     plan.resample = plan.summary == SummaryStep::Wide ? ResampleStep::WidePrefixSum : ResampleStep::PrefixSum;
   return plan;
+}
+
+std::vector<FramePlan> frame_plan_layouts(const TrackerConfig& config, const compute::DeviceInfo& device,
+                                          const FrameSizes& sizes) {
+  const size_t most = static_cast<size_t>(config.particles);
+  std::vector<FramePlan> plans;
+  for (const size_t count : {size_t{1}, kFusedLaunchParticles, kFusedLaunchParticles + 1, kWideSummaryParticles - 1,
+                             kWideSummaryParticles, most})
+    if (count <= most && (plans.empty() || plans.back().particles < count)) {
+      FramePlan plan = make_frame_plan(config, device, sizes, count);
+      const bool same = !plans.empty() && plans.back().propagate_in_weigh == plan.propagate_in_weigh &&
+                        plans.back().summary == plan.summary && plans.back().resample == plan.resample;
+      if (same && count != most) continue;
+      if (same) plans.pop_back();  // the most's plan stands for its layout
+      plans.push_back(plan);
+    }
+  return plans;
 }
 
 std::optional<kernels::SummaryKernel> FramePlan::summary_kernel() const {

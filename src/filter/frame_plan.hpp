@@ -8,6 +8,7 @@
 #include <depthtrack/camera.hpp>
 #include <depthtrack/mesh.hpp>
 #include <optional>
+#include <vector>
 
 #include "compute/device_info.hpp"
 #include "compute/queue.hpp"
@@ -137,7 +138,18 @@ struct FramePlan {
   std::optional<kernels::SummaryKernel> summary_kernel() const;
 };
 
-// The plan for config's filter on this device and these sizes.
-FramePlan make_frame_plan(const TrackerConfig& config, const compute::DeviceInfo& device, const FrameSizes& sizes);
+// The plan for config's filter on this device and these sizes, running `particles` (1 to
+// config.particles; none given: config.particles). What is allocated (the atlas' tiles) follows
+// config.particles whatever the count.
+FramePlan make_frame_plan(const TrackerConfig& config, const compute::DeviceInfo& device, const FrameSizes& sizes,
+                          std::optional<size_t> particles = std::nullopt);
+
+// The plans of the counts 1 to config.particles at which make_frame_plan's count-dependent choices
+// (propagate inside weigh and the scanning resampling up to kFusedLaunchParticles, the wide summary from
+// kWideSummaryParticles) change, one per layout the filter may run: the kernels a filter whose count
+// changes (FilterBackend::set_particle_count) builds at the start. The first is 1's layout, the last
+// config.particles' plan.
+std::vector<FramePlan> frame_plan_layouts(const TrackerConfig& config, const compute::DeviceInfo& device,
+                                          const FrameSizes& sizes);
 
 }  // namespace depthtrack

@@ -19,9 +19,10 @@ namespace depthtrack {
 struct FrameSteps::Kernels {
   std::shared_ptr<compute::Program> resample_program, initialize_program, weigh_program, propagate_program,
       summarize_program;
-  std::unique_ptr<compute::Kernel> render_weigh, weigh, propagate, summarize, prefix_sum, resample_particles,
-      resample_scanning, identity_parents, fill, initialize_particles, fill_per_particle, fill_time_indices,
+  std::unique_ptr<compute::Kernel> weigh, propagate, summarize, prefix_sum, resample_particles, resample_scanning,
+      gather_states, identity_parents, fill, initialize_particles, fill_per_particle, fill_time_indices,
       retire_time_indices;
+  std::unique_ptr<compute::Kernel> render_weigh[2];  // [propagate_in_weigh]
 };
 
 namespace {
@@ -31,8 +32,8 @@ std::string group_size(size_t items) {
 }  // namespace
 
 FrameSteps::FrameSteps(compute::Queue& queue, compute::ProgramCache& programs, const FramePlan& plan,
-                       const TrackerConfig& config, const Camera& camera, AtlasSource& atlas, FilterBuffers& buffers,
-                       StateRows& rows, FrameTimeTable& times)
+                       std::span<const FramePlan> layouts, const TrackerConfig& config, const Camera& camera,
+                       AtlasSource& atlas, FilterBuffers& buffers, StateRows& rows, FrameTimeTable& times)
     : queue_(queue),
       plan_(plan),
       config_(config),
@@ -48,13 +49,17 @@ FrameSteps::FrameSteps(compute::Queue& queue, compute::ProgramCache& programs, c
       plan.whole_image_state ? "DT_WHOLE_IMAGE_STATE=1" : "DT_WHOLE_IMAGE_STATE=0"};
   Kernels& k = *k_;
   k.resample_program = programs.program("resample.cl", defines);
-  if (plan.summary == SummaryStep::Wide)
-    wide_ = std::make_unique<WideSummary>(queue, programs, occlusion, plan.particles);
-  if (plan.resample == ResampleStep::PrefixSum) k.prefix_sum = k.resample_program->kernel("prefix_sum");
-  if (plan.resample == ResampleStep::Scanning)
-    k.resample_scanning = k.resample_program->kernel("resample_scanning");
-  else
-    k.resample_particles = k.resample_program->kernel("resample_particles");
+  for (const FramePlan& layout : layouts) {
+    if (layout.summary == SummaryStep::Wide && !wide_)  // sized for the most particles, the last layout's
+      wide_ = std::make_unique<WideSummary>(queue, programs, occlusion, layouts.back().particles);
+    if (layout.resample == ResampleStep::PrefixSum && !k.prefix_sum)
+      k.prefix_sum = k.resample_program->kernel("prefix_sum");
+    if (layout.resample == ResampleStep::Scanning && !k.resample_scanning)
+      k.resample_scanning = k.resample_program->kernel("resample_scanning");
+    if (layout.resample != ResampleStep::Scanning && !k.resample_particles)
+      k.resample_particles = k.resample_program->kernel("resample_particles");
+  }
+  k.gather_states = k.resample_program->kernel("gather_states");
   k.identity_parents = k.resample_program->kernel("identity_parents");
   k.fill = k.resample_program->kernel("fill");
   k.initialize_program = programs.program("initialize.cl", defines);
@@ -67,31 +72,35 @@ FrameSteps::FrameSteps(compute::Queue& queue, compute::ProgramCache& programs, c
   if (plan.weigh == WeighStep::RenderWeigh) {
     if (!atlas.device_mesh()) throw std::logic_error("frame plan: render_weigh without the atlas source's device mesh");
     const RenderWeighLayout& layout = plan.render_weigh;
-    k.render_weigh =
-        programs
-            .program("render_weigh.cl",
-                     {defines[0], defines[1], defines[2], "DT_TILE_PIXELS=" + std::to_string(layout.tile_pixels),
-                      "DT_SHARED_POINTS=" + std::to_string(layout.shared_points),
-                      "DT_PROPAGATE_INSIDE=" + std::string(plan.propagate_in_weigh ? "1" : "0"),
-                      "DT_RESIDENT_GROUPS=" + std::to_string(layout.resident_groups)})
-            ->kernel("render_weigh");
+    for (const FramePlan& l : layouts) {
+      std::unique_ptr<compute::Kernel>& kernel = k.render_weigh[l.propagate_in_weigh ? 1 : 0];
+      if (kernel) continue;
+      kernel = programs
+                   .program("render_weigh.cl",
+                            {defines[0], defines[1], defines[2], "DT_TILE_PIXELS=" + std::to_string(layout.tile_pixels),
+                             "DT_SHARED_POINTS=" + std::to_string(layout.shared_points),
+                             "DT_PROPAGATE_INSIDE=" + std::string(l.propagate_in_weigh ? "1" : "0"),
+                             "DT_RESIDENT_GROUPS=" + std::to_string(layout.resident_groups)})
+                   ->kernel("render_weigh");
+    }
   } else {  // the atlas drawn by its source (only each pose's box where it can), then weighed
     k.weigh_program = programs.program("weigh.cl", defines);
     k.weigh = k.weigh_program->kernel("weigh");
     atlas.draw_boxed();
     if (!atlas.tile_boxes()) buffers.unused_boxes = compute::Buffer<unsigned>(queue, 4);  // whole tiles
   }
-  if (plan.builds_propagate()) {
+  if (std::any_of(layouts.begin(), layouts.end(), [](const FramePlan& l) { return l.builds_propagate(); })) {
     k.propagate_program = programs.program("propagate.cl", defines);
     k.propagate = k.propagate_program->kernel("propagate");
   }
-  if (const auto summary = plan.summary_kernel()) {
-    std::vector<std::string> summary_defines = defines;
-    summary_defines.front() = group_size(plan.summary_group);
-    k.summarize_program = programs.program("summarize.cl", summary_defines);
-    k.summarize = k.summarize_program->kernel(
-        std::visit([](auto kernel) { return decltype(kernel)::Arguments::kernel; }, *summary));
-  }
+  for (const FramePlan& layout : layouts)
+    if (const auto summary = layout.summary_kernel(); summary && !k.summarize) {
+      std::vector<std::string> summary_defines = defines;
+      summary_defines.front() = group_size(layout.summary_group);
+      k.summarize_program = programs.program("summarize.cl", summary_defines);
+      k.summarize = k.summarize_program->kernel(
+          std::visit([](auto kernel) { return decltype(kernel)::Arguments::kernel; }, *summary));
+    }
 }
 
 FrameSteps::~FrameSteps() = default;
@@ -146,11 +155,11 @@ void FrameSteps::propagate(const FrameInputs& in, FrameEvents& events) {
 }
 
 // Rare (cl/dt_time_index.h), so untimed.
-void FrameSteps::retire_time_indices(size_t state_pixels, unsigned now_index) {
-  kernels::launch({queue_, *k_->retire_time_indices, compute::NdRange::linear(256 * kFilterGroup, kFilterGroup), false},
-                  kernels::RetireTimeIndicesArgs{.indices = rows_.time,
-                                                 .count = static_cast<uint64_t>(plan_.particles * state_pixels),
-                                                 .now_index = now_index});
+void FrameSteps::retire_time_indices(size_t rows, size_t state_pixels, unsigned now_index) {
+  kernels::launch(
+      {queue_, *k_->retire_time_indices, compute::NdRange::linear(256 * kFilterGroup, kFilterGroup), false},
+      kernels::RetireTimeIndicesArgs{
+          .indices = rows_.time, .count = static_cast<uint64_t>(rows * state_pixels), .now_index = now_index});
 }
 
 // Each particle's occlusion rows from its parent's row (the last frame's resampling) into its own row of
@@ -160,7 +169,8 @@ void FrameSteps::weigh(const FrameInputs& in, bool keep_atlas, FrameEvents& even
   if (plan_.weigh == WeighStep::RenderWeigh) {
     const MeshBuffers& mesh = *atlas_.device_mesh();
     events.weighed.push_back(kernels::launch(
-        {queue_, *k_->render_weigh, plan_.group_per_particle(plan_.particles), config_.step_timings},
+        {queue_, *k_->render_weigh[plan_.propagate_in_weigh ? 1 : 0], plan_.group_per_particle(plan_.particles),
+         config_.step_timings},
         kernels::RenderWeighArgs{.states = b_.state,
                                  .vertices = mesh.vertices,
                                  .triangles = mesh.triangles,
@@ -225,8 +235,8 @@ void FrameSteps::weigh(const FrameInputs& in, bool keep_atlas, FrameEvents& even
 void FrameSteps::summarize(const Eigen::Vector3f& centre, float kl_threshold, unsigned karcher_steps,
                            FrameEvents& events) {
   if (plan_.summary == SummaryStep::Wide) {
-    events.summarized = wide_->summarize(b_.state, b_.log_weight, b_.log_likelihood, b_.weights, b_.estimate,
-                                         centre.x(), centre.y(), centre.z(), kl_threshold, karcher_steps);
+    events.summarized = wide_->summarize(plan_.particles, b_.state, b_.log_weight, b_.log_likelihood, b_.weights,
+                                         b_.estimate, centre.x(), centre.y(), centre.z(), kl_threshold, karcher_steps);
   } else if (const auto summary = plan_.summary_kernel()) {
     const kernels::SummaryInputs inputs{.state = b_.state,
                                         .log_weight = b_.log_weight,
@@ -273,7 +283,7 @@ void FrameSteps::resample(unsigned frame, const Eigen::Vector3f& centre, const c
     out.push_back(kernels::launch({queue_, *k_->resample_scanning, plan_.scanning(), config_.step_timings}, args));
   } else {
     if (plan_.resample == ResampleStep::WidePrefixSum)
-      out = wide_->prefix_sum(b_.weights, b_.cumulative, b_.estimate);
+      out = wide_->prefix_sum(plan_.particles, b_.weights, b_.cumulative, b_.estimate);
     else
       out.push_back(kernels::launch(
           {queue_, *k_->prefix_sum, plan_.one_group(kFilterGroup), config_.step_timings},
@@ -281,6 +291,17 @@ void FrameSteps::resample(unsigned frame, const Eigen::Vector3f& centre, const c
               .values = b_.weights, .cumulative = b_.cumulative, .count = count, .estimate = b_.estimate}));
     out.push_back(kernels::launch({queue_, *k_->resample_particles, plan_.per_particle(), config_.step_timings}, args));
   }
+  std::swap(b_.state, b_.scratch_state);
+}
+
+// Child j of the new count takes particle choice[j]'s kinematic state, gathered into the scratch buffer,
+// which becomes the state, with its log weight at 0; the parents are set from the host.
+void FrameSteps::gather(const compute::Buffer<unsigned>& choice, size_t count) {
+  const unsigned n = static_cast<unsigned>(count);
+  kernels::launch({queue_, *k_->gather_states, plan_.per_particle()},
+                  kernels::GatherStatesArgs{.choice = choice, .count = n, .from = b_.state, .to = b_.scratch_state});
+  kernels::launch({queue_, *k_->fill, plan_.per_particle()},
+                  kernels::FillArgs{.values = b_.log_weight, .count = n, .value = 0.0f});
   std::swap(b_.state, b_.scratch_state);
 }
 

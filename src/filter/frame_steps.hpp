@@ -39,9 +39,12 @@ struct FrameEvents {
 
 class FrameSteps {
  public:
-  // The buffers, rows, times and atlas source are the filter's and outlive the steps.
-  FrameSteps(compute::Queue& queue, compute::ProgramCache& programs, const FramePlan& plan, const TrackerConfig& config,
-             const Camera& camera, AtlasSource& atlas, FilterBuffers& buffers, StateRows& rows, FrameTimeTable& times);
+  // The plan, buffers, rows, times and atlas source are the filter's and outlive the steps. plan: the current
+  // count's, which the steps read at each launch (the filter replaces it when its count changes); layouts:
+  // every layout it may take (frame_plan_layouts), whose kernels are built now.
+  FrameSteps(compute::Queue& queue, compute::ProgramCache& programs, const FramePlan& plan,
+             std::span<const FramePlan> layouts, const TrackerConfig& config, const Camera& camera, AtlasSource& atlas,
+             FilterBuffers& buffers, StateRows& rows, FrameTimeTable& times);
   ~FrameSteps();
 
   // The start (cl/initialize.cl): particle i drawn around mode i % modes, weights equal, parents the
@@ -51,13 +54,18 @@ class FrameSteps {
 
   // The frame, in order.
   void propagate(const FrameInputs& in, FrameEvents& events);
-  void retire_time_indices(size_t state_pixels, unsigned now_index);  // before any of this frame's is written
+  // Before any of this frame's is written; rows: those the last frame wrote (its count).
+  void retire_time_indices(size_t rows, size_t state_pixels, unsigned now_index);
   void weigh(const FrameInputs& in, bool keep_atlas, FrameEvents& events);
   // centre: the mesh's; karcher_steps: the rotation mean's iterations (none where the fit replaces it).
   void summarize(const Eigen::Vector3f& centre, float kl_threshold, unsigned karcher_steps, FrameEvents& events);
   // Gathers the children into the scratch state and swaps it in (moved by correction where shift).
   void resample(unsigned frame, const Eigen::Vector3f& centre, const compute::Buffer<float>& correction, bool shift,
                 FrameEvents& events);
+
+  // Between frames, a new count (DeviceFilter::set_particle_count): count children, child j the copy of
+  // particle choice[j] (cl/resample.cl's gather_states), their log weights 0.
+  void gather(const compute::Buffer<unsigned>& choice, size_t count);
 
  private:
   struct Kernels;

@@ -22,7 +22,6 @@ std::vector<std::string> definitions(const std::string& occlusion_definition) {
 WideSummary::WideSummary(compute::Queue& queue, compute::ProgramCache& programs,
                          const std::string& occlusion_definition, size_t particles)
     : queue_(queue),
-      particles_(particles),
       groups_(groups_for(particles)),
       summarize_program_(programs.program("summarize_wide.cl", definitions(occlusion_definition))),
       resample_program_(programs.program("resample.cl", definitions(occlusion_definition))),
@@ -36,14 +35,15 @@ WideSummary::WideSummary(compute::Queue& queue, compute::ProgramCache& programs,
       partials_(queue, DT_PARTIAL_FIELDS * groups_),
       range_totals_(queue, 2 * groups_) {}
 
-std::vector<compute::EventPtr> WideSummary::summarize(const compute::Buffer<float>& states,
+std::vector<compute::EventPtr> WideSummary::summarize(size_t particles, const compute::Buffer<float>& states,
                                                       const compute::Buffer<float>& log_weight,
                                                       const compute::Buffer<float>& log_likelihood,
                                                       compute::Buffer<float>& weights, compute::Buffer<float>& estimate,
                                                       float centre_x, float centre_y, float centre_z,
                                                       float kl_threshold, unsigned karcher_steps) {
-  const auto grid = compute::NdRange::linear(groups_ * kGroupSize, kGroupSize);
-  const unsigned count = static_cast<unsigned>(particles_);
+  const size_t groups = this->groups(particles);
+  const auto grid = compute::NdRange::linear(groups * kGroupSize, kGroupSize);
+  const unsigned count = static_cast<unsigned>(particles);
   // Timed by its first and last launch (Event::elapsed_since_ms), as the spread refinement is.
   const compute::EventPtr first = kernels::launch(
       {queue_, *max_, grid},
@@ -68,7 +68,7 @@ std::vector<compute::EventPtr> WideSummary::summarize(const compute::Buffer<floa
                                  kernels::SummarizeFinishArgs{.state = states,
                                                               .estimate = estimate,
                                                               .count = count,
-                                                              .groups = static_cast<unsigned>(groups_),
+                                                              .groups = static_cast<unsigned>(groups),
                                                               .centre_x = centre_x,
                                                               .centre_y = centre_y,
                                                               .centre_z = centre_z,
@@ -77,11 +77,12 @@ std::vector<compute::EventPtr> WideSummary::summarize(const compute::Buffer<floa
                                                               .karcher_steps = karcher_steps})};
 }
 
-std::vector<compute::EventPtr> WideSummary::prefix_sum(const compute::Buffer<float>& weights,
+std::vector<compute::EventPtr> WideSummary::prefix_sum(size_t particles, const compute::Buffer<float>& weights,
                                                        compute::Buffer<float>& cumulative,
                                                        const compute::Buffer<float>& estimate) {
-  const auto grid = compute::NdRange::linear(groups_ * kGroupSize, kGroupSize);
-  const unsigned count = static_cast<unsigned>(particles_);
+  const size_t groups = this->groups(particles);
+  const auto grid = compute::NdRange::linear(groups * kGroupSize, kGroupSize);
+  const unsigned count = static_cast<unsigned>(particles);
   return {kernels::launch({queue_, *totals_, grid},
                           kernels::PrefixSumTotalsArgs{
                               .values = weights, .count = count, .totals = range_totals_, .estimate = estimate}),

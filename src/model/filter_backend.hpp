@@ -58,11 +58,11 @@ class FilterBackend {
   virtual const std::vector<float>* rendering_of(const Pose&) const { return nullptr; }
   // The following updates run with `count` particles, 1 to the configuration's `particles`: the cloud is
   // drawn from its current weights by systematic resampling (its own random stream), every child then
-  // weighing the same. The same count is nothing. Only the host filters change their count; the others
-  // throw InputError.
+  // weighing the same. The same count is nothing. Every filter here changes its count (the reference's
+  // draw); one that does not throws InputError.
   virtual void set_particle_count(int count) {
     throw InputError(description() + " runs a fixed particle count (" + std::to_string(count) +
-                     " asked): changing it (set_particle_count, budget_ms) needs the reference or cpu backend");
+                     " asked): it cannot change it (set_particle_count, budget_ms)");
   }
   // Width and height of the occlusion state window the last frame kept (TrackerConfig::occlusion_window;
   // 0 x 0 for a filter without one).

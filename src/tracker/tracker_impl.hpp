@@ -24,6 +24,8 @@ struct Tracker::Impl {
   void set_particle_count(int count);
   // With a budget: the next frame's particle count, set on the filter; reseed: it starts a new cloud.
   void choose_particle_count(bool reseed);
+  // The poses the budget's prime scores at once: 1 on the host, a batch on a device (particle_time_ms).
+  int prime_poses() const;
   // The working-resolution frame (decimated only when needed); InputError for a wrong size.
   const DepthImage& working_frame(const DepthImage& depth, DepthImage& storage) const;
   // The working-resolution frame of a view, read in one pass; InputError for a wrong size.

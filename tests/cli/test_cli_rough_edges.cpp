@@ -159,6 +159,7 @@ TEST_CASE("the benchmarks answer --help and refuse malformed numbers", "[cli][be
       {"depthtrack_bench_error_axes", "--fine-refit 320", "is not of the form WxH"},
       {"depthtrack_bench_budget", "--budget-ms -1", "--budget-ms: '-1' is not a number >= 0"},
       {"depthtrack_bench_budget", "--particles 0", "--particles: '0' is not a positive integer"},
+      {"depthtrack_bench_budget", "--max-particles 0", "--max-particles: '0' is not a positive integer"},
   };
   for (const Case& c : cases) {
     if (!built(c.program)) continue;

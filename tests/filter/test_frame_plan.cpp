@@ -1,6 +1,7 @@
 // The device frame's plan (filter/frame_plan.hpp) for described devices: which steps a frame runs, in
 // which layout, over which work sizes, from the configuration, the device's capabilities and the sizes.
 // No device is opened; the numbers are worked out by hand from the rules the plan's header states.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <depthtrack/error.hpp>
 
@@ -162,4 +163,37 @@ TEST_CASE("a fit layout the device cannot run is refused when the plan is made",
   CHECK_THROWS_AS(make_frame_plan(config, old_gpu, sizes_80x60()), InputError);
   config.refine.layout = RefineLayout::Auto;
   CHECK(*make_frame_plan(config, old_gpu, sizes_80x60()).refine == RefineLayout::OneGroup);
+}
+
+TEST_CASE("a count that changes takes the layouts its counts' plans take, all listed at the start", "[plan][budget]") {
+  // Up to 100,000: the fused launches up to 4,096, the one-group prefix sum to 16,383, the wide summary from
+  // 16,384; the last listed is the most's plan.
+  const TrackerConfig config = config_of(100000);
+  const auto layouts = frame_plan_layouts(config, graph_gpu(), sizes_80x60());
+  REQUIRE(layouts.size() == 3);
+  CHECK(layouts[0].particles == 1);
+  CHECK(layouts[0].propagate_in_weigh);
+  CHECK(layouts[0].resample == ResampleStep::Scanning);
+  CHECK(layouts[1].particles == 4097);
+  CHECK_FALSE(layouts[1].propagate_in_weigh);
+  CHECK(layouts[1].resample == ResampleStep::PrefixSum);
+  CHECK(layouts[2].particles == 100000);
+  CHECK(layouts[2].summary == SummaryStep::Wide);
+  CHECK(layouts[2].resample == ResampleStep::WidePrefixSum);
+  // Every count's plan is one of them but for its count; what is allocated (the atlas) is the most's.
+  for (size_t n = 1; n <= 100000; n += n < 20000 ? 1 : 97) {
+    const FramePlan plan = make_frame_plan(config, graph_gpu(), sizes_80x60(), n);
+    REQUIRE(plan.particles == n);
+    REQUIRE(plan.atlas_tiles == layouts.back().atlas_tiles);
+    const bool listed = std::any_of(layouts.begin(), layouts.end(), [&](const FramePlan& l) {
+      return l.propagate_in_weigh == plan.propagate_in_weigh && l.summary == plan.summary &&
+             l.resample == plan.resample && l.summary_group == plan.summary_group && l.refine == plan.refine &&
+             l.weigh == plan.weigh;
+    });
+    if (!listed) FAIL("count " << n << " takes a layout not listed");
+  }
+  // A small cloud has one layout: its own plan.
+  const auto small = frame_plan_layouts(config_of(200), graph_gpu(), sizes_80x60());
+  REQUIRE(small.size() == 1);
+  CHECK(small[0].particles == 200);
 }

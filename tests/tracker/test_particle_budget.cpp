@@ -112,6 +112,32 @@ TEST_CASE("a primed particle budget sizes the first frame from one particle's ti
   CHECK(unprimed.next(true) == 10);
 }
 
+// A GPU's frame is nearly flat in the count at small counts: its particle loops take a launch time a of
+// their own besides b per particle, which the model's per-particle time (loops / n) overstates at small n.
+// Each frame's count is then what the last one's times afford, and n -> room / (a / n + b) climbs to the
+// fixed point a + b n = budget - fixed, the count the budget truly affords, from below: no frame over it.
+TEST_CASE("with a GPU's times, flat at small counts, a budget climbs to what it affords and stays within it",
+          "[budget]") {
+  const double launches = 0.2, per = 1e-4, fixed = 1.0, budget_ms = 5.0;                         // ms
+  const int most = 100000, affordable = static_cast<int>((budget_ms - fixed - launches) / per);  // 38,000
+  // Primed by a device's batch of 4,096 poses scored in 0.5 ms (twice 0.5 / 4,096 a particle).
+  ParticleBudget budget(budget_ms, 10, most, 0.5);
+  budget.prime(2 * 0.5 / 4096);
+  int count = budget.next(true);
+  CHECK(count > 1000);  // the batch's prime starts far above the fewest
+  for (int frame = 0; frame < 60; ++frame) {
+    const double loops = launches + per * count;
+    INFO("frame " << frame << ", " << count << " particles");
+    REQUIRE(fixed + loops <= budget_ms + 1e-9);
+    budget.observe(timed_frame(count, loops, fixed + loops, 0.2, TrackStatus::Lost));  // lost: the most afforded
+    const int next = budget.next(false);
+    CHECK(next >= count);  // from below, never back
+    count = next;
+  }
+  CHECK(count == Approx(affordable).epsilon(0.01));
+  CHECK(count < most);
+}
+
 TEST_CASE("the reference filter changes its particle count by resampling its weighted cloud", "[budget][filter]") {
   const Mesh mesh = builtin_demo_mesh();
   const SynthConfig synth = test::small_scene(3);

@@ -47,4 +47,13 @@ struct ResampleArgs {
   }
 };
 
+// Child j of count takes particle choice[j]'s kinematic state from `from` into `to`.
+struct GatherStatesArgs {
+  Buf<unsigned> choice;
+  unsigned count;
+  Buf<float> from;
+  Buf<float> to;  // written
+  auto in_order() const { return std::tie(choice, count, from, to); }
+};
+
 }  // namespace depthtrack::kernels
