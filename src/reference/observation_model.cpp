@@ -41,30 +41,8 @@ ObservedDepth observed_depth(const ObservationModel& m, double y) {
   return o;
 }
 
-PixelDensities pixel_densities(const ObservationModel& m, const ObservedDepth& o, double y_hat) {
-  const double tail = m.tail_weight / m.max_depth;
-  const double keep = 1.0 - m.tail_weight;
-  const double lambda = m.occluder_rate;
-  const double z = (o.y - y_hat) / o.sigma;
-  const double gaussian = std::exp(-0.5 * z * z) / o.gaussian_norm;
-  // The same prior on [0, y_hat]: the background's times the part of it in front of y_hat,
-  // erfc(-x) / (2 (1 - exp(-lambda y_hat))), which no longer overflows.
-  const double in_front =
-      std::erfc(-(y_hat - o.y + o.erfc_shift) / o.erfc_width) / (-2.0 * std::expm1(-lambda * y_hat));
-  return {(tail + keep * gaussian) * o.scale, o.tail_scaled + o.background * in_front, o.tail_scaled + o.background,
-          o.log_scale};
-}
-
 PixelDensities pixel_densities(const ObservationModel& m, double y, double y_hat) {
   return pixel_densities(m, observed_depth(m, y), y_hat);
-}
-
-double pixel_log_ratio(const PixelDensities& d, double p) {
-  return std::log(((1.0 - p) * d.visible + p * d.occluded) / d.background);
-}
-
-double occlusion_posterior(const PixelDensities& d, double p) {
-  return p * d.occluded / ((1.0 - p) * d.visible + p * d.occluded);
 }
 
 }  // namespace depthtrack::reference

@@ -21,6 +21,8 @@ Rasterizer::Rasterizer(const Mesh& mesh, const Camera& camera, double near, doub
   for (const auto& v : mesh.vertices) vertices_.push_back(v.cast<double>());
   transformed_.resize(vertices_.size());
   screen_.resize(vertices_.size());
+  bounds_.resize(vertices_.size());
+  in_front_.resize(vertices_.size());
 }
 
 namespace {
@@ -58,6 +60,22 @@ inline int last_pixel(double highest, int size) {
   return static_cast<int>(highest);
 }
 
+// first_pixel and last_pixel without a branch: the clamps in double (a NaN taken as the lowest), then
+// the truncation.
+inline int first_pixel_of(double lowest, int size) {
+  double c = lowest > 0 ? lowest : 0.0;
+  const double top = size;
+  c = c < top ? c : top;
+  const int t = static_cast<int>(c);
+  return t + static_cast<int>(static_cast<double>(t) < c);
+}
+inline int last_pixel_of(double highest, int size) {
+  double c = highest >= 0 ? highest : -1.0;
+  const double top = size - 1;
+  c = c < top ? c : top;
+  return static_cast<int>(c);
+}
+
 // False for a triangle that covers no pixel centre for sure: of zero or non-finite area, facing away
 // (cull), or with no pixel centre in its box. At 80x60 that is most triangles of a fine mesh, so this
 // runs inline, before anything else is computed.
@@ -88,12 +106,20 @@ Rasterizer::ScreenVertex Rasterizer::to_screen(const Eigen::Vector3d& p) const {
 }
 
 // Each vertex projected once (a vertex is shared by about six triangles): the divisions were most of
-// the time at 80x60, where the triangles of a YCB mesh cover a pixel or none.
+// the time at 80x60, where the triangles of a YCB mesh cover a pixel or none. With it, the pixel columns
+// and rows it bounds: first_pixel and last_pixel grow with their argument, so a triangle's box is the
+// least first and the greatest last of its vertices' (may_cover's box, without four conversions a
+// triangle). Without a branch: a vertex behind near is projected too (what it gives is never read).
 void Rasterizer::project_vertices(size_t begin, size_t end, const Eigen::Matrix3d& rotation,
                                   const Eigen::Vector3d& translation) const {
   for (size_t i = begin; i < end; ++i) {
-    transformed_[i] = rotation * vertices_[i] + translation;
-    if (transformed_[i].z() >= near_) screen_[i] = to_screen(transformed_[i]);
+    const Eigen::Vector3d p = rotation * vertices_[i] + translation;
+    transformed_[i] = p;
+    in_front_[i] = static_cast<unsigned char>(p.z() >= near_);
+    const ScreenVertex s = to_screen(p);
+    screen_[i] = s;
+    bounds_[i] = VertexPixels{first_pixel_of(s.u, camera_.width), last_pixel_of(s.u, camera_.width),
+                              first_pixel_of(s.v, camera_.height), last_pixel_of(s.v, camera_.height)};
   }
 }
 
@@ -103,14 +129,21 @@ void Rasterizer::draw_triangles(size_t begin, size_t end, std::span<float> depth
     const Eigen::Vector3i& t = triangles_[index];
     const int id = static_cast<int>(index);
     const size_t i0 = static_cast<size_t>(t[0]), i1 = static_cast<size_t>(t[1]), i2 = static_cast<size_t>(t[2]);
-    const int in_front =
-        (transformed_[i0].z() >= near_) + (transformed_[i1].z() >= near_) + (transformed_[i2].z() >= near_);
+    const int in_front = in_front_[i0] + in_front_[i1] + in_front_[i2];
     if (in_front == 0) continue;
     if (in_front == 3) {
-      Cover cover;
-      if (may_cover(screen_[i0], screen_[i1], screen_[i2], cull_back_faces_, camera_.width, camera_.height, cover))
-        fill_triangle(screen_[i0], screen_[i1], screen_[i2], cover.area, cover.u_min, cover.u_max, cover.v_min,
-                      cover.v_max, id, depth, triangle_ids, box);
+      // may_cover's tests, the box from the vertices' bounds.
+      const ScreenVertex &a = screen_[i0], &b = screen_[i1], &c = screen_[i2];
+      const double area = edge(a.u, a.v, b.u, b.v, c.u, c.v);
+      if (area == 0 || !std::isfinite(area) || (cull_back_faces_ && area > 0)) continue;
+      const VertexPixels &pa = bounds_[i0], &pb = bounds_[i1], &pc = bounds_[i2];
+      const int u_min = std::min(std::min(pa.u_first, pb.u_first), pc.u_first);
+      const int u_max = std::max(std::max(pa.u_last, pb.u_last), pc.u_last);
+      if (u_min > u_max) continue;
+      const int v_min = std::min(std::min(pa.v_first, pb.v_first), pc.v_first);
+      const int v_max = std::max(std::max(pa.v_last, pb.v_last), pc.v_last);
+      if (v_min > v_max) continue;
+      fill_triangle(a, b, c, area, u_min, u_max, v_min, v_max, id, depth, triangle_ids, box);
       continue;
     }
     const std::array<Eigen::Vector3d, 3> p{transformed_[i0], transformed_[i1], transformed_[i2]};
@@ -192,20 +225,23 @@ void Rasterizer::rasterize_triangle(const ScreenVertex& a, const ScreenVertex& b
 void Rasterizer::fill_triangle(const ScreenVertex& a, const ScreenVertex& b_in, const ScreenVertex& c_in, double area,
                                int u_min, int u_max, int v_min, int v_max, int triangle, std::span<float> depth,
                                std::span<int> triangle_ids, PixelBox& box) const {
-  ScreenVertex b = b_in, c = c_in;
+  const ScreenVertex* pb = &b_in;
+  const ScreenVertex* pc = &c_in;
   if (area < 0) {  // give every triangle drawn the same orientation
-    std::swap(b, c);
+    std::swap(pb, pc);
     area = -area;
   }
-  const bool own_bc = owns_edge(b.u, b.v, c.u, c.v), own_ca = owns_edge(c.u, c.v, a.u, a.v),
-             own_ab = owns_edge(a.u, a.v, b.u, b.v);
+  const ScreenVertex &b = *pb, &c = *pc;
   for (int v = v_min; v <= v_max; ++v) {
     for (int u = u_min; u <= u_max; ++u) {
       const double w_a = edge(b.u, b.v, c.u, c.v, u, v);
       const double w_b = edge(c.u, c.v, a.u, a.v, u, v);
       const double w_c = edge(a.u, a.v, b.u, b.v, u, v);
       if (w_a < 0 || w_b < 0 || w_c < 0) continue;
-      if ((w_a == 0 && !own_bc) || (w_b == 0 && !own_ca) || (w_c == 0 && !own_ab)) continue;
+      // A centre on an edge (rare): the tie rule.
+      if ((w_a == 0 && !owns_edge(b.u, b.v, c.u, c.v)) || (w_b == 0 && !owns_edge(c.u, c.v, a.u, a.v)) ||
+          (w_c == 0 && !owns_edge(a.u, a.v, b.u, b.v)))
+        continue;
       const double inv_z = (w_a * a.inv_z + w_b * b.inv_z + w_c * c.inv_z) / area;
       const double z = 1.0 / inv_z;
       if (z < near_ || z > far_) continue;

@@ -49,6 +49,10 @@ class Rasterizer {
   struct ScreenVertex {
     double u, v, inv_z;
   };
+  // The pixel columns and rows a vertex bounds: first_pixel and last_pixel of its u and v.
+  struct VertexPixels {
+    int u_first, u_last, v_first, v_last;
+  };
   void project_vertices(size_t begin, size_t end, const Eigen::Matrix3d& rotation,
                         const Eigen::Vector3d& translation) const;
   void draw_triangles(size_t begin, size_t end, std::span<float> depth, std::span<int> triangle_ids,
@@ -70,7 +74,9 @@ class Rasterizer {
   double near_, far_;
   bool cull_back_faces_;                              // bounds_solid_outward(mesh)
   mutable std::vector<Eigen::Vector3d> transformed_;  // scratch: vertices in the camera frame
-  mutable std::vector<ScreenVertex> screen_;          // scratch: those in front of near, projected
+  mutable std::vector<ScreenVertex> screen_;          // scratch: projected (read only in front of near)
+  mutable std::vector<VertexPixels> bounds_;          // scratch: their pixel bounds
+  mutable std::vector<unsigned char> in_front_;       // scratch: 1 where z >= near
   std::shared_ptr<ThreadPool> pool_;                  // split_over's, or null
   mutable std::vector<std::vector<float>> parts_;     // the pool's other threads' depths, kept all 0 between renders
   mutable std::vector<PixelBox> part_boxes_;          // each thread's share's box (render_split)

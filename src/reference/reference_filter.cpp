@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <depthtrack/error.hpp>
 #include <limits>
 #include <numeric>
@@ -59,6 +60,25 @@ void check_host_memory(const TrackerConfig& config, const Camera& camera, const 
     throw InputError(m.str());
   }
 }
+
+// model::propagate_occlusion with pow(c, dt) kept for the last dt: a particle's pixels were last seen at
+// a few times, most at the last frame's, so most pixels skip the pow. The same value, bit for bit.
+class OcclusionAger {
+ public:
+  explicit OcclusionAger(const OcclusionModel& m)
+      : c_(m.p_occluded_stays - m.p_visible_to_occluded), p_inf_(model::occlusion_steady_state(m)) {}
+  double operator()(double p, double dt) {
+    if (!(dt == last_dt_)) {
+      last_dt_ = dt;
+      factor_ = std::pow(c_, dt);
+    }
+    return p_inf_ + factor_ * (p - p_inf_);
+  }
+
+ private:
+  double c_, p_inf_;
+  double last_dt_ = std::numeric_limits<double>::quiet_NaN(), factor_ = 0;
+};
 
 }  // namespace
 
@@ -169,6 +189,7 @@ double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double
   double log_likelihood = 0;
   magnitude = 0;
   lane.weighing.clear();
+  OcclusionAger age(config_.occlusion);
   for (int v = box.v0; v < box.v1; ++v) {
     for (int u = box.u0; u < box.u1; ++u) {
       const size_t k = static_cast<size_t>(v) * static_cast<size_t>(camera_.width) + static_cast<size_t>(u);
@@ -180,7 +201,7 @@ double ReferenceFilter::weigh_particle(size_t i, const DepthImage& depth, double
       if (!kept)
         p = fresh;
       else if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
-        p = model::propagate_occlusion(config_.occlusion, occlusion[j], time_ - occlusion_time[j]);
+        p = age(occlusion[j], time_ - occlusion_time[j]);
       else if (config_.occlusion_storage == OcclusionStorage::GlobalTime)
         p = occlusion[j];
       const PixelDensities d = kept ? pixel_densities(config_.observation, observed_[j], y_hat)
@@ -212,12 +233,21 @@ void ReferenceFilter::move_state_window() {
   auto move = [&](std::vector<float>& rows, std::vector<float>& scratch, float fresh) {
     if (rows.empty()) return;
     scratch.resize(particles_.size() * to.pixels());  // an automatic window grows
+    // Each row of the new window: the old window's part of it copied, the rest fresh.
+    const int kept_u0 = std::max(from.u0, to.u0), kept_u1 = std::min(from.u0 + from.width, to.u0 + to.width);
     for_chunks(particles_.size(), [&](Lane&, size_t, size_t first, size_t last) {
       for (size_t i = first; i < last; ++i)
-        for (int v = to.v0; v < to.v0 + to.height; ++v)
-          for (int u = to.u0; u < to.u0 + to.width; ++u)
-            scratch[i * to.pixels() + to.index(u, v)] =
-                from.contains(u, v) ? rows[i * from.pixels() + from.index(u, v)] : fresh;
+        for (int v = to.v0; v < to.v0 + to.height; ++v) {
+          float* out = scratch.data() + i * to.pixels() + to.index(to.u0, v);
+          if (kept_u0 >= kept_u1 || v < from.v0 || v >= from.v0 + from.height) {
+            std::fill_n(out, to.width, fresh);
+            continue;
+          }
+          const float* in = rows.data() + i * from.pixels() + from.index(kept_u0, v);
+          std::fill_n(out, kept_u0 - to.u0, fresh);
+          std::copy_n(in, kept_u1 - kept_u0, out + (kept_u0 - to.u0));
+          std::fill(out + (kept_u1 - to.u0), out + to.width, fresh);
+        }
     });
     rows.swap(scratch);
   };
@@ -274,13 +304,13 @@ std::vector<double> ReferenceFilter::occlusion_map(size_t i) const {
   if (config_.occlusion_storage == OcclusionStorage::Off) return {};
   std::vector<double> p(static_cast<size_t>(camera_.pixel_count()), fresh_occlusion_now());
   const size_t row = window_.pixels();
+  OcclusionAger age(config_.occlusion);
   for (int v = window_.v0; v < window_.v0 + window_.height; ++v)
     for (int u = window_.u0; u < window_.u0 + window_.width; ++u) {
       const size_t j = i * row + window_.index(u, v);
       const size_t k = static_cast<size_t>(v) * static_cast<size_t>(camera_.width) + static_cast<size_t>(u);
       p[k] = occlusion_[j];
-      if (config_.occlusion_storage == OcclusionStorage::PerPixelTime)
-        p[k] = model::propagate_occlusion(config_.occlusion, p[k], time_ - occlusion_time_[j]);
+      if (config_.occlusion_storage == OcclusionStorage::PerPixelTime) p[k] = age(p[k], time_ - occlusion_time_[j]);
     }
   for (const PixelPrior& prior : priors_) p[prior.pixel] = prior.p;  // the pixels its update changed
   return p;
