@@ -7,8 +7,10 @@
 #          three objects against one), per backend; with build-base/ carried too (an earlier build packed
 #          the same way), the same rows of that build, alternating with this one's, for a before/after;
 #   box    the box search on ycbv-0000 and ycbv-0049 (`depthtrack eval --cases box`), per backend;
-#   cpu    the cpu backend against the reference on THREADS cores (default "1 2 8 16"), 2,000 particles;
-#   budget depthtrack_bench_budget on the GPU (BUDGET_ARGS) beside one CPU core's reference;
+#   cpu    the cpu backend against the reference on THREADS cores of their own (default "1 2 8 16"),
+#          CPU_PARTICLES (default 2,000);
+#   budget depthtrack_bench_budget on the GPU (BUDGET_ARGS: a 5 ms budget of up to 100,000 particles against
+#          200), then the reference's 5 ms budget on one idle core per seed (CPU_BUDGET_SEEDS, default 1 2 3);
 #   tests  the test binary's TEST_SPEC (default: all but the host-only [cli], [io], [viz] and [bench] cases) on
 #          CUDA and on NVIDIA OpenCL side by side, SHARDS processes each (default 8), each backend with its own
 #          temporary folder, in the time left; the failing cases are listed, the logs go to $OUT gzipped.
@@ -74,15 +76,24 @@ if [[ $parts == *" cpu "* ]]; then
     args=()
     [[ $mesh == handset ]] || args=(--mesh ".devdata/meshes/ycb/$mesh.obj" --simplify-error 0.0005)
     for t in ${THREADS:-1 2 8 16}; do
-      echo "$mesh 2000 particles cpu:$t: $(timeout 60 "$build/depthtrack_bench" --backend "cpu:$t" --particles 2000 \
-        --frames 10 --no-global "${args[@]}" 2>&1 | grep -E ',(total_ms|speedup_over_reference),' | cut -d, -f1,6,8 |
-        tr '\n' ' ')"
+      # cpu:2 on two cores of their own, as on CI's machine; the others on the first t cores.
+      echo "$mesh ${CPU_PARTICLES:-2000} particles cpu:$t: $(taskset -c "0-$((t - 1))" timeout 60 "$build/depthtrack_bench" \
+        --backend "cpu:$t" --particles "${CPU_PARTICLES:-2000}" --frames 10 --no-global "${args[@]}" 2>&1 |
+        grep -E ',(total_ms|speedup_over_reference),' | cut -d, -f1,6,8 | tr '\n' ' ')"
     done
   done 2>&1 | tee "$out/cpu.txt"
 fi
 if [[ $parts == *" budget "* ]]; then
-  timeout 120 "$build/depthtrack_bench_budget" ${BUDGET_ARGS:---backend cuda,reference --particles 200 --budget-ms 5} \
+  # The GPU's budget against its fixed count; then one idle core's reference, a seed per core side by side.
+  timeout 150 "$build/depthtrack_bench_budget" ${BUDGET_ARGS:---backend cuda --particles 200 --budget-ms 5 --max-particles 100000} \
     2>&1 | grep -E 'adds_mean|frame_p95,|particles_mean' | cut -d, -f1,5- | tee "$out/budget.txt"
+  for seed in ${CPU_BUDGET_SEEDS:-1 2 3}; do
+    taskset -c $((seed + 1)) timeout 200 "$build/depthtrack_bench_budget" --backend reference --particles 200 \
+      --budget-ms 5 --seed "$seed" 2>&1 | grep -E 'adds_mean|frame_p95,|update_cpu_p95|particles_mean' |
+      cut -d, -f1,5- | sed "s/^/seed$seed /" >"/tmp/budget-cpu-$seed.txt" &
+  done
+  wait
+  cat /tmp/budget-cpu-*.txt | tee -a "$out/budget.txt"
 fi
 if [[ $parts == *" tests "* ]]; then
   shards=${SHARDS:-8}
