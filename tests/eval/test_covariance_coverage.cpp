@@ -13,6 +13,7 @@
 #include <random>
 
 #include "eval/covariance_coverage.hpp"
+#include "model/covariance_calibration.hpp"
 #include "support.hpp"
 
 using namespace depthtrack;
@@ -160,4 +161,42 @@ TEST_CASE("on a synthetic structured-light sequence the 95 % region holds the tr
   CHECK(cover.checked == 40);
   CHECK(cover.share >= 0.8);
   CHECK(median >= 0.2);
+}
+
+TEST_CASE("a turn about a tilted axis left undetermined: any turn about it, and 95 % of the rest, inside",
+          "[coverage]") {
+  // Errors drawn from sigma plus a turn of up to 30 degrees about the axis (0, 0.6, 0.8) through a point
+  // 1 cm off the centre: the check leaves that direction out and counts 5 degrees of freedom.
+  Matrix6d a;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) a(i, j) = std::cos(0.8 * i + 1.1 * j + 0.2) + (i == j ? 2.0 : 0.0);
+  const Matrix6d sigma = 1e-6 * a * a.transpose();
+  const Eigen::Vector3d axis(0, 0.6, 0.8), offset(0.01, 0, 0);
+  Vector6d turn;
+  turn << axis.cross(offset), axis;
+  const Matrix6d reported = model::with_undetermined_direction(sigma, turn);
+  const Matrix6d l = Eigen::LLT<Matrix6d>(sigma).matrixL();
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> angle(-0.52, 0.52);
+  std::vector<CovarianceCheck> checks, unaware;
+  for (int k = 0; k < 4000; ++k) {
+    Vector6d z;
+    for (int i = 0; i < 6; ++i) z(i) = normal(rng);
+    const Vector6d e = l * z + angle(rng) * turn;
+    checks.push_back(*check_covariance(e, reported));
+    unaware.push_back(*check_covariance(e, sigma));
+  }
+  CHECK(checks.front().dof == 5);
+  CHECK(coverage(checks).share == Approx(0.95).margin(0.01));
+  CHECK(coverage(unaware).share < 0.2);  // the same errors against sigma alone: the turn is far outside
+}
+
+TEST_CASE("a covariance that determines nothing has no region, counted apart", "[coverage]") {
+  Vector6d e = Vector6d::Constant(1e-3);
+  CHECK_FALSE(check_covariance(e, model::undetermined_covariance()));
+  const Coverage c = coverage({CovarianceCheck{1.0, 6, true}}, 3);
+  CHECK(c.checked == 1);
+  CHECK(c.no_region == 3);
+  CHECK(c.share == 1.0);
 }
