@@ -17,7 +17,7 @@ namespace depthtrack::model {
 // chosen on the synthetic sequences and the two YCB-Video clips at 80x60 and 160x120 so that 90-99 % of
 // the frames' errors lie in the 95 % region, then checked on the castle: docs/covariance.md has the
 // coverage per sequence.
-constexpr double kSmoothPatches = 2.0;
+constexpr double kSmoothPatches = 1.75;
 constexpr double kWhiteScale = 1.0;
 // The working width the two constants hold at; at a width w the scale is times sqrt(kReferenceWidth / w):
 // a finer working resolution's errors shrink faster than its pixel count says (at 160x120 the errors needed
