@@ -133,11 +133,29 @@ std::optional<SymmetryAxis> fit_symmetry_axis(const Mesh& mesh) {
   Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();
   for (const Facet& f : facets) moment += f.area * (f.centroid - centre) * (f.centroid - centre).transpose();
   const Eigen::Matrix3d starts = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(moment).eigenvectors();
-  const PointGrid grid(samples, kSymmetryTolerance * (hi - lo).norm());
+  const double tolerance = kSymmetryTolerance * (hi - lo).norm();
+  const PointGrid grid(samples, tolerance);
+  // The turned points: at most kTurnedSamples of the samples, evenly through them (the grid keeps all).
+  constexpr size_t kTurnedSamples = 8192;
+  const size_t stride = (samples.size() + kTurnedSamples - 1) / kTurnedSamples;
+  std::vector<Vec3> turned;
+  std::vector<double> turned_weights;
+  for (size_t i = 0; i < samples.size(); i += stride) {
+    turned.push_back(samples[i]);
+    turned_weights.push_back(weights[i]);
+  }
   std::optional<SymmetryAxis> best;
+  std::vector<SymmetryAxis> tried;
   for (int k = 0; k < 3; ++k) {  // each principal axis as a start: the fit usually ends on one axis from all
     SymmetryAxis axis = fit_from(facets, centre, starts.col(k));
-    axis.share = turned_share(axis, samples, weights, grid);
+    const bool seen = std::any_of(tried.begin(), tried.end(), [&](const SymmetryAxis& t) {
+      const Vec3 off = axis.point - t.point;
+      return std::abs(axis.direction.dot(t.direction)) > 0.9999 &&
+             (off - off.dot(t.direction) * t.direction).norm() < 0.1 * tolerance;
+    });
+    if (seen) continue;
+    tried.push_back(axis);
+    axis.share = turned_share(axis, turned, turned_weights, grid);
     if (!best || axis.share > best->share) best = axis;
   }
   return best;

@@ -19,7 +19,7 @@ namespace depthtrack {
 constexpr double kSymmetryTolerance = 0.01;
 // The least share of the surface (by area) that every tested turn maps onto the surface. The YCB meshes:
 // tuna can and bowl 1.00, mug 0.91 (its handle 9 % of the area); every box, the mustard bottle, the
-// potted-meat can and the dbot handset 0.68 or less.
+// potted-meat can and the dbot handset 0.53 or less.
 constexpr double kSymmetricShare = 0.8;
 
 struct SymmetryAxis {
