@@ -60,11 +60,11 @@ TEST_CASE("the covariance check leaves undetermined axes out and compares with t
   CHECK(check->d2 == Approx(10.0));
   CHECK_FALSE(check->inside);
 
-  // A correlation: for [[1, 0.5], [0.5, 1]] the error (1, -1) has d2 = 2 / (1 - 0.5) = 4.
+  // A correlation: for 1e-6 [[1, 0.5], [0.5, 1]] the error (1, -1) mm has d2 = 2 / (1 - 0.5) = 4.
   Matrix6d correlated = Matrix6d::Zero();
-  correlated.diagonal() << 1, 1, inf, inf, inf, inf;
-  correlated(0, 1) = correlated(1, 0) = 0.5;
-  check = check_covariance((Vector6d() << 1, -1, 0, 0, 0, 0).finished(), correlated);
+  correlated.diagonal() << 1e-6, 1e-6, inf, inf, inf, inf;
+  correlated(0, 1) = correlated(1, 0) = 0.5e-6;
+  check = check_covariance((Vector6d() << 1e-3, -1e-3, 0, 0, 0, 0).finished(), correlated);
   REQUIRE(check);
   CHECK(check->dof == 2);
   CHECK(check->d2 == Approx(4.0));
@@ -73,6 +73,13 @@ TEST_CASE("the covariance check leaves undetermined axes out and compares with t
   CHECK_FALSE(check_covariance(e, Matrix6d::Constant(std::nan(""))));  // refinement off
   CHECK_FALSE(check_covariance(e, Matrix6d::Identity() * inf));        // nothing determined
   CHECK_FALSE(check_covariance(e, -Matrix6d::Identity()));             // not positive definite
+  // A variance of kDeterminedBelow (1 m^2 or rad^2) or more is undetermined: that axis counts no freedom.
+  Matrix6d wide = Matrix6d::Identity() * 1e-6;
+  wide(5, 5) = model::kDeterminedBelow;
+  check = check_covariance((Vector6d() << 1e-3, 0, 0, 0, 0, 0.5).finished(), wide);
+  REQUIRE(check);
+  CHECK(check->dof == 5);
+  CHECK(check->d2 == Approx(1.0));
 }
 
 TEST_CASE("coverage is the share inside with its Wilson interval", "[coverage]") {
@@ -128,7 +135,7 @@ TEST_CASE("errors drawn from the covariance itself land in its 95 % region 95 % 
 
 TEST_CASE("on a synthetic structured-light sequence the 95 % region holds the true error", "[coverage][tracking]") {
   // The built-in object over 40 frames (160x120 sensor, tracked at 80x60 by the reference backend) from
-  // ground truth moved by 1 cm / 5 degrees. Measured: 38 of 40 inside, median d2 / dof 0.72. Frames
+  // ground truth moved by 1 cm / 5 degrees. Measured: 38 of 40 inside, median d2 / dof 0.52. Frames
   // follow one another, so they are not independent draws, and the bounds are loose for that: at least
   // 80 % inside (32 of 40), and a region not vacuously wide: the median d2 / dof at least 0.2 (a Gaussian
   // error gives about 0.9; the fit's covariance before the residual's scale, wide for this sensor's

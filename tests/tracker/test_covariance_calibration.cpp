@@ -84,17 +84,17 @@ TEST_CASE("the calibrated covariance scales the fit's by the residual's white an
   Matrix6d fit = Matrix6d::Identity() * 1e-6;
   fit(0, 1) = fit(1, 0) = 2e-7;
   fit(5, 5) = inf;  // undetermined
-  // white 0.1, smooth 0.05 over 200 pixels at 80 px wide: 1.0 * 0.1 + 0.05 * 200 / 2 = 5.1.
+  // white 0.1, smooth 0.05 over 200 pixels at 80 px wide: 1.0 * 0.1 + 0.05 * 200 / 1.75 = 5.8142857.
   const Matrix6d c = model::calibrated_covariance(fit, 0.1, 0.05, 200, 80);
   CHECK(model::kWhiteScale == 1.0);
-  CHECK(model::kSmoothPatches == 2.0);
-  CHECK(c(0, 0) == Approx(5.1e-6));
-  CHECK(c(0, 1) == Approx(5.1 * 2e-7));
-  CHECK(c(4, 4) == Approx(5.1e-6));
+  CHECK(model::kSmoothPatches == 1.75);
+  CHECK(c(0, 0) == Approx(5.8142857e-6));
+  CHECK(c(0, 1) == Approx(5.8142857 * 2e-7));
+  CHECK(c(4, 4) == Approx(5.8142857e-6));
   CHECK(std::isinf(c(5, 5)));
   CHECK(c(5, 0) == 0);
   // At 320 px wide: times sqrt(80 / 320) = 0.5.
-  CHECK(model::calibrated_covariance(fit, 0.1, 0.05, 200, 320)(0, 0) == Approx(2.55e-6));
+  CHECK(model::calibrated_covariance(fit, 0.1, 0.05, 200, 320)(0, 0) == Approx(2.9071429e-6));
   // Fewer pixels than patches: the smooth part counts once.
   CHECK(model::calibrated_covariance(fit, 0.1, 0.05, 1, 80)(0, 0) == Approx(0.15e-6));
   // A residual of exactly 0 still leaves the least variance.
