@@ -133,7 +133,7 @@ Tracker::Impl::Impl(std::shared_ptr<Device> device, const Camera& sensor, const 
   // Every rendering draws the simplified mesh (the given one when simplify_error is 0); a frame budget
   // draws a fine one coarser (simplify_for_budget).
   const MeshSimplification drawn = config.budget_ms > 0 ? simplify_for_budget(checked, config.simplify_error)
-                                                        : simplify_for_drawing(checked, config.simplify_error);
+                                                         : simplify_for_drawing(checked, config.simplify_error);
   mesh_triangles_ = checked.triangles.size();
   drawn_triangles_ = drawn.mesh.triangles.size();
   backend_ = make_filter_backend(*device_, drawn.mesh, working_, config);
