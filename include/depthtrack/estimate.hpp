@@ -58,11 +58,11 @@ struct Estimate {
   /// Covariance of the refined pose's error, as a twist in the camera frame about the mesh's centre:
   /// rows/columns 0-2 the centre's position (m), 3-5 the rotation vector (rad). The fit's normal
   /// equations (inverse Gauss-Newton Hessian of the log-likelihood) scaled by the depth residual at the
-  /// pose, its pixel-to-pixel noise and its smooth share counted apart, so that the 95 % region holds
-  /// the true error on about 95 % of frames (docs/covariance.md has the coverage per sequence). An axis
-  /// the pixels cannot determine (a flat face seen face-on: sliding along it, turning about its normal)
-  /// has +infinity on the diagonal and 0 elsewhere in its row and column; the other entries then hold
-  /// with that axis fixed. NaN when refinement is off or the fit had too few pixels.
+  /// pose (docs/covariance.md: coverage per sequence). +infinity on the diagonal, 0 across: an axis the depth cannot
+  /// determine (a face seen face-on), the others holding with it fixed; every axis when lost or under a quarter of the
+  /// silhouette's depth agrees with the pose. A turn about the mesh's axis of near symmetry (can, bowl, mug) has a
+  /// variance of 100 along it: leave out the finite block's directions of variance 1 or more. NaN when refinement is
+  /// off or the fit had too few pixels. The principal point's half pixel is in the centre's x and y variances.
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Constant(std::nan(""));
   StepTimings timings;
   int refine_iterations = 0;  ///< steps the refinement tried (each one rendering of the pose); 0 when off

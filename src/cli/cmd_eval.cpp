@@ -266,6 +266,7 @@ void run_eval(const EvalArgs& a) {
   std::vector<ConfidenceOutcome> outcomes;
   std::vector<CoverageRow> coverage_rows;
   std::vector<CovarianceCheck> all_checks;
+  size_t all_no_region = 0;
   for (const EvalObject& o : objects)
     for (const EvalCase& c : cases) {
       ProgressBar bar(o.name + " " + c.name, static_cast<int>(o.sequence.frames.size()));
@@ -285,6 +286,7 @@ void run_eval(const EvalArgs& a) {
       row.scores = score_case(frames, o.tolerance, recovery_from);
       table.print_row(row);
       std::vector<CovarianceCheck> checks;
+      size_t no_region = 0;
       for (const TrackedFrame& f : frames) {
         const std::optional<CovarianceCheck> check =
             f.ground_truth
@@ -292,11 +294,13 @@ void run_eval(const EvalArgs& a) {
                                    f.estimate.covariance)
                 : std::nullopt;
         if (check) checks.push_back(*check);
+        if (f.ground_truth && !check) ++no_region;
         if (csv) csv->write(o.name, c.name, f, o.tolerance, check);
         if (!std::isnan(f.adds)) outcomes.push_back({f.estimate.confidence, f.adds <= o.tolerance});
       }
-      coverage_rows.push_back({o.name, c.name, coverage(checks)});
+      coverage_rows.push_back({o.name, c.name, coverage(checks, no_region)});
       all_checks.insert(all_checks.end(), checks.begin(), checks.end());
+      all_no_region += no_region;
     }
   table.print_summary();
   std::printf(
@@ -305,7 +309,7 @@ void run_eval(const EvalArgs& a) {
       1000 * kConfidentWrongAdds, kConfidentAbove, kRecoveryFrames, a.gap_before + static_cast<int>(kRecoveryFrames),
       1000 * kEndsWithin);
   print_reliability(reliability(outcomes));
-  coverage_rows.push_back({"all", "", coverage(all_checks)});
+  coverage_rows.push_back({"all", "", coverage(all_checks, all_no_region)});
   print_coverage(coverage_rows, width);
   if (csv) csv->finish();
   if (plot) {

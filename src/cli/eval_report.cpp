@@ -90,19 +90,22 @@ void print_reliability(const Reliability& r) {
 void print_coverage(const std::vector<CoverageRow>& rows, size_t object_width) {
   std::printf(
       "covariance coverage (frames with ground truth and a covariance whose error, as a twist about the mesh's "
-      "centre, lies inside the reported 95 %% region; undetermined axes left out):\n");
+      "centre, lies inside the reported 95 %% region; undetermined axes left out; no_region: frames with ground truth "
+      "whose covariance determined nothing (lost, barely supported or no fit), not in the share):\n");
   const int w = static_cast<int>(std::max<size_t>(object_width, 6));
-  std::printf("%-*s %-12s %7s %7s %7s %15s\n", w, "object", "case", "checked", "inside", "share", "wilson_95");
+  std::printf("%-*s %-12s %7s %7s %7s %15s %9s\n", w, "object", "case", "checked", "inside", "share", "wilson_95",
+              "no_region");
   for (const CoverageRow& r : rows) {
     const Coverage& c = r.coverage;
     if (c.checked == 0) {
-      std::printf("%-*s %-12s %7zu %7s %7s %15s\n", w, r.object.c_str(), r.name.c_str(), c.checked, "-", "-", "-");
+      std::printf("%-*s %-12s %7zu %7s %7s %15s %9zu\n", w, r.object.c_str(), r.name.c_str(), c.checked, "-", "-", "-",
+                  c.no_region);
       continue;
     }
     char interval[32];
     std::snprintf(interval, sizeof interval, "%.3f-%.3f", c.low, c.high);
-    std::printf("%-*s %-12s %7zu %7zu %7.3f %15s\n", w, r.object.c_str(), r.name.c_str(), c.checked, c.inside, c.share,
-                interval);
+    std::printf("%-*s %-12s %7zu %7zu %7.3f %15s %9zu\n", w, r.object.c_str(), r.name.c_str(), c.checked, c.inside,
+                c.share, interval, c.no_region);
   }
 }
 

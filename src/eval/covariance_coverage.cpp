@@ -1,9 +1,11 @@
 #include "eval/covariance_coverage.hpp"
 
-#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <depthtrack/error.hpp>
 #include <string>
+
+#include "model/covariance_calibration.hpp"
 
 namespace depthtrack {
 
@@ -34,18 +36,26 @@ std::optional<CovarianceCheck> check_covariance(const Eigen::Matrix<double, 6, 1
     e(i) = error(axes[i]);
     for (int j = 0; j < n; ++j) block(i, j) = covariance(axes[i], axes[j]);
   }
-  const Eigen::LLT<Eigen::MatrixXd> llt(block);
-  if (llt.info() != Eigen::Success) return std::nullopt;
+  // Over the block's principal directions, those with a variance of kDeterminedBelow or more left out
+  // (a turn about a tilted axis of symmetry).
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(block);
+  if (eigen.info() != Eigen::Success || !(eigen.eigenvalues().minCoeff() > 0)) return std::nullopt;
+  const Eigen::VectorXd along = eigen.eigenvectors().transpose() * e;
   CovarianceCheck check;
-  check.d2 = llt.matrixL().solve(e).squaredNorm();
-  check.dof = n;
-  check.inside = check.d2 <= chi2_95(n);
+  for (int i = 0; i < n; ++i) {
+    if (eigen.eigenvalues()(i) >= model::kDeterminedBelow) continue;
+    check.d2 += along(i) * along(i) / eigen.eigenvalues()(i);
+    ++check.dof;
+  }
+  if (check.dof == 0) return std::nullopt;
+  check.inside = check.d2 <= chi2_95(check.dof);
   return check;
 }
 
-Coverage coverage(const std::vector<CovarianceCheck>& checks) {
+Coverage coverage(const std::vector<CovarianceCheck>& checks, size_t no_region) {
   Coverage c;
   c.checked = checks.size();
+  c.no_region = no_region;
   for (const CovarianceCheck& check : checks) c.inside += check.inside;
   if (c.checked == 0) return c;
   const double n = static_cast<double>(c.checked), p = static_cast<double>(c.inside) / n, z = 1.959963985;

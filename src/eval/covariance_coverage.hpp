@@ -19,22 +19,25 @@ Eigen::Matrix<double, 6, 1> pose_error_twist(const Pose& estimate, const Pose& t
 double chi2_95(int dof);
 
 struct CovarianceCheck {
-  double d2 = 0;        // e^T Sigma^-1 e over the determined axes
-  int dof = 0;          // how many: the axes with a finite variance
+  double d2 = 0;        // e^T Sigma^-1 e over the determined directions
+  int dof = 0;          // how many: of the axes with a finite variance, the principal directions of their
+                        // block with a variance under model::kDeterminedBelow
   bool inside = false;  // d2 <= chi2_95(dof)
 };
 
-// The check of error against covariance; axes with +infinity on the diagonal (undetermined) are left out.
-// nullopt when the covariance has a NaN (refinement off, too few pixels), no finite axis, or its finite
-// block is not positive definite.
+// The check of error against covariance; axes with +infinity on the diagonal (undetermined) are left out,
+// and so are the finite block's principal directions with a variance of model::kDeterminedBelow or more.
+// nullopt when the covariance has a NaN (refinement off, too few pixels), no determined direction (a lost
+// or barely supported estimate), or its finite block is not positive definite.
 std::optional<CovarianceCheck> check_covariance(const Eigen::Matrix<double, 6, 1>& error,
                                                 const Eigen::Matrix<double, 6, 6>& covariance);
 
-// The share of checked frames inside their 95 % region, with its Wilson score interval at 95 %.
+// The share of checked frames inside their 95 % region, with its Wilson score interval at 95 %; and the
+// frames with ground truth that had no region to check (no determined direction, or NaN), counted apart.
 struct Coverage {
-  size_t checked = 0, inside = 0;
+  size_t checked = 0, inside = 0, no_region = 0;
   double share = NAN, low = NAN, high = NAN;
 };
-Coverage coverage(const std::vector<CovarianceCheck>& checks);
+Coverage coverage(const std::vector<CovarianceCheck>& checks, size_t no_region = 0);
 
 }  // namespace depthtrack

@@ -137,6 +137,7 @@ Tracker::Impl::Impl(std::shared_ptr<Device> device, const Camera& sensor, const 
       working_(sensor.decimated(decimation_)),
       config_(config) {
   centre_ = checked.centre().cast<double>();
+  symmetry_ = symmetry_axis(checked);
   // Every rendering draws the simplified mesh (the given one when simplify_error is 0); a frame budget
   // draws a fine one coarser (simplify_for_budget).
   const MeshSimplification drawn = config.budget_ms > 0 ? simplify_for_budget(checked, config.simplify_error)
@@ -378,14 +379,36 @@ void Tracker::Impl::assess_confidence(Estimate& e, const DepthImage& working) {
   const Stopwatch clock;
   const std::vector<float>* drawn = backend_->rendering_of(e.pose);
   e.evidence = supervisor_->assess(e.pose, working, drawn);
-  // The fit's covariance scaled by what the residual at the estimate says (model/covariance_calibration.hpp).
   const ResidualStructure residual = residual_structure(drawn ? *drawn : supervisor_->silhouette(e.pose),
                                                         config_.observation, config_.loss.pixel_sigmas, working);
-  e.covariance = model::calibrated_covariance(e.covariance, residual.white, residual.smooth(), residual.pixels);
   e.confidence = pose_confidence(e.evidence);
   e.status = supervisor_->observe(e.confidence);
+  report_covariance(e, residual);
   e.timings.confidence_ms = clock.elapsed_ms();
   e.timings.total_ms += e.timings.confidence_ms;
+}
+
+void Tracker::Impl::report_covariance(Estimate& e, const ResidualStructure& residual) const {
+  if (e.covariance.array().isNaN().any()) return;  // refinement off, or too few pixels for the fit
+  // Lost, or too little of the silhouette agrees with the pose: the depth does not determine it.
+  if (e.status == TrackStatus::Lost || e.evidence.visible < model::kLeastVisibleShare) {
+    e.covariance = model::undetermined_covariance();
+    return;
+  }
+  // The fit's covariance scaled by what the residual at the estimate says, the principal point's
+  // sideways shift added, and a turn about the mesh's axis of symmetry left undetermined
+  // (model/covariance_calibration.hpp).
+  e.covariance =
+      model::calibrated_covariance(e.covariance, residual.white, residual.smooth(), residual.pixels, working_.width);
+  e.covariance = model::with_principal_point(e.covariance, e.pose.apply(centre_).z(), sensor_.fx);
+  if (symmetry_) {
+    // A turn about the axis (through symmetry_->point) as a twist about the centre: the centre moves by
+    // axis x (centre - point), both in the camera frame.
+    const Eigen::Vector3d axis = e.pose.rotation * symmetry_->direction;
+    Eigen::Matrix<double, 6, 1> turn;
+    turn << axis.cross(e.pose.rotation * (centre_ - symmetry_->point)), axis;
+    e.covariance = model::with_undetermined_direction(e.covariance, turn);
+  }
 }
 
 const std::vector<float>& Tracker::Impl::silhouette(const Pose& pose) {

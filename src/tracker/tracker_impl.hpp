@@ -7,10 +7,13 @@
 #include <depthtrack/tracker.hpp>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
+#include "core/mesh_symmetry.hpp"
 #include "model/filter_backend.hpp"
 #include "tracker/particle_budget.hpp"
+#include "tracker/residual_structure.hpp"
 #include "tracker/track_supervisor.hpp"
 
 namespace depthtrack {
@@ -49,6 +52,8 @@ struct Tracker::Impl {
   Estimate collect_frame();
   void assess_frame(Estimate& e, const DepthImage& working);
   void assess_confidence(Estimate& e, const DepthImage& working);  // assess_frame before the budget's look
+  // The reported covariance from the fit's, once the frame's status and evidence are known.
+  void report_covariance(Estimate& e, const ResidualStructure& residual) const;
   // The working-resolution depth of the mesh at `pose` (0 where it covers nothing): the confidence's
   // own rendering when it drew that very pose last, else drawn now by the same rasterizer.
   const std::vector<float>& silhouette(const Pose& pose);
@@ -76,6 +81,7 @@ struct Tracker::Impl {
   bool gap_pending_ = false;  // a gap came with no valid pixel to search: the next frame that has one searches
   size_t frames_since_initialize_ = 0;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();  // the mesh's, where initialize() checks the start
+  std::optional<SymmetryAxis> symmetry_;              // the mesh's axis of near symmetry, if it has one
   size_t mesh_triangles_ = 0, drawn_triangles_ = 0;
   unsigned search_round_ = 0;  // varies each recovery search's perturbations
   PendingFrame pending_;       // between start_frame and finish_frame

@@ -13,6 +13,7 @@
 #include <random>
 
 #include "eval/covariance_coverage.hpp"
+#include "model/covariance_calibration.hpp"
 #include "support.hpp"
 
 using namespace depthtrack;
@@ -59,11 +60,11 @@ TEST_CASE("the covariance check leaves undetermined axes out and compares with t
   CHECK(check->d2 == Approx(10.0));
   CHECK_FALSE(check->inside);
 
-  // A correlation: for [[1, 0.5], [0.5, 1]] the error (1, -1) has d2 = 2 / (1 - 0.5) = 4.
+  // A correlation: for 1e-6 [[1, 0.5], [0.5, 1]] the error (1, -1) mm has d2 = 2 / (1 - 0.5) = 4.
   Matrix6d correlated = Matrix6d::Zero();
-  correlated.diagonal() << 1, 1, inf, inf, inf, inf;
-  correlated(0, 1) = correlated(1, 0) = 0.5;
-  check = check_covariance((Vector6d() << 1, -1, 0, 0, 0, 0).finished(), correlated);
+  correlated.diagonal() << 1e-6, 1e-6, inf, inf, inf, inf;
+  correlated(0, 1) = correlated(1, 0) = 0.5e-6;
+  check = check_covariance((Vector6d() << 1e-3, -1e-3, 0, 0, 0, 0).finished(), correlated);
   REQUIRE(check);
   CHECK(check->dof == 2);
   CHECK(check->d2 == Approx(4.0));
@@ -72,6 +73,13 @@ TEST_CASE("the covariance check leaves undetermined axes out and compares with t
   CHECK_FALSE(check_covariance(e, Matrix6d::Constant(std::nan(""))));  // refinement off
   CHECK_FALSE(check_covariance(e, Matrix6d::Identity() * inf));        // nothing determined
   CHECK_FALSE(check_covariance(e, -Matrix6d::Identity()));             // not positive definite
+  // A variance of kDeterminedBelow (1 m^2 or rad^2) or more is undetermined: that axis counts no freedom.
+  Matrix6d wide = Matrix6d::Identity() * 1e-6;
+  wide(5, 5) = model::kDeterminedBelow;
+  check = check_covariance((Vector6d() << 1e-3, 0, 0, 0, 0, 0.5).finished(), wide);
+  REQUIRE(check);
+  CHECK(check->dof == 5);
+  CHECK(check->d2 == Approx(1.0));
 }
 
 TEST_CASE("coverage is the share inside with its Wilson interval", "[coverage]") {
@@ -127,7 +135,7 @@ TEST_CASE("errors drawn from the covariance itself land in its 95 % region 95 % 
 
 TEST_CASE("on a synthetic structured-light sequence the 95 % region holds the true error", "[coverage][tracking]") {
   // The built-in object over 40 frames (160x120 sensor, tracked at 80x60 by the reference backend) from
-  // ground truth moved by 1 cm / 5 degrees. Measured: 38 of 40 inside, median d2 / dof 0.72. Frames
+  // ground truth moved by 1 cm / 5 degrees. Measured: 38 of 40 inside, median d2 / dof 0.52. Frames
   // follow one another, so they are not independent draws, and the bounds are loose for that: at least
   // 80 % inside (32 of 40), and a region not vacuously wide: the median d2 / dof at least 0.2 (a Gaussian
   // error gives about 0.9; the fit's covariance before the residual's scale, wide for this sensor's
@@ -160,4 +168,42 @@ TEST_CASE("on a synthetic structured-light sequence the 95 % region holds the tr
   CHECK(cover.checked == 40);
   CHECK(cover.share >= 0.8);
   CHECK(median >= 0.2);
+}
+
+TEST_CASE("a turn about a tilted axis left undetermined: any turn about it, and 95 % of the rest, inside",
+          "[coverage]") {
+  // Errors drawn from sigma plus a turn of up to 30 degrees about the axis (0, 0.6, 0.8) through a point
+  // 1 cm off the centre: the check leaves that direction out and counts 5 degrees of freedom.
+  Matrix6d a;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) a(i, j) = std::cos(0.8 * i + 1.1 * j + 0.2) + (i == j ? 2.0 : 0.0);
+  const Matrix6d sigma = 1e-6 * a * a.transpose();
+  const Eigen::Vector3d axis(0, 0.6, 0.8), offset(0.01, 0, 0);
+  Vector6d turn;
+  turn << axis.cross(offset), axis;
+  const Matrix6d reported = model::with_undetermined_direction(sigma, turn);
+  const Matrix6d l = Eigen::LLT<Matrix6d>(sigma).matrixL();
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> angle(-0.52, 0.52);
+  std::vector<CovarianceCheck> checks, unaware;
+  for (int k = 0; k < 4000; ++k) {
+    Vector6d z;
+    for (int i = 0; i < 6; ++i) z(i) = normal(rng);
+    const Vector6d e = l * z + angle(rng) * turn;
+    checks.push_back(*check_covariance(e, reported));
+    unaware.push_back(*check_covariance(e, sigma));
+  }
+  CHECK(checks.front().dof == 5);
+  CHECK(coverage(checks).share == Approx(0.95).margin(0.01));
+  CHECK(coverage(unaware).share < 0.2);  // the same errors against sigma alone: the turn is far outside
+}
+
+TEST_CASE("a covariance that determines nothing has no region, counted apart", "[coverage]") {
+  Vector6d e = Vector6d::Constant(1e-3);
+  CHECK_FALSE(check_covariance(e, model::undetermined_covariance()));
+  const Coverage c = coverage({CovarianceCheck{1.0, 6, true}}, 3);
+  CHECK(c.checked == 1);
+  CHECK(c.no_region == 3);
+  CHECK(c.share == 1.0);
 }

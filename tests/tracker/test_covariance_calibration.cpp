@@ -13,6 +13,7 @@
 
 using namespace depthtrack;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
+using Vector6d = Eigen::Matrix<double, 6, 1>;
 
 namespace {
 // A 6x4 image: the rendering 1 m everywhere but the left column (uncovered), the depth 1 m + offset(u, v).
@@ -83,18 +84,57 @@ TEST_CASE("the calibrated covariance scales the fit's by the residual's white an
   Matrix6d fit = Matrix6d::Identity() * 1e-6;
   fit(0, 1) = fit(1, 0) = 2e-7;
   fit(5, 5) = inf;  // undetermined
-  // white 0.1, smooth 0.05 over 200 pixels: 1.5 * 0.1 + 0.05 * 200 / 2 = 5.15.
-  const Matrix6d c = model::calibrated_covariance(fit, 0.1, 0.05, 200);
-  CHECK(model::kWhiteScale == 1.5);
-  CHECK(model::kSmoothPatches == 2.0);
-  CHECK(c(0, 0) == Approx(5.15e-6));
-  CHECK(c(0, 1) == Approx(5.15 * 2e-7));
-  CHECK(c(4, 4) == Approx(5.15e-6));
+  // white 0.1, smooth 0.05 over 200 pixels at 80 px wide: 1.0 * 0.1 + 0.05 * 200 / 1.75 = 5.8142857.
+  const Matrix6d c = model::calibrated_covariance(fit, 0.1, 0.05, 200, 80);
+  CHECK(model::kWhiteScale == 1.0);
+  CHECK(model::kSmoothPatches == 1.75);
+  CHECK(c(0, 0) == Approx(5.8142857e-6));
+  CHECK(c(0, 1) == Approx(5.8142857 * 2e-7));
+  CHECK(c(4, 4) == Approx(5.8142857e-6));
   CHECK(std::isinf(c(5, 5)));
   CHECK(c(5, 0) == 0);
+  // At 320 px wide: times sqrt(80 / 320) = 0.5.
+  CHECK(model::calibrated_covariance(fit, 0.1, 0.05, 200, 320)(0, 0) == Approx(2.9071429e-6));
   // Fewer pixels than patches: the smooth part counts once.
-  CHECK(model::calibrated_covariance(fit, 0.1, 0.05, 1)(0, 0) == Approx(0.2e-6));
+  CHECK(model::calibrated_covariance(fit, 0.1, 0.05, 1, 80)(0, 0) == Approx(0.15e-6));
   // A residual of exactly 0 still leaves the least variance.
-  CHECK(model::calibrated_covariance(fit, 0.0, 0.0, 100)(0, 0) == Approx(model::kMinResidualVariance * 1e-6));
-  CHECK(model::calibrated_covariance(Matrix6d::Constant(std::nan("")), 0.1, 0.1, 100).array().isNaN().all());
+  CHECK(model::calibrated_covariance(fit, 0.0, 0.0, 100, 80)(0, 0) == Approx(model::kMinResidualVariance * 1e-6));
+  CHECK(model::calibrated_covariance(Matrix6d::Constant(std::nan("")), 0.1, 0.1, 100, 80).array().isNaN().all());
+}
+
+TEST_CASE("the principal point's half pixel widens the centre's x and y only", "[covariance]") {
+  Matrix6d c = Matrix6d::Identity() * 1e-6;
+  c(2, 2) = std::numeric_limits<double>::infinity();
+  // At 0.7 m with a 700 px focal length: half a pixel is 0.5 mm sideways, 2.5e-7 m^2.
+  const Matrix6d w = model::with_principal_point(c, 0.7, 700);
+  CHECK(w(0, 0) == Approx(1.25e-6));
+  CHECK(w(1, 1) == Approx(1.25e-6));
+  CHECK(std::isinf(w(2, 2)));
+  CHECK(w(3, 3) == 1e-6);
+  CHECK(w(0, 1) == 0);
+}
+
+TEST_CASE("a direction left undetermined drops out of the determined block", "[covariance]") {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  Matrix6d c = Matrix6d::Identity() * 1e-6;
+  // A turn about (0, 0.6, 0.8) through the centre: rotation only.
+  Vector6d turn;
+  turn << 0, 0, 0, 0, 0.6, 0.8;
+  const Matrix6d u = model::with_undetermined_direction(c, turn);
+  CHECK(u(4, 4) == Approx(1e-6 + model::kUndeterminedVariance * 0.36));
+  CHECK(u(4, 5) == Approx(model::kUndeterminedVariance * 0.48));
+  CHECK(u(0, 0) == 1e-6);
+  // With axis 5 set apart, the rest of the direction (axis 4 alone) takes the whole variance.
+  c(5, 5) = inf;
+  const Matrix6d v = model::with_undetermined_direction(c, turn);
+  CHECK(v(4, 4) == Approx(1e-6 + model::kUndeterminedVariance));
+  CHECK(std::isinf(v(5, 5)));
+  CHECK(v(4, 5) == 0);
+  // A direction almost all in the set-apart axis: nothing to add.
+  Vector6d along;
+  along << 0, 0, 0, 0, 0.01, 1;
+  CHECK(model::with_undetermined_direction(c, along) == c);
+  const Matrix6d none = model::undetermined_covariance();
+  for (int i = 0; i < 6; ++i) CHECK(std::isinf(none(i, i)));
+  CHECK(none(0, 1) == 0);
 }
