@@ -6,7 +6,8 @@ optimum, with the evidence the tracker computes for its estimate) from one or mo
 the logistic regression by iteratively reweighted least squares with a small ridge, and prints the
 coefficients in the order src/tracker/confidence_model.cpp lists its features, with the reliability
 table and the confident-wrong count on every input file alone (so a fit on some clips can be checked
-on the others: --fit names the files to fit on, the rest are held out).
+on the others: --fit names the files to fit on, the rest are held out). The tables scale each pose's
+probability by its support, as the code does: poses seen by fewer than 16 pixels count in proportion.
 
     scripts/calibrate-confidence.py samples-*.csv [--fit FILE ...]
 """
@@ -44,11 +45,21 @@ def features(row):
     ]
 
 
+# Fewer seen pixels than a plane needs: the confidence counts in proportion to those seen (pose_confidence).
+PLANE_PIXELS = 16
+
+
+def support(row):
+    """The share of PLANE_PIXELS the pose's seen pixels reach, at most 1 (the code's support)."""
+    seen = int(row["pixels"]) * (1.0 - float(row["missing"])) * float(row["visible"])
+    return min(1.0, seen / PLANE_PIXELS)
+
+
 NAMES = ["bias", "occluded", "contradicted", "visible_rms", "separated_free", "relief"]
 
 
 def load(path):
-    xs, ys, adds = [], [], []
+    xs, ys, adds, supports = [], [], [], []
     with open(path) as f:
         for row in csv.DictReader(f):
             if int(row["pixels"]) == 0:
@@ -58,7 +69,8 @@ def load(path):
             xs.append(features(row))
             ys.append(1.0 if a <= tol else 0.0)
             adds.append(a)
-    return np.array(xs), np.array(ys), np.array(adds)
+            supports.append(support(row))
+    return np.array(xs), np.array(ys), np.array(adds), np.array(supports)
 
 
 def fit(x, y, ridge=1e-2, weights=None):
@@ -76,8 +88,8 @@ def fit(x, y, ridge=1e-2, weights=None):
     return w
 
 
-def report(name, x, y, adds, w):
-    p = 1.0 / (1.0 + np.exp(-x @ w))
+def report(name, x, y, adds, supports, w):
+    p = supports / (1.0 + np.exp(-x @ w))
     bins = np.minimum((p * 10).astype(int), 9)
     print(f"\n{name}: {len(y)} poses, {int(y.sum())} within tolerance")
     print("  bin   poses  share  mean p  within")
@@ -106,7 +118,7 @@ def main():
     # Every file weighs the same in the fit, whatever its size: no clip dominates.
     xs, ys, ws = [], [], []
     for f in fit_files:
-        x, y, _ = data[f]
+        x, y, _, _ = data[f]
         xs.append(x)
         ys.append(y)
         ws.append(np.full(len(y), 1.0 / len(y)))

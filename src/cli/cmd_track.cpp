@@ -11,6 +11,7 @@
 #include <numbers>
 #include <optional>
 
+#include "cli/candidates_csv.hpp"
 #include "cli/commands.hpp"
 #include "cli/init_spread.hpp"
 #include "cli/mesh_scale_warning.hpp"
@@ -30,8 +31,8 @@ namespace {
 struct TrackArgs {
   std::vector<std::string> meshes, objects;  // in pairs when there are several
   std::string mutual_occlusion = "on";
-  std::string mesh, sequence, source, frames, out, object, init, init_perturb, init_spread = default_init_spread(),
-                                                                               init_box, summary, overlay, bop_out;
+  std::string mesh, sequence, source, frames, out, object, init, init_perturb,
+      init_spread = default_init_spread(), init_box, summary, overlay, bop_out, candidates_out;
   std::string quaternion = "wxyz";
   double unit_scale = 1.0;
   bool init_from_gt = false, init_global = false, no_recover = false;
@@ -96,7 +97,7 @@ Mesh load_mesh(const std::string& path, double unit_scale, const TrackerConfig& 
   Mesh checked = mesh;
   checked.validate_and_clean(path);
   const MeshSimplification drawing = config.budget_ms > 0 ? simplify_for_budget(checked, config.simplify_error)
-                                                           : simplify_for_drawing(checked, config.simplify_error);
+                                                          : simplify_for_drawing(checked, config.simplify_error);
   const Mesh& drawn = drawing.mesh;
   // A budget's coarser drawing (simplify_for_budget) is reported by its own estimate of the error.
   const double within = std::max(drawing_error(checked, config.simplify_error), drawing.error);
@@ -104,8 +105,7 @@ Mesh load_mesh(const std::string& path, double unit_scale, const TrackerConfig& 
     std::fprintf(stderr,
                  "depthtrack: note: drawing '%s' simplified within %g mm: %zu of its %zu triangles "
                  "(--simplify-error 0 draws it as given)\n",
-                 path.c_str(), within * 1e3, drawn.triangles.size(),
-                 checked.triangles.size());
+                 path.c_str(), within * 1e3, drawn.triangles.size(), checked.triangles.size());
   if (!bounds_solid_outward(drawn))
     std::fprintf(stderr,
                  "depthtrack: note: '%s' does not bound a solid wound outward (an edge without its reverse, or a "
@@ -191,7 +191,8 @@ void run_track_objects(const TrackArgs& a) {
   for (const auto& [set, name] : {std::pair{!a.init.empty(), "--init"},
                                   {!a.init_box.empty(), "--init-box"},
                                   {a.init_global, "--init-global"},
-                                  {!a.bop_out.empty(), "--bop-out"}})
+                                  {!a.bop_out.empty(), "--bop-out"},
+                                  {!a.candidates_out.empty(), "--candidates-out"}})
     if (set) throw InputError(std::string(name) + " is for one object; not with several --mesh/--object pairs");
   const bool mutual = on_off(a.mutual_occlusion, "--mutual-occlusion");
   const FramesFrom from = frames_from(a);
@@ -292,6 +293,8 @@ void run_track(TrackArgs a) {
   const int starts = !a.init.empty() + a.init_from_gt + !a.init_box.empty() + a.init_global;
   if (starts == 0) throw InputError("give --init POSE, --init-from-gt, --init-box \"u0 v0 u1 v1\" or --init-global");
   if (starts > 1) throw InputError("--init, --init-from-gt, --init-box and --init-global exclude each other");
+  if (!a.candidates_out.empty() && a.init_box.empty() && !a.init_global)
+    throw InputError("--candidates-out lists the first frame's search candidates: give --init-global or --init-box");
   const QuaternionOrder order = quaternion_order(a.quaternion);
   const FramesFrom from = frames_from(a);
   if (!from.is_folder()) check_stream_options(a, from);
@@ -303,6 +306,8 @@ void run_track(TrackArgs a) {
   add_argument_inputs(a, from, outputs);
   const std::filesystem::path csv_path = outputs.add("--out", a.out);
   const std::filesystem::path bop_path = a.bop_out.empty() ? "" : outputs.add("--bop-out", a.bop_out);
+  const std::filesystem::path candidates_path =
+      a.candidates_out.empty() ? "" : outputs.add("--candidates-out", a.candidates_out);
   const std::filesystem::path summary_path =
       a.summary.empty() || a.summary == "-" ? std::filesystem::path(a.summary) : outputs.add("--summary", a.summary);
   TrackerConfig config = a.tracker.resolve();
@@ -362,7 +367,8 @@ void run_track(TrackArgs a) {
     overlay->write(i, f, config.particles);
     overlay_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - drawing).count();
   };
-  const auto frames = global ? track_source_global(*source, mesh, config, hint, on_frame)
+  std::vector<SearchCandidate> candidates;
+  const auto frames = global ? track_source_global(*source, mesh, config, hint, candidates, on_frame)
                              : track_source(*source, mesh, config, initial, spread, on_frame);
   // Frames per second of the tracking, not of drawing the pictures.
   const double seconds =
@@ -370,6 +376,7 @@ void run_track(TrackArgs a) {
   bar.finish();
   csv.finish();
   if (!a.bop_out.empty()) write_bop_csv(bop_path, *seq, frames);
+  if (!a.candidates_out.empty()) write_candidates_csv(candidates_path, candidates, order);
   const RunStats stats = run_stats(frames, seconds);
   if (!a.summary.empty()) write_summary(summary_path, summary_json(stats, config, from.spec, a.mesh));
   outputs.commit();
@@ -449,6 +456,10 @@ void add_track_command(CLI::App& app) {
                 "Find the object inside this box of the first frame: \"u0 v0 u1 v1\", inclusive sensor pixels "
                 "(what a detector gives); no pose needed");
   c->add_flag("--init-global", args->init_global, "Find the object anywhere in the first frame; no pose needed");
+  c->add_option("--candidates-out", args->candidates_out,
+                "With --init-global or --init-box: also write the first frame's search candidates, best first: "
+                "rank,score,confidence,tx,ty,tz and the quaternion (score: log-likelihood; confidence: the "
+                "probability the pose lies within tolerance)");
   c->add_flag("--no-recover", args->no_recover,
               "Do not search for the object again while it is lost (status stays lost until the filter finds it)");
   c->add_option("--init-perturb", args->init_perturb,

@@ -2,6 +2,7 @@
 #include <depthtrack/error.hpp>
 #include <depthtrack/evaluation.hpp>
 #include <depthtrack/frame_source.hpp>
+#include <depthtrack/search_candidates.hpp>
 
 #include "core/stopwatch.hpp"
 #include "eval/score_frame.hpp"
@@ -59,6 +60,20 @@ std::vector<TrackedFrame> track_source_global(FrameSource& source, const Mesh& m
   return track_frames(
       source, mesh, tracker,
       [&hint](Tracker& t, const DepthImage& d, double ts) { return t.initialize_global(d, ts, hint); }, on_frame);
+}
+
+std::vector<TrackedFrame> track_source_global(FrameSource& source, const Mesh& mesh, const TrackerConfig& config,
+                                              const InitHint& hint, std::vector<SearchCandidate>& candidates,
+                                              const std::function<void(size_t, const TrackedFrame&)>& on_frame) {
+  Tracker tracker(mesh, source.camera(), config);
+  return track_frames(
+      source, mesh, tracker,
+      [&hint, &candidates](Tracker& t, const DepthImage& d, double ts) {
+        Estimate e = t.initialize_global(d, ts, hint);
+        candidates = search_candidates(t);
+        return e;
+      },
+      on_frame);
 }
 
 std::vector<TrackedFrame> track_sequence(const Sequence& sequence, const Mesh& mesh, const TrackerConfig& config,

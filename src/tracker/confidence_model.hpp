@@ -7,7 +7,8 @@
 
 namespace depthtrack {
 
-// In [0, 1]; 0 for a silhouette with no measured pixel (nothing supports the pose).
+// In [0, 1]; 0 for a silhouette with no measured pixel (nothing supports the pose), and below 0.5 for one
+// with fewer than kPlanePixels seen (on the surface): the model's probability times seen / kPlanePixels.
 double pose_confidence(const PoseEvidence& evidence);
 // The model's relief input: how far plane_rms exceeds visible_rms (both read up to 3), 0 where a plane
 // explains the seen pixels as well as the pose does. A wall or a table seen through a wrong pose leaves

@@ -141,7 +141,7 @@ Tracker::Impl::Impl(std::shared_ptr<Device> device, const Camera& sensor, const 
   // Every rendering draws the simplified mesh (the given one when simplify_error is 0); a frame budget
   // draws a fine one coarser (simplify_for_budget).
   const MeshSimplification drawn = config.budget_ms > 0 ? simplify_for_budget(checked, config.simplify_error)
-                                                         : simplify_for_drawing(checked, config.simplify_error);
+                                                        : simplify_for_drawing(checked, config.simplify_error);
   mesh_triangles_ = checked.triangles.size();
   drawn_triangles_ = drawn.mesh.triangles.size();
   // A budget on a device times the filter's steps there: its model needs the particle loops' share of
@@ -204,6 +204,7 @@ void Tracker::Impl::initialize(const Pose& pose, const InitialSpread& spread) {
   choose_particle_count(true);
   backend_->initialize(start, spread);
   supervisor_->reset();
+  search_candidates_.clear();
   initialized_ = true;
   has_previous_ = false;
   gap_pending_ = false;
@@ -246,6 +247,9 @@ Estimate Tracker::Impl::initialize_global(const DepthImage& depth, double timest
     throw InputError(
         "global initialization: nothing in the frame stands out in front of its surroundings by half the "
         "object's size; give a box or a point");
+  search_candidates_.clear();
+  for (const search::Candidate& c : found.candidates)
+    search_candidates_.push_back({c.pose, c.score, pose_confidence(supervisor_->assess(c.pose, working))});
   const std::vector<Pose> seeds = TrackSupervisor::seeds(found);
   if (budget_ && !budget_->timed())
     budget_->prime(particle_time_ms(*backend_, working_, seeds.front(), centre_, config_.observation, prime_poses()));

@@ -4,6 +4,7 @@
 // frame-to-frame state; and InternalTracker, the Tracker a MultiTracker drives through them.
 #include <Eigen/Core>
 #include <cstddef>
+#include <depthtrack/search_candidates.hpp>
 #include <depthtrack/tracker.hpp>
 #include <functional>
 #include <memory>
@@ -83,8 +84,9 @@ struct Tracker::Impl {
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();  // the mesh's, where initialize() checks the start
   std::optional<SymmetryAxis> symmetry_;              // the mesh's axis of near symmetry, if it has one
   size_t mesh_triangles_ = 0, drawn_triangles_ = 0;
-  unsigned search_round_ = 0;  // varies each recovery search's perturbations
-  PendingFrame pending_;       // between start_frame and finish_frame
+  unsigned search_round_ = 0;                       // varies each recovery search's perturbations
+  std::vector<SearchCandidate> search_candidates_;  // the last initialize_global's; none after initialize()
+  PendingFrame pending_;                            // between start_frame and finish_frame
   bool frame_pending_ = false;
 };
 

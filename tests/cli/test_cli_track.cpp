@@ -53,11 +53,28 @@ TEST_CASE("track --init-global and --init-box find the object without a pose", "
   for (const std::string start : {"--init-global", "--init-box \"40 20 120 100\""}) {
     const auto [status, output] =
         test::run_cli("track --mesh " + (dir / "object.obj").string() + " --sequence " + (dir / "seq").string() +
-                          " --out " + (dir / "out.csv").string() + " --resolution 80x60 " + start,
+                          " --out " + (dir / "out.csv").string() + " --resolution 80x60 " + start +
+                          " --candidates-out " + (dir / "candidates.csv").string(),
                       dir / "log.txt");
     INFO(start << "\n" << output);
     REQUIRE(status == 0);
     CHECK(output.find("global initialization:") != std::string::npos);
+    // The search's candidates, best first: the best one on the object (0.8 m away), supported.
+    const auto candidates = test::lines_of(dir / "candidates.csv");
+    REQUIRE(candidates.size() >= 2);
+    CHECK(candidates[0] == "rank,score,confidence,tx,ty,tz,qw,qx,qy,qz");
+    const auto best = test::cells_of(candidates[1]);
+    REQUIRE(best.size() == 10);
+    CHECK(best[0] == "1");
+    CHECK(std::stod(best[2]) >= 0.5);
+    CHECK(std::stod(best[5]) == Approx(0.8).margin(0.15));
+    for (size_t i = 2; i < candidates.size(); ++i) {
+      const auto row = test::cells_of(candidates[i]);
+      REQUIRE(row.size() == 10);
+      CHECK(std::stoul(row[0]) == i);
+      CHECK(std::stod(row[2]) >= 0.0);
+      CHECK(std::stod(row[2]) <= 1.0);
+    }
     const auto lines = test::lines_of(dir / "out.csv");
     REQUIRE(lines.size() == 5);
     const auto cells = test::cells_of(lines.back());
@@ -95,6 +112,8 @@ TEST_CASE("track refuses bad input with a reason and a non-zero exit code", "[cl
       {base + mesh + " --init-box \"100 50 170 90\"", "is not inside the 160x120 image"},
       {base + mesh + " --init-box \"1 2 3\"", "takes 4 numbers"},
       {base + mesh + " --init-from-gt --init-global", "exclude each other"},
+      {base + mesh + " --init-from-gt --candidates-out " + (dir / "c.csv").string(),
+       "give --init-global or --init-box"},
       {"track --sequence " + (dir / "nowhere").string() + " --out " + (dir / "o.csv").string() + mesh +
            " --init-from-gt",
        "does not exist"},

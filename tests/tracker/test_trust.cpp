@@ -54,6 +54,32 @@ TEST_CASE("the confidence rises with the evidence and falls with what contradict
   CHECK(pose_confidence(PoseEvidence{}) == 0.0);  // nothing drawn: nothing supports it
 }
 
+TEST_CASE("a pose seen by fewer pixels than a plane needs is never supported, whatever its shares",
+          "[confidence][trust]") {
+  // The handset behind a 90 % occluder: a strip of it seen, every seen pixel on the surface.
+  PoseEvidence strip;
+  strip.pixels = 20;  // 20 measured pixels of which 0.4 lie on the surface: 8 seen
+  strip.visible = 0.4;
+  strip.occluded = 0.6;
+  strip.separated = 0.9;
+  strip.visible_rms = 0.5;
+  strip.plane_rms = 2.0;
+  CHECK(pose_confidence(strip) < 0.5);
+  // The same shares over 40 measured pixels (16 seen): the shares decide, as for any larger silhouette.
+  PoseEvidence wider = strip;
+  wider.pixels = 40;
+  PoseEvidence large = strip;
+  large.pixels = 4000;
+  CHECK(pose_confidence(wider) > 0.5);
+  CHECK(pose_confidence(wider) == Approx(pose_confidence(large)));
+  // Below that, in proportion to the pixels seen: half of them, half the confidence.
+  CHECK(pose_confidence(strip) == Approx(0.5 * pose_confidence(large)));
+  // Missing pixels (no depth) are not seen: 40 drawn, half without depth, 8 seen.
+  PoseEvidence holes = wider;
+  holes.missing = 0.5;
+  CHECK(pose_confidence(holes) == Approx(pose_confidence(strip)));
+}
+
 TEST_CASE("a curved surface seen through occluders is trusted for its relief, a flat one is not",
           "[confidence][trust]") {
   // A bowl half hidden by the objects in front of it, sitting on the table: little of its outline sees
