@@ -4,14 +4,15 @@
 # the Python plotting module. The GPU machine has no OSMesa: a stand-in library whose every call fails
 # (scripts/gpu/stubs/osmesa_stub.c) lets the binaries load there, where EGL draws.
 #   scripts/pack-carried-build.sh [BUILD_DIR [INTO]]   (default build, build-carry)
+# PACK_BUILD=0 packs what is built without building the rest (e.g. an earlier commit's bench alone).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 from=${1:-build}
 into=${2:-build-carry}
-cmake --build "$from" >/dev/null
+[[ ${PACK_BUILD:-1} == 0 ]] || cmake --build "$from" >/dev/null
 rm -rf "$into"
 mkdir -p "$into/src" "$into/tests" "$into/python/depthtrack"
-cp "$from"/depthtrack "$from"/depthtrack_bench* "$into/"
+for program in "$from"/depthtrack "$from"/depthtrack_bench*; do [[ -x $program ]] && cp "$program" "$into/"; done
 cp -L "$from/src/libdepthtrack.so.0" "$into/src/"
 ln -s libdepthtrack.so.0 "$into/src/libdepthtrack.so"
 [[ -x $from/tests/depthtrack_tests ]] && cp "$from/tests/depthtrack_tests" "$into/tests/"
