@@ -4,8 +4,9 @@
  * IRLS Gauss-Newton steps (each pixel weighted by the responsibility of its visible gaussian over
  * sigma^2) as camera-frame twists about the mesh's centre, each kept unless it lowers the
  * log-likelihood by more than float rounding could, a rejected one damped to lambda >= 1, no step
- * tried that would move no mesh point farther than converged_motion. Needs DT_GROUP_SIZE and
- * DT_OCCLUSION (as weigh.cl). */
+ * tried that would move no mesh point farther than converged_motion. With args.stages 2 a second stage
+ * (Refinement::fine_noise_scale) starts again from the best pose at its own sigma(y) (dt_refine_stage_model)
+ * and takes as many steps at most. Needs DT_GROUP_SIZE and DT_OCCLUSION (as weigh.cl). */
 #ifndef DT_REFINE_H
 #define DT_REFINE_H
 #include "dt_group.h"
@@ -32,6 +33,20 @@ DT_DEVICE_FN void dt_refine_draw_item(dt_rigid pose, __global const float* verti
              slice = draw_slices == 1 ? 0u : item / triangle_count;
   dt_draw_triangle_rows(pose, vertices, triangles, planes, triangle, cam, tile, ids, nearest, 0, dt_no_band(),
                         DT_CAST(int, slice), DT_CAST(int, draw_slices));
+}
+
+/* Stage `stage`'s observation model and arguments (0: the first, as given; 1: the second, with its own
+ * sigma(y) and confidence band, which keeps its width in metres): PoseRefiner's stages (model::fit_stages). */
+DT_DEVICE_FN dt_model dt_refine_stage_model(dt_model m, dt_refine_args args, uint stage) {
+  if (stage > 0) {
+    m.sigma_constant = args.fine_sigma_constant;
+    m.sigma_quadratic = args.fine_sigma_quadratic;
+  }
+  return m;
+}
+DT_DEVICE_FN dt_refine_args dt_refine_stage_args(dt_refine_args args, uint stage) {
+  if (stage > 0) args.pixel_sigmas = args.fine_pixel_sigmas;
+  return args;
 }
 
 /* Solves A x = b for the symmetric 6x6 A given by its lower triangle (row by row), its diagonal times

@@ -57,20 +57,14 @@ double damping_after_rejection(double lambda) {
 }
 
 PoseRefiner::PoseRefiner(const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
-    : stages_{model::fit_config(config)},  // the fit's own noise (Refinement::noise_scale)
+    : stages_(model::fit_stages(config)),  // the fit's own noise (Refinement::noise_scale), then fine_noise_scale's
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       radius_(mesh.radius()),
       rasterizer_(mesh, camera, config.near_plane, config.observation.max_depth),
       planes_(render::triangle_planes(mesh)),
       rendered_(static_cast<size_t>(camera.pixel_count())),
-      triangle_ids_(static_cast<size_t>(camera.pixel_count())) {
-  if (config.refine.fine_noise_scale > 0) {
-    TrackerConfig fine = config;
-    fine.refine.noise_scale = config.refine.fine_noise_scale;
-    stages_.push_back(model::fit_config(fine));
-  }
-}
+      triangle_ids_(static_cast<size_t>(camera.pixel_count())) {}
 
 NormalEquations PoseRefiner::normal_equations(const Pose& pose, const DepthImage& depth,
                                               std::span<const double> occlusion) const {
