@@ -71,6 +71,7 @@ TEST_CASE("a float compared with the float threshold decides as a double compare
 TEST_CASE("the refinement parameters carry one stage, or a second at fine_noise_scale's sigma(y)", "[model]") {
   TrackerConfig config;  // sigma(y) = 0.003 + 0.0014247 y^2, band 3 sigma
   config.refine.noise_scale = 0.5;
+  config.refine.fine_noise_scale = 0;
   const Eigen::Vector3d centre(0.01, 0.02, 0.03);
   const std::vector<TrackerConfig> one = model::fit_stages(config);
   REQUIRE(one.size() == 1);
