@@ -45,7 +45,10 @@ DT_DEVICE_FN dt_model dt_refine_stage_model(dt_model m, dt_refine_args args, uin
   return m;
 }
 DT_DEVICE_FN dt_refine_args dt_refine_stage_args(dt_refine_args args, uint stage) {
-  if (stage > 0) args.pixel_sigmas = args.fine_pixel_sigmas;
+  if (stage > 0) {
+    args.pixel_sigmas = args.fine_pixel_sigmas;
+    args.step_tolerance = args.fine_step_tolerance;
+  }
   return args;
 }
 
@@ -195,10 +198,11 @@ DT_DEVICE_FN int dt_refine_step(const float* best_sums, float lambda, dt_refine_
          args.converged_motion;
 }
 
-/* A candidate is kept unless it lowers the objective by more than float rounding could (PoseRefiner's
- * tolerance); otherwise lambda becomes PoseRefiner's damping_after_rejection. */
-DT_DEVICE_FN int dt_refine_keeps(float candidate_objective, float best_objective) {
-  return candidate_objective >= best_objective - 0.01f;
+/* A candidate is kept unless it lowers the objective by more than float rounding could (the stage's
+ * tolerance, model::step_tolerance, as PoseRefiner's); otherwise lambda becomes PoseRefiner's
+ * damping_after_rejection. */
+DT_DEVICE_FN int dt_refine_keeps(float candidate_objective, float best_objective, float tolerance) {
+  return candidate_objective >= best_objective - tolerance;
 }
 DT_DEVICE_FN float dt_refine_damping_after_rejection(float lambda) {
   return fmax(10.0f * lambda, 1.0f);

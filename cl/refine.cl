@@ -105,7 +105,7 @@ __kernel void refine(__global float* estimate, __global const float* states, __g
       dt_refine_evaluate(pose_state, observed, occlusion, occlusion_time, frame_times, at, vertices, triangles, planes,
                          triangle_count, cam, sm, sa, tile, ids, sums);
       if (lid == 0) {
-        if (dt_refine_keeps(sums[DT_REFINE_OBJECTIVE], best_sums[DT_REFINE_OBJECTIVE])) {
+        if (dt_refine_keeps(sums[DT_REFINE_OBJECTIVE], best_sums[DT_REFINE_OBJECTIVE], sa.step_tolerance)) {
           best = dt_load_pose(pose_state);
           for (int k = 0; k < DT_REFINE_SUMS; ++k) best_sums[k] = sums[k];
           lambda = args.damping;

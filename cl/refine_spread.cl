@@ -71,7 +71,8 @@ DT_DEVICE_FN void dt_refine_judge(__global dt_refine_state* s, __global float* e
                                   const float* sums, dt_refine_args args, __global float* correction) {
   const dt_vec3 centre = dt_vec3_make(args.centre_x, args.centre_y, args.centre_z);
   float lambda = s->lambda;
-  if (s->evaluation == 0 || dt_refine_keeps(sums[DT_REFINE_OBJECTIVE], s->best_sums[DT_REFINE_OBJECTIVE])) {
+  const float tolerance = dt_refine_stage_args(args, s->stage).step_tolerance; /* the judged evaluation's stage */
+  if (s->evaluation == 0 || dt_refine_keeps(sums[DT_REFINE_OBJECTIVE], s->best_sums[DT_REFINE_OBJECTIVE], tolerance)) {
     for (int k = 0; k < DT_REFINE_SUMS; ++k) s->best_sums[k] = sums[k];
     for (int k = 0; k < DT_STATE_STRIDE; ++k) s->best[k] = s->candidate[k];
     lambda = args.damping;

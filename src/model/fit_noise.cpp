@@ -23,6 +23,10 @@ std::vector<TrackerConfig> fit_stages(const TrackerConfig& config) {
   return stages;
 }
 
+double step_tolerance(double noise_scale) {
+  return 0.01 / (noise_scale * noise_scale);
+}
+
 double last_noise_scale(const Refinement& refine) {
   return refine.fine_noise_scale > 0 ? refine.fine_noise_scale : refine.noise_scale;
 }

@@ -17,6 +17,13 @@ TrackerConfig fit_config(const TrackerConfig& config);
 // second stage's (fit_config at that noise). Every backend fits these.
 std::vector<TrackerConfig> fit_stages(const TrackerConfig& config);
 
+// How far a step of the fit may lower its log-likelihood and still be kept (nats), at the stage's noise
+// (Refinement::noise_scale s): 0.01 / s^2. Near the optimum steps change the objective by less than
+// float rounding does, so a strict comparison would let the float device and the double reference
+// decide differently and end a step apart; the rounding grows as 1 / s^2 (each pixel's term is
+// (y - y_hat)^2 / (s sigma)^2), and so does the tolerance. Both the reference and the kernels use it.
+double step_tolerance(double noise_scale);
+
 // The noise the fit's last stage weighs with: refine.fine_noise_scale when set, else noise_scale.
 double last_noise_scale(const Refinement& refine);
 

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "model/fit_noise.hpp"
 #include "model/occlusion_chain.hpp"
 
 namespace depthtrack::model {
@@ -76,7 +77,9 @@ dt_refine_args refine_params(std::span<const TrackerConfig> stages, const Eigen:
                         static_cast<dt_u32>(stages.size()),
                         static_cast<float>(last.observation.sigma_constant),
                         static_cast<float>(last.observation.sigma_quadratic),
-                        static_cast<float>(last.loss.pixel_sigmas)};
+                        static_cast<float>(last.loss.pixel_sigmas),
+                        static_cast<float>(step_tolerance(refine.noise_scale)),
+                        static_cast<float>(step_tolerance(last.refine.noise_scale))};
 }
 
 std::string occlusion_definition(OcclusionStorage storage) {

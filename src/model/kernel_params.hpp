@@ -22,10 +22,11 @@ static_assert(sizeof(dt_initial) == 24 && offsetof(dt_initial, centre_x) == 8 &&
               offsetof(dt_initial, mode_count) == 20);
 static_assert(sizeof(dt_camera) == 36 && offsetof(dt_camera, far) == 20 && offsetof(dt_camera, height) == 28 &&
               offsetof(dt_camera, cull_back_faces) == 32);
-static_assert(sizeof(dt_refine_args) == 68 && offsetof(dt_refine_args, dt) == 24 &&
+static_assert(sizeof(dt_refine_args) == 76 && offsetof(dt_refine_args, dt) == 24 &&
               offsetof(dt_refine_args, iterations) == 28 && offsetof(dt_refine_args, vertex_count) == 40 &&
               offsetof(dt_refine_args, pixel_sigmas) == 44 && offsetof(dt_refine_args, draw_slices) == 48 &&
-              offsetof(dt_refine_args, stages) == 52 && offsetof(dt_refine_args, fine_pixel_sigmas) == 64);
+              offsetof(dt_refine_args, stages) == 52 && offsetof(dt_refine_args, fine_pixel_sigmas) == 64 &&
+              offsetof(dt_refine_args, fine_step_tolerance) == 72);
 static_assert(sizeof(dt_window) == 40 && offsetof(dt_window, image_width) == 32 && offsetof(dt_window, initial) == 36);
 
 // Observation model and occlusion chain of config.

@@ -93,6 +93,9 @@ TEST_CASE("the refinement parameters carry one stage, or a second at fine_noise_
   CHECK(b.fine_sigma_quadratic == Approx(0.0014247 * 0.35));
   CHECK(b.fine_pixel_sigmas == Approx(3.0 / 0.35));
   CHECK(model::last_noise_scale(config.refine) == 0.35);
+  // Each stage keeps a step within 0.01 nats / s^2 of the best (float rounding grows as 1 / s^2).
+  CHECK(b.step_tolerance == Approx(0.01 / (0.5 * 0.5)));
+  CHECK(b.fine_step_tolerance == Approx(0.01 / (0.35 * 0.35)));
   // Steps, damping and stopping are the first stage's (both stages share them).
   CHECK(b.damping == Approx(1e-2));
   CHECK(b.converged_motion == Approx(5e-5));
