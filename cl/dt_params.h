@@ -54,6 +54,10 @@ typedef struct {
   dt_u32 vertex_count;
   float pixel_sigmas; /* the confidence's band: a pixel within this many sigma of the surface is visible */
   dt_u32 draw_slices; /* work-items drawing each triangle, every draw_slices-th row each (DeviceRefiner) */
+  dt_u32 stages;      /* 1, or 2: a second stage (Refinement::fine_noise_scale) with the fine_ values below */
+  float fine_sigma_constant, fine_sigma_quadratic; /* the second stage's sigma(y), in place of dt_model's */
+  float fine_pixel_sigmas;                         /* and its confidence band in its sigmas */
+  float step_tolerance, fine_step_tolerance;       /* model::step_tolerance of each stage (nats) */
 } dt_refine_args;
 
 /* The occlusion state window (model::StateWindow, TrackerConfig::occlusion_window): each particle's

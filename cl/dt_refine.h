@@ -4,8 +4,9 @@
  * IRLS Gauss-Newton steps (each pixel weighted by the responsibility of its visible gaussian over
  * sigma^2) as camera-frame twists about the mesh's centre, each kept unless it lowers the
  * log-likelihood by more than float rounding could, a rejected one damped to lambda >= 1, no step
- * tried that would move no mesh point farther than converged_motion. Needs DT_GROUP_SIZE and
- * DT_OCCLUSION (as weigh.cl). */
+ * tried that would move no mesh point farther than converged_motion. With args.stages 2 a second stage
+ * (Refinement::fine_noise_scale) starts again from the best pose at its own sigma(y) (dt_refine_stage_model)
+ * and takes as many steps at most. Needs DT_GROUP_SIZE and DT_OCCLUSION (as weigh.cl). */
 #ifndef DT_REFINE_H
 #define DT_REFINE_H
 #include "dt_group.h"
@@ -32,6 +33,23 @@ DT_DEVICE_FN void dt_refine_draw_item(dt_rigid pose, __global const float* verti
              slice = draw_slices == 1 ? 0u : item / triangle_count;
   dt_draw_triangle_rows(pose, vertices, triangles, planes, triangle, cam, tile, ids, nearest, 0, dt_no_band(),
                         DT_CAST(int, slice), DT_CAST(int, draw_slices));
+}
+
+/* Stage `stage`'s observation model and arguments (0: the first, as given; 1: the second, with its own
+ * sigma(y) and confidence band, which keeps its width in metres): PoseRefiner's stages (model::fit_stages). */
+DT_DEVICE_FN dt_model dt_refine_stage_model(dt_model m, dt_refine_args args, uint stage) {
+  if (stage > 0) {
+    m.sigma_constant = args.fine_sigma_constant;
+    m.sigma_quadratic = args.fine_sigma_quadratic;
+  }
+  return m;
+}
+DT_DEVICE_FN dt_refine_args dt_refine_stage_args(dt_refine_args args, uint stage) {
+  if (stage > 0) {
+    args.pixel_sigmas = args.fine_pixel_sigmas;
+    args.step_tolerance = args.fine_step_tolerance;
+  }
+  return args;
 }
 
 /* Solves A x = b for the symmetric 6x6 A given by its lower triangle (row by row), its diagonal times
@@ -180,10 +198,11 @@ DT_DEVICE_FN int dt_refine_step(const float* best_sums, float lambda, dt_refine_
          args.converged_motion;
 }
 
-/* A candidate is kept unless it lowers the objective by more than float rounding could (PoseRefiner's
- * tolerance); otherwise lambda becomes PoseRefiner's damping_after_rejection. */
-DT_DEVICE_FN int dt_refine_keeps(float candidate_objective, float best_objective) {
-  return candidate_objective >= best_objective - 0.01f;
+/* A candidate is kept unless it lowers the objective by more than float rounding could (the stage's
+ * tolerance, model::step_tolerance, as PoseRefiner's); otherwise lambda becomes PoseRefiner's
+ * damping_after_rejection. */
+DT_DEVICE_FN int dt_refine_keeps(float candidate_objective, float best_objective, float tolerance) {
+  return candidate_objective >= best_objective - tolerance;
 }
 DT_DEVICE_FN float dt_refine_damping_after_rejection(float lambda) {
   return fmax(10.0f * lambda, 1.0f);

@@ -21,7 +21,8 @@
 
 typedef struct {
   dt_u32 active;     /* 1 while a candidate waits to be evaluated */
-  dt_u32 evaluation; /* evaluations judged */
+  dt_u32 stage;      /* the stage being fitted (0, then 1 with dt_refine_args.stages 2) */
+  dt_u32 evaluation; /* evaluations judged in this stage */
   dt_u32 arrived;    /* the sums kernel's groups done with this evaluation (the last one judges it) */
   dt_u32 stamp;      /* evaluations summed since the fit state was made: tags the partial rows */
   int tried;         /* steps tried (candidates after the start) */

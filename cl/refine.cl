@@ -9,6 +9,7 @@
  * buffer receives the refined pose and its covariance, `correction` the twist that resample_particles applies to every
  * particle (the one that moves the heaviest particle onto the refined pose). Compile-time choices as for weigh.cl
  * (DT_GROUP_SIZE, DT_OCCLUSION); the pieces shared with cl/refine_spread.cl are in dt_refine.h.
+ * With args.stages 2 the steps run again from the best pose at the second stage's noise (dt_refine.h).
  * Reference: PoseRefiner::refine and ReferenceFilter::refine. */
 #include "dt_refine.h"
 
@@ -75,36 +76,42 @@ __kernel void refine(__global float* estimate, __global const float* states, __g
   const dt_refine_offsets at = dt_refine_map_offsets(parents[heaviest], win);
 
   const dt_pose start = dt_load_pose(states + DT_CAST(ulong, heaviest) * DT_STATE_STRIDE);
-  if (lid == 0) dt_store_pose(pose_state, start);
-  barrier(CLK_GLOBAL_MEM_FENCE);
-  dt_refine_evaluate(pose_state, observed, occlusion, occlusion_time, frame_times, at, vertices, triangles, planes,
-                     triangle_count, cam, m, args, tile, ids, sums);
   /* Work-item 0's: the best pose evaluated, its sums, the damping. */
   dt_pose best = start;
   float best_sums[DT_REFINE_SUMS];
-  float lambda = args.damping;
-  if (lid == 0)
-    for (int k = 0; k < DT_REFINE_SUMS; ++k) best_sums[k] = sums[k];
-  for (int iteration = 0; iteration < args.iterations; ++iteration) {
-    if (lid == 0) {
-      float step[6];
-      proceed = dt_refine_step(best_sums, lambda, args, step);
-      if (proceed) {
-        dt_store_pose(pose_state, dt_apply_twist(best, centre, step));
-        ++tried;
-      }
-    }
+  for (uint stage = 0; stage < args.stages; ++stage) {
+    const dt_model sm = dt_refine_stage_model(m, args, stage);
+    const dt_refine_args sa = dt_refine_stage_args(args, stage);
+    /* Each stage starts from the best pose so far, its sums at the stage's noise (work-item 0 has read
+     * the last stage's sums before the barrier). */
+    if (lid == 0) dt_store_pose(pose_state, best);
     barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
-    if (!proceed) break;
     dt_refine_evaluate(pose_state, observed, occlusion, occlusion_time, frame_times, at, vertices, triangles, planes,
-                       triangle_count, cam, m, args, tile, ids, sums);
-    if (lid == 0) {
-      if (dt_refine_keeps(sums[DT_REFINE_OBJECTIVE], best_sums[DT_REFINE_OBJECTIVE])) {
-        best = dt_load_pose(pose_state);
-        for (int k = 0; k < DT_REFINE_SUMS; ++k) best_sums[k] = sums[k];
-        lambda = args.damping;
-      } else {
-        lambda = dt_refine_damping_after_rejection(lambda);
+                       triangle_count, cam, sm, sa, tile, ids, sums);
+    float lambda = args.damping;
+    if (lid == 0)
+      for (int k = 0; k < DT_REFINE_SUMS; ++k) best_sums[k] = sums[k];
+    for (int iteration = 0; iteration < args.iterations; ++iteration) {
+      if (lid == 0) {
+        float step[6];
+        proceed = dt_refine_step(best_sums, lambda, args, step);
+        if (proceed) {
+          dt_store_pose(pose_state, dt_apply_twist(best, centre, step));
+          ++tried;
+        }
+      }
+      barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+      if (!proceed) break;
+      dt_refine_evaluate(pose_state, observed, occlusion, occlusion_time, frame_times, at, vertices, triangles, planes,
+                         triangle_count, cam, sm, sa, tile, ids, sums);
+      if (lid == 0) {
+        if (dt_refine_keeps(sums[DT_REFINE_OBJECTIVE], best_sums[DT_REFINE_OBJECTIVE], sa.step_tolerance)) {
+          best = dt_load_pose(pose_state);
+          for (int k = 0; k < DT_REFINE_SUMS; ++k) best_sums[k] = sums[k];
+          lambda = args.damping;
+        } else {
+          lambda = dt_refine_damping_after_rejection(lambda);
+        }
       }
     }
   }

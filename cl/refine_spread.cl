@@ -8,13 +8,14 @@
  * atomics: the same sums every run; how it knows the rows are complete: refine_sums), keeps or rejects the candidate,
  * solves the next step and writes the next candidate into the fit's state (dt_refine_state.h). The host enqueues begin,
  * then iterations + 1 evaluations, with no round trip; once the fit has stopped (converged, or no step left to try),
- * `active` is 0 and the later kernels return at once. The judgement that stops it writes the results, as the one-group
- * kernel does. No pixel box: a work-item per pixel costs nothing more on a GPU than one per box pixel, and the
- * judgement then has no vertex loop. Invariant between evaluations: nearest holds DT_NEAREST_EMPTY at every pixel (the
- * sums kernel resets every pixel it reads), so no kernel clears. Needs 64-bit atomic min
- * (cl_khr_int64_extended_atomics; CUDA has it): without it Auto picks the one-group layout (resolved_refine_layout).
- * Compile-time choices as for refine.cl (DT_GROUP_SIZE: the sums kernel's groups; DT_OCCLUSION). Reference:
- * PoseRefiner::refine and ReferenceFilter::refine. */
+ * `active` is 0 and the later kernels return at once; with a second stage (args.stages 2) the host enqueues
+ * twice as many evaluations and the state's `stage` picks each evaluation's sigma(y). The judgement that stops it
+ * writes the results, as the one-group kernel does. No pixel box: a work-item per pixel costs nothing more on a GPU
+ * than one per box pixel, and the judgement then has no vertex loop. Invariant between evaluations: nearest holds
+ * DT_NEAREST_EMPTY at every pixel (the sums kernel resets every pixel it reads), so no kernel clears. Needs 64-bit
+ * atomic min (cl_khr_int64_extended_atomics; CUDA has it): without it Auto picks the one-group layout
+ * (resolved_refine_layout). Compile-time choices as for refine.cl (DT_GROUP_SIZE: the sums kernel's groups;
+ * DT_OCCLUSION). Reference: PoseRefiner::refine and ReferenceFilter::refine. */
 #ifdef __OPENCL_VERSION__
 #pragma OPENCL EXTENSION cl_khr_int64_extended_atomics : enable
 #endif
@@ -34,6 +35,7 @@ DT_DEVICE_FN void dt_refine_start(__global dt_refine_state* s, __global const fl
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
   dt_store_pose(s->candidate, dt_load_pose(states + DT_CAST(ulong, heaviest) * DT_STATE_STRIDE));
   s->active = 1;
+  s->stage = 0;
   s->evaluation = 0;
   s->arrived = 0;
   s->tried = 0;
@@ -61,14 +63,16 @@ __kernel void refine_draw(__global const dt_refine_state* s, __global const floa
 }
 
 /* One work-item of the last group, with the candidate's sums: PoseRefiner's loop body. Keeps or
- * rejects the candidate (the start is kept) and, unless this was the last evaluation, solves the
- * next step from the best pose and makes it the candidate. With no next candidate the fit ends here:
+ * rejects the candidate (a stage's start is kept) and, unless this was the stage's last evaluation,
+ * solves the next step from the best pose and makes it the candidate. With no next candidate the next
+ * stage (args.stages 2) starts from the best pose, or, after the last stage, the fit ends here:
  * results into estimate and correction (as refine.cl). */
 DT_DEVICE_FN void dt_refine_judge(__global dt_refine_state* s, __global float* estimate, __global const float* states,
                                   const float* sums, dt_refine_args args, __global float* correction) {
   const dt_vec3 centre = dt_vec3_make(args.centre_x, args.centre_y, args.centre_z);
   float lambda = s->lambda;
-  if (s->evaluation == 0 || dt_refine_keeps(sums[DT_REFINE_OBJECTIVE], s->best_sums[DT_REFINE_OBJECTIVE])) {
+  const float tolerance = dt_refine_stage_args(args, s->stage).step_tolerance; /* the judged evaluation's stage */
+  if (s->evaluation == 0 || dt_refine_keeps(sums[DT_REFINE_OBJECTIVE], s->best_sums[DT_REFINE_OBJECTIVE], tolerance)) {
     for (int k = 0; k < DT_REFINE_SUMS; ++k) s->best_sums[k] = sums[k];
     for (int k = 0; k < DT_STATE_STRIDE; ++k) s->best[k] = s->candidate[k];
     lambda = args.damping;
@@ -85,6 +89,12 @@ DT_DEVICE_FN void dt_refine_judge(__global dt_refine_state* s, __global float* e
   if (proceed) {
     dt_store_pose(s->candidate, dt_apply_twist(best, centre, step));
     s->tried += 1;
+    return;
+  }
+  if (s->stage + 1 < args.stages) { /* the next stage: the best pose is its start, judged afresh */
+    s->stage += 1;
+    s->evaluation = 0;
+    for (int k = 0; k < DT_STATE_STRIDE; ++k) s->candidate[k] = s->best[k];
     return;
   }
   s->active = 0;
@@ -134,12 +144,11 @@ DT_DEVICE_FN int dt_refine_add_column(__global volatile const dt_u64* rows, uint
 
 /* The image's pixels over all work-items of the grid; each group's sums into its row of partials,
  * every pixel read reset for the next evaluation. The last group to count itself in then adds the
- * rows in group order, a work-item per sum, and its work-item 0 judges (dt_refine_judge). The other groups have read the fit's state
- * before they count themselves in, so the last one may write it.
- * No fence is needed for the rows: OpenCL 1.2 has none that reaches other work-groups (NVIDIA's
- * mem_fence is membar.cta), so each partial is stored with the evaluation's stamp in one 64-bit
- * word, (stamp << 32) | bits, and the last group waits for every word to carry this evaluation's
- * stamp: the other groups have finished, only their stores can still be on the way. */
+ * rows in group order, a work-item per sum, and its work-item 0 judges (dt_refine_judge). The other groups have read
+ * the fit's state before they count themselves in, so the last one may write it. No fence is needed for the rows:
+ * OpenCL 1.2 has none that reaches other work-groups (NVIDIA's mem_fence is membar.cta), so each partial is stored with
+ * the evaluation's stamp in one 64-bit word, (stamp << 32) | bits, and the last group waits for every word to carry
+ * this evaluation's stamp: the other groups have finished, only their stores can still be on the way. */
 __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate, __global const float* states,
                           __global const float* observed, __global const float* occlusion,
                           __global const dt_u16* occlusion_time, __global const float* frame_times,
@@ -155,9 +164,11 @@ __kernel void refine_sums(__global dt_refine_state* s, __global float* estimate,
   const uint heaviest = dt_as_uint(estimate[DT_EST_HEAVIEST]);
   const dt_refine_offsets at = dt_refine_map_offsets(parents[heaviest], win);
   const dt_rigid pose = dt_particle_pose(s->candidate);
+  const uint stage = s->stage;
   float acc[DT_REFINE_SUMS];
-  dt_refine_sum_drawn(acc, get_global_id(0), get_global_size(0), nearest, pose, args, observed, occlusion,
-                      occlusion_time, frame_times, at, planes, triangle_count, cam, m);
+  dt_refine_sum_drawn(acc, get_global_id(0), get_global_size(0), nearest, pose, dt_refine_stage_args(args, stage),
+                      observed, occlusion, occlusion_time, frame_times, at, planes, triangle_count, cam,
+                      dt_refine_stage_model(m, args, stage));
   dt_group_sums(acc, DT_REFINE_SUMS, sums);
   const uint lid = get_local_id(0), groups = get_num_groups(0);
   if (lid < DT_REFINE_SUMS)
@@ -241,9 +252,11 @@ __kernel void refine_one_launch(__global const float* log_weight, __global const
       dt_refine_draw_item(pose, vertices, triangles, planes, triangle_count, args.draw_slices, item, cam, 0, 0,
                           nearest);
     barrier(CLK_GLOBAL_MEM_FENCE);
+    const uint stage = s->stage;
     float acc[DT_REFINE_SUMS];
-    dt_refine_sum_drawn(acc, lid, DT_GROUP_SIZE, nearest, pose, args, observed, occlusion, occlusion_time,
-                        frame_times, at, planes, triangle_count, cam, m);
+    dt_refine_sum_drawn(acc, lid, DT_GROUP_SIZE, nearest, pose, dt_refine_stage_args(args, stage), observed, occlusion,
+                        occlusion_time, frame_times, at, planes, triangle_count, cam,
+                        dt_refine_stage_model(m, args, stage));
     dt_group_sums(acc, DT_REFINE_SUMS, sums);
     if (lid == 0) {
       float total[DT_REFINE_SUMS];

@@ -10,6 +10,7 @@
 #include "compute/queue.hpp"
 #include "core/stopwatch.hpp"
 #include "filter/frame_plan.hpp"
+#include "model/fit_noise.hpp"
 #include "tracker/make_filter_backend.hpp"
 
 namespace depthtrack::cli {
@@ -116,9 +117,10 @@ CaseResult run_case(const BenchCase& c, const BenchTarget& target, const std::st
   const auto [window_width, window_height] = tracker.occlusion_window_size();
   const size_t state_pixels = static_cast<size_t>(window_width) * static_cast<size_t>(window_height);
   const bool weigh_propagates = plan && plan->propagate_in_weigh;
-  const StepBytes b =
-      step_bytes(static_cast<size_t>(c.particles), pixels, c.mode, target.on_device && renderer == "gl",
-                 config.refine.enabled ? config.refine.iterations : 0, inside_weigh, state_pixels, weigh_propagates);
+  const StepBytes b = step_bytes(
+      static_cast<size_t>(c.particles), pixels, c.mode, target.on_device && renderer == "gl",
+      config.refine.enabled ? config.refine.iterations * static_cast<int>(model::fit_stages(config).size()) : 0,
+      inside_weigh, state_pixels, weigh_propagates);
   const char* names[6] = {"propagate", "render", "handoff", "weigh", "resample", "refine"};
   const double bytes[6] = {b.propagate, b.render, b.handoff, b.weigh, b.resample, b.refine};
   for (int s = 0; s < 6; ++s) {

@@ -35,14 +35,6 @@ size_t round_up(size_t n, size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
 }
 
-// The fit's configuration (model::fit_config), refused where it asks for what the kernels do not do.
-TrackerConfig device_fit_config(const TrackerConfig& config) {
-  if (config.refine.fine_noise_scale > 0)
-    throw InputError("refine.fine_noise_scale " + std::to_string(config.refine.fine_noise_scale) +
-                     " (a second stage of the fit) needs the reference or cpu backend");
-  return model::fit_config(config);
-}
-
 }  // namespace
 
 // What each layout costs at 2,000 particles, 80x60 (refine_ms, one group / spread): the spread layout is
@@ -93,7 +85,8 @@ DeviceRefiner::DeviceRefiner(compute::Queue& queue, compute::ProgramCache& progr
                              const Camera& camera, const TrackerConfig& config, const std::string& occlusion_definition,
                              unsigned draw_slices)
     : queue_(queue),
-      config_(device_fit_config(config)),  // the fit's own noise (Refinement::noise_scale), as the reference's
+      stages_(model::fit_stages(config)),
+      config_(stages_.front()),
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       radius_(mesh.radius()),
@@ -138,8 +131,8 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
                                                      const SummaryInputs* summary) {
   if (summary && !summarizes_first())
     throw std::logic_error("device refiner: the " + std::string(to_string(layout_)) + " layout does not summarize");
-  const dt_refine_args args = model::refine_params(config_.refine, centre_, radius_, mesh_.vertices.size() / 3, in.time,
-                                                   in.dt, config_.loss.pixel_sigmas, draw_slices_);
+  const dt_refine_args args =
+      model::refine_params(stages_, centre_, radius_, mesh_.vertices.size() / 3, in.time, in.dt, draw_slices_);
   if (layout_ == RefineLayout::Spread) return refine_spread(estimate, in, args);
   const kernels::Launch one_group{queue_, *refine_, compute::NdRange::linear(kRefineGroup, kRefineGroup),
                                   config_.step_timings};
@@ -188,7 +181,7 @@ std::vector<compute::EventPtr> DeviceRefiner::refine(compute::Buffer<float>& est
   return {fit};
 }
 
-// begin, then iterations + 1 evaluations (draw, sums) with no wait: the sums kernel's last group
+// begin, then iterations + 1 evaluations (draw, sums) per stage with no wait: the sums kernel's last group
 // stops the fit on the device, and what follows returns at once.
 std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<float>& estimate, const RefineInputs& in,
                                                             const dt_refine_args& args) {
@@ -224,10 +217,11 @@ std::vector<compute::EventPtr> DeviceRefiner::refine_spread(compute::Buffer<floa
                                                     .nearest = nearest_,
                                                     .partials = partials_,
                                                     .correction = correction_});
-  for (int evaluation = 0; evaluation <= config_.refine.iterations; ++evaluation) {
+  const int evaluations = static_cast<int>(stages_.size()) * (config_.refine.iterations + 1);
+  for (int evaluation = 0; evaluation < evaluations; ++evaluation) {
     queue_.launch_untimed(*draw_, per_item);
     if (compute::EventPtr last =
-            compute::launch_timed_if(timed && evaluation == config_.refine.iterations, queue_, *sums_, over_pixels))
+            compute::launch_timed_if(timed && evaluation + 1 == evaluations, queue_, *sums_, over_pixels))
       events.push_back(std::move(last));
   }
   return events;

@@ -5,8 +5,8 @@
 // resampling moves every particle (resample_particles). Three layouts of the same fit
 // (Refinement::layout): the whole fit in one work-group and one launch (cl/refine.cl), or each
 // step's rendering and sums spread over many work-groups, the sums' last group solving and deciding
-// (cl/refine_spread.cl: 2 launches a step, iterations + 1 evaluations enqueued, the ones after
-// convergence returning at once; it needs 64-bit atomics), or the spread layout's kernels as one
+// (cl/refine_spread.cl: 2 launches a step, iterations + 1 evaluations enqueued per stage of the fit, the
+// ones after convergence returning at once; it needs 64-bit atomics), or the spread layout's kernels as one
 // work-group's loop, one launch (refine_spread.cl's refine_one_launch; 64-bit atomics too). Its own program, built with
 // a larger work-group than the filter's kernels. Reference: reference::PoseRefiner and ReferenceFilter::refine.
 #include <Eigen/Core>
@@ -104,7 +104,8 @@ class DeviceRefiner {
                                                const dt_refine_args& args);
 
   compute::Queue& queue_;
-  TrackerConfig config_;
+  std::vector<TrackerConfig> stages_;  // model::fit_stages: the fit's one or two stages, as the reference's
+  TrackerConfig config_;               // the first stage's
   Camera camera_;
   Eigen::Vector3d centre_;
   double radius_;

@@ -13,9 +13,28 @@ TrackerConfig fit_config(const TrackerConfig& config) {
   return fit;
 }
 
+std::vector<TrackerConfig> fit_stages(const TrackerConfig& config) {
+  std::vector<TrackerConfig> stages{fit_config(config)};
+  if (config.refine.fine_noise_scale > 0) {
+    TrackerConfig fine = config;
+    fine.refine.noise_scale = config.refine.fine_noise_scale;
+    stages.push_back(fit_config(fine));
+  }
+  return stages;
+}
+
+double step_tolerance(double noise_scale) {
+  return 0.01 / (noise_scale * noise_scale);
+}
+
+double last_noise_scale(const Refinement& refine) {
+  return refine.fine_noise_scale > 0 ? refine.fine_noise_scale : refine.noise_scale;
+}
+
 Eigen::Matrix<double, 6, 6> fit_covariance(const Eigen::Matrix<double, 6, 6>& h, int pixels, double radius,
                                            const Refinement& refine) {
-  return pose_covariance(h * (refine.noise_scale * refine.noise_scale), pixels, radius);
+  const double s = last_noise_scale(refine);
+  return pose_covariance(h * (s * s), pixels, radius);
 }
 
 }  // namespace depthtrack::model

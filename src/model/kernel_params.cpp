@@ -1,7 +1,10 @@
 #include "model/kernel_params.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
+#include "model/fit_noise.hpp"
 #include "model/occlusion_chain.hpp"
 
 namespace depthtrack::model {
@@ -33,23 +36,31 @@ dt_initial initial_params(const InitialSpread& spread, const Eigen::Vector3d& ce
 
 dt_window window_params(const StateWindow& now, const StateWindow& last, const Camera& camera,
                         const TrackerConfig& config) {
-  return dt_window{static_cast<dt_u32>(now.u0),         static_cast<dt_u32>(now.v0),
-                   static_cast<dt_u32>(last.u0),        static_cast<dt_u32>(last.v0),
-                   static_cast<dt_u32>(now.width),      static_cast<dt_u32>(now.height),
-                   static_cast<dt_u32>(last.width),     static_cast<dt_u32>(last.height),
-                   static_cast<dt_u32>(camera.width),   static_cast<float>(fresh_occlusion(config))};
+  return dt_window{static_cast<dt_u32>(now.u0),       static_cast<dt_u32>(now.v0),
+                   static_cast<dt_u32>(last.u0),      static_cast<dt_u32>(last.v0),
+                   static_cast<dt_u32>(now.width),    static_cast<dt_u32>(now.height),
+                   static_cast<dt_u32>(last.width),   static_cast<dt_u32>(last.height),
+                   static_cast<dt_u32>(camera.width), static_cast<float>(fresh_occlusion(config))};
 }
 
 dt_camera camera_params(const Camera& camera, const TrackerConfig& config, bool cull_back_faces) {
-  return dt_camera{static_cast<float>(camera.fx),         static_cast<float>(camera.fy),
-                   static_cast<float>(camera.cx),         static_cast<float>(camera.cy),
-                   static_cast<float>(config.near_plane), static_cast<float>(config.observation.max_depth),
-                   static_cast<dt_u32>(camera.width),     static_cast<dt_u32>(camera.height),
+  return dt_camera{static_cast<float>(camera.fx),
+                   static_cast<float>(camera.fy),
+                   static_cast<float>(camera.cx),
+                   static_cast<float>(camera.cy),
+                   static_cast<float>(config.near_plane),
+                   static_cast<float>(config.observation.max_depth),
+                   static_cast<dt_u32>(camera.width),
+                   static_cast<dt_u32>(camera.height),
                    cull_back_faces ? 1u : 0u};
 }
 
-dt_refine_args refine_params(const Refinement& refine, const Eigen::Vector3d& centre, double radius,
-                             size_t vertex_count, double now, double dt, double pixel_sigmas, unsigned draw_slices) {
+dt_refine_args refine_params(std::span<const TrackerConfig> stages, const Eigen::Vector3d& centre, double radius,
+                             size_t vertex_count, double now, double dt, unsigned draw_slices) {
+  if (stages.empty() || stages.size() > 2)
+    throw std::invalid_argument("refine_params: the fit has one or two stages, not " + std::to_string(stages.size()));
+  const Refinement& refine = stages.front().refine;
+  const TrackerConfig& last = stages.back();
   return dt_refine_args{static_cast<float>(refine.damping),
                         static_cast<float>(refine.min_incidence),
                         static_cast<float>(centre.x()),
@@ -61,8 +72,14 @@ dt_refine_args refine_params(const Refinement& refine, const Eigen::Vector3d& ce
                         static_cast<float>(radius),
                         static_cast<float>(refine.converged_motion),
                         static_cast<dt_u32>(vertex_count),
-                        static_cast<float>(pixel_sigmas),
-                        draw_slices};
+                        static_cast<float>(stages.front().loss.pixel_sigmas),
+                        draw_slices,
+                        static_cast<dt_u32>(stages.size()),
+                        static_cast<float>(last.observation.sigma_constant),
+                        static_cast<float>(last.observation.sigma_quadratic),
+                        static_cast<float>(last.loss.pixel_sigmas),
+                        static_cast<float>(step_tolerance(refine.noise_scale)),
+                        static_cast<float>(step_tolerance(last.refine.noise_scale))};
 }
 
 std::string occlusion_definition(OcclusionStorage storage) {

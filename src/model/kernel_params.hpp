@@ -5,6 +5,7 @@
 #include <depthtrack/camera.hpp>
 #include <depthtrack/initial_spread.hpp>
 #include <depthtrack/tracker_config.hpp>
+#include <span>
 #include <string>
 
 #include "dt_params.h"
@@ -21,9 +22,11 @@ static_assert(sizeof(dt_initial) == 24 && offsetof(dt_initial, centre_x) == 8 &&
               offsetof(dt_initial, mode_count) == 20);
 static_assert(sizeof(dt_camera) == 36 && offsetof(dt_camera, far) == 20 && offsetof(dt_camera, height) == 28 &&
               offsetof(dt_camera, cull_back_faces) == 32);
-static_assert(sizeof(dt_refine_args) == 52 && offsetof(dt_refine_args, dt) == 24 &&
+static_assert(sizeof(dt_refine_args) == 76 && offsetof(dt_refine_args, dt) == 24 &&
               offsetof(dt_refine_args, iterations) == 28 && offsetof(dt_refine_args, vertex_count) == 40 &&
-              offsetof(dt_refine_args, pixel_sigmas) == 44 && offsetof(dt_refine_args, draw_slices) == 48);
+              offsetof(dt_refine_args, pixel_sigmas) == 44 && offsetof(dt_refine_args, draw_slices) == 48 &&
+              offsetof(dt_refine_args, stages) == 52 && offsetof(dt_refine_args, fine_pixel_sigmas) == 64 &&
+              offsetof(dt_refine_args, fine_step_tolerance) == 72);
 static_assert(sizeof(dt_window) == 40 && offsetof(dt_window, image_width) == 32 && offsetof(dt_window, initial) == 36);
 
 // Observation model and occlusion chain of config.
@@ -40,11 +43,12 @@ dt_window window_params(const StateWindow& now, const StateWindow& last, const C
 dt_camera camera_params(const Camera& camera, const TrackerConfig& config, bool cull_back_faces);
 // The kernels' DT_OCCLUSION definition for the storage mode, "DT_OCCLUSION=<DT_PER_PIXEL_TIME...>".
 std::string occlusion_definition(OcclusionStorage storage);
-// The refinement's settings for a mesh with this centre (object frame), radius and vertex count, at
-// `now` seconds since the first frame, `dt` after the frame before; pixel_sigmas: the confidence's band
-// (TrackerConfig::loss); draw_slices: the work-items drawing each triangle (DeviceRefiner).
-dt_refine_args refine_params(const Refinement& refine, const Eigen::Vector3d& centre, double radius,
-                             size_t vertex_count, double now, double dt, double pixel_sigmas, unsigned draw_slices);
+// The refinement's settings for its stages (model::fit_stages: one or two) and a mesh with this centre
+// (object frame), radius and vertex count, at `now` seconds since the first frame, `dt` after the frame
+// before; draw_slices: the work-items drawing each triangle (DeviceRefiner). The first stage's sigma(y)
+// reaches the kernels through model_params(stages[0]), the second's through the fine_ fields.
+dt_refine_args refine_params(std::span<const TrackerConfig> stages, const Eigen::Vector3d& centre, double radius,
+                             size_t vertex_count, double now, double dt, unsigned draw_slices);
 // The largest float not above threshold: a float x exceeds it exactly when x exceeds threshold, so a
 // float comparison on the device decides as the double comparison on the host.
 float float_threshold(double threshold);

@@ -9,14 +9,6 @@
 
 namespace depthtrack::reference {
 
-namespace {
-// A step is kept unless it lowers the log-likelihood by more than this (nats). Near the optimum
-// steps change it by less than float rounding does (~1e-4 over a thousand pixels), so a strict
-// comparison would let the float device and the double reference decide differently and end one
-// step apart; with the tolerance both keep such steps. cl/dt_refine.h uses the same value.
-constexpr double kStepTolerance = 0.01;
-}  // namespace
-
 bool depth_jacobian(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, const Eigen::Vector3d& ray,
                     const Eigen::Vector3d& centre, double min_incidence, Vector6d& row) {
   const double incidence = normal.dot(ray);
@@ -57,20 +49,14 @@ double damping_after_rejection(double lambda) {
 }
 
 PoseRefiner::PoseRefiner(const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
-    : stages_{model::fit_config(config)},  // the fit's own noise (Refinement::noise_scale)
+    : stages_(model::fit_stages(config)),  // the fit's own noise (Refinement::noise_scale), then fine_noise_scale's
       camera_(camera),
       centre_(mesh.centre().cast<double>()),
       radius_(mesh.radius()),
       rasterizer_(mesh, camera, config.near_plane, config.observation.max_depth),
       planes_(render::triangle_planes(mesh)),
       rendered_(static_cast<size_t>(camera.pixel_count())),
-      triangle_ids_(static_cast<size_t>(camera.pixel_count())) {
-  if (config.refine.fine_noise_scale > 0) {
-    TrackerConfig fine = config;
-    fine.refine.noise_scale = config.refine.fine_noise_scale;
-    stages_.push_back(model::fit_config(fine));
-  }
-}
+      triangle_ids_(static_cast<size_t>(camera.pixel_count())) {}
 
 NormalEquations PoseRefiner::normal_equations(const Pose& pose, const DepthImage& depth,
                                               std::span<const double> occlusion) const {
@@ -124,13 +110,15 @@ const std::vector<float>* PoseRefiner::rendering_of(const Pose& pose) const {
 void PoseRefiner::steps(const TrackerConfig& fit, RefinedPose& best, NormalEquations& at_best, const DepthImage& depth,
                         std::span<const double> occlusion) const {
   double lambda = fit.refine.damping;
+  // A step is kept unless it lowers the log-likelihood by more than float rounding could (the device's).
+  const double tolerance = model::step_tolerance(fit.refine.noise_scale);
   for (int iteration = 0; iteration < fit.refine.iterations; ++iteration) {
     const Vector6d step = damped_step(at_best, lambda);
     if (step.isZero() || step_motion(step, radius_) < fit.refine.converged_motion) break;
     ++best.iterations;
     const Pose candidate = apply_twist(best.pose, centre_, step);
     const NormalEquations at_candidate = equations(fit, candidate, depth, occlusion);
-    if (at_candidate.objective >= at_best.objective - kStepTolerance) {
+    if (at_candidate.objective >= at_best.objective - tolerance) {
       best.pose = candidate;
       at_best = at_candidate;
       lambda = fit.refine.damping;

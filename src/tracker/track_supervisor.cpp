@@ -30,8 +30,11 @@ constexpr size_t kFitted = 8;
 constexpr size_t kFittedInBox = 16;
 constexpr int kDeeperSteps = 2;
 constexpr int kFitIterations = 16;
+// One stage (no refine.fine_noise_scale): the search ranks basins, the filter's own fit then refines
+// the pose found.
 TrackerConfig fit_config(TrackerConfig config) {
   config.refine.iterations = kFitIterations;
+  config.refine.fine_noise_scale = 0;
   return config;
 }
 ObservationModel tempered(ObservationModel m, double translation_spacing) {

@@ -523,6 +523,53 @@ TEST_CASE("a fit at half the filter's noise (refine.noise_scale 0.5) equals the 
   CHECK(largest_move > 1e-5);
 }
 
+// Refinement::fine_noise_scale: the fit's second stage, from the first stage's best pose at its own
+// sigma(y), on the device as in the reference (model::fit_stages on both sides), in every layout the
+// device has: from a common state each frame, the same refined pose, steps tried (both stages'),
+// confidence and the covariance at the last stage's noise. The second stage moves the fit (a device
+// that skipped it would fail the first checks) and tries steps of its own.
+TEST_CASE("a fit with a second stage (refine.fine_noise_scale 0.35) equals the reference's in every layout",
+          "[device][refine]") {
+  if (!test::device_available()) return;
+  const compute::DeviceInfo info = compute::open_device(test::device_selector())->info();
+  const Scene scene = make_scene(12);
+  TrackerConfig config;
+  config.particles = 64;
+  config.seed = 3;
+  config.backend = test::device_selector();
+  config.refine.fine_noise_scale = 0;
+  std::vector<Pose> one_stage;
+  std::vector<int> one_stage_steps;
+  each_frame_from_common_state(scene, config, [&](size_t, const Estimate& a, const Estimate&, auto&, auto&) {
+    one_stage.push_back(a.pose);
+    one_stage_steps.push_back(a.refine_iterations);
+  });
+  config.refine.fine_noise_scale = 0.35;
+  for (const RefineLayout layout : {RefineLayout::OneGroup, RefineLayout::Spread, RefineLayout::OneLaunch}) {
+    if (layout != RefineLayout::OneGroup && !info.int64_atomics) {
+      std::cout << "SKIPPED: " << to_string(layout) << " on " << info.name << ": no 64-bit atomic min\n";
+      continue;
+    }
+    INFO("layout " << to_string(layout));
+    config.refine.layout = layout;
+    double largest_move = 0;
+    int more_steps = 0;
+    each_frame_from_common_state(scene, config, [&](size_t f, const Estimate& a, const Estimate& b, auto&, auto&) {
+      CHECK(translation_error(a.pose, b.pose) <= 1e-5);
+      CHECK(rotation_error(a.pose, b.pose) <= 1e-4);
+      CHECK(a.refine_iterations == b.refine_iterations);
+      CHECK(std::abs(a.confidence - b.confidence) <= 0.02);
+      for (int i = 0; i < 6; ++i)
+        if (std::isfinite(a.covariance(i, i)) && a.covariance(i, i) > 0)
+          CHECK(std::abs(b.covariance(i, i) / a.covariance(i, i) - 1) <= 0.05);
+      largest_move = std::max(largest_move, translation_error(b.pose, one_stage[f]));
+      more_steps += b.refine_iterations > one_stage_steps[f];
+    });
+    CHECK(largest_move > 1e-5);
+    CHECK(more_steps > 0);
+  }
+}
+
 TEST_CASE("clouds past the small-cloud folds, the prefix sum over one work-group or many, equal the reference",
           "[device][kernels]") {
   if (!test::device_available()) return;

@@ -200,17 +200,3 @@ TEST_CASE("A fit whose drawing is split over rows equals the fit drawing each tr
     }
   }
 }
-
-TEST_CASE("The device fit refuses a second stage (refine.fine_noise_scale), naming the backends that fit so",
-          "[device][refine]") {
-  if (!test::device_available()) return;
-  auto q = compute::open_device(test::device_selector());
-  compute::ProgramCache programs(*q);
-  TrackerConfig config;
-  config.refine.fine_noise_scale = 0.5;
-  const Mesh mesh = builtin_demo_mesh();
-  const Camera camera = Camera::make(80, 60, 65.6, 65.6, 39.5, 29.5);
-  CHECK_THROWS_AS(DeviceRefiner(*q, programs, mesh, camera, config, "DT_OCCLUSION=0", 0), InputError);
-  CHECK_THROWS_WITH(DeviceRefiner(*q, programs, mesh, camera, config, "DT_OCCLUSION=0", 0),
-                    Catch::Contains("refine.fine_noise_scale") && Catch::Contains("reference or cpu backend"));
-}

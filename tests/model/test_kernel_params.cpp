@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "model/fit_noise.hpp"
 #include "model/kernel_params.hpp"
 
 using namespace depthtrack;
@@ -62,4 +63,41 @@ TEST_CASE("a float compared with the float threshold decides as a double compare
   CHECK(static_cast<double>(below) < 0.1);
   CHECK(static_cast<double>(std::nextafter(below, 1.0f)) > 0.1);
   CHECK(std::isinf(model::float_threshold(INFINITY)));
+}
+
+// The fit's stages reach the kernels as dt_refine_args: the first stage's sigma(y) through dt_model
+// (model_params of the first stage), the second's (Refinement::fine_noise_scale) in the fine_ fields,
+// its confidence band widened in sigmas so that it keeps its width in metres.
+TEST_CASE("the refinement parameters carry one stage, or a second at fine_noise_scale's sigma(y)", "[model]") {
+  TrackerConfig config;  // sigma(y) = 0.003 + 0.0014247 y^2, band 3 sigma
+  config.refine.noise_scale = 0.5;
+  config.refine.fine_noise_scale = 0;
+  const Eigen::Vector3d centre(0.01, 0.02, 0.03);
+  const std::vector<TrackerConfig> one = model::fit_stages(config);
+  REQUIRE(one.size() == 1);
+  const dt_refine_args a = model::refine_params(one, centre, 0.1, 100, 2.0, 0.5, 1);
+  CHECK(a.stages == 1);
+  CHECK(a.iterations == 8);
+  CHECK(a.pixel_sigmas == Approx(3.0 / 0.5));
+  CHECK(model::model_params(one.front()).sigma_constant == Approx(0.003 * 0.5));
+  CHECK(model::last_noise_scale(config.refine) == 0.5);
+
+  config.refine.fine_noise_scale = 0.35;
+  const std::vector<TrackerConfig> two = model::fit_stages(config);
+  REQUIRE(two.size() == 2);
+  const dt_refine_args b = model::refine_params(two, centre, 0.1, 100, 2.0, 0.5, 1);
+  CHECK(b.stages == 2);
+  CHECK(b.pixel_sigmas == Approx(3.0 / 0.5));  // the first stage's band as before
+  CHECK(model::model_params(two.front()).sigma_constant == Approx(0.003 * 0.5));
+  CHECK(b.fine_sigma_constant == Approx(0.003 * 0.35));
+  CHECK(b.fine_sigma_quadratic == Approx(0.0014247 * 0.35));
+  CHECK(b.fine_pixel_sigmas == Approx(3.0 / 0.35));
+  CHECK(model::last_noise_scale(config.refine) == 0.35);
+  // Each stage keeps a step within 0.01 nats / s^2 of the best (float rounding grows as 1 / s^2).
+  CHECK(b.step_tolerance == Approx(0.01 / (0.5 * 0.5)));
+  CHECK(b.fine_step_tolerance == Approx(0.01 / (0.35 * 0.35)));
+  // Steps, damping and stopping are the first stage's (both stages share them).
+  CHECK(b.damping == Approx(1e-2));
+  CHECK(b.converged_motion == Approx(5e-5));
+  CHECK(b.centre_z == 0.03f);
 }

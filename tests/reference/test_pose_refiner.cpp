@@ -134,6 +134,7 @@ TEST_CASE("refinement stops once the next step would move the mesh less than con
   const DepthImage depth = test::render_scene(mesh, kCamera, truth);
   TrackerConfig config;
   config.refine.iterations = 10;
+  config.refine.fine_noise_scale = 0;  // one stage: at most 10 steps
   config.refine.converged_motion = 0;  // every step tried
   const reference::RefinedPose all = reference::PoseRefiner(mesh, kCamera, config).refine(start, depth, {});
   config.refine.converged_motion = 5e-5;
@@ -205,6 +206,7 @@ TEST_CASE("a second stage of the fit at a finer noise goes on from where the fir
   const std::vector<double> occlusion(z.size(), 0.1);
   TrackerConfig config;
   config.refine.iterations = 10;
+  config.refine.fine_noise_scale = 0;  // the first stage alone
   const reference::RefinedPose coarse = reference::PoseRefiner(mesh, kCamera, config).refine(start, depth, occlusion);
   TrackerConfig fine_only = config;
   fine_only.refine.noise_scale = 0.5;
@@ -233,6 +235,7 @@ TEST_CASE("the fit's own noise: sigma(y) scaled, the confidence's band and the c
           "[refine]") {
   TrackerConfig config;
   config.refine.noise_scale = 0.5;
+  config.refine.fine_noise_scale = 0;  // one stage, at noise_scale
   const TrackerConfig fit = model::fit_config(config);
   CHECK(fit.observation.sigma_constant == 0.5 * config.observation.sigma_constant);
   CHECK(fit.observation.sigma_quadratic == 0.5 * config.observation.sigma_quadratic);
@@ -247,4 +250,7 @@ TEST_CASE("the fit's own noise: sigma(y) scaled, the confidence's band and the c
   CHECK(c(1, 2) == 0.0);
   config.refine.noise_scale = 1.0;
   CHECK(model::fit_covariance(h, 100, 0.1, config.refine)(0, 0) == Approx(1.0 / 4e6));
+  // With a second stage the covariance is its H's: weights 1 / (0.35 sigma)^2.
+  config.refine.fine_noise_scale = 0.35;
+  CHECK(model::fit_covariance(h, 100, 0.1, config.refine)(0, 0) == Approx(1.0 / 4e6 / (0.35 * 0.35)));
 }
