@@ -366,9 +366,10 @@ void add_eval_command(CLI::App& app) {
   c->add_flag("--no-recover", args->no_recover, "Do not search for the object again while it is lost");
   c->add_option("--frames-out", args->frames_out,
                 "CSV with a row per frame of every case: object,case,frame,timestamp,adds_mm,confidence,status,"
-                "within_tolerance,covariance_d2,covariance_dof,within_95 (the error's squared Mahalanobis distance "
-                "under Estimate::covariance, its determined axes, and whether it lies inside the 95 % region; written "
-                "to FILE.partial and renamed at the end)");
+                "within_tolerance,covariance_d2,covariance_dof,within_95,axis_d2_x,axis_d2_y,axis_d2_z,axis_d2_rx,"
+                "axis_d2_ry,axis_d2_rz (the error's squared Mahalanobis distance under Estimate::covariance, its "
+                "determined axes, whether it lies inside the 95 % region, and each determined axis' error^2 / "
+                "variance; written to FILE.partial and renamed at the end)");
   c->add_option("--reliability", args->reliability,
                 "Draw the confidence's reliability diagram as this PNG (python3 with matplotlib runs "
                 "depthtrack/plots.py on the frames)");

@@ -19,7 +19,7 @@ EvalFramesCsv::EvalFramesCsv(const fs::path& path) : path_(path), partial_(path.
   out_.open(partial_, std::ios::out | std::ios::trunc);
   if (!out_) throw InputError("cannot write '" + partial_.string() + "': " + std::strerror(errno));
   out_ << "object,case,frame,timestamp,adds_mm,confidence,status,within_tolerance,covariance_d2,covariance_dof,within_"
-          "95\n";
+          "95,axis_d2_x,axis_d2_y,axis_d2_z,axis_d2_rx,axis_d2_ry,axis_d2_rz\n";
   out_.precision(9);
 }
 
@@ -41,6 +41,10 @@ void EvalFramesCsv::write(const std::string& object, const std::string& case_nam
     out_ << check->d2 << "," << check->dof << "," << (check->inside ? 1 : 0);
   else
     out_ << ",,";
+  for (int i = 0; i < 6; ++i) {
+    out_ << ",";
+    if (check && !std::isnan(check->axis_d2[static_cast<size_t>(i)])) out_ << check->axis_d2[static_cast<size_t>(i)];
+  }
   out_ << "\n";
   if (!out_) throw Error("failed writing '" + partial_.string() + "' (disk full?)");
 }

@@ -11,8 +11,10 @@
 namespace depthtrack::cli {
 
 // object,case,frame,timestamp,adds_mm,confidence,status,within_tolerance,covariance_d2,covariance_dof,
-// within_95 (adds_mm and within_tolerance empty where the frame has no ground truth; within_tolerance 1
-// or 0; the covariance's three empty where the frame has no check: no ground truth or no covariance). As
+// within_95,axis_d2_x,axis_d2_y,axis_d2_z,axis_d2_rx,axis_d2_ry,axis_d2_rz (adds_mm and within_tolerance
+// empty where the frame has no ground truth; within_tolerance 1 or 0; the covariance's columns empty where
+// the frame has no check: no ground truth or no covariance; an axis_d2 also where that axis is not
+// determined: CovarianceCheck::axis_d2). As
 // TrackingCsvWriter: the place is checked at construction, before any tracking; rows go to PATH.partial, which finish()
 // renames to PATH; without finish() the partial file is removed and an earlier PATH stays.
 class EvalFramesCsv {

@@ -49,6 +49,8 @@ std::optional<CovarianceCheck> check_covariance(const Eigen::Matrix<double, 6, 1
   }
   if (check.dof == 0) return std::nullopt;
   check.inside = check.d2 <= chi2_95(check.dof);
+  for (int i = 0; i < n; ++i)
+    if (block(i, i) < model::kDeterminedBelow) check.axis_d2[static_cast<size_t>(axes[i])] = e(i) * e(i) / block(i, i);
   return check;
 }
 

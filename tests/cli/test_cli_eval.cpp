@@ -24,22 +24,24 @@ std::vector<std::string> words_of(const std::string& line) {
 struct CsvFrame {
   std::string frame, status, within;
   double timestamp = 0, adds_mm = 0, confidence = 0;
-  std::string d2, dof, within_95;  // the covariance's check, empty without one
+  std::string d2, dof, within_95;    // the covariance's check, empty without one
+  std::vector<std::string> axis_d2;  // x, y, z, rx, ry, rz: empty without a check or where undetermined
 };
 
 // The frames CSV's rows by case, in order.
 std::map<std::string, std::vector<CsvFrame>> frames_by_case(const std::filesystem::path& path) {
   const auto lines = test::lines_of(path);
   REQUIRE(!lines.empty());
-  CHECK(
-      lines[0] ==
-      "object,case,frame,timestamp,adds_mm,confidence,status,within_tolerance,covariance_d2,covariance_dof,within_95");
+  CHECK(lines[0] ==
+        "object,case,frame,timestamp,adds_mm,confidence,status,within_tolerance,covariance_d2,covariance_dof,within_95,"
+        "axis_d2_x,axis_d2_y,axis_d2_z,axis_d2_rx,axis_d2_ry,axis_d2_rz");
   std::map<std::string, std::vector<CsvFrame>> cases;
   for (size_t i = 1; i < lines.size(); ++i) {
     const auto c = test::cells_of(lines[i]);
-    REQUIRE(c.size() == 11);
+    REQUIRE(c.size() == 17);
     CHECK(c[0] == "object");
-    cases[c[1]].push_back({c[2], c[6], c[7], std::stod(c[3]), std::stod(c[4]), std::stod(c[5]), c[8], c[9], c[10]});
+    cases[c[1]].push_back({c[2], c[6], c[7], std::stod(c[3]), std::stod(c[4]), std::stod(c[5]), c[8], c[9], c[10],
+                           std::vector<std::string>(c.begin() + 11, c.end())});
   }
   return cases;
 }
@@ -126,8 +128,17 @@ TEST_CASE("eval prints a row per case whose figures its frames CSV reproduces", 
         // No region: a lost or barely supported frame's covariance determines nothing.
         if (f.within_95.empty()) {
           ++no_region;
+          for (const std::string& a : f.axis_d2) CHECK(a.empty());
           continue;
         }
+        // A determined axis' own share is a square, and some axis of a region is determined.
+        size_t axes = 0;
+        for (const std::string& a : f.axis_d2)
+          if (!a.empty()) {
+            CHECK(std::stod(a) >= 0.0);
+            ++axes;
+          }
+        CHECK(axes >= 1);
         ++checked;
         inside += f.within_95 == "1";
         // Inside exactly when d2 is at most the chi-squared 95 % quantile of its degrees of freedom.

@@ -59,6 +59,13 @@ TEST_CASE("the covariance check leaves undetermined axes out and compares with t
   REQUIRE(check);
   CHECK(check->d2 == Approx(10.0));
   CHECK_FALSE(check->inside);
+  // Each axis on its own: e_i^2 / Sigma_ii, none for the free axes.
+  CHECK(check->axis_d2[0] == Approx(4.0));  // (2 mm / 1 mm)^2
+  CHECK(check->axis_d2[1] == Approx(1.0));  // (2 mm / 2 mm)^2
+  CHECK(std::isnan(check->axis_d2[2]));
+  CHECK(check->axis_d2[3] == Approx(1.0));  // (0.01 / 0.01)^2
+  CHECK(check->axis_d2[4] == Approx(4.0));  // (0.02 / 0.01)^2
+  CHECK(std::isnan(check->axis_d2[5]));
 
   // A correlation: for 1e-6 [[1, 0.5], [0.5, 1]] the error (1, -1) mm has d2 = 2 / (1 - 0.5) = 4.
   Matrix6d correlated = Matrix6d::Zero();
@@ -69,6 +76,9 @@ TEST_CASE("the covariance check leaves undetermined axes out and compares with t
   CHECK(check->dof == 2);
   CHECK(check->d2 == Approx(4.0));
   CHECK(check->inside);  // 4 <= 5.991
+  // Each axis alone sees 1 mm at 1 mm: 1, where the pair, against its correlation, is 4.
+  CHECK(check->axis_d2[0] == Approx(1.0));
+  CHECK(check->axis_d2[1] == Approx(1.0));
 
   CHECK_FALSE(check_covariance(e, Matrix6d::Constant(std::nan(""))));  // refinement off
   CHECK_FALSE(check_covariance(e, Matrix6d::Identity() * inf));        // nothing determined
@@ -80,6 +90,9 @@ TEST_CASE("the covariance check leaves undetermined axes out and compares with t
   REQUIRE(check);
   CHECK(check->dof == 5);
   CHECK(check->d2 == Approx(1.0));
+  CHECK(check->axis_d2[0] == Approx(1.0));
+  CHECK(check->axis_d2[1] == Approx(0.0).margin(1e-12));
+  CHECK(std::isnan(check->axis_d2[5]));  // its variance is kDeterminedBelow: not determined
 }
 
 TEST_CASE("coverage is the share inside with its Wilson interval", "[coverage]") {
