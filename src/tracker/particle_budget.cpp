@@ -55,7 +55,10 @@ int ParticleBudget::afforded_within(double ms) const {
 int ParticleBudget::next(bool reseed) {
   // The frame after next_initial runs its count, unless it starts another cloud.
   const int initial = std::exchange(initial_, 0);
-  if (initial > 0 && !reseed) return last_ = initial;
+  if (initial > 0 && !reseed) {
+    initial_frame_ = true;
+    return last_ = initial;
+  }
   if (reseed) settle_left_ = kSettleFrames + 1;  // the new cloud's frame and kSettleFrames after it
   const bool settling = settle_left_ > 0;
   const double need = settling ? 1.0 : need_;
@@ -84,6 +87,7 @@ void ParticleBudget::prime(double per_particle_ms) {
 
 void ParticleBudget::observe(const Estimate& e, const Eigen::Matrix<double, 6, 6>& fit_covariance) {
   if (settle_left_ > 0) --settle_left_;
+  const bool initial_frame = std::exchange(initial_frame_, false);
   const StepTimings& t = e.timings;
   if (e.particles > 0) {
     const double loops_ms = t.propagate_ms + t.render_ms + t.weigh_ms + t.resample_ms;
@@ -94,9 +98,11 @@ void ParticleBudget::observe(const Estimate& e, const Eigen::Matrix<double, 6, 6
         per_particle_ms_ = per;
         fixed_ms_ = fixed;
       } else {
+        // The initial frame runs over the budget on purpose, sized by the prime alone: how far its time
+        // was from the model's says nothing of the frames within the budget.
         const double predicted = fixed_ms_ + per_particle_ms_ * e.particles;
         const double miss = std::abs(t.total_ms - t.search_ms - predicted);
-        miss_ms_ += kSmoothing * (miss - miss_ms_);
+        if (!initial_frame) miss_ms_ += kSmoothing * (miss - miss_ms_);
         per_particle_ms_ += kSmoothing * (per - per_particle_ms_);
         fixed_ms_ += kSmoothing * (fixed - fixed_ms_);
       }

@@ -35,7 +35,8 @@ class ParticleBudget {
   int next(bool reseed);
   // The count of the frame after initialize() from a pose and a spread: what search_ms (a search's
   // budget, RecoveryModel::budget_ms) affords, at most particles; the next call of next(false) returns it
-  // again (that frame's own choice), and the cloud then settles as after next(true).
+  // again (that frame's own choice), and the cloud then settles as after next(true). That frame's time
+  // moves the model's times as any frame's, but not its misses (it ran over the budget on purpose).
   // That frame's weighing searches the spread for the pose, as a search does: the fewer a frame's budget
   // affords leave the spread's cloud too sparse (the YCB mug started 1 cm / 5 degrees off: 4-5 mm ADD-S
   // on its first frames from 48 particles, 1.2-1.5 mm from 200). A cloud of a search's or a gap's seeds,
@@ -75,10 +76,11 @@ class ParticleBudget {
   bool timed_ = false;   // a frame has been observed
   bool primed_ = false;  // prime gave the model (until timed_)
   double per_particle_ms_ = 0, fixed_ms_ = 0, miss_ms_ = 0;
-  double need_ = 1;      // the last frame's need, 0 (min_particles) to 1 (particles)
-  int settle_left_ = 0;  // frames still settling after a new cloud (observe counts them)
-  int last_ = 0;         // the count last chosen
-  int initial_ = 0;      // next_initial's count, for the next frame (0: none pending)
+  double need_ = 1;             // the last frame's need, 0 (min_particles) to 1 (particles)
+  int settle_left_ = 0;         // frames still settling after a new cloud (observe counts them)
+  int last_ = 0;                // the count last chosen
+  int initial_ = 0;             // next_initial's count, for the next frame (0: none pending)
+  bool initial_frame_ = false;  // the frame last chosen ran next_initial's count (observe reads it)
 };
 
 // How far the fit leaves the pose to the particles: the largest standard deviation of the fit's

@@ -112,6 +112,23 @@ TEST_CASE("the frame after initialize() runs what a search's budget affords", "[
   CHECK(budget.next_initial(3.0) == 38);
   CHECK(budget.next(true) == 70);   // another new cloud first (a gap): the frame's budget
   CHECK(budget.next(false) == 70);  // settling
+  // An initial frame of 200 particles, 0.09 ms each and 3 ms besides (21 ms where 13.125 were
+  // predicted) moves the primed model a quarter of the way, 0.069375 ms a particle and 1.21875 fixed,
+  // and keeps no miss: (5 - 1.21875) / 0.069375 = 54 afforded. A frame of the budget's own is missed.
+  ParticleBudget initial(5.0, 10, 200, 0.5);
+  initial.prime(0.0625);
+  CHECK(initial.next_initial(500.0) == 200);
+  CHECK(initial.next(false) == 200);
+  initial.observe(confident_frame(200));
+  CHECK(initial.per_particle_ms() == Approx(0.069375));
+  CHECK(initial.fixed_ms() == Approx(1.21875));
+  CHECK(initial.afforded() == 54);
+  CHECK(initial.next(false) == 54);
+  // 54 particles of 0.09 ms and 3 ms besides: 7.86 ms where 4.965 were predicted, a quarter of the
+  // 2.895 ms miss kept free.
+  initial.observe(confident_frame(54));
+  const double per = 0.069375 + 0.25 * (0.09 - 0.069375), fixed = 1.21875 + 0.25 * (3 - 1.21875);
+  CHECK(initial.afforded() == static_cast<int>((5.0 - fixed - 0.25 * (3 + 54 * 0.09 - 1.21875 - 54 * 0.069375)) / per));
   // Unprimed the model has no times: the most.
   ParticleBudget unprimed(5.0, 10, 200, 0.5);
   CHECK(unprimed.next_initial(500.0) == 200);
