@@ -150,11 +150,11 @@ struct TrackerConfig {
   /// exact synthetic depth of a fine mesh, where the fit resolves tenths of a millimetre.
   double simplify_error = 0.0005;
   int particles = 200;  ///< the particle cloud's size (with budget_ms: the most a frame runs)
-  /// Milliseconds a frame may take; 0 (the default): off, every frame runs `particles`. On (any backend; a
-  /// device backend then times its steps on the device, as step_timings does), each frame's particle count
-  /// is chosen from the tracker's own measured times (per particle and per frame, smoothed) to finish
-  /// within it, between min_particles and particles: fewer while the estimate is confident, up to what the
-  /// budget affords when confidence falls, after a gap or while lost.
+  /// Milliseconds a frame may take; 0 (the default): off, every frame runs `particles`. On (any backend; a device
+  /// backend times its steps on the device), each frame's count is chosen from the tracker's own measured times to
+  /// finish within it, in [min_particles, particles]: fewer while confident and the fit determines every direction,
+  /// up to what the budget affords when confidence falls, the fit leaves a direction weak, after a gap or while
+  /// lost; the frame after initialize() runs what recovery.budget_ms affords: it searches the start's spread.
   double budget_ms = 0;
   int min_particles = 10;  ///< the fewest particles a budgeted frame runs
   /// Device backends with the kernel renderer, where a tile does not fit in work-group memory (above

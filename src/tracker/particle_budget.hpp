@@ -8,24 +8,44 @@
 //   needed: the fewest (min_particles) while the estimate is confident (kConfident and above), rising
 //     linearly to the most (particles) as the confidence falls to loss.lost_below; the most while lost,
 //     on a frame that starts a new cloud (initialization, a gap, a search's re-seed) and the few frames
-//     after it, while the new cloud settles. It falls by at most a fifth a frame, so that one good frame
-//     does not thin a cloud that is still finding its pose.
+//     after it, while the new cloud settles. And at least as many as the fit leaves to the particles: a
+//     direction the fit determines less well than a frame of the motion model moves the particles is
+//     found by the particles' draws, not by the fit (a mug's turn about its axis, seen by the handle's
+//     few pixels): from the fit's spread there at one frame's motion noise (kFitSpreadFrom) the need rises
+//     linearly to the most at twice it (kFitSpreadFull). It falls by at most a fifth a frame, so that one
+//     good frame does not thin a cloud that is still finding its pose.
 // The count is the lesser of the two, within [min_particles, particles]: a budget too small for
 // min_particles runs min_particles. Before any frame is timed: what prime's measured particle affords,
-// or without it the fewest (that frame's time then sizes the next).
+// or without it the fewest (that frame's time then sizes the next). The frame after initialize() from a
+// pose and a spread is the exception: it runs what a search's budget affords (next_initial).
+#include <Eigen/Core>
+#include <cmath>
 #include <depthtrack/tracker.hpp>
 
 namespace depthtrack {
 
 class ParticleBudget {
  public:
-  // budget_ms > 0; 1 <= min_particles <= max_particles.
-  ParticleBudget(double budget_ms, int min_particles, int max_particles, double lost_below);
+  // budget_ms > 0; 1 <= min_particles <= max_particles; motion: the filter's (its noise per reference frame
+  // is what the fit's spread is compared with).
+  ParticleBudget(double budget_ms, int min_particles, int max_particles, double lost_below,
+                 const MotionModel& motion = MotionModel{});
 
   // The next frame's count. reseed: that frame starts from a new cloud.
   int next(bool reseed);
-  // What the frame just run took and said (its particles, timings, confidence and status).
-  void observe(const Estimate& e);
+  // The count of the frame after initialize() from a pose and a spread: what search_ms (a search's
+  // budget, RecoveryModel::budget_ms) affords, at most particles; the next call of next(false) returns it
+  // again (that frame's own choice), and the cloud then settles as after next(true). That frame's time
+  // moves the model's times as any frame's, but not its misses (it ran over the budget on purpose).
+  // That frame's weighing searches the spread for the pose, as a search does: the fewer a frame's budget
+  // affords leave the spread's cloud too sparse (the YCB mug started 1 cm / 5 degrees off: 4-5 mm ADD-S
+  // on its first frames from 48 particles, 1.2-1.5 mm from 200). A cloud of a search's or a gap's seeds,
+  // spread narrowly, runs next(true).
+  int next_initial(double search_ms);
+  // What the frame just run took and said (its particles, timings, confidence and status), and the fit's
+  // own covariance (the refinement's, before the tracker calibrates it for the report; NaN without a fit).
+  void observe(const Estimate& e, const Eigen::Matrix<double, 6, 6>& fit_covariance);
+  void observe(const Estimate& e) { observe(e, Eigen::Matrix<double, 6, 6>::Constant(std::nan(""))); }
   // Before the first frame: one particle's time measured outside the frames (a drawing and weighing of
   // the start pose). Until a frame is timed the model is that per particle and kPrimedFixed of it fixed
   // (the fit's and the confidence's drawings), and the frames' times are smoothed into it as into a
@@ -39,21 +59,34 @@ class ParticleBudget {
   double fixed_ms() const { return fixed_ms_; }
   // The most particles the budget affords now (max_particles before the first frame unless primed).
   int afforded() const;
+  // The same within ms instead of the budget.
+  int afforded_within(double ms) const;
 
-  static constexpr double kConfident = 0.9;   // from this confidence up, min_particles
-  static constexpr int kSettleFrames = 3;     // frames after a new cloud that run what the budget affords
-  static constexpr double kPrimedFixed = 10;  // the primed fixed time, in particles' times
+  static constexpr double kConfident = 0.9;    // from this confidence up, min_particles
+  static constexpr int kSettleFrames = 3;      // frames after a new cloud that run what the budget affords
+  static constexpr double kPrimedFixed = 10;   // the primed fixed time, in particles' times
+  static constexpr double kFitSpreadFrom = 1;  // fit spread / motion noise from which the need rises
+  static constexpr double kFitSpreadFull = 2;  // and at which it is the most
 
  private:
   double budget_ms_;
   int min_, max_;
   double lost_below_;
+  MotionModel motion_;
   bool timed_ = false;   // a frame has been observed
   bool primed_ = false;  // prime gave the model (until timed_)
   double per_particle_ms_ = 0, fixed_ms_ = 0, miss_ms_ = 0;
-  double need_ = 1;      // the last frame's need, 0 (min_particles) to 1 (particles)
-  int settle_left_ = 0;  // frames still settling after a new cloud (observe counts them)
-  int last_ = 0;         // the count last chosen
+  double need_ = 1;             // the last frame's need, 0 (min_particles) to 1 (particles)
+  int settle_left_ = 0;         // frames still settling after a new cloud (observe counts them)
+  int last_ = 0;                // the count last chosen
+  int initial_ = 0;             // next_initial's count, for the next frame (0: none pending)
+  bool initial_frame_ = false;  // the frame last chosen ran next_initial's count (observe reads it)
 };
+
+// How far the fit leaves the pose to the particles: the largest standard deviation of the fit's
+// covariance over the per-frame motion noise, the translations' over sigma_linear and the rotations'
+// over sigma_angular (the larger of the two). +infinity where the fit sets a direction apart
+// (undetermined), NaN where it has no covariance (refinement off, too few pixels).
+double fit_spread_ratio(const Eigen::Matrix<double, 6, 6>& fit_covariance, const MotionModel& motion);
 
 }  // namespace depthtrack

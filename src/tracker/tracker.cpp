@@ -153,7 +153,7 @@ Tracker::Impl::Impl(std::shared_ptr<Device> device, const Camera& sensor, const 
   particle_count_ = config.particles;
   if (config.budget_ms > 0)
     budget_ = std::make_unique<ParticleBudget>(config.budget_ms, config.min_particles, config.particles,
-                                               config.loss.lost_below);
+                                               config.loss.lost_below, config.motion);
 }
 
 int Tracker::Impl::prime_poses() const {
@@ -201,7 +201,12 @@ void Tracker::Impl::initialize(const Pose& pose, const InitialSpread& spread) {
   }
   if (budget_ && !budget_->timed())
     budget_->prime(particle_time_ms(*backend_, working_, start, centre_, config_.observation, prime_poses()));
-  choose_particle_count(true);
+  // The first frame's weighing searches the spread for the pose: a search's budget, not a frame's.
+  if (budget_) {
+    const int count = budget_->next_initial(config_.recovery.budget_ms);
+    backend_->set_particle_count(count);
+    particle_count_ = count;
+  }
   backend_->initialize(start, spread);
   supervisor_->reset();
   search_candidates_.clear();
@@ -367,8 +372,9 @@ Estimate Tracker::Impl::collect_frame() {
 }
 
 void Tracker::Impl::assess_frame(Estimate& e, const DepthImage& working) {
+  const Eigen::Matrix<double, 6, 6> fit_covariance = e.covariance;  // the fit's, before the report calibrates it
   assess_confidence(e, working);
-  if (budget_) budget_->observe(e);
+  if (budget_) budget_->observe(e, fit_covariance);
 }
 
 void Tracker::Impl::assess_confidence(Estimate& e, const DepthImage& working) {
