@@ -7,12 +7,12 @@ namespace depthtrack::reference {
 
 namespace {
 
-// f(first, last) over [0, n) in contiguous ranges: on pool's threads, a few ranges each, where there is
-// a pool of more than one; else once, on the caller's.
+// f(first, last) over [0, n) in contiguous ranges on pool's threads, a few ranges each (one range on a
+// pool of one thread, as the reference filter's loops); without a pool, once on the caller's.
 template <typename F>
 void over_ranges(ThreadPool* pool, size_t n, F&& f) {
-  if (!pool || pool->size() == 1 || n == 0) return f(size_t{0}, n);
-  const size_t ranges = std::min(n, 8 * static_cast<size_t>(pool->size()));
+  if (!pool || n == 0) return f(size_t{0}, n);
+  const size_t ranges = pool->size() == 1 ? 1 : std::min(n, 8 * static_cast<size_t>(pool->size()));
   pool->run(ranges, [&](size_t r, int) { f(n * r / ranges, n * (r + 1) / ranges); });
 }
 

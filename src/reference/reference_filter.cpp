@@ -80,13 +80,6 @@ class OcclusionAger {
   double last_dt_ = std::numeric_limits<double>::quiet_NaN(), factor_ = 0;
 };
 
-// A scratch copy sized to n values, its old ones dropped: a vector grown by resize alone would first copy
-// them, on one thread, into the memory it is about to overwrite.
-void resize_discarding(std::vector<float>& scratch, size_t n) {
-  if (scratch.capacity() < n) std::vector<float>().swap(scratch);
-  scratch.resize(n);
-}
-
 }  // namespace
 
 ReferenceFilter::ReferenceFilter(const Mesh& mesh, const Camera& camera, const TrackerConfig& config, int threads)
@@ -239,7 +232,7 @@ void ReferenceFilter::move_state_window() {
                              : config_.occlusion.initial);
   auto move = [&](std::vector<float>& rows, std::vector<float>& scratch, float fresh) {
     if (rows.empty()) return;
-    resize_discarding(scratch, particles_.size() * to.pixels());  // an automatic window grows
+    scratch.resize(particles_.size() * to.pixels());  // an automatic window grows
     // Each row of the new window: the old window's part of it copied, the rest fresh.
     const int kept_u0 = std::max(from.u0, to.u0), kept_u1 = std::min(from.u0 + from.width, to.u0 + to.width);
     for_chunks(particles_.size(), [&](Lane&, size_t, size_t first, size_t last) {
@@ -275,7 +268,7 @@ void ReferenceFilter::gather(const std::vector<int>& parents) {
   // while the count stays).
   auto gather_rows = [&](std::vector<float>& state, std::vector<float>& scratch) {
     if (state.empty()) return;
-    resize_discarding(scratch, children * pixels);
+    scratch.resize(children * pixels);
     for_chunks(children, [&](Lane&, size_t, size_t first, size_t last) {
       for (size_t child = first; child < last; ++child)
         std::copy_n(state.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(parents[child]) * pixels), pixels,
@@ -286,10 +279,9 @@ void ReferenceFilter::gather(const std::vector<int>& parents) {
   gather_rows(occlusion_, scratch_occlusion_);
   gather_rows(occlusion_time_, scratch_occlusion_time_);
   scratch_particles_.resize(children);
-  for_chunks(children, [&](Lane&, size_t, size_t first, size_t last) {
-    for (size_t child = first; child < last; ++child)
-      scratch_particles_[child] = particles_[static_cast<size_t>(parents[child])];
-  });
+  // A copy of about 100 bytes a particle: on one thread, as handing it to the pool would cost more.
+  for (size_t child = 0; child < children; ++child)
+    scratch_particles_[child] = particles_[static_cast<size_t>(parents[child])];
   particles_.swap(scratch_particles_);
   log_weights_.assign(children, 0.0);
 }
