@@ -1,5 +1,7 @@
 // The cpu backend: the reference filter's per-particle loops on a thread pool, equal to the sequential
 // reference bit for bit.
+#include <sched.h>
+
 #include <algorithm>
 #include <atomic>
 #include <catch2/catch.hpp>
@@ -235,6 +237,23 @@ TEST_CASE("the cpu backend is named cpu or cpu:N and refuses a bad thread count"
       CHECK_THAT(e.what(), Contains(bad) && Contains("thread count"));
     }
   }
+}
+
+TEST_CASE("the cpu backend's thread count is the CPUs the process may run on", "[cpu]") {
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  REQUIRE(sched_getaffinity(0, sizeof(allowed), &allowed) == 0);
+  CHECK(hardware_threads() == CPU_COUNT(&allowed));
+  // Pinned to one of them, as under taskset -c N: one thread, however many the machine has.
+  int first = 0;
+  while (!CPU_ISSET(first, &allowed)) ++first;
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  CPU_SET(first, &one);
+  REQUIRE(sched_setaffinity(0, sizeof(one), &one) == 0);
+  const int pinned = hardware_threads();
+  REQUIRE(sched_setaffinity(0, sizeof(allowed), &allowed) == 0);
+  CHECK(pinned == 1);
 }
 
 TEST_CASE("a Tracker on cpu:2 reports what one on the reference reports, status and confidence included", "[cpu]") {
