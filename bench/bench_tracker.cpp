@@ -8,9 +8,11 @@
 //                         [--frames N] [--refine on|off] [--refine-iterations N] [--refine-converged M]
 //   default: the reference at 80x60 (200 particles) and 640x480 (50 particles).
 // With --multi-objects: only one object against three in one process (bench/multi_object_ratio.hpp).
-// Then the off-screen start (one particle 10,000 km to the side, 5 frames) and global initialization at
-// 80x60 (from the object's box, and from no hint), unless --no-global: the tracker's construction (every
-// program built, the search's among them), the first search and the same search again.
+// Then the off-screen start (one particle 10,000 km to the side, 5 frames), unless --no-offscreen, and global
+// initialization at 80x60 (from the object's box, and from no hint), unless --no-global: the tracker's construction
+// (every program built, the search's among them), the first search and the same search again.
+#include <time.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -51,12 +53,24 @@ bool host_backend(const std::string& backend) {
   return backend == "reference" || backend == "cpu" || backend.rfind("cpu:", 0) == 0;
 }
 
-// Prints the case's rows; returns its median frame time (ms).
+// The CPU time of every thread of this process so far: the threaded backends' workers included.
+double process_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
+
+// A case's medians: the filter's frame (total_ms) and the CPU time its updates took on all threads.
+struct CaseTimes {
+  double total_ms = 0, update_cpu_ms = 0;
+};
+
+// Prints the case's rows; returns its medians.
 // feed.pace_ms > 0: each frame is handed over that long after the one before returned, as a sensor stream
 // leaves the device idle between frames (back to back, a frame's calls meet the last one's tail).
-double run(const Mesh& mesh, const std::string& mesh_name, const std::string& backend, const std::string& renderer,
-           const Refinement& refine, const Case& c, int frames, const OcclusionWindow& window, double simplify_error,
-           bool step_timings, const Feed& feed) {
+CaseTimes run(const Mesh& mesh, const std::string& mesh_name, const std::string& backend, const std::string& renderer,
+              const Refinement& refine, const Case& c, int frames, const OcclusionWindow& window, double simplify_error,
+              bool step_timings, const Feed& feed) {
   SynthConfig synth;
   synth.frames = frames;
   synth.occluder_fraction = 0.3;
@@ -80,7 +94,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
   const double startup_ms = startup.elapsed_ms();
   const double startup_peak_mib = peak_known ? bench::peak_resident_mib() : NAN;
   std::vector<double> propagate, render, handoff, weigh, resample, refined, confidence, upload, enqueue, wait, total,
-      update, refine_steps;
+      update, refine_steps, update_cpu, busy_threads;
   // Frames beyond 1 GiB of depth are drawn as they go (a long run at a high resolution).
   const bool inline_synthesis =
       feed.synthesize_inline || static_cast<double>(frames) * synth.camera.width * synth.camera.height * 4 > 0x1p30;
@@ -89,9 +103,11 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
     for (int i = 0; i < frames; ++i) prepared.push_back(scene.frame(i));
   for (int i = 0; i < frames; ++i) {
     const SynthFrame f = inline_synthesis ? scene.frame(i) : std::move(prepared[static_cast<size_t>(i)]);
+    const double cpu_before = process_cpu_ms();
     const Stopwatch update_clock;
     const Estimate e = tracker.update(f.depth, f.timestamp);
     const double update_ms = update_clock.elapsed_ms();
+    const double cpu_ms = process_cpu_ms() - cpu_before;
     if (feed.pace_ms > 0) std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(feed.pace_ms));
     if (i < 2) continue;  // warm-up: caches, first-frame propagation skipped
     propagate.push_back(e.timings.propagate_ms);
@@ -107,6 +123,8 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
     wait.push_back(e.timings.wait_ms);
     total.push_back(e.timings.total_ms);
     update.push_back(update_ms);
+    update_cpu.push_back(cpu_ms);
+    busy_threads.push_back(cpu_ms / update_ms);
   }
   const std::string device = tracker.backend_description();
   const std::string test =
@@ -136,7 +154,8 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
                                         {"enqueue", &enqueue},
                                         {"wait", &wait},
                                         {"total", &total},
-                                        {"update", &update}}) {
+                                        {"update", &update},
+                                        {"update_cpu", &update_cpu}}) {
     const double ms = bench::median(*samples);
     bench::print_row({backend, platform, name, "-", test, std::string(metric) + "_ms", "ms", ms});
     bench::print_row(
@@ -145,6 +164,7 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
   bench::print_row(
       {backend, platform, name, "-", test, "refine_share", "%", 100.0 * bench::median(refined) / bench::median(total)});
   bench::print_row({backend, platform, name, "-", test, "refine_iterations", "steps", bench::median(refine_steps)});
+  bench::print_row({backend, platform, name, "-", test, "busy_threads", "threads", bench::median(busy_threads)});
   bench::print_row({backend, platform, name, "-", test, "drawn_triangles", "triangles",
                     static_cast<double>(tracker.drawn_triangles())});
   const auto [window_width, window_height] = tracker.occlusion_window_size();
@@ -153,22 +173,28 @@ double run(const Mesh& mesh, const std::string& mesh_name, const std::string& ba
   bench::print_row({backend, platform, name, "-", test, "frames_per_second", "Hz", 1000.0 / bench::median(total)});
   bench::print_row({backend, platform, name, "-", test, "startup_ms", "ms", startup_ms});
   bench::print_row({backend, platform, name, "-", test, "startup_host_peak", "MiB", startup_peak_mib});
-  return bench::median(total);
+  return {bench::median(total), bench::median(update_cpu)};
 }
 
 const char* const kUsage =
     "usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] "
     "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N] [--refine-converged M]\n"
     "       [--refine-layout auto|one-group|spread|one-launch] [--occlusion-window auto|full|WxH]\n"
-    "       [--simplify-error M] [--mesh FILE] [--no-global] [--multi-objects] [--untimed-steps] [--pace MS]\n"
+    "       [--simplify-error M] [--mesh FILE] [--no-global] [--no-offscreen] [--multi-objects] [--untimed-steps] "
+    "[--pace MS]\n"
     "       [--synthesize-inline]\n"
     "Times tracker frames on a synthetic occluded handset sequence, split into propagate / render / hand-off /\n"
     "weigh / resample, start-up (construction + initialize) with its peak host memory, and the off-screen start\n"
     "(one particle 10,000 km to the side, 5 frames); prints CSV rows\n"
     "backend,platform,device,driver,test,metric,unit,value. update_ms is depth in to pose out as the caller\n"
-    "sees Tracker::update (the 640x480 frame's check and decimation included), total_ms the filter's frame.\n"
+    "sees Tracker::update (the 640x480 frame's check and decimation included), total_ms the filter's frame,\n"
+    "update_cpu_ms the CPU time of the process's threads in the update, busy_threads update_cpu_ms per\n"
+    "update_ms (median of the frames').\n"
     "  --backend NAME         reference (default), cpu, cpu:N, opencl, opencl:pocl, cuda, ... (`depthtrack info`);\n"
-    "                         cpu and cpu:N also time the reference on each case: speedup_over_reference\n"
+    "                         cpu and cpu:N also time the reference on each case: speedup_over_reference, and\n"
+    "                         cpu_time_over_reference (update_cpu_ms against the reference's; the speedup is\n"
+    "                         about busy_threads over it: idle threads lower the one, slowed threads raise\n"
+    "                         the other)\n"
     "  --renderer NAME        atlas renderer of device backends: kernel (default), gl, cpu\n"
     "  --particles N[,N...]   particle counts (default 200)\n"
     "  --resolution WxH[,...] working resolutions (default 80x60)\n"
@@ -198,6 +224,7 @@ const char* const kUsage =
     "  --synthesize-inline    draw each synthetic frame just before its update (the bench's earlier default),\n"
     "                         not all before the timed frames; named in the test column\n"
     "  --no-global            leave out the global initialization rows (box hint and no hint, 80x60)\n"
+    "  --no-offscreen         leave out the off-screen start's rows (its updates are not the cases' frames)\n"
     "  --multi-objects        instead: one object against three in one process at 80x60 (ycbv-0000's, else\n"
     "                         the handset thrice), mutual occlusion off and on: multi_object_ratio rows (and\n"
     "                         multi_object_ratio_to_mean, over the three objects alone; --refine-layout as\n"
@@ -289,7 +316,7 @@ int main(int argc, char** argv) {
   // The mesh as given (not TrackerConfig's 0.5 mm): the rows compare with earlier sessions' and the meshes'
   // triangle counts are what they time; --simplify-error times the tracker's default.
   double simplify_error = 0;
-  bool global = true, multi_objects = false, step_timings = true;
+  bool global = true, offscreen = true, multi_objects = false, step_timings = true;
   Feed feed;
   std::string mesh_file;
   const auto option = [&](const std::string& arg, bench::ArgReader& args) {
@@ -329,6 +356,8 @@ int main(int argc, char** argv) {
       mesh_file = args.value();
     else if (arg == "--no-global")
       global = false;
+    else if (arg == "--no-offscreen")
+      offscreen = false;
     else if (arg == "--untimed-steps")
       step_timings = false;
     else if (arg == "--pace")
@@ -373,17 +402,21 @@ int main(int argc, char** argv) {
       // A case the device cannot run (too many particles for its memory) gets a status row, and
       // the others still run.
       try {
-        const double ms = run(mesh, name, backend, renderer, refine, c, std::max(frames, 4), window, simplify_error,
-                              step_timings, feed);
+        const CaseTimes times = run(mesh, name, backend, renderer, refine, c, std::max(frames, 4), window,
+                                    simplify_error, step_timings, feed);
         // The threaded CPU path is worth its name only against the sequential reference, measured
         // here in the same run on the same case: the speedup row.
         if (backend != "reference" && host_backend(backend)) {
-          const double reference_ms = run(mesh, name, "reference", renderer, refine, c, std::max(frames, 4), window,
+          const CaseTimes reference = run(mesh, name, "reference", renderer, refine, c, std::max(frames, 4), window,
                                           simplify_error, step_timings, feed);
           const std::string test = name + "_" + std::to_string(c.width) + "x" + std::to_string(c.height) + "_" +
                                    std::to_string(c.particles) + "p";
-          bench::print_row(
-              {backend, "cpu", bench::cpu_name(), "-", test, "speedup_over_reference", "x", reference_ms / ms});
+          bench::print_row({backend, "cpu", bench::cpu_name(), "-", test, "speedup_over_reference", "x",
+                            reference.total_ms / times.total_ms});
+          // The speedup is busy_threads over this ratio: a thread idle (a serial step, a wait) lowers the
+          // first, a thread slowed (a shared core, a lower clock, contended memory) raises this one.
+          bench::print_row({backend, "cpu", bench::cpu_name(), "-", test, "cpu_time_over_reference", "x",
+                            times.update_cpu_ms / reference.update_cpu_ms});
         }
       } catch (const Error& e) {
         ++failed;
@@ -392,11 +425,13 @@ int main(int argc, char** argv) {
         bench::print_status(backend, test, e.what());
       }
     }
-    try {
-      run_offscreen(mesh, name, backend, renderer, 5);
-    } catch (const Error& e) {
-      ++failed;
-      bench::print_status(backend, name + "_offscreen_start_80x60_1p", e.what());
+    if (offscreen) {
+      try {
+        run_offscreen(mesh, name, backend, renderer, 5);
+      } catch (const Error& e) {
+        ++failed;
+        bench::print_status(backend, name + "_offscreen_start_80x60_1p", e.what());
+      }
     }
     if (global) {
       try {

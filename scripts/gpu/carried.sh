@@ -72,16 +72,24 @@ if [[ $parts == *" box "* ]]; then
   done 2>&1 | tee "$out/box.txt"
 fi
 if [[ $parts == *" cpu "* ]]; then
+  source scripts/lib/cpu-cores.sh
+  echo "cpu:core/socket $(cpu_topology)" | tee "$out/cpu.txt"
   for mesh in handset 025_mug; do
     args=()
     [[ $mesh == handset ]] || args=(--mesh ".devdata/meshes/ycb/$mesh.obj" --simplify-error 0.0005)
     for t in ${THREADS:-1 2 8 16}; do
-      # cpu:2 on two cores of their own, as on CI's machine; the others on the first t cores.
-      echo "$mesh ${CPU_PARTICLES:-2000} particles cpu:$t: $(taskset -c "0-$((t - 1))" timeout 60 "$build/depthtrack_bench" \
-        --backend "cpu:$t" --particles "${CPU_PARTICLES:-2000}" --frames 10 --no-global "${args[@]}" 2>&1 |
-        grep -E ',(total_ms|speedup_over_reference),' | cut -d, -f1,6,8 | tr '\n' ' ')"
+      # On the first t CPUs, and (where those share a physical core) on t CPUs of t cores of their own, as
+      # on CI's machine. busy_threads and cpu_time_over_reference tell idle threads from slowed ones.
+      for cpus in "0-$((t - 1))" $(own_cores "$t"); do
+        [[ $cpus == "0-$((t - 1))" || $cpus != $(seq -s, 0 $((t - 1))) ]] || continue
+        echo "$mesh ${CPU_PARTICLES:-2000} particles cpu:$t on $cpus: $(taskset -c "$cpus" timeout 60 \
+          "$build/depthtrack_bench" --backend "cpu:$t" --particles "${CPU_PARTICLES:-2000}" --frames 10 --no-global \
+          --no-offscreen "${args[@]}" 2>&1 |
+          grep -E ',(total_ms|busy_threads|speedup_over_reference|cpu_time_over_reference),' | cut -d, -f1,6,8 |
+          tr '\n' ' ')"
+      done
     done
-  done 2>&1 | tee "$out/cpu.txt"
+  done 2>&1 | tee -a "$out/cpu.txt"
 fi
 if [[ $parts == *" budget "* ]]; then
   # The GPU's budget against its fixed count; then one idle core's reference, a seed per core side by side.

@@ -1,5 +1,7 @@
 #include "core/thread_pool.hpp"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <depthtrack/error.hpp>
 #include <string>
@@ -7,6 +9,11 @@
 namespace depthtrack {
 
 int hardware_threads() {
+  // The CPUs this process may run on (taskset, a container's cpuset), not every CPU of the machine, which
+  // hardware_concurrency counts: more threads than those only take turns.
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (sched_getaffinity(0, sizeof(allowed), &allowed) == 0 && CPU_COUNT(&allowed) > 0) return CPU_COUNT(&allowed);
   return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 }
 

@@ -279,6 +279,7 @@ void ReferenceFilter::gather(const std::vector<int>& parents) {
   gather_rows(occlusion_, scratch_occlusion_);
   gather_rows(occlusion_time_, scratch_occlusion_time_);
   scratch_particles_.resize(children);
+  // A copy of about 100 bytes a particle: on one thread, as handing it to the pool would cost more.
   for (size_t child = 0; child < children; ++child)
     scratch_particles_[child] = particles_[static_cast<size_t>(parents[child])];
   particles_.swap(scratch_particles_);
@@ -324,7 +325,9 @@ void ReferenceFilter::refine(Estimate& e, const DepthImage& depth, size_t heavie
   // The cloud moves by the twist that puts the heaviest particle on the refined pose: the refined
   // pose enters the particle set exactly.
   const Vector6d correction = twist_between(particles_[heaviest].pose, fit.pose, centre_);
-  for (ParticleState& s : particles_) s.pose = apply_twist(s.pose, centre_, correction);
+  for_chunks(particles_.size(), [&](Lane&, size_t, size_t first, size_t last) {
+    for (size_t i = first; i < last; ++i) particles_[i].pose = apply_twist(particles_[i].pose, centre_, correction);
+  });
   e.pose = fit.pose;
   e.covariance = fit.covariance;
   e.refine_iterations = fit.iterations;
@@ -404,7 +407,7 @@ Estimate ReferenceFilter::update(const DepthImage& depth, double dt) {
     angular += weights.normalized[i] * particles_[i].angular_velocity;
     mean_log_likelihood += weights.normalized[i] * last_log_likelihoods_[i];
   }
-  e.pose = weighted_mean_pose(poses, weights.normalized, centre_);
+  e.pose = weighted_mean_pose(poses, weights.normalized, centre_, pool_.get());
   e.linear_velocity = linear;
   e.angular_velocity = angular;
   e.effective_sample_size = weights.effective_sample_size;

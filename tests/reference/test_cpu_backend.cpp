@@ -1,21 +1,26 @@
 // The cpu backend: the reference filter's per-particle loops on a thread pool, equal to the sequential
 // reference bit for bit.
+#include <sched.h>
+
+#include <algorithm>
 #include <atomic>
-#include <chrono>
-#include <functional>
-#include <thread>
 #include <catch2/catch.hpp>
+#include <chrono>
+#include <cmath>
 #include <depthtrack/error.hpp>
 #include <depthtrack/synth.hpp>
 #include <depthtrack/tracker.hpp>
+#include <functional>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "core/thread_pool.hpp"
 #include "model/filter_backend.hpp"
-#include "tracker/make_filter_backend.hpp"
+#include "reference/pose_mean.hpp"
 #include "reference/reference_filter.hpp"
 #include "synth_frames.hpp"
+#include "tracker/make_filter_backend.hpp"
 
 using namespace depthtrack;
 using Catch::Matchers::Contains;
@@ -173,6 +178,43 @@ TEST_CASE("the cpu backend equals the sequential reference bit for bit, frame by
   }
 }
 
+TEST_CASE("the weighted mean pose on a thread pool equals the sequential one bit for bit", "[cpu]") {
+  // Weights spanning six orders of magnitude and rotations up to about 1 rad apart: sums taken in another
+  // order (per thread, then combined) round differently in the last bits.
+  std::vector<Pose> poses;
+  std::vector<double> weights;
+  double total = 0;
+  for (int i = 0; i < 1001; ++i) {
+    const double t = static_cast<double>(i);
+    const Eigen::Vector3d axis = Eigen::Vector3d(std::sin(1.3 * t), std::cos(0.7 * t), std::sin(2.1 * t) + 1.5);
+    poses.emplace_back(Eigen::Vector3d(0.01 * std::sin(t), 0.02 * std::cos(3 * t), 0.6 + 0.001 * t),
+                       Eigen::Quaterniond(Eigen::AngleAxisd(std::fmod(0.37 * t, 1.0), axis.normalized())));
+    weights.push_back(std::pow(10.0, -6.0 * std::fmod(0.61 * t, 1.0)));
+    total += weights.back();
+  }
+  for (double& w : weights) w /= total;
+  const Eigen::Vector3d centre(0.01, -0.02, 0.03);
+  // The mean as one sequential loop states it (pose_mean.hpp), the heaviest pose's rotation to start from.
+  Eigen::Vector3d mean_centre = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < poses.size(); ++i) mean_centre += weights[i] * poses[i].apply(centre);
+  Eigen::Quaterniond mean =
+      poses[static_cast<size_t>(std::max_element(weights.begin(), weights.end()) - weights.begin())].rotation;
+  for (int iteration = 0; iteration < 4; ++iteration) {
+    Eigen::Vector3d step = Eigen::Vector3d::Zero();
+    for (size_t i = 0; i < poses.size(); ++i) step += weights[i] * rotation_log(mean.conjugate() * poses[i].rotation);
+    mean = (mean * rotation_exp(step)).normalized();
+  }
+  const Pose sequential(mean_centre - mean * centre, mean);
+  CHECK(reference::weighted_mean_pose(poses, weights, centre).translation == sequential.translation);
+  for (const int threads : {1, 2, 3}) {
+    INFO(threads << " threads");
+    ThreadPool pool(threads);
+    const Pose pooled = reference::weighted_mean_pose(poses, weights, centre, &pool);
+    CHECK(pooled.translation == sequential.translation);
+    CHECK(pooled.rotation.coeffs() == sequential.rotation.coeffs());
+  }
+}
+
 TEST_CASE("the cpu backend is named cpu or cpu:N and refuses a bad thread count", "[cpu]") {
   const Mesh mesh = builtin_demo_mesh();
   const Camera camera = Camera::make(80, 60, 65.625, 65.625, 39.9375, 29.9375);
@@ -195,6 +237,23 @@ TEST_CASE("the cpu backend is named cpu or cpu:N and refuses a bad thread count"
       CHECK_THAT(e.what(), Contains(bad) && Contains("thread count"));
     }
   }
+}
+
+TEST_CASE("the cpu backend's thread count is the CPUs the process may run on", "[cpu]") {
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  REQUIRE(sched_getaffinity(0, sizeof(allowed), &allowed) == 0);
+  CHECK(hardware_threads() == CPU_COUNT(&allowed));
+  // Pinned to one of them, as under taskset -c N: one thread, however many the machine has.
+  int first = 0;
+  while (!CPU_ISSET(first, &allowed)) ++first;
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  CPU_SET(first, &one);
+  REQUIRE(sched_setaffinity(0, sizeof(one), &one) == 0);
+  const int pinned = hardware_threads();
+  REQUIRE(sched_setaffinity(0, sizeof(allowed), &allowed) == 0);
+  CHECK(pinned == 1);
 }
 
 TEST_CASE("a Tracker on cpu:2 reports what one on the reference reports, status and confidence included", "[cpu]") {
