@@ -57,7 +57,7 @@ struct SearchSettings {
   bool two_level = false;
   double sparse_radius = 0.4;
   double sparse_share = 0.1;
-  double agreement_margin = 0.15;  // with an AgreementFunction
+  double agreement_margin = 0.3;  // with an AgreementFunction: how far below the best agreement still agrees
   uint64_t seed = 1;
   unsigned round = 0;  // varies the perturbations (and the coarse order) between searches
 };
