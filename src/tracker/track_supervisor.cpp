@@ -122,9 +122,13 @@ search::SearchResult TrackSupervisor::search(const DepthImage& sensor_depth, con
   const bool chosen = !result.candidates.empty() && finish(result, working, hint, round, bounds, &supported_apart);
   if (hint.kind != InitHint::Kind::Box || chosen || supported_apart) return result;
   // No candidate the evidence supports: the box can hold other objects' surfaces too (ycbv-0049's tuna
-  // fish can: the right pose's neighbourhood was left out), so every region of it keeps its own.
+  // fish can: the right pose's neighbourhood was left out), so every region of it keeps its own. Its
+  // result is taken where the evidence chose, or, with a detector's box, where it supports poses apart.
   search::SearchResult wide = candidates(sensor_depth, working, hint, budget_ms, round, bounds, true);
-  if (wide.candidates.empty() || !finish(wide, working, hint, round, bounds)) return result;
+  bool wide_apart = false;
+  if (wide.candidates.empty()) return result;
+  const bool wide_chosen = finish(wide, working, hint, round, bounds, &wide_apart);
+  if (!wide_chosen && !(wide_apart && !bounds.empty())) return result;
   wide.coarse_poses += result.coarse_poses;
   wide.poses_scored += result.poses_scored;
   return wide;
@@ -250,7 +254,10 @@ void TrackSupervisor::fit_best(search::SearchResult& result, const DepthImage& w
 // Gauss-Newton from where they are and from one and two translation steps deeper along the view
 // ray. When the fitted poses the evidence supports (confidence at least loss.lost_below, kPlanePixels
 // seen) all lie together, only they go on to the polish and seed the filter; poses it supports far
-// apart (the bowl of ycbv-0049: one 5 mm off, one 29 mm) leave the ranking to the likelihood.
+// apart (the bowl of ycbv-0049 before the box's agreement: one 5 mm off, one 29 mm) leave the ranking to
+// the likelihood: of all candidates, or with a detector's box of the supported ones alone, which the
+// box has gated (the bowl from a box shifted right by 15 %: supported poses 7 and 55 mm off, while a
+// pose 26 mm off that the evidence does not support scored highest).
 bool TrackSupervisor::fit_confident(search::SearchResult& result, const DepthImage& working,
                                     const search::ImageBox& bounds, bool* supported_apart) const {
   std::sort(result.candidates.begin(), result.candidates.end(),
@@ -291,6 +298,7 @@ bool TrackSupervisor::fit_confident(search::SearchResult& result, const DepthIma
     for (const search::Candidate& b : supported)
       if (apart(a, b)) {
         if (supported_apart) *supported_apart = true;
+        if (!bounds.empty()) result.candidates = std::move(supported);
         return false;
       }
   if (supported.empty()) return false;

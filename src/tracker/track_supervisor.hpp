@@ -73,7 +73,8 @@ class TrackSupervisor {
   // keeps only those whose outline stands out when any does.
   void fit_best(search::SearchResult& result, const DepthImage& working) const;
   // Fits a box's best candidates, also from deeper starts, and keeps those the evidence supports when
-  // they all lie together; returns whether it did.
+  // they all lie together; returns whether it did. Where they lie apart, with bounds it keeps them all
+  // (the likelihood ranks them), without it leaves the candidates as they were.
   bool fit_confident(search::SearchResult& result, const DepthImage& working, const search::ImageBox& bounds,
                      bool* supported_apart) const;
   // Each pose's agreement with a detector's box (bounds, working pixels): search::box_iou of the pose's
