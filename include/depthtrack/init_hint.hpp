@@ -24,7 +24,8 @@ struct InitHint {
   /// The whole image.
   static InitHint anywhere() { return {}; }
   /// The box of sensor pixels u0..u1, v0..v1 (inclusive); Tracker::initialize_global throws InputError for an
-  /// empty box or one outside the image.
+  /// empty box or one outside the image. It is taken as a detector's box, bounding the object's visible
+  /// pixels: poses whose visible pixels' box agrees with it least rank below the others.
   static InitHint box(int u0, int v0, int u1, int v1) {
     InitHint h;
     h.kind = Kind::Box;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <random>
@@ -72,6 +73,22 @@ std::vector<Candidate> scored(std::vector<Pose> poses, const ScoreFunction& scor
 }
 }  // namespace
 
+double agreement_floor(std::span<const double> agreement, double margin) {
+  if (agreement.empty()) return -std::numeric_limits<double>::infinity();
+  return *std::max_element(agreement.begin(), agreement.end()) - margin;
+}
+
+ScoreFunction gated(ScoreFunction score, AgreementFunction agreement, double floor) {
+  if (!agreement) return score;
+  return [score = std::move(score), agreement = std::move(agreement), floor](std::span<const Pose> poses) {
+    std::vector<double> out = score(poses);
+    const std::vector<double> a = agreement(poses);
+    for (size_t i = 0; i < out.size(); ++i)
+      if (a[i] < floor) out[i] -= kDisagrees;
+    return out;
+  };
+}
+
 std::vector<Candidate> refine_candidates(std::vector<Candidate> candidates, const SearchObject& object,
                                          const ScoreFunction& score, std::span<const RefineStage> stages,
                                          const SearchSettings& settings, size_t* poses_scored) {
@@ -112,7 +129,8 @@ GridResolution grid_resolution(const SearchObject& object, const Camera& camera,
 }
 
 SearchResult global_search(const SearchObject& object, const Camera& camera, std::span<const Eigen::Vector3d> surface,
-                           const ScoreFunction& score, const SearchSettings& settings) {
+                           const ScoreFunction& score, const SearchSettings& settings,
+                           const AgreementFunction& agreement) {
   const Stopwatch clock;
   SearchResult result;
   if (surface.empty()) return result;
@@ -130,10 +148,12 @@ SearchResult global_search(const SearchObject& object, const Camera& camera, std
                                          ? regions_of(surface, std::max(object.radius, 1e-3), region_count)
                                          : std::vector<size_t>(surface.size(), 0);
   std::vector<std::vector<Candidate>> by_region(region_count);
+  std::vector<std::vector<double>> region_agreement(region_count);  // of by_region's candidates, with agreement
   // Scores (surface point, rotation) pairs, numbered point * set.size() + rotation, in chunks; under a
-  // budget, stops when its coarse share is spent. Returns the scores of those it reached.
+  // budget, stops when its coarse share is spent. Returns the scores of those it reached, and their
+  // agreement into `agreed` (with an agreement function).
   const auto score_pairs = [&](std::span<const size_t> pairs, std::span<const Eigen::Quaterniond> set,
-                               std::span<const double> set_offsets) {
+                               std::span<const double> set_offsets, std::vector<double>* agreed) {
     const size_t chunk = 2048;
     std::vector<double> out;
     for (size_t first = 0; first < pairs.size(); first += chunk) {
@@ -145,10 +165,16 @@ SearchResult global_search(const SearchObject& object, const Camera& camera, std
         const Eigen::Vector3d ray = surface[i].normalized();
         poses.push_back(centred_pose(set[j], surface[i] + set_offsets[j] * ray, object));
       }
+      const std::vector<double> a = agreement ? agreement(poses) : std::vector<double>();
       const std::vector<Candidate> part = scored(std::move(poses), score);
       for (size_t k = first; k < last; ++k) {
-        by_region[region[pairs[k] / set.size()]].push_back(part[k - first]);
+        const size_t r = region[pairs[k] / set.size()];
+        by_region[r].push_back(part[k - first]);
         out.push_back(part[k - first].score);
+        if (agreement) {
+          region_agreement[r].push_back(a[k - first]);
+          if (agreed) agreed->push_back(a[k - first]);
+        }
       }
       result.coarse_poses += part.size();
     }
@@ -163,7 +189,14 @@ SearchResult global_search(const SearchObject& object, const Camera& camera, std
     for (size_t j = 0; j < sparse.size(); ++j) sparse_offsets[j] = centre_offset(sparse[j], object);
     std::vector<size_t> pairs(surface.size() * sparse.size());
     std::iota(pairs.begin(), pairs.end(), size_t{0});
-    const std::vector<double> first = score_pairs(pairs, sparse, sparse_offsets);
+    std::vector<double> sparse_agreement;
+    std::vector<double> first = score_pairs(pairs, sparse, sparse_offsets, &sparse_agreement);
+    // The best pairs among those that agree (the sparse set's own best agreement sets the floor).
+    if (agreement) {
+      const double floor = agreement_floor(sparse_agreement, settings.agreement_margin);
+      for (size_t k = 0; k < first.size(); ++k)
+        if (sparse_agreement[k] < floor) first[k] -= kDisagrees;
+    }
     const size_t best =
         std::clamp(static_cast<size_t>(std::ceil(settings.sparse_share * static_cast<double>(pairs.size()))), size_t{1},
                    pairs.size());
@@ -185,7 +218,7 @@ SearchResult global_search(const SearchObject& object, const Camera& camera, std
     for (size_t i = 0; i < surface.size(); ++i)
       for (size_t j = 0; j < rotations.size(); ++j)
         if (chosen[i * sparse.size() + nearest[j]]) fine.push_back(i * rotations.size() + j);
-    score_pairs(fine, rotations, offsets);
+    score_pairs(fine, rotations, offsets, nullptr);
   } else {
     // Every pair; under a budget, in a shuffled order, so that the part scored in time covers the whole
     // grid evenly.
@@ -195,9 +228,20 @@ SearchResult global_search(const SearchObject& object, const Camera& camera, std
       std::mt19937_64 rng(settings.seed * 1000003u + settings.round);
       std::shuffle(order.begin(), order.end(), rng);
     }
-    score_pairs(order, rotations, offsets);
+    score_pairs(order, rotations, offsets, nullptr);
   }
   result.poses_scored = result.coarse_poses;
+  // With an agreement: the grid's poses that disagree rank below every one that agrees, in every region.
+  double floor = -std::numeric_limits<double>::infinity();
+  if (agreement) {
+    std::vector<double> all;
+    for (const auto& a : region_agreement) all.insert(all.end(), a.begin(), a.end());
+    floor = agreement_floor(all, settings.agreement_margin);
+    for (size_t r = 0; r < region_count; ++r)
+      for (size_t k = 0; k < by_region[r].size(); ++k)
+        if (region_agreement[r][k] < floor) by_region[r][k].score -= kDisagrees;
+  }
+  const ScoreFunction refine_score = gated(score, agreement, floor);
 
   // The best regions by their best coarse score; each keeps its best distinct candidates.
   std::vector<size_t> ranked;
@@ -228,7 +272,7 @@ SearchResult global_search(const SearchObject& object, const Camera& camera, std
   for (size_t r : ranked) {
     std::vector<Candidate> kept = best_distinct(std::move(by_region[r]), keep, object, 1.5 * result.translation_spacing,
                                                 1.5 * result.rotation_radius);
-    kept = refine_candidates(std::move(kept), object, score, stages, settings, &result.poses_scored);
+    kept = refine_candidates(std::move(kept), object, refine_score, stages, settings, &result.poses_scored);
     result.candidates.insert(result.candidates.end(), kept.begin(), kept.end());
   }
   std::sort(result.candidates.begin(), result.candidates.end(),

@@ -13,11 +13,22 @@ namespace depthtrack::search {
 
 struct Candidate {
   Pose pose;
-  double score = 0;  // log-likelihood with a fresh occlusion prior
+  double score = 0;  // log-likelihood with a fresh occlusion prior, less kDisagrees where it disagrees
 };
 
 // Scores poses (camera_from_object) against the frame being searched, one value per pose.
 using ScoreFunction = std::function<std::vector<double>(std::span<const Pose>)>;
+
+// A second measure of each pose, besides its score: how well it agrees with what else is known of the
+// object (in a detector's box: search::box_iou of the pose's visible box with it), larger is better.
+// Poses within SearchSettings::agreement_margin of the best agreement among those compared with them
+// rank above all others: their scores are lowered by kDisagrees.
+using AgreementFunction = ScoreFunction;
+inline constexpr double kDisagrees = 1e9;
+// The agreement below which a pose disagrees: margin below the best of `agreement` (-infinity when empty).
+double agreement_floor(std::span<const double> agreement, double margin);
+// score, less kDisagrees where agreement lies below floor; one value per pose.
+ScoreFunction gated(ScoreFunction score, AgreementFunction agreement, double floor);
 
 struct SearchObject {
   std::vector<Eigen::Vector3d> vertices;  // object frame
@@ -46,6 +57,7 @@ struct SearchSettings {
   bool two_level = false;
   double sparse_radius = 0.4;
   double sparse_share = 0.1;
+  double agreement_margin = 0.3;  // with an AgreementFunction: how far below the best agreement still agrees
   uint64_t seed = 1;
   unsigned round = 0;  // varies the perturbations (and the coarse order) between searches
 };
@@ -66,8 +78,11 @@ GridResolution grid_resolution(const SearchObject& object, const Camera& camera,
 
 // surface: observed camera-frame points (search::surface_points); camera: the working camera
 // scores are computed in (sets the resolution of the grid).
+// agreement, when given, gates the ranking (AgreementFunction): the coarse grid's poses against the best
+// of the grid (each level of a two-level grid on its own), its refinement against the same floor.
 SearchResult global_search(const SearchObject& object, const Camera& camera, std::span<const Eigen::Vector3d> surface,
-                           const ScoreFunction& score, const SearchSettings& settings);
+                           const ScoreFunction& score, const SearchSettings& settings,
+                           const AgreementFunction& agreement = nullptr);
 
 // One refinement stage's perturbation sizes (standard deviations, about the object's centre, in
 // its local frame) and how many candidates survive it.

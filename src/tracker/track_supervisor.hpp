@@ -12,6 +12,7 @@
 #include "reference/pose_refiner.hpp"
 #include "reference/rasterizer.hpp"
 #include "search/global_search.hpp"
+#include "search/visible_box.hpp"
 #include "tracker/make_filter_backend.hpp"
 #include "tracker/silhouette_shares.hpp"
 
@@ -26,18 +27,22 @@ class TrackSupervisor {
   // Searches one frame: the coarse grid and its refinement scored with a simplified copy of the
   // mesh (search::simplify_mesh), the last stage and the final ranking with the full mesh.
   // sensor_depth: as received (the hint's box is in its pixels); working: the frame scored.
-  // budget_ms 0: the whole coarse grid.
+  // budget_ms 0: the whole coarse grid. detector_box: the hint's box bounds the object's visible pixels
+  // (a detector's box, not a region to look in, as around() gives): poses whose visible pixels' box
+  // disagrees with it rank below those that agree (box_agreement).
   search::SearchResult search(const DepthImage& sensor_depth, const DepthImage& working, const InitHint& hint,
-                              double budget_ms, unsigned round) const;
+                              double budget_ms, unsigned round, bool detector_box = false) const;
   // search() in two steps: the candidates of the coarse grid and its refinement, scored by the full
   // model; then their ranking (without a hint: fitted, see fit_best; in a box: see fit_confident) and
-  // polish. box_regions: a box's candidates are kept region by region, as without a hint.
+  // polish. box_regions: a box's candidates are kept region by region, as without a hint. bounds: the
+  // detector's box in working pixels (search::hint_box), empty for none.
   search::SearchResult candidates(const DepthImage& sensor_depth, const DepthImage& working, const InitHint& hint,
-                                  double budget_ms, unsigned round, bool box_regions = false) const;
+                                  double budget_ms, unsigned round, const search::ImageBox& bounds = {},
+                                  bool box_regions = false) const;
   // Returns whether the evidence chose the candidates (a box's fitted poses it supports, all together).
   // supported_apart: set where the evidence supports poses that lie apart.
   bool finish(search::SearchResult& result, const DepthImage& working, const InitHint& hint, unsigned round,
-              bool* supported_apart = nullptr) const;
+              const search::ImageBox& bounds = {}, bool* supported_apart = nullptr) const;
   // A box around where the object was at pose (its projection, widened by half its size on every side,
   // in the sensor's pixels): where a search after a gap in time looks. Anywhere when it is out of view.
   InitHint around(const Pose& pose) const;
@@ -68,16 +73,28 @@ class TrackSupervisor {
   // keeps only those whose outline stands out when any does.
   void fit_best(search::SearchResult& result, const DepthImage& working) const;
   // Fits a box's best candidates, also from deeper starts, and keeps those the evidence supports when
-  // they all lie together; returns whether it did.
-  bool fit_confident(search::SearchResult& result, const DepthImage& working, bool* supported_apart) const;
+  // they all lie together; returns whether it did. Where they lie apart, with bounds it keeps them all
+  // (the likelihood ranks them), without it leaves the candidates as they were.
+  bool fit_confident(search::SearchResult& result, const DepthImage& working, const search::ImageBox& bounds,
+                     bool* supported_apart) const;
+  // Each pose's agreement with a detector's box (bounds, working pixels): search::box_iou of the pose's
+  // visible box (hidden pixels by model's band) with it; empty (no gate) when bounds is.
+  search::AgreementFunction box_agreement(const search::ImageBox& bounds, const DepthImage& working,
+                                          const ObservationModel& model) const;
+  // Lowers by search::kDisagrees the scores of the candidates that disagree with bounds (against the
+  // best of them, kAgreementMargin); none when bounds is empty.
+  void gate(std::vector<search::Candidate>& candidates, const search::ImageBox& bounds,
+            const DepthImage& working) const;
 
   TrackerConfig config_;
   Camera sensor_, working_;
   int decimation_;
   search::SearchObject object_;
-  std::unique_ptr<PoseScorer> coarse_;  // scores with the simplified mesh
-  std::unique_ptr<PoseScorer> full_;    // with the tracker's mesh
-  reference::PoseRefiner refiner_;      // fits the best candidates without a hint (on the host)
+  Mesh simplified_;                          // the coarse stages' mesh
+  std::vector<Eigen::Vector3d> box_points_;  // its vertices: where a pose's visible box is sampled
+  std::unique_ptr<PoseScorer> coarse_;       // scores with the simplified mesh
+  std::unique_ptr<PoseScorer> full_;         // with the tracker's mesh
+  reference::PoseRefiner refiner_;           // fits the best candidates without a hint (on the host)
   reference::Rasterizer rasterizer_;
   std::vector<float> scratch_;  // the mesh drawn at drawn_ (by assess or silhouette)
   std::optional<Pose> drawn_;

@@ -247,7 +247,8 @@ Estimate Tracker::Impl::initialize_global(const DepthImage& depth, double timest
   DepthImage storage;
   const DepthImage& working = working_frame(depth, storage);
   const Stopwatch clock;
-  const search::SearchResult found = supervisor_->search(depth, working, hint, 0.0, 0u);
+  // The caller's box is a detector's: it bounds the object's visible pixels.
+  const search::SearchResult found = supervisor_->search(depth, working, hint, 0.0, 0u, true);
   if (found.candidates.empty())
     throw InputError(
         "global initialization: nothing in the frame stands out in front of its surroundings by half the "

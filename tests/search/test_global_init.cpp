@@ -123,10 +123,11 @@ TEST_CASE("YCB-Video clip 0000: each object found from its 2D box in the first f
 // In ycbv-0049's tuna fish can's box the likelihood prefers poses sunk into the surfaces around the can,
 // and the grid's nearest candidates lie 15-20 mm nearer the camera than it: it ended 12.5 mm off
 // (tolerance 9 mm) until the box's candidates were fitted from deeper starts too, kept by the evidence
-// (TrackSupervisor::fit_confident) and, where it supports none, searched for again region by region. The bowl's
-// evidence supports a pose 29 mm off as well as the right one; it must never be reported tracking while off.
-TEST_CASE("YCB-Video clip 0049: the tuna fish can found from its 2D box; the bowl never tracked while off",
-          "[global][accuracy]") {
+// (TrackSupervisor::fit_confident) and, where it supports none, searched for again region by region. In the
+// bowl's box the best-scoring poses lie sunk behind its neighbours (their pixels taken for occluded): it ended
+// 50 mm off, reported lost, until poses whose visible pixels' box disagrees with the box were ranked below
+// those that agree (TrackSupervisor::box_agreement). Neither may be reported tracking while off.
+TEST_CASE("YCB-Video clip 0049: the tuna fish can and the bowl found from their 2D boxes", "[global][accuracy]") {
   const auto clip = test::shared_data("sequences/ycbv-0049/gt.json");
   if (!clip) return;
   const char* backend_env = std::getenv("DEPTHTRACK_TEST_GLOBAL_BACKEND");
@@ -147,6 +148,7 @@ TEST_CASE("YCB-Video clip 0049: the tuna fish can found from its 2D box; the bow
     const double last_adds = adds(frames.back().estimate.pose, *frames.back().ground_truth);
     std::printf("ycbv-0049 %s from its box: last frame %.1f mm ADD-S\n", object.name.c_str(), 1000 * last_adds);
     if (object.name == "007_tuna_fish_can") CHECK(last_adds <= 0.1 * 0.0898);  // a tenth of its diameter
+    if (object.name == "024_bowl") CHECK(last_adds <= 0.010);
     for (const TrackedFrame& f : frames)
       if (f.estimate.status == TrackStatus::Tracking) CHECK(adds(f.estimate.pose, *f.ground_truth) <= 0.020);
   }
