@@ -461,6 +461,18 @@ void each_frame_from_common_state(const Scene& scene, const TrackerConfig& confi
   }
 }
 
+// The reference's fit (a) and the device's (b) from a common state: the same refined pose, steps and
+// confidence, and the covariance within the float sums' rounding.
+void check_same_fit(const Estimate& a, const Estimate& b) {
+  CHECK(translation_error(a.pose, b.pose) <= 1e-5);
+  CHECK(rotation_error(a.pose, b.pose) <= 1e-4);
+  CHECK(a.refine_iterations == b.refine_iterations);
+  CHECK(std::abs(a.confidence - b.confidence) <= 0.02);
+  for (int i = 0; i < 6; ++i)
+    if (std::isfinite(a.covariance(i, i)) && a.covariance(i, i) > 0)
+      CHECK(std::abs(b.covariance(i, i) / a.covariance(i, i) - 1) <= 0.05);
+}
+
 TEST_CASE("the spread refinement at 320x240 (more pixels than its groups' work-items) equals the reference",
           "[device][kernel][refine]") {
   if (!test::device_available()) return;
@@ -503,13 +515,7 @@ TEST_CASE("a fit at half the filter's noise (refine.noise_scale 0.5) equals the 
   config.refine.noise_scale = 0.5;
   std::vector<Pose> refined;
   each_frame_from_common_state(scene, config, [&](size_t, const Estimate& a, const Estimate& b, auto&, auto&) {
-    CHECK(translation_error(a.pose, b.pose) <= 1e-5);
-    CHECK(rotation_error(a.pose, b.pose) <= 1e-4);
-    CHECK(a.refine_iterations == b.refine_iterations);
-    CHECK(std::abs(a.confidence - b.confidence) <= 0.02);
-    for (int i = 0; i < 6; ++i)
-      if (std::isfinite(a.covariance(i, i)) && a.covariance(i, i) > 0)
-        CHECK(std::abs(b.covariance(i, i) / a.covariance(i, i) - 1) <= 0.05);
+    check_same_fit(a, b);
     refined.push_back(a.pose);
   });
   config.refine.noise_scale = 1.0;
@@ -555,13 +561,7 @@ TEST_CASE("a fit with a second stage (refine.fine_noise_scale 0.35) equals the r
     double largest_move = 0;
     int more_steps = 0;
     each_frame_from_common_state(scene, config, [&](size_t f, const Estimate& a, const Estimate& b, auto&, auto&) {
-      CHECK(translation_error(a.pose, b.pose) <= 1e-5);
-      CHECK(rotation_error(a.pose, b.pose) <= 1e-4);
-      CHECK(a.refine_iterations == b.refine_iterations);
-      CHECK(std::abs(a.confidence - b.confidence) <= 0.02);
-      for (int i = 0; i < 6; ++i)
-        if (std::isfinite(a.covariance(i, i)) && a.covariance(i, i) > 0)
-          CHECK(std::abs(b.covariance(i, i) / a.covariance(i, i) - 1) <= 0.05);
+      check_same_fit(a, b);
       largest_move = std::max(largest_move, translation_error(b.pose, one_stage[f]));
       more_steps += b.refine_iterations > one_stage_steps[f];
     });
