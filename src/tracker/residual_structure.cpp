@@ -21,28 +21,11 @@ ResidualStructure residual_structure(std::span<const float> rendered, const Obse
       return std::numeric_limits<double>::quiet_NaN();
     return (y - y_hat) / reference::depth_sigma(model, y);
   };
-  // Only the drawn pose's pixel box can hold residuals: at 640x480 the object covers a few percent of
-  // the frame, and the box is found by one pass over the rendering.
-  int u0 = width, u1 = -1, v0 = height, v1 = -1;
-  for (int v = 0; v < height; ++v) {
-    const float* row = rendered.data() + static_cast<size_t>(v) * static_cast<size_t>(width);
-    int first = -1, last = -1;
-    for (int u = 0; u < width; ++u)
-      if (row[u] > 0) {
-        if (first < 0) first = u;
-        last = u;
-      }
-    if (first < 0) continue;
-    u0 = std::min(u0, first);
-    u1 = std::max(u1, last);
-    v0 = std::min(v0, v);
-    v1 = v;
-  }
   ResidualStructure r;
   double squares = 0, differences = 0;
   int pairs = 0;
-  for (int v = v0; v <= v1; ++v)
-    for (int u = u0; u <= u1; ++u) {
+  for (int v = 0; v < height; ++v)
+    for (int u = 0; u < width; ++u) {
       const size_t k = static_cast<size_t>(v) * static_cast<size_t>(width) + static_cast<size_t>(u);
       const double z = residual(k);
       if (std::isnan(z)) continue;
