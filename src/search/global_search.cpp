@@ -78,15 +78,25 @@ double agreement_floor(std::span<const double> agreement, double margin) {
   return *std::max_element(agreement.begin(), agreement.end()) - margin;
 }
 
+void lower_disagreeing(std::span<double> scores, std::span<const double> agreement, double floor) {
+  for (size_t i = 0; i < scores.size(); ++i)
+    if (agreement[i] < floor) scores[i] -= kDisagrees;
+}
+
 ScoreFunction gated(ScoreFunction score, AgreementFunction agreement, double floor) {
   if (!agreement) return score;
   return [score = std::move(score), agreement = std::move(agreement), floor](std::span<const Pose> poses) {
     std::vector<double> out = score(poses);
-    const std::vector<double> a = agreement(poses);
-    for (size_t i = 0; i < out.size(); ++i)
-      if (a[i] < floor) out[i] -= kDisagrees;
+    lower_disagreeing(out, agreement(poses), floor);
     return out;
   };
+}
+
+std::vector<Pose> poses_of(std::span<const Candidate> candidates) {
+  std::vector<Pose> poses;
+  poses.reserve(candidates.size());
+  for (const Candidate& c : candidates) poses.push_back(c.pose);
+  return poses;
 }
 
 std::vector<Candidate> refine_candidates(std::vector<Candidate> candidates, const SearchObject& object,
@@ -192,11 +202,8 @@ SearchResult global_search(const SearchObject& object, const Camera& camera, std
     std::vector<double> sparse_agreement;
     std::vector<double> first = score_pairs(pairs, sparse, sparse_offsets, &sparse_agreement);
     // The best pairs among those that agree (the sparse set's own best agreement sets the floor).
-    if (agreement) {
-      const double floor = agreement_floor(sparse_agreement, settings.agreement_margin);
-      for (size_t k = 0; k < first.size(); ++k)
-        if (sparse_agreement[k] < floor) first[k] -= kDisagrees;
-    }
+    if (agreement)
+      lower_disagreeing(first, sparse_agreement, agreement_floor(sparse_agreement, settings.agreement_margin));
     const size_t best =
         std::clamp(static_cast<size_t>(std::ceil(settings.sparse_share * static_cast<double>(pairs.size()))), size_t{1},
                    pairs.size());

@@ -27,8 +27,13 @@ using AgreementFunction = ScoreFunction;
 inline constexpr double kDisagrees = 1e9;
 // The agreement below which a pose disagrees: margin below the best of `agreement` (-infinity when empty).
 double agreement_floor(std::span<const double> agreement, double margin);
+// Lowers by kDisagrees each score whose agreement (one per score) lies below floor.
+void lower_disagreeing(std::span<double> scores, std::span<const double> agreement, double floor);
 // score, less kDisagrees where agreement lies below floor; one value per pose.
 ScoreFunction gated(ScoreFunction score, AgreementFunction agreement, double floor);
+
+// The candidates' poses, in their order.
+std::vector<Pose> poses_of(std::span<const Candidate> candidates);
 
 struct SearchObject {
   std::vector<Eigen::Vector3d> vertices;  // object frame

@@ -157,11 +157,10 @@ search::SearchResult TrackSupervisor::candidates(const DepthImage& sensor_depth,
       search::global_search(object_, working_, surface, coarse, settings, box_agreement(bounds, working, soft));
   if (result.candidates.empty()) return result;
   // The full mesh and the tracker's own model rank the candidates again.
-  std::vector<Pose> poses;
-  for (const auto& c : result.candidates) poses.push_back(c.pose);
-  const std::vector<double> scores = full_->score(poses, working, config_.observation);
+  const std::vector<Pose> poses = search::poses_of(result.candidates);
+  std::vector<double> scores = full_->score(poses, working, config_.observation);
+  gate(poses, scores, bounds, working);
   for (size_t i = 0; i < poses.size(); ++i) result.candidates[i].score = scores[i];
-  gate(result.candidates, bounds, working);
   result.poses_scored += poses.size();
   return result;
 }
@@ -172,12 +171,9 @@ bool TrackSupervisor::finish(search::SearchResult& result, const DepthImage& wor
   const bool chosen = hint.kind == InitHint::Kind::Box && fit_confident(result, working, bounds, supported_apart);
   // The best few are polished from a quarter of the coarse steps down to a sixteenth.
   const search::AgreementFunction agreement = box_agreement(bounds, working, config_.observation);
-  double floor = -std::numeric_limits<double>::infinity();
-  if (agreement) {
-    std::vector<Pose> poses;
-    for (const search::Candidate& c : result.candidates) poses.push_back(c.pose);
-    floor = search::agreement_floor(agreement(poses), kAgreementMargin);
-  }
+  const double floor = agreement
+                           ? search::agreement_floor(agreement(search::poses_of(result.candidates)), kAgreementMargin)
+                           : -std::numeric_limits<double>::infinity();
   const search::ScoreFunction full = search::gated(
       [&](std::span<const Pose> p) { return full_->score(p, working, config_.observation); }, agreement, floor);
   const double radians = result.rotation_radius, metres = result.translation_spacing;
@@ -206,16 +202,12 @@ search::AgreementFunction TrackSupervisor::box_agreement(const search::ImageBox&
   };
 }
 
-void TrackSupervisor::gate(std::vector<search::Candidate>& candidates, const search::ImageBox& bounds,
+void TrackSupervisor::gate(std::span<const Pose> poses, std::span<double> scores, const search::ImageBox& bounds,
                            const DepthImage& working) const {
   const search::AgreementFunction agreement = box_agreement(bounds, working, config_.observation);
-  if (!agreement || candidates.empty()) return;
-  std::vector<Pose> poses;
-  for (const search::Candidate& c : candidates) poses.push_back(c.pose);
+  if (!agreement || poses.empty()) return;
   const std::vector<double> a = agreement(poses);
-  const double floor = search::agreement_floor(a, kAgreementMargin);
-  for (size_t i = 0; i < candidates.size(); ++i)
-    if (a[i] < floor) candidates[i].score -= search::kDisagrees;
+  search::lower_disagreeing(scores, a, search::agreement_floor(a, kAgreementMargin));
 }
 
 // Without a hint the regions' candidates lie a few millimetres and degrees from their optima, and
@@ -271,14 +263,8 @@ bool TrackSupervisor::fit_confident(search::SearchResult& result, const DepthIma
       start.translation += step * result.translation_spacing * start.apply(object_.centre).normalized();
       fitted.push_back(refiner_.refine(start, working, fresh).pose);
     }
-  std::vector<search::Candidate> fits;
-  {
-    const std::vector<double> plain = full_->score(fitted, working, config_.observation);
-    for (size_t i = 0; i < fitted.size(); ++i) fits.push_back({fitted[i], plain[i]});
-    gate(fits, bounds, working);
-  }
-  std::vector<double> scores;
-  for (const auto& f : fits) scores.push_back(f.score);
+  std::vector<double> scores = full_->score(fitted, working, config_.observation);
+  gate(fitted, scores, bounds, working);
   result.poses_scored += fitted.size();
   std::vector<float> scratch(static_cast<size_t>(working_.pixel_count()));
   std::vector<search::Candidate> supported;

@@ -81,9 +81,9 @@ class TrackSupervisor {
   // visible box (hidden pixels by model's band) with it; empty (no gate) when bounds is.
   search::AgreementFunction box_agreement(const search::ImageBox& bounds, const DepthImage& working,
                                           const ObservationModel& model) const;
-  // Lowers by search::kDisagrees the scores of the candidates that disagree with bounds (against the
-  // best of them, kAgreementMargin); none when bounds is empty.
-  void gate(std::vector<search::Candidate>& candidates, const search::ImageBox& bounds,
+  // Lowers by search::kDisagrees the scores of the poses that disagree with bounds (against the best of
+  // them, kAgreementMargin); none when bounds is empty. One score per pose.
+  void gate(std::span<const Pose> poses, std::span<double> scores, const search::ImageBox& bounds,
             const DepthImage& working) const;
 
   TrackerConfig config_;
