@@ -8,6 +8,10 @@
 
 namespace depthtrack {
 
+size_t range_count(const ThreadPool& pool, size_t n) {
+  return pool.size() == 1 ? 1 : std::min(n, 8 * static_cast<size_t>(pool.size()));
+}
+
 int hardware_threads() {
   // The CPUs this process may run on (taskset, a container's cpuset), not every CPU of the machine, which
   // hardware_concurrency counts: more threads than those only take turns.

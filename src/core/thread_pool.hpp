@@ -52,4 +52,16 @@ class ThreadPool {
   std::exception_ptr error_;
 };
 
+// How many contiguous ranges run_ranges splits n items into: one on a pool of one thread, else a few a
+// thread (8, at most n), so that a thread the system delays (a shared machine) holds up only a small share.
+size_t range_count(const ThreadPool& pool, size_t n);
+
+// Calls f(range, first, last, thread) for each of range_count(pool, n) contiguous ranges [first, last)
+// that cover [0, n) in order, on the pool's threads (thread as ThreadPool::run gives it).
+template <typename F>
+void run_ranges(ThreadPool& pool, size_t n, F&& f) {
+  const size_t ranges = range_count(pool, n);
+  pool.run(ranges, [&](size_t r, int thread) { f(r, n * r / ranges, n * (r + 1) / ranges, thread); });
+}
+
 }  // namespace depthtrack

@@ -7,13 +7,11 @@ namespace depthtrack::reference {
 
 namespace {
 
-// f(first, last) over [0, n) in contiguous ranges on pool's threads, a few ranges each (one range on a
-// pool of one thread, as the reference filter's loops); without a pool, once on the caller's.
+// f(first, last) over [0, n) in the pool's ranges (run_ranges); without a pool, once on the caller's.
 template <typename F>
 void over_ranges(ThreadPool* pool, size_t n, F&& f) {
-  if (!pool || n == 0) return f(size_t{0}, n);
-  const size_t ranges = pool->size() == 1 ? 1 : std::min(n, 8 * static_cast<size_t>(pool->size()));
-  pool->run(ranges, [&](size_t r, int) { f(n * r / ranges, n * (r + 1) / ranges); });
+  if (!pool) return f(size_t{0}, n);
+  run_ranges(*pool, n, [&](size_t, size_t first, size_t last, int) { f(first, last); });
 }
 
 // The sum of the terms in index order, as a sequential loop adds them.

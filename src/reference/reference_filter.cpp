@@ -107,19 +107,9 @@ std::string ReferenceFilter::description() const {
   return "cpu (the reference filter on " + std::to_string(lanes_.size()) + " threads)";
 }
 
-size_t ReferenceFilter::chunk_count(size_t n) const {
-  return lanes_.size() == 1 ? 1 : std::min(n, 8 * lanes_.size());
-}
-
-std::pair<size_t, size_t> ReferenceFilter::chunk(size_t c, size_t n) const {
-  const size_t chunks = chunk_count(n);
-  return {n * c / chunks, n * (c + 1) / chunks};
-}
-
 template <typename F>
 void ReferenceFilter::for_chunks(size_t n, F&& f) {
-  pool_->run(chunk_count(n), [&](size_t c, int thread) {
-    const auto [first, last] = chunk(c, n);
+  run_ranges(*pool_, n, [&](size_t c, size_t first, size_t last, int thread) {
     f(lanes_[static_cast<size_t>(thread)], c, first, last);
   });
 }
@@ -350,7 +340,7 @@ size_t ReferenceFilter::weigh_all(const DepthImage& depth, double dt, Estimate& 
       }
     }
   });
-  chunk_heaviest_.resize(chunk_count(particles_.size()));
+  chunk_heaviest_.resize(range_count(*pool_, particles_.size()));
   for_chunks(particles_.size(), [&](Lane& lane, size_t c, size_t first, size_t last) {
     ChunkHeaviest& mine = chunk_heaviest_[c];
     mine.found = false;

@@ -79,12 +79,8 @@ class ReferenceFilter final : public FilterBackend {
     size_t index = 0;
     std::vector<PixelPrior> priors;
   };
-  // Items [first, last) of chunk c of n: contiguous, in order.
-  std::pair<size_t, size_t> chunk(size_t c, size_t n) const;
-  // How many chunks n items are split into: a few per thread, so a thread that the system delays
-  // (a shared machine) holds up only a small share of the work.
-  size_t chunk_count(size_t n) const;
-  // Calls f(lane, c, first, last) for every chunk c of n items, in parallel; lane is the thread's own.
+  // Calls f(lane, c, first, last) for every chunk c of n items (run_ranges: contiguous, in order, a few
+  // a thread), in parallel; lane is the thread's own.
   template <typename F>
   void for_chunks(size_t n, F&& f);
 
