@@ -29,15 +29,17 @@ double fit_spread_ratio(const Eigen::Matrix<double, 6, 6>& fit_covariance, const
 }
 
 ParticleBudget::ParticleBudget(double budget_ms, int min_particles, int max_particles, double lost_below,
-                               const MotionModel& motion)
+                               const MotionModel& motion, int fit_steps)
     : budget_ms_(budget_ms),
       min_(min_particles),
       max_(max_particles),
       lost_below_(lost_below),
       motion_(motion),
+      fit_steps_(fit_steps),
       last_(max_particles) {
-  if (!(std::isfinite(budget_ms) && budget_ms > 0) || min_particles < 1 || max_particles < min_particles)
-    throw InputError("particle budget needs a positive time and 1 <= min particles <= particles");
+  if (!(std::isfinite(budget_ms) && budget_ms > 0) || min_particles < 1 || max_particles < min_particles ||
+      fit_steps < 0)
+    throw InputError("particle budget needs a positive time, 1 <= min particles <= particles and fit steps >= 0");
 }
 
 int ParticleBudget::afforded() const {
@@ -46,7 +48,7 @@ int ParticleBudget::afforded() const {
 
 int ParticleBudget::afforded_within(double ms) const {
   if (!timed_ && !primed_) return max_;
-  const double room = ms - fixed_ms_ - miss_ms_;
+  const double room = ms - fixed_ms_ - fit_step_ms_ * fit_steps_ - overrun_room_ms();
   if (!(per_particle_ms_ > 0)) return max_;
   const double n = std::floor(room / per_particle_ms_);
   return n >= max_ ? max_ : n <= 0 ? 0 : static_cast<int>(n);
@@ -81,7 +83,7 @@ void ParticleBudget::prime(double per_particle_ms) {
   if (timed_ || !(std::isfinite(per_particle_ms) && per_particle_ms > 0)) return;
   per_particle_ms_ = per_particle_ms;
   fixed_ms_ = kPrimedFixed * per_particle_ms;
-  miss_ms_ = 0;
+  overrun_square_ = 0;
   primed_ = true;
 }
 
@@ -92,18 +94,41 @@ void ParticleBudget::observe(const Estimate& e, const Eigen::Matrix<double, 6, 6
   if (e.particles > 0) {
     const double loops_ms = t.propagate_ms + t.render_ms + t.weigh_ms + t.resample_ms;
     const double per = loops_ms / e.particles;
-    const double fixed = std::max(0.0, t.total_ms - t.search_ms - loops_ms);
+    // With its steps counted the fit is modelled apart, by the step (the frame's fit ran this many: the
+    // prediction below uses them, so an overrun is the model's, not the fit's varying length).
+    const bool fit_counted = fit_steps_ > 0 && e.refine_iterations > 0 && std::isfinite(t.refine_ms);
+    const double fit_ms = fit_counted ? t.refine_ms : 0.0;
+    const double step = fit_counted ? t.refine_ms / e.refine_iterations : 0.0;
+    const double fixed = std::max(0.0, t.total_ms - t.search_ms - loops_ms - fit_ms);
     if (std::isfinite(per) && std::isfinite(fixed)) {
+      if (fit_counted && !fit_timed_) {
+        fit_step_ms_ = step;
+        fit_timed_ = true;
+        // The fixed time held the fit until now: from here it holds the rest alone.
+        if (timed_ || primed_) fixed_ms_ = std::max(0.0, fixed_ms_ - fit_ms);
+      } else if (fit_counted) {
+        fit_step_ms_ += kSmoothing * (step - fit_step_ms_);
+      }
       if (!timed_ && !primed_) {
         per_particle_ms_ = per;
         fixed_ms_ = fixed;
       } else {
-        // The initial frame runs over the budget on purpose, sized by the prime alone: how far its time
-        // was from the model's says nothing of the frames within the budget.
-        const double predicted = fixed_ms_ + per_particle_ms_ * e.particles;
-        const double miss = std::abs(t.total_ms - t.search_ms - predicted);
-        if (!initial_frame) miss_ms_ += kSmoothing * (miss - miss_ms_);
-        per_particle_ms_ += kSmoothing * (per - per_particle_ms_);
+        // The initial frame runs over the budget on purpose, sized by the prime alone, and the first
+        // frame touches its memory first: how far their times were from the model's says nothing of the
+        // frames within the budget.
+        const double predicted = fixed_ms_ + fit_ms + per_particle_ms_ * e.particles;
+        if (!initial_frame && timed_) {
+          const double most = std::max(kOverrunClamp * std::sqrt(overrun_square_), 0.1 * budget_ms_);
+          const double overrun = std::clamp(t.total_ms - t.search_ms - predicted, 0.0, most);
+          overrun_square_ += kOverrunSmoothing * (overrun * overrun - overrun_square_);
+        }
+        // A frame slower a particle than the model sets it at once (the core slowed, the object came
+        // nearer: while a smoothed model caught up, the next frames would overrun too); a faster one
+        // moves it a quarter, as do the first and the initial frame.
+        if (per > per_particle_ms_ && timed_ && !initial_frame)
+          per_particle_ms_ = per;
+        else
+          per_particle_ms_ += kSmoothing * (per - per_particle_ms_);
         fixed_ms_ += kSmoothing * (fixed - fixed_ms_);
       }
       timed_ = true;
