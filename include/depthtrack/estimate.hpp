@@ -25,6 +25,9 @@ struct StepTimings {
   double refine_ms = 0;
   /// Global search (initialize_global, or recovery while lost), wall-clock; included in total_ms.
   double search_ms = 0;
+  /// Of search_ms: scoring the search's poses on the backend; each pose's agreement with the caller's box
+  /// (host); fitting the best candidates to the likelihood's optimum (host, their scoring excepted).
+  double search_scoring_ms = 0, search_box_ms = 0, search_fit_ms = 0;
   /// The estimate's confidence and status: its silhouette drawn and compared on the host, wall-clock;
   /// included in total_ms.
   double confidence_ms = 0;

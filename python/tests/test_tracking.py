@@ -163,6 +163,10 @@ def test_initialize_global_with_a_box_gives_the_cli_pose(scene, tmp_path):
     timestamp, units = scene["frames"][0]
     e = tracker.initialize_global(units, timestamp, metres_per_unit=scene["manifest"]["metres_per_unit"], box=box)
     assert e.search_poses > 0 and e.timings.search_ms > 0
+    # The box search scores poses, checks their agreement with the box and fits the best ones, within its time.
+    t = e.timings
+    assert t.search_scoring_ms > 0 and t.search_box_ms > 0 and t.search_fit_ms > 0
+    assert t.search_scoring_ms + t.search_box_ms + t.search_fit_ms <= t.search_ms
     expected = csv_pose(first)
     np.testing.assert_allclose(e.pose[:3, 3], expected[:3, 3], rtol=0, atol=2e-8)
     np.testing.assert_allclose(e.pose[:3, :3], expected[:3, :3], rtol=0, atol=2e-8)

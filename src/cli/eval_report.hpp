@@ -1,5 +1,6 @@
 #pragma once
 // What `depthtrack eval` prints: a table row per case, the summary, the confidence's reliability table.
+#include <depthtrack/estimate.hpp>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@ struct CaseRow {
   double seconds = 0;      // wall time of the case's tracking
   std::string box_source;  // Box: "label" or "projected"
   double search_ms = 0;    // Box: the first frame's search for the object in the box
+  StepTimings search_split;  // Box: the first frame's timings, of which search_*_ms split search_ms
 };
 
 class EvalTable {

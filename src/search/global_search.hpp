@@ -67,8 +67,16 @@ struct SearchSettings {
   unsigned round = 0;  // varies the perturbations (and the coarse order) between searches
 };
 
+// Where a search's time went (ms, wall clock): scoring poses on the backend, each pose's agreement with a
+// detector's box, and fitting the best candidates (Gauss-Newton, on the host) less the scoring and
+// agreement within the fits. Filled by the caller that times its functions (TrackSupervisor).
+struct SearchTimes {
+  double scoring_ms = 0, box_ms = 0, fit_ms = 0;
+};
+
 struct SearchResult {
   std::vector<Candidate> candidates;  // best first, distinct (from every region carried)
+  SearchTimes times;
   size_t coarse_poses = 0, poses_scored = 0;
   double rotation_radius = 0, translation_spacing = 0;  // of the coarse grid: radians, metres
 };

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/stopwatch.hpp"
 #include "model/occlusion_chain.hpp"
 #include "reference/pose_score.hpp"
 #include "search/box_centre_points.hpp"
@@ -86,7 +87,7 @@ TrackSupervisor::TrackSupervisor(FilterBackend& backend, const Mesh& mesh, const
       box_points_(vertices_of(simplified_)),
       coarse_(backend.make_pose_scorer(simplified_)),
       full_(backend.make_pose_scorer(mesh)),
-      refiner_(mesh, working, fit_config(config)),
+      workers_(std::make_unique<SearchWorkers>(mesh, working, config, fit_config(config), search_threads(config))),
       rasterizer_(mesh, working, config.near_plane, config.observation.max_depth),
       scratch_(static_cast<size_t>(working.pixel_count())) {
   // The confidence draws the estimate on the host every frame, after the device's work: a fine mesh's (a
@@ -97,6 +98,32 @@ TrackSupervisor::TrackSupervisor(FilterBackend& backend, const Mesh& mesh, const
   constexpr int kSplitThreads = 4;
   if (mesh.triangles.size() >= kSplitTriangles && hardware_threads() > 1)
     rasterizer_.split_over(std::make_shared<ThreadPool>(std::min(kSplitThreads, hardware_threads())));
+}
+
+namespace {
+// Adds a fit's time to times.fit_ms when it ends, less the scoring and box agreement within it.
+class FitTimer {
+ public:
+  explicit FitTimer(search::SearchTimes& times) : times_(times), before_(times) {}
+  FitTimer(const FitTimer&) = delete;
+  FitTimer& operator=(const FitTimer&) = delete;
+  ~FitTimer() {
+    times_.fit_ms += clock_.elapsed_ms() - (times_.scoring_ms - before_.scoring_ms) - (times_.box_ms - before_.box_ms);
+  }
+
+ private:
+  search::SearchTimes& times_;
+  const search::SearchTimes before_;
+  const Stopwatch clock_;
+};
+}  // namespace
+
+std::vector<double> TrackSupervisor::score(PoseScorer& scorer, std::span<const Pose> poses, const DepthImage& working,
+                                           const ObservationModel& model) const {
+  const Stopwatch clock;
+  std::vector<double> out = scorer.score(poses, working, model);
+  times_.scoring_ms += clock.elapsed_ms();
+  return out;
 }
 
 search::SearchSettings TrackSupervisor::settings(const InitHint& hint, double budget_ms, unsigned round,
@@ -117,20 +144,26 @@ search::SearchResult TrackSupervisor::search(const DepthImage& sensor_depth, con
                                              const InitHint& hint, double budget_ms, unsigned round,
                                              bool detector_box) const {
   const search::ImageBox bounds = detector_box ? search::hint_box(hint, decimation_) : search::ImageBox{};
+  times_ = {};
   search::SearchResult result = candidates(sensor_depth, working, hint, budget_ms, round, bounds, false);
   bool supported_apart = false;
   const bool chosen = !result.candidates.empty() && finish(result, working, hint, round, bounds, &supported_apart);
+  result.times = times_;
   if (hint.kind != InitHint::Kind::Box || chosen || supported_apart) return result;
   // No candidate the evidence supports: the box can hold other objects' surfaces too (ycbv-0049's tuna
   // fish can: the right pose's neighbourhood was left out), so every region of it keeps its own. Its
   // result is taken where the evidence chose, or, with a detector's box, where it supports poses apart.
   search::SearchResult wide = candidates(sensor_depth, working, hint, budget_ms, round, bounds, true);
   bool wide_apart = false;
+  if (!wide.candidates.empty()) {
+    const bool wide_chosen = finish(wide, working, hint, round, bounds, &wide_apart);
+    if (!wide_chosen && !(wide_apart && !bounds.empty())) wide.candidates.clear();
+  }
+  result.times = times_;  // the wide search's time spent too
   if (wide.candidates.empty()) return result;
-  const bool wide_chosen = finish(wide, working, hint, round, bounds, &wide_apart);
-  if (!wide_chosen && !(wide_apart && !bounds.empty())) return result;
   wide.coarse_poses += result.coarse_poses;
   wide.poses_scored += result.poses_scored;
+  wide.times = times_;
   return wide;
 }
 
@@ -152,13 +185,13 @@ search::SearchResult TrackSupervisor::candidates(const DepthImage& sensor_depth,
   const std::vector<Eigen::Vector3d> centres = search::box_centre_points(hint, sensor_, surface, spacing);
   surface.insert(surface.end(), centres.begin(), centres.end());
   const ObservationModel soft = tempered(config_.observation, spacing);
-  const search::ScoreFunction coarse = [&](std::span<const Pose> p) { return coarse_->score(p, working, soft); };
+  const search::ScoreFunction coarse = [&](std::span<const Pose> p) { return score(*coarse_, p, working, soft); };
   search::SearchResult result =
       search::global_search(object_, working_, surface, coarse, settings, box_agreement(bounds, working, soft));
   if (result.candidates.empty()) return result;
   // The full mesh and the tracker's own model rank the candidates again.
   const std::vector<Pose> poses = search::poses_of(result.candidates);
-  std::vector<double> scores = full_->score(poses, working, config_.observation);
+  std::vector<double> scores = score(*full_, poses, working, config_.observation);
   gate(poses, scores, bounds, working);
   for (size_t i = 0; i < poses.size(); ++i) result.candidates[i].score = scores[i];
   result.poses_scored += poses.size();
@@ -175,7 +208,7 @@ bool TrackSupervisor::finish(search::SearchResult& result, const DepthImage& wor
                            ? search::agreement_floor(agreement(search::poses_of(result.candidates)), kAgreementMargin)
                            : -std::numeric_limits<double>::infinity();
   const search::ScoreFunction full = search::gated(
-      [&](std::span<const Pose> p) { return full_->score(p, working, config_.observation); }, agreement, floor);
+      [&](std::span<const Pose> p) { return score(*full_, p, working, config_.observation); }, agreement, floor);
   const double radians = result.rotation_radius, metres = result.translation_spacing;
   const search::RefineStage polish[] = {
       {radians / 4, metres / 4, 6}, {radians / 8, metres / 8, 4}, {radians / 16, metres / 16, 4}};
@@ -194,10 +227,13 @@ search::AgreementFunction TrackSupervisor::box_agreement(const search::ImageBox&
                                                          const ObservationModel& model) const {
   if (bounds.empty()) return nullptr;
   return [this, given = bounds, &working, model](std::span<const Pose> poses) {
+    const Stopwatch clock;
     std::vector<double> out(poses.size());
-    for (size_t i = 0; i < poses.size(); ++i)
+    workers_->each(poses.size(), [&](size_t i) {
       out[i] = search::box_iou(
           given, search::visible_box(box_points_, poses[i], working_, working, model, config_.loss.pixel_sigmas));
+    });
+    times_.box_ms += clock.elapsed_ms();
     return out;
   };
 }
@@ -215,13 +251,14 @@ void TrackSupervisor::gate(std::span<const Pose> poses, std::span<double> scores
 // 1179 with the full model; the truth scores 1247). The refinement's Gauss-Newton fit takes the best
 // few to their optima before they are compared.
 void TrackSupervisor::fit_best(search::SearchResult& result, const DepthImage& working) const {
+  const FitTimer timer(times_);
   std::sort(result.candidates.begin(), result.candidates.end(),
             [](const search::Candidate& a, const search::Candidate& b) { return a.score > b.score; });
   const std::vector<double> fresh(static_cast<size_t>(working_.pixel_count()), model::fresh_occlusion(config_));
-  std::vector<Pose> fitted;
-  for (size_t i = 0; i < std::min(kFitted, result.candidates.size()); ++i)
-    fitted.push_back(refiner_.refine(result.candidates[i].pose, working, fresh).pose);
-  const std::vector<double> scores = full_->score(fitted, working, config_.observation);
+  std::vector<Pose> starts;
+  for (size_t i = 0; i < std::min(kFitted, result.candidates.size()); ++i) starts.push_back(result.candidates[i].pose);
+  const std::vector<Pose> fitted = workers_->fit(starts, working, fresh);
+  const std::vector<double> scores = score(*full_, fitted, working, config_.observation);
   result.poses_scored += fitted.size();
   for (size_t i = 0; i < fitted.size(); ++i)
     if (scores[i] > result.candidates[i].score) result.candidates[i] = {fitted[i], scores[i]};
@@ -230,13 +267,11 @@ void TrackSupervisor::fit_best(search::SearchResult& result, const DepthImage& w
   // its edge: when some fitted candidates pass found()'s outline test, only they go on to the
   // polish. Not its confidence test: the mug's right candidates, a quarter of them occluded, explain
   // 0.73 of their pixels (the wrong ones 0.83).
-  std::vector<float> scratch(static_cast<size_t>(working_.pixel_count()));
+  const std::vector<SilhouetteShares> shares =
+      workers_->shares(search::poses_of(std::span(result.candidates).first(fitted.size())), working);
   std::vector<search::Candidate> outlined;
   for (size_t i = 0; i < fitted.size(); ++i)
-    if (silhouette_shares(rasterizer_, config_.observation, config_.loss.pixel_sigmas, result.candidates[i].pose,
-                          working, scratch)
-            .separated >= config_.loss.found_outline)
-      outlined.push_back(result.candidates[i]);
+    if (shares[i].separated >= config_.loss.found_outline) outlined.push_back(result.candidates[i]);
   if (!outlined.empty()) result.candidates = std::move(outlined);
 }
 
@@ -252,25 +287,26 @@ void TrackSupervisor::fit_best(search::SearchResult& result, const DepthImage& w
 // pose 26 mm off that the evidence does not support scored highest).
 bool TrackSupervisor::fit_confident(search::SearchResult& result, const DepthImage& working,
                                     const search::ImageBox& bounds, bool* supported_apart) const {
+  const FitTimer timer(times_);
   std::sort(result.candidates.begin(), result.candidates.end(),
             [](const search::Candidate& a, const search::Candidate& b) { return a.score > b.score; });
   if (result.candidates.size() > kFittedInBox) result.candidates.resize(kFittedInBox);
   const std::vector<double> fresh(static_cast<size_t>(working_.pixel_count()), model::fresh_occlusion(config_));
-  std::vector<Pose> fitted;
+  std::vector<Pose> starts;
   for (const search::Candidate& c : result.candidates)
     for (int step = 0; step <= kDeeperSteps; ++step) {
       Pose start = c.pose;
       start.translation += step * result.translation_spacing * start.apply(object_.centre).normalized();
-      fitted.push_back(refiner_.refine(start, working, fresh).pose);
+      starts.push_back(start);
     }
-  std::vector<double> scores = full_->score(fitted, working, config_.observation);
+  const std::vector<Pose> fitted = workers_->fit(starts, working, fresh);
+  std::vector<double> scores = score(*full_, fitted, working, config_.observation);
   gate(fitted, scores, bounds, working);
   result.poses_scored += fitted.size();
-  std::vector<float> scratch(static_cast<size_t>(working_.pixel_count()));
+  const std::vector<SilhouetteShares> shares = workers_->shares(fitted, working);
   std::vector<search::Candidate> supported;
   for (size_t i = 0; i < fitted.size(); ++i) {
-    const SilhouetteShares s =
-        silhouette_shares(rasterizer_, config_.observation, config_.loss.pixel_sigmas, fitted[i], working, scratch);
+    const SilhouetteShares& s = shares[i];
     // A pose seen by a few pixels has its evidence fitted as well by a wrong one (the handset behind a 90 %
     // occluder: 5-9 pixels at 80x60): only poses seen by as many as the relief needs are chosen by it.
     const double seen = s.pixels * (1.0 - s.missing) * s.visible;

@@ -14,6 +14,7 @@
 #include "search/global_search.hpp"
 #include "search/visible_box.hpp"
 #include "tracker/make_filter_backend.hpp"
+#include "tracker/search_workers.hpp"
 #include "tracker/silhouette_shares.hpp"
 
 namespace depthtrack {
@@ -86,7 +87,11 @@ class TrackSupervisor {
   void gate(std::span<const Pose> poses, std::span<double> scores, const search::ImageBox& bounds,
             const DepthImage& working) const;
 
+  // The backend's scores of poses, their time added to times_.scoring_ms.
+  std::vector<double> score(PoseScorer& scorer, std::span<const Pose> poses, const DepthImage& working,
+                            const ObservationModel& model) const;
   TrackerConfig config_;
+  mutable search::SearchTimes times_;  // of the search() under way
   Camera sensor_, working_;
   int decimation_;
   search::SearchObject object_;
@@ -94,7 +99,7 @@ class TrackSupervisor {
   std::vector<Eigen::Vector3d> box_points_;  // its vertices: where a pose's visible box is sampled
   std::unique_ptr<PoseScorer> coarse_;       // scores with the simplified mesh
   std::unique_ptr<PoseScorer> full_;         // with the tracker's mesh
-  reference::PoseRefiner refiner_;           // fits the best candidates without a hint (on the host)
+  std::unique_ptr<SearchWorkers> workers_;   // the fits, silhouettes and box agreement, on the host's threads
   reference::Rasterizer rasterizer_;
   std::vector<float> scratch_;  // the mesh drawn at drawn_ (by assess or silhouette)
   std::optional<Pose> drawn_;

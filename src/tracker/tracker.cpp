@@ -51,6 +51,18 @@ double particle_time_ms(FilterBackend& backend, const Camera& working, const Pos
   return 2 * least / poses;
 }
 
+// The most steps a frame's fit can take: `iterations` a stage, a second stage when fine_noise_scale is set.
+int most_fit_steps(const Refinement& refine) {
+  if (!refine.enabled) return 0;
+  return refine.iterations * (refine.fine_noise_scale > 0 ? 2 : 1);
+}
+
+void add_search_times(StepTimings& timings, const search::SearchTimes& times) {
+  timings.search_scoring_ms += times.scoring_ms;
+  timings.search_box_ms += times.box_ms;
+  timings.search_fit_ms += times.fit_ms;
+}
+
 bool is_finite(const Estimate& e) {
   return e.pose.translation.allFinite() && e.pose.rotation.coeffs().allFinite() && e.linear_velocity.allFinite() &&
          e.angular_velocity.allFinite() && std::isfinite(e.effective_sample_size);
@@ -153,7 +165,7 @@ Tracker::Impl::Impl(std::shared_ptr<Device> device, const Camera& sensor, const 
   particle_count_ = config.particles;
   if (config.budget_ms > 0)
     budget_ = std::make_unique<ParticleBudget>(config.budget_ms, config.min_particles, config.particles,
-                                               config.loss.lost_below, config.motion);
+                                               config.loss.lost_below, config.motion, most_fit_steps(config.refine));
 }
 
 int Tracker::Impl::prime_poses() const {
@@ -270,6 +282,7 @@ Estimate Tracker::Impl::initialize_global(const DepthImage& depth, double timest
   Estimate e = run_frame(working, timestamp);
   e.timings.search_ms += search_ms;
   e.timings.total_ms += search_ms;
+  add_search_times(e.timings, found.times);
   e.search_poses = found.poses_scored;
   return e;
 }
@@ -319,11 +332,13 @@ void Tracker::Impl::start_frame(const DepthImage& working, const std::function<c
       search.recovered = true;
     }
     search.search_ms = clock.elapsed_ms();
+    search.search_times = found.times;
     search.search_poses = found.poses_scored;
   }
   enqueue_frame(working, timestamp);
   pending_.recovered = search.recovered;
   pending_.search_ms = search.search_ms;
+  pending_.search_times = search.search_times;
   pending_.search_poses = search.search_poses;
 }
 
@@ -358,6 +373,7 @@ Estimate Tracker::Impl::collect_frame() {
   e.search_poses = pending_.search_poses;
   e.timings.search_ms += pending_.search_ms;
   e.timings.total_ms += pending_.search_ms;
+  add_search_times(e.timings, pending_.search_times);
   if (!is_finite(e)) {
     std::ostringstream m;
     m.precision(17);

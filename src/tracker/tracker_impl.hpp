@@ -63,6 +63,7 @@ struct Tracker::Impl {
     double timestamp = 0;
     bool recovered = false;
     double search_ms = 0;
+    search::SearchTimes search_times;
     size_t search_poses = 0;
   };
 
