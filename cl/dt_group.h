@@ -16,6 +16,19 @@ DT_DEVICE_FN float dt_group_sum(DT_LOCAL_PTR float* scratch, float value) {
   return scratch[0];
 }
 
+/* Largest of value over the group, returned to every work-item. */
+DT_DEVICE_FN float dt_group_max(DT_LOCAL_PTR float* scratch, float value) {
+  const uint lid = get_local_id(0);
+  barrier(CLK_LOCAL_MEM_FENCE); /* the previous use of scratch is over */
+  scratch[lid] = value;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (uint stride = DT_GROUP_SIZE / 2; stride > 0; stride >>= 1) {
+    if (lid < stride) scratch[lid] = fmax(scratch[lid], scratch[lid + stride]);
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  return scratch[0];
+}
+
 /* The group's sums of n values a work-item (acc[0 .. n), n <= 32), left in sums[0 .. n) for every
  * work-item, in a fixed order (the same sums every time). A tree per value costs a barrier per level
  * and value (12 values at 512 work-items: 120 barriers), and a tree of all n values keeps each

@@ -17,6 +17,7 @@ namespace depthtrack {
 namespace {
 constexpr size_t kScoreGroup = DT_FILTER_GROUP;      // work-items per pose in cl/score.cl, as in weigh
 constexpr size_t kRasterizeGroup = DT_FILTER_GROUP;  // per pose in cl/rasterize.cl, as the kernel atlas source
+constexpr size_t kBoxGroup = 64;  // per pose in cl/visible_box.cl: a coarse mesh's hundreds of vertices
 // Poses per launch at most: enough to fill a GPU at 80x60; a CPU device gains nothing from more.
 constexpr size_t kGpuBatch = 4096, kCpuBatch = 256;
 
@@ -32,7 +33,8 @@ size_t batch_for(const compute::Queue& queue, size_t pixels) {
 
 DevicePoseScorerPrograms::DevicePoseScorerPrograms(compute::ProgramCache& programs)
     : rasterize(programs.program("rasterize.cl", rasterize_definitions(kRasterizeGroup, programs.queue().info()))),
-      score(programs.program("score.cl", {"DT_GROUP_SIZE=" + std::to_string(kScoreGroup)})) {}
+      score(programs.program("score.cl", {"DT_GROUP_SIZE=" + std::to_string(kScoreGroup)})),
+      visible_box(programs.program("visible_box.cl", {"DT_GROUP_SIZE=" + std::to_string(kBoxGroup)})) {}
 
 DevicePoseScorer::DevicePoseScorer(compute::Queue& queue, std::shared_ptr<const DevicePoseScorerPrograms> programs,
                                    const Mesh& mesh, const Camera& camera, const TrackerConfig& config)
@@ -46,21 +48,30 @@ DevicePoseScorer::DevicePoseScorer(compute::Queue& queue, std::shared_ptr<const 
       mesh_(queue, mesh),
       camera_(model::camera_params(camera, config, mesh_.cull_back_faces)),
       rasterize_(programs_->rasterize->kernel("rasterize")),
-      score_(programs_->score->kernel("score")) {}
+      score_(programs_->score->kernel("score")),
+      visible_box_(programs_->visible_box->kernel("visible_box")) {}
 
 DevicePoseScorer::~DevicePoseScorer() = default;
 
+void DevicePoseScorer::allocate() {
+  if (atlas_.size() > 0) return;
+  states_ = compute::Buffer<float>(queue_, batch_ * DT_STATE_STRIDE);
+  atlas_ = compute::Buffer<float>(queue_, layout_.floats());
+  observed_ = compute::Buffer<float>(queue_, pixels_);
+  scores_ = compute::Buffer<float>(queue_, batch_);
+  boxes_ = compute::Buffer<float>(queue_, 4 * batch_);
+  unused_boxes_ = compute::Buffer<unsigned>(queue_, 4);  // whole tiles: score.cl reads every pixel
+}
+
+void DevicePoseScorer::upload_batch(std::span<const Pose> poses, std::vector<float>& packed) {
+  packed.assign(poses.size() * DT_STATE_STRIDE, 0.0f);
+  for (size_t i = 0; i < poses.size(); ++i) write_pose(poses[i], packed.data() + i * DT_STATE_STRIDE);
+  states_.upload(std::span<const float>(packed.data(), packed.size()));
+}
+
 std::vector<double> DevicePoseScorer::score(std::span<const Pose> poses, const DepthImage& depth,
                                             const ObservationModel& observation) {
-  // The batch's buffers are allocated by the first search, not with the tracker: a tracker that
-  // never loses its object never needs them.
-  if (atlas_.size() == 0) {
-    states_ = compute::Buffer<float>(queue_, batch_ * DT_STATE_STRIDE);
-    atlas_ = compute::Buffer<float>(queue_, layout_.floats());
-    observed_ = compute::Buffer<float>(queue_, pixels_);
-    scores_ = compute::Buffer<float>(queue_, batch_);
-    unused_boxes_ = compute::Buffer<unsigned>(queue_, 4);  // whole tiles: score.cl reads every pixel
-  }
+  allocate();
   observed_.upload(depth.data());
   TrackerConfig config = config_;
   config.observation = observation;
@@ -68,11 +79,10 @@ std::vector<double> DevicePoseScorer::score(std::span<const Pose> poses, const D
   const float p = static_cast<float>(model::fresh_occlusion(config_));
   std::vector<double> out;
   out.reserve(poses.size());
-  std::vector<float> packed(batch_ * DT_STATE_STRIDE, 0.0f), scores(batch_);
+  std::vector<float> packed, scores(batch_);
   for (size_t first = 0; first < poses.size(); first += batch_) {
     const size_t n = std::min(batch_, poses.size() - first);
-    for (size_t i = 0; i < n; ++i) write_pose(poses[first + i], packed.data() + i * DT_STATE_STRIDE);
-    states_.upload(std::span<const float>(packed.data(), n * DT_STATE_STRIDE));
+    upload_batch(poses.subspan(first, n), packed);
     kernels::launch(
         {queue_, *rasterize_, compute::NdRange::linear(n * kRasterizeGroup, kRasterizeGroup)},
         kernels::rasterize_args(mesh_, camera_, layout_.kernel_args(), states_, atlas_, unused_boxes_, 0u, 0u));
@@ -86,6 +96,31 @@ std::vector<double> DevicePoseScorer::score(std::span<const Pose> poses, const D
                                        .layout = layout_.kernel_args()});
     scores_.download(std::span<float>(scores.data(), n));
     out.insert(out.end(), scores.begin(), scores.begin() + static_cast<std::ptrdiff_t>(n));
+  }
+  return out;
+}
+
+std::vector<float> DevicePoseScorer::visible_boxes(std::span<const Pose> poses, const DepthImage& depth,
+                                                   const ObservationModel& observation, double pixel_sigmas) {
+  allocate();
+  observed_.upload(depth.data());
+  TrackerConfig config = config_;
+  config.observation = observation;
+  const dt_model model = model::model_params(config);
+  std::vector<float> out(4 * poses.size()), packed;
+  for (size_t first = 0; first < poses.size(); first += batch_) {
+    const size_t n = std::min(batch_, poses.size() - first);
+    upload_batch(poses.subspan(first, n), packed);
+    kernels::launch({queue_, *visible_box_, compute::NdRange::linear(n * kBoxGroup, kBoxGroup)},
+                    kernels::VisibleBoxArgs{.states = states_,
+                                            .vertices = mesh_.vertices,
+                                            .vertex_count = mesh_.vertex_count(),
+                                            .observed = observed_,
+                                            .camera = camera_,
+                                            .model = model,
+                                            .pixel_sigmas = static_cast<float>(pixel_sigmas),
+                                            .boxes = boxes_});
+    boxes_.download(std::span<float>(out.data() + 4 * first, 4 * n));
   }
   return out;
 }

@@ -22,7 +22,7 @@ namespace depthtrack {
 // tracker builds its own programs, not on the first search) and shared by the scorers made from them.
 struct DevicePoseScorerPrograms {
   explicit DevicePoseScorerPrograms(compute::ProgramCache& programs);
-  std::shared_ptr<compute::Program> rasterize, score;
+  std::shared_ptr<compute::Program> rasterize, score, visible_box;
 };
 
 class DevicePoseScorer final : public PoseScorer {
@@ -33,6 +33,8 @@ class DevicePoseScorer final : public PoseScorer {
 
   std::vector<double> score(std::span<const Pose> poses, const DepthImage& depth,
                             const ObservationModel& model) override;
+  std::vector<float> visible_boxes(std::span<const Pose> poses, const DepthImage& depth, const ObservationModel& model,
+                                   double pixel_sigmas) override;
   // Poses drawn and scored per kernel launch at most (sized to fit device memory).
   size_t batch_size() const { return batch_; }
 
@@ -44,9 +46,14 @@ class DevicePoseScorer final : public PoseScorer {
   render::AtlasLayout layout_;
   MeshBuffers mesh_;
   dt_camera camera_;
-  std::unique_ptr<compute::Kernel> rasterize_, score_;
-  compute::Buffer<float> states_, atlas_, observed_, scores_;  // allocated by the first score()
-  compute::Buffer<unsigned> unused_boxes_;                     // rasterize.cl's boxes, not written (whole tiles)
+  // The batch's buffers, made by the first search: a tracker that never loses its object needs none.
+  void allocate();
+  // A batch's poses (at most batch_) packed as states into packed and uploaded.
+  void upload_batch(std::span<const Pose> poses, std::vector<float>& packed);
+
+  std::unique_ptr<compute::Kernel> rasterize_, score_, visible_box_;
+  compute::Buffer<float> states_, atlas_, observed_, scores_, boxes_;  // allocated by allocate()
+  compute::Buffer<unsigned> unused_boxes_;  // rasterize.cl's boxes, not written (whole tiles)
 };
 
 }  // namespace depthtrack

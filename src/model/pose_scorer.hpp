@@ -16,6 +16,14 @@ class PoseScorer {
   // One log-likelihood per pose, in order, under `model` (the tracker's own or a tempered one).
   virtual std::vector<double> score(std::span<const Pose> poses, const DepthImage& depth,
                                     const ObservationModel& model) = 0;
+  // Where the scorer computes them on its device: each pose's visible box over its mesh's vertices, as
+  // search::visible_box defines it (a vertex hidden by a depth nearer by more than pixel_sigmas sigma(y)
+  // of model), 4 values per pose (u0, v0, u1, v1 in the depth's pixels; u1 < u0 where none is visible).
+  // Empty where it does not: the caller computes them on the host.
+  virtual std::vector<float> visible_boxes(std::span<const Pose> /*poses*/, const DepthImage& /*depth*/,
+                                           const ObservationModel& /*model*/, double /*pixel_sigmas*/) {
+    return {};
+  }
 };
 
 }  // namespace depthtrack

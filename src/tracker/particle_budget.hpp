@@ -11,9 +11,10 @@
 //     model overstates while the count climbs, keep none), so that about 95 % of frames end within the
 //     budget. The first frame timed (its first touches of memory) and the frame after initialize() leave
 //     it as it was; one frame's overrun counts as at most kOverrunClamp of that root mean square, or a
-//     tenth of the budget where that is more (another process's time slice is not the model's spread). The fit stops when it converges, after at most fit_steps steps, and how many a frame takes
-//     is not known before it: room is kept for all fit_steps at the smoothed time of one step, so that
-//     a frame whose fit runs long still ends within the budget.
+//     tenth of the budget where that is more (another process's time slice is not the model's spread). The fit stops
+//     when it converges, after at most fit_steps steps, and how many a frame takes is not known before it: room is kept
+//     for all fit_steps at the smoothed time of one step, so that a frame whose fit runs long still ends within the
+//     budget.
 //   needed: the fewest (min_particles) while the estimate is confident (kConfident and above), rising
 //     linearly to the most (particles) as the confidence falls to loss.lost_below; the most while lost,
 //     on a frame that starts a new cloud (initialization, a gap, a search's re-seed) and the few frames
@@ -97,8 +98,8 @@ class ParticleBudget {
   bool timed_ = false;   // a frame has been observed
   bool primed_ = false;  // prime gave the model (until timed_)
   double per_particle_ms_ = 0, fixed_ms_ = 0, fit_step_ms_ = 0;
-  double overrun_square_ = 0;  // smoothed square of the frames' overruns of the model (ms^2)
-  bool fit_timed_ = false;  // a frame reported its fit's steps and time
+  double overrun_square_ = 0;   // smoothed square of the frames' overruns of the model (ms^2)
+  bool fit_timed_ = false;      // a frame reported its fit's steps and time
   double need_ = 1;             // the last frame's need, 0 (min_particles) to 1 (particles)
   int settle_left_ = 0;         // frames still settling after a new cloud (observe counts them)
   int last_ = 0;                // the count last chosen

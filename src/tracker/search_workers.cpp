@@ -66,14 +66,16 @@ void SearchWorkers::run_with_kits(size_t n, const std::function<void(size_t, Kit
 std::vector<Pose> SearchWorkers::fit(std::span<const Pose> starts, const DepthImage& working,
                                      std::span<const double> occlusion) {
   std::vector<Pose> out(starts.size());
-  run_with_kits(starts.size(), [&](size_t i, Kit& k) { out[i] = k.refiner.refine(starts[i], working, occlusion).pose; });
+  run_with_kits(starts.size(),
+                [&](size_t i, Kit& k) { out[i] = k.refiner.refine(starts[i], working, occlusion).pose; });
   return out;
 }
 
 std::vector<SilhouetteShares> SearchWorkers::shares(std::span<const Pose> poses, const DepthImage& working) {
   std::vector<SilhouetteShares> out(poses.size());
   run_with_kits(poses.size(), [&](size_t i, Kit& k) {
-    out[i] = silhouette_shares(k.rasterizer, config_.observation, config_.loss.pixel_sigmas, poses[i], working, k.scratch);
+    out[i] =
+        silhouette_shares(k.rasterizer, config_.observation, config_.loss.pixel_sigmas, poses[i], working, k.scratch);
   });
   return out;
 }

@@ -229,10 +229,19 @@ search::AgreementFunction TrackSupervisor::box_agreement(const search::ImageBox&
   return [this, given = bounds, &working, model](std::span<const Pose> poses) {
     const Stopwatch clock;
     std::vector<double> out(poses.size());
-    workers_->each(poses.size(), [&](size_t i) {
-      out[i] = search::box_iou(
-          given, search::visible_box(box_points_, poses[i], working_, working, model, config_.loss.pixel_sigmas));
-    });
+    // On a device the coarse scorer projects its mesh's vertices (box_points_) there; else the host's threads.
+    const std::vector<float> boxes = coarse_->visible_boxes(poses, working, model, config_.loss.pixel_sigmas);
+    if (boxes.size() == 4 * poses.size()) {
+      for (size_t i = 0; i < poses.size(); ++i) {
+        const float* b = boxes.data() + 4 * i;
+        out[i] = search::box_iou(given, search::ImageBox{b[0], b[1], b[2], b[3]});
+      }
+    } else {
+      workers_->each(poses.size(), [&](size_t i) {
+        out[i] = search::box_iou(
+            given, search::visible_box(box_points_, poses[i], working_, working, model, config_.loss.pixel_sigmas));
+      });
+    }
     times_.box_ms += clock.elapsed_ms();
     return out;
   };

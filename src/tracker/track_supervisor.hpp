@@ -96,7 +96,7 @@ class TrackSupervisor {
   int decimation_;
   search::SearchObject object_;
   Mesh simplified_;                          // the coarse stages' mesh
-  std::vector<Eigen::Vector3d> box_points_;  // its vertices: where a pose's visible box is sampled
+  std::vector<Eigen::Vector3d> box_points_;  // its vertices: where a pose's visible box is sampled (on the host)
   std::unique_ptr<PoseScorer> coarse_;       // scores with the simplified mesh
   std::unique_ptr<PoseScorer> full_;         // with the tracker's mesh
   std::unique_ptr<SearchWorkers> workers_;   // the fits, silhouettes and box agreement, on the host's threads

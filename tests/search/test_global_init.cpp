@@ -14,6 +14,7 @@
 #include "filter/device_filter.hpp"
 #include "label_box.hpp"
 #include "reference/reference_filter.hpp"
+#include "search/visible_box.hpp"
 #include "support.hpp"
 
 using namespace depthtrack;
@@ -65,6 +66,53 @@ TEST_CASE("device pose scores equal the reference's", "[global][device]") {
     // The true pose beats the far ones: the scores mean something.
     CHECK(expected.front() > *std::min_element(expected.begin(), expected.end()) + 100);
   }
+}
+
+// The box agreement's device side: each pose's visible box from the coarse scorer's vertices on the device,
+// against search::visible_box on the host (double), on a scene where an occluder hides part of the object.
+TEST_CASE("device visible boxes equal the host's", "[global][device][box]") {
+  if (!test::device_available()) return;
+  const Mesh mesh = builtin_demo_mesh();
+  SynthConfig synth;
+  synth.frames = 1;
+  synth.occluder_fraction = 0.3;
+  const SynthFrame frame = Synthesizer(mesh, synth).frame(0);
+  const Camera working = synth.camera.decimated(8);
+  const DepthImage depth = frame.depth.decimated(8);
+  TrackerConfig config;
+  DeviceFilter device(compute::open_device(test::device_selector()), mesh, working, config);
+  const std::unique_ptr<PoseScorer> scorer = device.make_pose_scorer(mesh);
+  const std::vector<Pose> poses = test_poses(frame.ground_truth, mesh.centre().cast<double>(), 700);
+  const double sigmas = config.loss.pixel_sigmas;
+  const std::vector<float> got = scorer->visible_boxes(poses, depth, config.observation, sigmas);
+  REQUIRE(got.size() == 4 * poses.size());
+  std::vector<Eigen::Vector3d> vertices;
+  for (const auto& v : mesh.vertices) vertices.push_back(v.cast<double>());
+  size_t differ = 0, empty = 0, partly_hidden = 0;
+  double worst = 0;
+  for (size_t i = 0; i < poses.size(); ++i) {
+    const search::ImageBox want = search::visible_box(vertices, poses[i], working, depth, config.observation, sigmas);
+    const search::ImageBox all = search::visible_box(
+        vertices, poses[i], working, DepthImage(working.width, working.height), config.observation, sigmas);
+    const float* b = got.data() + 4 * i;
+    const search::ImageBox have{b[0], b[1], b[2], b[3]};
+    CHECK(have.empty() == want.empty());
+    if (want.empty()) {
+      ++empty;
+      continue;
+    }
+    partly_hidden += want.area() < all.area();
+    const double d = std::max({std::abs(have.u0 - want.u0), std::abs(have.v0 - want.v0), std::abs(have.u1 - want.u1),
+                               std::abs(have.v1 - want.v1)});
+    worst = std::max(worst, d);
+    differ += d > 1e-3;
+  }
+  std::printf("visible boxes, %zu poses (%zu partly hidden, %zu empty): %zu differ by over 1e-3 px, worst %.2g px\n",
+              poses.size(), partly_hidden, empty, differ, worst);
+  // float against double: a vertex within rounding of a pixel's edge or of the band may fall the other way.
+  CHECK(differ <= poses.size() / 100);
+  CHECK(partly_hidden > 50);  // the occluder hides parts: the depth test is exercised
+  CHECK(empty >= 1);          // the pose behind the camera
 }
 
 namespace {

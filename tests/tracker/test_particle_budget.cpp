@@ -167,7 +167,7 @@ TEST_CASE("a particle budget keeps room for the fit's most steps", "[budget]") {
 // the overruns leaves about 95 % of the frames within the budget, and costs only a few particles.
 TEST_CASE("a particle budget keeps about 95 % of noisy frames within it", "[budget]") {
   const double per = 0.04, fixed = 0.5, budget_ms = 5.0;  // ms
-  const double noise_free = (budget_ms - fixed) / per;      // 112.5 particles
+  const double noise_free = (budget_ms - fixed) / per;    // 112.5 particles
   ParticleBudget budget(budget_ms, 10, 1000, 0.5);
   std::mt19937 random(7);
   std::normal_distribution<double> spread(1.0, 0.03);

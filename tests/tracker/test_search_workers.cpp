@@ -46,8 +46,8 @@ TEST_CASE("the search's fits and silhouettes on threads equal the sequential one
     REQUIRE(shares.size() == starts.size());
     for (size_t i = 0; i < starts.size(); ++i) {
       CHECK(same_pose(fitted[i], refiner.refine(starts[i], frame.depth, fresh).pose));
-      const SilhouetteShares s = silhouette_shares(rasterizer, config.observation, config.loss.pixel_sigmas,
-                                                   fitted[i], frame.depth, scratch);
+      const SilhouetteShares s =
+          silhouette_shares(rasterizer, config.observation, config.loss.pixel_sigmas, fitted[i], frame.depth, scratch);
       CHECK(shares[i].pixels == s.pixels);
       CHECK(shares[i].visible == s.visible);
       CHECK(shares[i].separated == s.separated);
