@@ -106,9 +106,9 @@ TEST_CASE("a second Tracker loads every program from the binary cache and tracks
   const auto compiled_device = Device::open(config.backend);
   Tracker compiled(compiled_device, mesh, synth.camera, config);
   const auto& compiled_programs = DeviceAccess::context(*compiled_device)->programs;
-  // Eight programs but those whose work is folded into others here (test::programs_folded_away).
+  // Nine programs but those whose work is folded into others here (test::programs_folded_away).
   const size_t programs =
-      8 - test::programs_folded_away(*DeviceAccess::context(*compiled_device)->queue, mesh, synth.camera, config);
+      9 - test::programs_folded_away(*DeviceAccess::context(*compiled_device)->queue, mesh, synth.camera, config);
   REQUIRE(compiled_programs.builds() == programs);
   CHECK(compiled_programs.loaded_from_disk() == 0);
   REQUIRE(files_in(folder) == programs);

@@ -90,12 +90,13 @@ TEST_CASE("Two trackers on one Device build each program once and track as on th
   REQUIRE_FALSE(device->is_host());
   Tracker a(device, mesh, synth.camera, first);
   // weigh (at 80x60 render_weigh: the kernel renderer draws inside it), resample, initialize, rasterize
-  // (the atlas's and the search's: one key), refine, score: six programs; and propagate and summarize
-  // where their work is not folded into render_weigh and the one-launch fit (a small cloud's, one-launch).
+  // (the atlas's and the search's: one key), refine, score, visible_box (the search's box agreement): seven
+  // programs; and propagate and summarize where their work is not folded into render_weigh and the
+  // one-launch fit (a small cloud's, one-launch).
   const size_t folded_away =
       test::programs_folded_away(*DeviceAccess::context(*device)->queue, mesh, synth.camera, first);
   const size_t builds = device->program_builds();
-  CHECK(builds == 8 - folded_away);
+  CHECK(builds == 9 - folded_away);
   Tracker b(device, mesh, synth.camera, second);
   CHECK(device->program_builds() == builds);  // nothing compiled again
   // Another occlusion mode changes the filter's programs' definitions (all but rasterize and score) and
