@@ -11,7 +11,15 @@ namespace depthtrack {
 
 namespace {
 constexpr double kSmoothing = 0.25;  // weight of the newest frame in the smoothed times
-constexpr double kKeepShare = 0.8;   // a frame keeps at least this share of the last one's particles
+// A frame keeps at least this share of the last one's particles: a fifth less a frame, or less where the
+// range from the fewest to the most is so wide that a fifth a frame would take more than kThinFrames
+// frames to cross it (a GPU's 100,000 down to 10), so that a confident cloud thins in as many frames on
+// any device.
+constexpr double kKeepShare = 0.8;
+constexpr double kThinFrames = 14;
+double keep_share(int fewest, int most) {
+  return std::min(kKeepShare, std::pow(static_cast<double>(fewest) / most, 1.0 / kThinFrames));
+}
 }  // namespace
 
 double fit_spread_ratio(const Eigen::Matrix<double, 6, 6>& fit_covariance, const MotionModel& motion) {
@@ -65,7 +73,7 @@ int ParticleBudget::next(bool reseed) {
   const bool settling = settle_left_ > 0;
   const double need = settling ? 1.0 : need_;
   int wanted = min_ + static_cast<int>(std::lround(need * (max_ - min_)));
-  if (!settling) wanted = std::max(wanted, static_cast<int>(std::ceil(kKeepShare * last_)));
+  if (!settling) wanted = std::max(wanted, static_cast<int>(std::ceil(keep_share(min_, max_) * last_)));
   // Before any frame is timed and unprimed, the first runs the fewest: its time then sizes the next.
   const int afforded_now = timed_ || primed_ ? afforded() : min_;
   last_ = std::clamp(std::min(wanted, afforded_now), min_, max_);

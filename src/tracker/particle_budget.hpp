@@ -23,7 +23,8 @@
 //     found by the particles' draws, not by the fit (a mug's turn about its axis, seen by the handle's
 //     few pixels): from the fit's spread there at one frame's motion noise (kFitSpreadFrom) the need rises
 //     linearly to the most at twice it (kFitSpreadFull). It falls by at most a fifth a frame, so that one
-//     good frame does not thin a cloud that is still finding its pose.
+//     good frame does not thin a cloud that is still finding its pose; where the range from the fewest to
+//     the most is wider than a fifth a frame crosses in 14 frames (a GPU's), by as much as crosses it in 14.
 // The count is the lesser of the two, within [min_particles, particles]: a budget too small for
 // min_particles runs min_particles. Before any frame is timed: what prime's measured particle affords,
 // or without it the fewest (that frame's time then sizes the next). The frame after initialize() from a

@@ -102,6 +102,40 @@ TEST_CASE("a confident frame keeps the particles its fit leaves to them", "[budg
   CHECK(budget.next(false) == 128);
 }
 
+// A GPU's range, 10 to 100,000 particles: a fifth a frame would take 41 frames to thin a confident cloud;
+// it falls by (10 / 100,000)^(1/14) = 0.518 a frame instead, crossing the range in 14 frames.
+TEST_CASE("a confident cloud thins from the most to the fewest in 14 frames on any range", "[budget]") {
+  // Frames of 1e-5 ms a particle (1 ms at 100,000) and 1 ms besides: everything affordable within 5 ms.
+  const auto gpu_frame = [](int particles) {
+    Estimate e;
+    e.particles = particles;
+    e.timings.render_ms = 1e-5 * particles;
+    e.timings.total_ms = 1 + 1e-5 * particles;
+    e.confidence = 0.95;
+    e.status = TrackStatus::Tracking;
+    return e;
+  };
+  ParticleBudget budget(5.0, 10, 100000, 0.5);
+  int count = budget.next(true);
+  for (int i = 0; i <= ParticleBudget::kSettleFrames; ++i) {  // the new cloud and its settling frames
+    budget.observe(gpu_frame(count));
+    count = budget.next(false);
+  }
+  const double keep = std::pow(10.0 / 100000.0, 1.0 / 14);
+  CHECK(count == static_cast<int>(std::ceil(keep * 100000)));  // 51,795: the first frame of the fall
+  int frames = 1;
+  while (count > 10) {
+    budget.observe(gpu_frame(count));
+    const int next = budget.next(false);
+    CHECK(next == std::max(10, static_cast<int>(std::ceil(keep * count))));
+    count = next;
+    ++frames;
+  }
+  CHECK(frames == 15);  // 14 frames' factor, each count rounded up: the 15th frame reaches 10
+  // The CPU's default range, 10 to 200, keeps the fifth a frame ((10 / 200)^(1/14) = 0.807 is slower): the
+  // test above falls 200 -> 160 -> 128.
+}
+
 TEST_CASE("the frame after initialize() runs what a search's budget affords", "[budget]") {
   // Primed at 1/16 ms a particle, 10 of them fixed (0.625 ms): a 5 ms frame affords (5 - 0.625) * 16 =
   // 70, a 500 ms search all 200, 3 ms 38.
