@@ -8,8 +8,7 @@
 #include "dt_prelude.h"
 #include "dt_model.h"
 #include "dt_group.h"
-#include "dt_quaternion.h"
-#include "dt_state.h"
+#include "dt_estimate.h" /* dt_load_rotation */
 
 __kernel void visible_box(__global const float* states, __global const float* vertices, uint vertex_count,
                           __global const float* observed, dt_camera camera, dt_model m, float pixel_sigmas,
@@ -17,12 +16,7 @@ __kernel void visible_box(__global const float* states, __global const float* ve
   __local float scratch[DT_GROUP_SIZE];
   const uint pose = get_group_id(0);
   __global const float* s = states + DT_CAST(ulong, pose) * DT_STATE_STRIDE;
-  dt_quat q;
-  q.w = s[DT_QW];
-  q.x = s[DT_QW + 1];
-  q.y = s[DT_QW + 2];
-  q.z = s[DT_QW + 3];
-  q = dt_quat_normalize(q);
+  const dt_quat q = dt_quat_normalize(dt_load_rotation(states, pose));
   /* The least u and v kept as the largest -u and -v, so that one reduction serves all four. */
   float neg_u0 = DT_LOWEST, neg_v0 = DT_LOWEST, u1 = DT_LOWEST, v1 = DT_LOWEST;
   for (uint k = get_local_id(0); k < vertex_count; k += DT_GROUP_SIZE) {

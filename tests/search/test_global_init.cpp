@@ -32,17 +32,31 @@ std::vector<Pose> test_poses(const Pose& truth, const Eigen::Vector3d& centre, s
   poses.push_back(Pose({0, 0, -1}, Eigen::Quaterniond::Identity()));  // behind the camera: nothing drawn
   return poses;
 }
+
+// The built-in object behind a 30 % occluder, one frame, at the working resolution 80x60.
+struct OccludedFrame {
+  Mesh mesh = builtin_demo_mesh();
+  SynthFrame frame;
+  Camera working;
+  DepthImage depth;
+  OccludedFrame() {
+    SynthConfig synth;
+    synth.frames = 1;
+    synth.occluder_fraction = 0.3;
+    frame = Synthesizer(mesh, synth).frame(0);
+    working = synth.camera.decimated(8);
+    depth = frame.depth.decimated(8);
+  }
+};
 }  // namespace
 
 TEST_CASE("device pose scores equal the reference's", "[global][device]") {
   if (!test::device_available()) return;
-  const Mesh mesh = builtin_demo_mesh();
-  SynthConfig synth;
-  synth.frames = 1;
-  synth.occluder_fraction = 0.3;
-  const SynthFrame frame = Synthesizer(mesh, synth).frame(0);
-  const Camera working = synth.camera.decimated(8);
-  const DepthImage depth = frame.depth.decimated(8);
+  const OccludedFrame scene;
+  const Mesh& mesh = scene.mesh;
+  const SynthFrame& frame = scene.frame;
+  const Camera& working = scene.working;
+  const DepthImage& depth = scene.depth;
   for (const OcclusionStorage mode : {OcclusionStorage::PerPixelTime, OcclusionStorage::Off}) {
     TrackerConfig config;
     config.occlusion_storage = mode;
@@ -72,28 +86,23 @@ TEST_CASE("device pose scores equal the reference's", "[global][device]") {
 // against search::visible_box on the host (double), on a scene where an occluder hides part of the object.
 TEST_CASE("device visible boxes equal the host's", "[global][device][box]") {
   if (!test::device_available()) return;
-  const Mesh mesh = builtin_demo_mesh();
-  SynthConfig synth;
-  synth.frames = 1;
-  synth.occluder_fraction = 0.3;
-  const SynthFrame frame = Synthesizer(mesh, synth).frame(0);
-  const Camera working = synth.camera.decimated(8);
-  const DepthImage depth = frame.depth.decimated(8);
+  const OccludedFrame s;
   TrackerConfig config;
-  DeviceFilter device(compute::open_device(test::device_selector()), mesh, working, config);
-  const std::unique_ptr<PoseScorer> scorer = device.make_pose_scorer(mesh);
-  const std::vector<Pose> poses = test_poses(frame.ground_truth, mesh.centre().cast<double>(), 700);
+  DeviceFilter device(compute::open_device(test::device_selector()), s.mesh, s.working, config);
+  const std::unique_ptr<PoseScorer> scorer = device.make_pose_scorer(s.mesh);
+  const std::vector<Pose> poses = test_poses(s.frame.ground_truth, s.mesh.centre().cast<double>(), 700);
   const double sigmas = config.loss.pixel_sigmas;
-  const std::vector<float> got = scorer->visible_boxes(poses, depth, config.observation, sigmas);
+  const std::vector<float> got = scorer->visible_boxes(poses, s.depth, config.observation, sigmas);
   REQUIRE(got.size() == 4 * poses.size());
   std::vector<Eigen::Vector3d> vertices;
-  for (const auto& v : mesh.vertices) vertices.push_back(v.cast<double>());
+  for (const auto& v : s.mesh.vertices) vertices.push_back(v.cast<double>());
   size_t differ = 0, empty = 0, partly_hidden = 0;
   double worst = 0;
   for (size_t i = 0; i < poses.size(); ++i) {
-    const search::ImageBox want = search::visible_box(vertices, poses[i], working, depth, config.observation, sigmas);
+    const search::ImageBox want =
+        search::visible_box(vertices, poses[i], s.working, s.depth, config.observation, sigmas);
     const search::ImageBox all = search::visible_box(
-        vertices, poses[i], working, DepthImage(working.width, working.height), config.observation, sigmas);
+        vertices, poses[i], s.working, DepthImage(s.working.width, s.working.height), config.observation, sigmas);
     const float* b = got.data() + 4 * i;
     const search::ImageBox have{b[0], b[1], b[2], b[3]};
     CHECK(have.empty() == want.empty());
