@@ -278,9 +278,13 @@ void run_eval(const EvalArgs& a) {
       });
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
       bar.finish();
-      const double search_ms = frames.empty() ? 0.0 : frames.front().estimate.timings.search_ms;
-      CaseRow row{o.name, c.name, c.kind, {}, seconds, o.box_source, search_ms, {}};
-      if (!frames.empty()) row.search_split = frames.front().estimate.timings;
+      CaseRow row{o.name,
+                  c.name,
+                  c.kind,
+                  {},
+                  seconds,
+                  o.box_source,
+                  frames.empty() ? StepTimings{} : frames.front().estimate.timings};
       const std::optional<size_t> recovery_from =
           c.kind == CaseKind::Gap ? std::optional<size_t>(static_cast<size_t>(a.gap_before) + kRecoveryFrames)
                                   : std::nullopt;

@@ -20,9 +20,9 @@ std::string check(const CaseRow& row) {
     case CaseKind::Gap:
       return std::string("recovered=") + (!row.scores.recovered ? "n/a" : *row.scores.recovered ? "yes" : "no");
     case CaseKind::Box: {
-      const StepTimings& t = row.search_split;
+      const StepTimings& t = row.first_frame;
       char search[128];
-      std::snprintf(search, sizeof search, " search_ms=%.0f (scoring %.0f, box %.0f, fits %.0f)", row.search_ms,
+      std::snprintf(search, sizeof search, " search_ms=%.0f (scoring %.0f, box %.0f, fits %.0f)", t.search_ms,
                     t.search_scoring_ms, t.search_box_ms, t.search_fit_ms);
       return "box=" + row.box_source + search + " ended_within_10mm=" + (box_ended_within(row) ? "yes" : "no");
     }

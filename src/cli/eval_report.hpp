@@ -15,10 +15,9 @@ struct CaseRow {
   std::string object, name;
   CaseKind kind = CaseKind::Perturbed;
   CaseScores scores;
-  double seconds = 0;        // wall time of the case's tracking
-  std::string box_source;    // Box: "label" or "projected"
-  double search_ms = 0;      // Box: the first frame's search for the object in the box
-  StepTimings search_split;  // Box: the first frame's timings, of which search_*_ms split search_ms
+  double seconds = 0;       // wall time of the case's tracking
+  std::string box_source;   // Box: "label" or "projected"
+  StepTimings first_frame;  // Box: the first frame's timings (search_ms: the search for the object in the box)
 };
 
 class EvalTable {

@@ -63,6 +63,12 @@ void DevicePoseScorer::allocate() {
   unused_boxes_ = compute::Buffer<unsigned>(queue_, 4);  // whole tiles: score.cl reads every pixel
 }
 
+dt_model DevicePoseScorer::model_for(const ObservationModel& observation) const {
+  TrackerConfig config = config_;
+  config.observation = observation;
+  return model::model_params(config);
+}
+
 void DevicePoseScorer::upload_batch(std::span<const Pose> poses, std::vector<float>& packed) {
   packed.assign(poses.size() * DT_STATE_STRIDE, 0.0f);
   for (size_t i = 0; i < poses.size(); ++i) write_pose(poses[i], packed.data() + i * DT_STATE_STRIDE);
@@ -73,9 +79,7 @@ std::vector<double> DevicePoseScorer::score(std::span<const Pose> poses, const D
                                             const ObservationModel& observation) {
   allocate();
   observed_.upload(depth.data());
-  TrackerConfig config = config_;
-  config.observation = observation;
-  const dt_model model = model::model_params(config);
+  const dt_model model = model_for(observation);
   const float p = static_cast<float>(model::fresh_occlusion(config_));
   std::vector<double> out;
   out.reserve(poses.size());
@@ -104,9 +108,7 @@ std::vector<float> DevicePoseScorer::visible_boxes(std::span<const Pose> poses, 
                                                    const ObservationModel& observation, double pixel_sigmas) {
   allocate();
   observed_.upload(depth.data());
-  TrackerConfig config = config_;
-  config.observation = observation;
-  const dt_model model = model::model_params(config);
+  const dt_model model = model_for(observation);
   std::vector<float> out(4 * poses.size()), packed;
   for (size_t first = 0; first < poses.size(); first += batch_) {
     const size_t n = std::min(batch_, poses.size() - first);

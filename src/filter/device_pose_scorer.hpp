@@ -48,6 +48,8 @@ class DevicePoseScorer final : public PoseScorer {
   dt_camera camera_;
   // The batch's buffers, made by the first search: a tracker that never loses its object needs none.
   void allocate();
+  // The kernels' observation model: the tracker's with `observation` (its own or the search's tempered one).
+  dt_model model_for(const ObservationModel& observation) const;
   // A batch's poses (at most batch_) packed as states into packed and uploaded.
   void upload_batch(std::span<const Pose> poses, std::vector<float>& packed);
 

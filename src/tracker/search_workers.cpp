@@ -41,26 +41,32 @@ SearchWorkers::Kit& SearchWorkers::kit(int thread) {
   return *k;
 }
 
+ThreadPool* SearchWorkers::pool(size_t n) {
+  if (threads_ == 1 || n < 2) return nullptr;
+  if (!pool_) pool_ = std::make_unique<ThreadPool>(threads_);
+  return pool_.get();
+}
+
 void SearchWorkers::each(size_t n, const std::function<void(size_t)>& item) {
-  if (threads_ == 1 || n < 2) {
+  ThreadPool* threads = pool(n);
+  if (!threads) {
     for (size_t i = 0; i < n; ++i) item(i);
     return;
   }
-  if (!pool_) pool_ = std::make_unique<ThreadPool>(threads_);
-  run_ranges(*pool_, n, [&](size_t, size_t first, size_t last, int) {
+  run_ranges(*threads, n, [&](size_t, size_t first, size_t last, int) {
     for (size_t i = first; i < last; ++i) item(i);
   });
 }
 
 void SearchWorkers::run_with_kits(size_t n, const std::function<void(size_t, Kit&)>& task) {
-  if (threads_ == 1 || n < 2) {
+  ThreadPool* threads = pool(n);
+  if (!threads) {
     for (size_t i = 0; i < n; ++i) task(i, kit(0));
     return;
   }
-  if (!pool_) pool_ = std::make_unique<ThreadPool>(threads_);
   // Every thread's kit is made here, on the caller's thread: the tasks only read the vector of them.
-  for (int t = 0; t < pool_->size(); ++t) kit(t);
-  pool_->run(n, [&](size_t i, int thread) { task(i, *kits_[static_cast<size_t>(thread)]); });
+  for (int t = 0; t < threads->size(); ++t) kit(t);
+  threads->run(n, [&](size_t i, int thread) { task(i, *kits_[static_cast<size_t>(thread)]); });
 }
 
 std::vector<Pose> SearchWorkers::fit(std::span<const Pose> starts, const DepthImage& working,

@@ -41,6 +41,8 @@ class SearchWorkers {
   // One thread's refiner and rasterizer, made when a thread first needs them.
   struct Kit;
   Kit& kit(int thread);
+  // The pool for n items, made on first use; null where they run on the caller's thread alone.
+  ThreadPool* pool(size_t n);
   // Calls task(i, kit) for i in [0, n) on the threads, each with its thread's kit.
   void run_with_kits(size_t n, const std::function<void(size_t, Kit&)>& task);
 

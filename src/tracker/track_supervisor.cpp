@@ -145,26 +145,26 @@ search::SearchResult TrackSupervisor::search(const DepthImage& sensor_depth, con
                                              bool detector_box) const {
   const search::ImageBox bounds = detector_box ? search::hint_box(hint, decimation_) : search::ImageBox{};
   times_ = {};
+  // Every return carries the time spent on both searches.
+  const auto timed = [this](search::SearchResult r) {
+    r.times = times_;
+    return r;
+  };
   search::SearchResult result = candidates(sensor_depth, working, hint, budget_ms, round, bounds, false);
   bool supported_apart = false;
   const bool chosen = !result.candidates.empty() && finish(result, working, hint, round, bounds, &supported_apart);
-  result.times = times_;
-  if (hint.kind != InitHint::Kind::Box || chosen || supported_apart) return result;
+  if (hint.kind != InitHint::Kind::Box || chosen || supported_apart) return timed(std::move(result));
   // No candidate the evidence supports: the box can hold other objects' surfaces too (ycbv-0049's tuna
   // fish can: the right pose's neighbourhood was left out), so every region of it keeps its own. Its
   // result is taken where the evidence chose, or, with a detector's box, where it supports poses apart.
   search::SearchResult wide = candidates(sensor_depth, working, hint, budget_ms, round, bounds, true);
   bool wide_apart = false;
-  if (!wide.candidates.empty()) {
-    const bool wide_chosen = finish(wide, working, hint, round, bounds, &wide_apart);
-    if (!wide_chosen && !(wide_apart && !bounds.empty())) wide.candidates.clear();
-  }
-  result.times = times_;  // the wide search's time spent too
-  if (wide.candidates.empty()) return result;
+  if (wide.candidates.empty()) return timed(std::move(result));
+  const bool wide_chosen = finish(wide, working, hint, round, bounds, &wide_apart);
+  if (!wide_chosen && !(wide_apart && !bounds.empty())) return timed(std::move(result));
   wide.coarse_poses += result.coarse_poses;
   wide.poses_scored += result.poses_scored;
-  wide.times = times_;
-  return wide;
+  return timed(std::move(wide));
 }
 
 search::SearchResult TrackSupervisor::candidates(const DepthImage& sensor_depth, const DepthImage& working,

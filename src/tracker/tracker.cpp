@@ -10,6 +10,7 @@
 #include "core/stopwatch.hpp"
 #include "core/timestamp_limits.hpp"
 #include "model/covariance_calibration.hpp"
+#include "model/fit_noise.hpp"
 #include "tracker/confidence_model.hpp"
 #include "tracker/make_filter_backend.hpp"
 #include "tracker/particle_budget.hpp"
@@ -51,10 +52,10 @@ double particle_time_ms(FilterBackend& backend, const Camera& working, const Pos
   return 2 * least / poses;
 }
 
-// The most steps a frame's fit can take: `iterations` a stage, a second stage when fine_noise_scale is set.
-int most_fit_steps(const Refinement& refine) {
-  if (!refine.enabled) return 0;
-  return refine.iterations * (refine.fine_noise_scale > 0 ? 2 : 1);
+// The most steps a frame's fit can take: `iterations` in each of its stages (model::fit_stages).
+int most_fit_steps(const TrackerConfig& config) {
+  if (!config.refine.enabled) return 0;
+  return config.refine.iterations * static_cast<int>(model::fit_stages(config).size());
 }
 
 void add_search_times(StepTimings& timings, const search::SearchTimes& times) {
@@ -165,7 +166,7 @@ Tracker::Impl::Impl(std::shared_ptr<Device> device, const Camera& sensor, const 
   particle_count_ = config.particles;
   if (config.budget_ms > 0)
     budget_ = std::make_unique<ParticleBudget>(config.budget_ms, config.min_particles, config.particles,
-                                               config.loss.lost_below, config.motion, most_fit_steps(config.refine));
+                                               config.loss.lost_below, config.motion, most_fit_steps(config));
 }
 
 int Tracker::Impl::prime_poses() const {
