@@ -85,8 +85,8 @@ struct Refinement {
   /// (0: none). The first stage's wide likelihood draws the pose in from afar, the second's narrow one
   /// then gives pixels a few millimetres off (edges, occluders' rims, the model's own error) less say,
   /// without the narrow one's smaller reach. The covariance comes from the last stage's H. Every backend
-  /// fits both stages (docs/user/configuration.md, `refine.fine_noise_scale`: measurements, why 0).
-  double fine_noise_scale = 0.0;
+  /// fits both stages (docs/user/configuration.md, `refine.fine_noise_scale`: what it gains and costs).
+  double fine_noise_scale = 0.35;
   RefineLayout layout = RefineLayout::Auto;  ///< device backends only: the same fit, laid out differently
 };
 

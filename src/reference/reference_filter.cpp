@@ -311,7 +311,8 @@ std::vector<double> ReferenceFilter::occlusion_map(size_t i) const {
 // 1e-5 m when two particles share the weight, and a fit from different starts ends apart in the weakly
 // observed directions; the heaviest particle is the same on every backend.
 void ReferenceFilter::refine(Estimate& e, const DepthImage& depth, size_t heaviest) {
-  const RefinedPose fit = refiner_.refine(particles_[heaviest].pose, depth, occlusion_map(heaviest));
+  last_fit_occlusion_ = occlusion_map(heaviest);
+  const RefinedPose fit = refiner_.refine(particles_[heaviest].pose, depth, last_fit_occlusion_);
   // The cloud moves by the twist that puts the heaviest particle on the refined pose: the refined
   // pose enters the particle set exactly.
   const Vector6d correction = twist_between(particles_[heaviest].pose, fit.pose, centre_);

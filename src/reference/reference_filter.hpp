@@ -55,6 +55,12 @@ class ReferenceFilter final : public FilterBackend {
   const model::StateWindow& state_window() const { return window_; }
   const std::vector<float>& occlusion_times() const { return occlusion_time_; }
   const std::vector<double>& log_weights() const { return log_weights_; }
+  // The last frame's fit objective (its last stage's log-likelihood, under the occlusion map the fit used)
+  // at any pose: how well another backend's fit did by this one's measure. Draws the pose anew, so
+  // rendering_of holds it afterwards.
+  double last_fit_objective(const Pose& pose, const DepthImage& depth) const {
+    return refiner_.normal_equations(pose, depth, last_fit_occlusion_).objective;
+  }
   // Per pose of the last score_poses, the sum of the absolute per-pixel terms.
   const std::vector<double>& last_score_magnitudes() const { return scorer_.last_magnitudes(); }
 
@@ -110,6 +116,7 @@ class ReferenceFilter final : public FilterBackend {
   std::vector<Lane> lanes_;  // one per thread; lanes_[0] is the caller's
   std::unique_ptr<ThreadPool> pool_;
   PoseRefiner refiner_;
+  std::vector<double> last_fit_occlusion_;  // the occlusion map of the last frame's fit
   ReferencePoseScorer scorer_;
   std::vector<ParticleState> particles_, scratch_particles_;  // scratch: resampling's gather target
   std::vector<double> log_weights_;

@@ -173,8 +173,11 @@ TEST_CASE("A tracker drawing the mug simplified to 0.5 mm tracks it as one drawi
             << simplified_mm << " mm drawing " << simplified << "\n";
   CHECK(all == mug.triangles.size());
   CHECK(simplified < all / 4);
-  CHECK(full_mm < 3.0);
-  CHECK(simplified_mm < 3.0);
+  // The mean error is mostly the mug's turn about its axis, which only the small handle shows. The fit's
+  // second stage (refine.fine_noise_scale) gives the handle's pixels a few millimetres off less say, so the
+  // error is larger with it than with one stage (docs/user/configuration.md).
+  CHECK(full_mm < 3.5);
+  CHECK(simplified_mm < 3.5);
   CHECK(std::abs(simplified_mm - full_mm) < 0.5);
 }
 
