@@ -12,7 +12,7 @@ q_t is the evidence model's probability (coefficients as src/tracker/confidence_
 base rate its evidence is weighed against, w_t = min(1, visible pixels / n0) so a frame that sees little of
 the object says little. The gap runs jump before frame index 6 (depthtrack_confidence_samples --track).
 
-    scripts/temporal-confidence.py samples-*-track.csv
+    scripts/temporal-confidence.py samples-*-track.csv [--n0 16] [--all]
 """
 import argparse
 import csv
@@ -100,12 +100,17 @@ def score(runs, params):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("files", nargs="+")
+    parser.add_argument("--n0", type=float, help="fix the pixel weight's n0 (e.g. 16, the support's pixels)")
+    parser.add_argument("--all", action="store_true", help="fit on every file, none held out")
     args = parser.parse_args()
     data = {f: load_runs(f) for f in args.files}
-    grid = [(h, logit(b), n0) for h in (0.01, 0.03, 0.1, 0.3) for b in (0.3, 0.5, 0.7) for n0 in (0, 30, 100)]
-    print("held out: before (ECE, worst bin of >= 5 %, confidently wrong) -> after, with the others' parameters")
+    hazards, bases = (0.003, 0.01, 0.03, 0.1, 0.3), (0.1, 0.2, 0.3, 0.5, 0.6, 0.7, 0.8)
+    grid = [(h, logit(b), n0) for h in hazards for b in bases
+            for n0 in ((args.n0,) if args.n0 is not None else (0, 16, 30, 100))]
+    print("before (ECE, worst bin of >= 5 %, confidently wrong) -> after, with "
+          + ("the parameters fitted on all" if args.all else "the others' parameters (each held out)"))
     for f in args.files:
-        others = [g for g in args.files if g != f]
+        others = args.files if args.all else [g for g in args.files if g != f]
         best = min(grid, key=lambda g: sum(score(data[o], g)[0] for o in others))
         _, e0, w0, c0 = score(data[f], None)
         _, e1, w1, c1 = score(data[f], best)
