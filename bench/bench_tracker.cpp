@@ -6,6 +6,7 @@
 // render is the atlas draw (GL waited for); handoff moves poses to GL and the atlas to the kernels.
 // Usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] [--resolution WxH[,...]]
 //                         [--frames N] [--refine on|off] [--refine-iterations N] [--refine-converged M]
+//                         [--fine-noise-scale S]
 //   default: the reference at 80x60 (200 particles) and 640x480 (50 particles).
 // With --multi-objects: only one object against three in one process (bench/multi_object_ratio.hpp).
 // Then the off-screen start (one particle 10,000 km to the side, 5 frames), unless --no-offscreen, and global
@@ -133,6 +134,11 @@ CaseTimes run(const Mesh& mesh, const std::string& mesh_name, const std::string&
       (refine.enabled ? "_refine" + std::to_string(refine.iterations) : "_norefine") +
       (refine.enabled && refine.layout != RefineLayout::Auto ? std::string("_") + to_string(refine.layout)
                                                              : std::string()) +
+      (refine.enabled && refine.fine_noise_scale != Refinement{}.fine_noise_scale
+           ? (refine.fine_noise_scale > 0
+                  ? "_fine" + std::to_string(static_cast<int>(std::lround(100 * refine.fine_noise_scale))) + "pc"
+                  : std::string("_onestage"))
+           : std::string()) +
       (window.is_automatic() ? std::string()
        : window.width > 0 || window.height > 0
            ? "_window" + std::to_string(window.width) + "x" + std::to_string(window.height)
@@ -179,7 +185,8 @@ CaseTimes run(const Mesh& mesh, const std::string& mesh_name, const std::string&
 const char* const kUsage =
     "usage: depthtrack_bench [--backend NAME] [--renderer kernel|gl|cpu] [--particles N[,N...]] "
     "[--resolution WxH[,...]] [--frames N] [--refine on|off] [--refine-iterations N] [--refine-converged M]\n"
-    "       [--refine-layout auto|one-group|spread|one-launch] [--occlusion-window auto|full|WxH]\n"
+    "       [--fine-noise-scale S] [--refine-layout auto|one-group|spread|one-launch] [--occlusion-window "
+    "auto|full|WxH]\n"
     "       [--simplify-error M] [--mesh FILE] [--no-global] [--no-offscreen] [--multi-objects] [--untimed-steps] "
     "[--pace MS]\n"
     "       [--synthesize-inline]\n"
@@ -203,6 +210,8 @@ const char* const kUsage =
     "  --refine-iterations N  refinement steps per frame at most (default: TrackerConfig's)\n"
     "  --refine-converged M   the refinement stops when a step would move the mesh less than M metres\n"
     "                         (default: TrackerConfig's; 0 takes every step)\n"
+    "  --fine-noise-scale S   the fit's second stage at S times sigma(y), 0 for one stage (default:\n"
+    "                         TrackerConfig's)\n"
     "  --refine-layout NAME   device backends' refinement: auto (default: spread on CUDA, for meshes of\n"
     "                         2,048 triangles or more and on GPUs over 160x120, else one-launch), one-group,\n"
     "                         spread or one-launch;\n"
@@ -338,6 +347,8 @@ int main(int argc, char** argv) {
       refine.iterations = bench::parse_positive(args.value(), arg);
     else if (arg == "--refine-converged")
       refine.converged_motion = bench::parse_nonnegative_double(args.value(), arg);
+    else if (arg == "--fine-noise-scale")
+      refine.fine_noise_scale = bench::parse_nonnegative_double(args.value(), arg);
     else if (arg == "--refine-layout")
       try {
         refine.layout = refine_layout_from_string(args.value());
