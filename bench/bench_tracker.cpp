@@ -66,6 +66,14 @@ struct CaseTimes {
   double total_ms = 0, update_cpu_ms = 0;
 };
 
+// The test name's mark of a fit other than the default's stages: "_onestage", or "_fine35pc" for a second
+// stage at 0.35 sigma(y); empty for the default.
+std::string fit_stages_tag(const Refinement& refine) {
+  if (!refine.enabled || refine.fine_noise_scale == Refinement{}.fine_noise_scale) return {};
+  if (refine.fine_noise_scale == 0) return "_onestage";
+  return "_fine" + std::to_string(std::lround(100 * refine.fine_noise_scale)) + "pc";
+}
+
 // Prints the case's rows; returns its medians.
 // feed.pace_ms > 0: each frame is handed over that long after the one before returned, as a sensor stream
 // leaves the device idle between frames (back to back, a frame's calls meet the last one's tail).
@@ -134,11 +142,7 @@ CaseTimes run(const Mesh& mesh, const std::string& mesh_name, const std::string&
       (refine.enabled ? "_refine" + std::to_string(refine.iterations) : "_norefine") +
       (refine.enabled && refine.layout != RefineLayout::Auto ? std::string("_") + to_string(refine.layout)
                                                              : std::string()) +
-      (refine.enabled && refine.fine_noise_scale != Refinement{}.fine_noise_scale
-           ? (refine.fine_noise_scale > 0
-                  ? "_fine" + std::to_string(static_cast<int>(std::lround(100 * refine.fine_noise_scale))) + "pc"
-                  : std::string("_onestage"))
-           : std::string()) +
+      fit_stages_tag(refine) +
       (window.is_automatic() ? std::string()
        : window.width > 0 || window.height > 0
            ? "_window" + std::to_string(window.width) + "x" + std::to_string(window.height)

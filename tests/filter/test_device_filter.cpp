@@ -190,13 +190,10 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
       // After a tie or a coverage flip the device restarts from the reference's state, so every
       // later frame is again compared from a common state.
       if (parents_ref != parents_dev || flipped)
-        DeviceFilterProbe(device).set_state(reference.particles(), reference.occlusion_state(),
-                                            reference.occlusion_times(), reference.log_weights());
+        test::restart_from_reference(device, reference);
       resamplings += a.resampled;
       if (flipped) continue;  // a weighty particle's weight differs by the flipped pixel: not comparable
-      const bool same_fit = translation_error(a.pose, b.pose) <= 1e-5 && rotation_error(a.pose, b.pose) <= 1e-4 &&
-                            a.refine_iterations == b.refine_iterations;
-      if (!same_fit) {
+      if (!test::same_fit(a, b)) {
         // The fits went different ways from a decision at a threshold: equivalent, counted apart, and the
         // next frame starts from the reference's state.
         REQUIRE(config.refine.enabled);  // the filter alone has no fit to decide at a threshold
@@ -206,8 +203,7 @@ void compare_with_reference(const std::string& renderer, RefineLayout layout = R
                                      << fits.axis_d2);
         REQUIRE(test::equivalent_fits(fits, config));
         ++apart_fits;
-        DeviceFilterProbe(device).set_state(reference.particles(), reference.occlusion_state(),
-                                            reference.occlusion_times(), reference.log_weights());
+        test::restart_from_reference(device, reference);
         continue;
       }
       ++compared_frames;
@@ -466,8 +462,7 @@ void each_frame_from_common_state(const Scene& scene, const TrackerConfig& confi
   device.initialize(scene.frames[0].ground_truth, spread);
   for (size_t f = 0; f < scene.frames.size(); ++f) {
     INFO(scene.name << ", frame " << f);
-    DeviceFilterProbe(device).set_state(reference.particles(), reference.occlusion_state(), reference.occlusion_times(),
-                                        reference.log_weights());
+    test::restart_from_reference(device, reference);
     const double dt = frame_dt(scene, f);
     const Estimate a = reference.update(scene.frames[f].depth, dt);
     const Estimate b = device.update(scene.frames[f].depth, dt);

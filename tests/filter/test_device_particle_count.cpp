@@ -83,15 +83,13 @@ void compare_counts(const Mesh& mesh, const SynthConfig& synth, const TrackerCon
       const size_t pixels = static_cast<size_t>(synth.camera.pixel_count());
       CHECK(differing <= static_cast<size_t>(count) * pixels / 1000 + ties * pixels);
     } else {
-      DeviceFilterProbe(device).set_state(reference.particles(), reference.occlusion_state(),
-                                          reference.occlusion_times(), reference.log_weights());
+      test::restart_from_reference(device, reference);
     }
     // Tied children differ between the two clouds, and in a peaked cloud (an effective sample size of
     // 2-4) one of them can carry the estimate: the frame then runs from the reference's children, in the
     // new count's layout all the same.
     if (ties > 0)
-      DeviceFilterProbe(device).set_state(reference.particles(), reference.occlusion_state(),
-                                          reference.occlusion_times(), reference.log_weights());
+      test::restart_from_reference(device, reference);
     const double dt = f == 0 ? 0.0 : frames[f].timestamp - frames[f - 1].timestamp;
     const Estimate a = reference.update(frames[f].depth, dt);
     const Estimate b = device.update(frames[f].depth, dt);
@@ -100,16 +98,13 @@ void compare_counts(const Mesh& mesh, const SynthConfig& synth, const TrackerCon
     // equivalent but apart (equivalent_fit.hpp), after which the next frame starts from the reference's state.
     CHECK(b.effective_sample_size == Approx(a.effective_sample_size).epsilon(1e-3).margin(1e-3));
     CHECK(a.resampled == b.resampled);
-    const bool same_fit = translation_error(a.pose, b.pose) <= 1e-5 && rotation_error(a.pose, b.pose) <= 1e-4 &&
-                          a.refine_iterations == b.refine_iterations;
-    if (!same_fit) {
+    if (!test::same_fit(a, b)) {
       const auto fits = test::compare_fits(reference, a, b, frames[f].depth, mesh);
       INFO("fit steps: reference " << a.refine_iterations << ", device " << b.refine_iterations << "; objective gap "
                                    << fits.objective_gap << ", largest axis d2 " << fits.axis_d2);
       CHECK(test::equivalent_fits(fits, config));
       ++apart_fits;
-      DeviceFilterProbe(device).set_state(reference.particles(), reference.occlusion_state(),
-                                          reference.occlusion_times(), reference.log_weights());
+      test::restart_from_reference(device, reference);
     }
     resampled = a.resampled && b.resampled;
     resamplings += resampled;

@@ -11,11 +11,25 @@
 #include <depthtrack/mesh.hpp>
 #include <depthtrack/tracker.hpp>
 
+#include "filter/device_filter_probe.hpp"
 #include "model/fit_noise.hpp"
 #include "reference/pose_refiner.hpp"
 #include "reference/reference_filter.hpp"
 
 namespace depthtrack::test {
+
+// The same fit within float rounding: poses within 1e-5 m and 1e-4 rad, and the same steps tried.
+inline bool same_fit(const Estimate& a, const Estimate& b) {
+  return translation_error(a.pose, b.pose) <= 1e-5 && rotation_error(a.pose, b.pose) <= 1e-4 &&
+         a.refine_iterations == b.refine_iterations;
+}
+
+// The device's whole state replaced by the reference's, so that the next frame starts from a common state
+// (after a resampling tie, a silhouette pixel flipped, or fits equivalent but apart).
+inline void restart_from_reference(DeviceFilter& device, const reference::ReferenceFilter& reference) {
+  DeviceFilterProbe(device).set_state(reference.particles(), reference.occlusion_state(), reference.occlusion_times(),
+                                      reference.log_weights());
+}
 
 struct FitComparison {
   double objective_gap = 0;  // the reference's objective at its pose minus at the device's (nats)
@@ -30,15 +44,13 @@ inline FitComparison compare_fits(const reference::ReferenceFilter& reference, c
   const auto apart = reference::twist_between(a.pose, b.pose, mesh.centre().cast<double>());
   for (int axis = 0; axis < 6; ++axis) {
     const double variance = a.covariance(axis, axis);
-    if (std::isfinite(variance) && variance > 0)
-      c.axis_d2 = std::max(c.axis_d2, apart[axis] * apart[axis] / variance);
+    if (std::isfinite(variance) && variance > 0) c.axis_d2 = std::max(c.axis_d2, apart[axis] * apart[axis] / variance);
   }
   return c;
 }
 
 inline bool equivalent_fits(const FitComparison& c, const TrackerConfig& config) {
-  return std::abs(c.objective_gap) <= model::step_tolerance(model::last_noise_scale(config.refine)) &&
-         c.axis_d2 <= 1.0;
+  return std::abs(c.objective_gap) <= model::step_tolerance(model::last_noise_scale(config.refine)) && c.axis_d2 <= 1.0;
 }
 
 }  // namespace depthtrack::test
