@@ -70,8 +70,9 @@ struct Estimate {
   StepTimings timings;
   int refine_iterations = 0;  ///< steps the refinement tried (each one rendering of the pose); 0 when off
   /// The probability that the pose lies within tolerance of the truth (ADD-S at most 10 mm and a tenth
-  /// of the object's diameter), from `evidence` by a calibrated model (docs/confidence.md); 0 for a
-  /// frame without data or a silhouette that covers no measured pixel.
+  /// of the object's diameter): this frame's `evidence` by a calibrated model and, where that supports
+  /// the pose (at least loss.lost_below), the run of supported frames before it, at most 0.99
+  /// (docs/confidence.md); 0 for a frame without data or a silhouette that covers no measured pixel.
   double confidence = 0;
   PoseEvidence evidence;  ///< what the frame's depth says about the pose, at the working resolution
   TrackStatus status = TrackStatus::Tracking;

@@ -27,7 +27,7 @@ double surface_relief(const PoseEvidence& e) {
   return std::max(0.0, std::min(e.plane_rms, kRmsCap) - rms);
 }
 
-double pose_confidence(const PoseEvidence& e) {
+double evidence_probability(const PoseEvidence& e) {
   const double measured = e.visible + e.occluded + e.contradicted;
   if (e.pixels == 0 || !(measured > 0)) return 0.0;
   // The outline's share that sees past the edge, of the whole outline: the part against nearer surfaces
@@ -36,12 +36,18 @@ double pose_confidence(const PoseEvidence& e) {
   const double z = kFitted.bias + kFitted.occluded * e.occluded + kFitted.contradicted * e.contradicted +
                    kFitted.visible_rms * std::min(e.visible_rms, kRmsCap) + kFitted.separated_free * separated_free +
                    kFitted.relief * surface_relief(e);
+  return 1.0 / (1.0 + std::exp(-z));
+}
+
+double pose_support(const PoseEvidence& e) {
   // A pose seen by fewer pixels than a plane needs has its evidence fitted as well by a wrong one (the
   // handset behind a 90 % occluder: 1-8 seen at 80x60, its wrong poses sliding along the visible strip):
   // the confidence counts in proportion to the pixels seen, so such a pose is never supported.
-  const double seen = e.pixels * (1.0 - e.missing) * e.visible;
-  const double support = std::min(1.0, seen / static_cast<double>(kPlanePixels));
-  return support / (1.0 + std::exp(-z));
+  return std::min(1.0, seen_pixels(e) / static_cast<double>(kPlanePixels));
 }
+
+double seen_pixels(const PoseEvidence& e) { return e.pixels * (1.0 - e.missing) * e.visible; }
+
+double pose_confidence(const PoseEvidence& e) { return pose_support(e) * evidence_probability(e); }
 
 }  // namespace depthtrack

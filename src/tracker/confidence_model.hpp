@@ -8,8 +8,15 @@
 namespace depthtrack {
 
 // In [0, 1]; 0 for a silhouette with no measured pixel (nothing supports the pose), and below 0.5 for one
-// with fewer than kPlanePixels seen (on the surface): the model's probability times seen / kPlanePixels.
+// with fewer than kPlanePixels seen (on the surface): evidence_probability times pose_support. The
+// confidence of this frame alone: a track's reported one also weighs its run (tracker/run_confidence.hpp).
 double pose_confidence(const PoseEvidence& evidence);
+// The logistic model's probability alone, as if every pixel needed were seen.
+double evidence_probability(const PoseEvidence& evidence);
+// min(1, seen_pixels / kPlanePixels): how far the pixels seen can speak for the pose.
+double pose_support(const PoseEvidence& evidence);
+// The silhouette's pixels that see the pose's surface: measured and within the band.
+double seen_pixels(const PoseEvidence& evidence);
 // The model's relief input: how far plane_rms exceeds visible_rms (both read up to 3), 0 where a plane
 // explains the seen pixels as well as the pose does. A wall or a table seen through a wrong pose leaves
 // the plane's residual at the noise.

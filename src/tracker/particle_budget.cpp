@@ -95,7 +95,8 @@ void ParticleBudget::prime(double per_particle_ms) {
   primed_ = true;
 }
 
-void ParticleBudget::observe(const Estimate& e, const Eigen::Matrix<double, 6, 6>& fit_covariance) {
+void ParticleBudget::observe(const Estimate& e, const Eigen::Matrix<double, 6, 6>& fit_covariance,
+                             double frame_confidence) {
   if (settle_left_ > 0) --settle_left_;
   const bool initial_frame = std::exchange(initial_frame_, false);
   const StepTimings& t = e.timings;
@@ -147,7 +148,8 @@ void ParticleBudget::observe(const Estimate& e, const Eigen::Matrix<double, 6, 6
     need_ = 1;
     return;
   }
-  need_ = std::clamp((kConfident - e.confidence) / (kConfident - std::min(lost_below_, kConfident - 1e-3)), 0.0, 1.0);
+  need_ = std::clamp((kConfident - frame_confidence) / (kConfident - std::min(lost_below_, kConfident - 1e-3)), 0.0,
+                     1.0);
   // A NaN ratio (no fit) adds nothing; +infinity (a direction set apart) the most.
   const double spread = fit_spread_ratio(fit_covariance, motion_);
   if (!std::isnan(spread))

@@ -56,7 +56,12 @@ class ParticleBudget {
   int next_initial(double search_ms);
   // What the frame just run took and said (its particles, timings, confidence and status), and the fit's
   // own covariance (the refinement's, before the tracker calibrates it for the report; NaN without a fit).
-  void observe(const Estimate& e, const Eigen::Matrix<double, 6, 6>& fit_covariance);
+  // frame_confidence: the frame's own (pose_confidence of its evidence), how hard this frame is whatever
+  // the run before it says; e.confidence where it is not given.
+  void observe(const Estimate& e, const Eigen::Matrix<double, 6, 6>& fit_covariance, double frame_confidence);
+  void observe(const Estimate& e, const Eigen::Matrix<double, 6, 6>& fit_covariance) {
+    observe(e, fit_covariance, e.confidence);
+  }
   void observe(const Estimate& e) { observe(e, Eigen::Matrix<double, 6, 6>::Constant(std::nan(""))); }
   // Before the first frame: one particle's time measured outside the frames (a drawing and weighing of
   // the start pose). Until a frame is timed the model is that per particle and kPrimedFixed of it fixed

@@ -318,7 +318,7 @@ bool TrackSupervisor::fit_confident(search::SearchResult& result, const DepthIma
     const SilhouetteShares& s = shares[i];
     // A pose seen by a few pixels has its evidence fitted as well by a wrong one (the handset behind a 90 %
     // occluder: 5-9 pixels at 80x60): only poses seen by as many as the relief needs are chosen by it.
-    const double seen = s.pixels * (1.0 - s.missing) * s.visible;
+    const double seen = seen_pixels(s);
     if (seen >= static_cast<double>(kPlanePixels) && pose_confidence(s) >= config_.loss.lost_below)
       supported.push_back({fitted[i], scores[i]});
   }
@@ -401,12 +401,12 @@ bool TrackSupervisor::found(const Pose& pose, const DepthImage& working) {
   return pose_confidence(s) >= config_.loss.found_above && s.separated >= config_.loss.found_outline;
 }
 
-TrackStatus TrackSupervisor::observe(double confidence) {
+TrackSupervisor::Verdict TrackSupervisor::observe(const PoseEvidence& evidence, double time_s) {
   // A pose the evidence does not support is never reported as tracked: lost at once. The filter can
   // find the object again by itself (an occluder moves away), which ends it just as at once.
-  lost_frames_ = confidence < config_.loss.lost_below ? lost_frames_ + 1 : 0;
+  lost_frames_ = pose_confidence(evidence) < config_.loss.lost_below ? lost_frames_ + 1 : 0;
   status_ = lost_frames_ > 0 ? TrackStatus::Lost : TrackStatus::Tracking;
-  return status_;
+  return {run_.update(evidence, time_s, config_.loss.lost_below), status_};
 }
 
 bool TrackSupervisor::should_search() const {
@@ -416,6 +416,7 @@ bool TrackSupervisor::should_search() const {
 void TrackSupervisor::reset() {
   status_ = TrackStatus::Tracking;
   lost_frames_ = 0;
+  run_.end_run();
 }
 
 }  // namespace depthtrack

@@ -15,6 +15,7 @@
 #include "search/visible_box.hpp"
 #include "tracker/make_filter_backend.hpp"
 #include "tracker/search_workers.hpp"
+#include "tracker/run_confidence.hpp"
 #include "tracker/silhouette_shares.hpp"
 
 namespace depthtrack {
@@ -59,8 +60,15 @@ class TrackSupervisor {
   // Whether a search candidate ends lost: the depth supports it (confidence at least
   // loss.found_above) and it stands out from its surroundings (loss.found_outline of its outline).
   bool found(const Pose& pose, const DepthImage& working);
-  // Takes this frame's confidence; returns the status after it: lost while it is below loss.lost_below.
-  TrackStatus observe(double confidence);
+  struct Verdict {
+    double confidence;  // to report: the frame's, or where it supports the pose, its run's (run_confidence.hpp)
+    TrackStatus status;
+  };
+  // Takes this frame's evidence, taken at time_s; the status after it is lost while the frame's own
+  // confidence is below loss.lost_below.
+  Verdict observe(const PoseEvidence& evidence, double time_s);
+  // A gap the motion model cannot bridge: the frames before it no longer speak for the next one.
+  void end_run() { run_.end_run(); }
   // Lost for loss.search_after frames in a row: the next frame searches (a shorter dip, such as a
   // passing occluder, is left to the filter).
   bool should_search() const;
@@ -105,6 +113,7 @@ class TrackSupervisor {
   std::optional<Pose> drawn_;
   TrackStatus status_ = TrackStatus::Tracking;
   int lost_frames_ = 0;  // frames in a row below loss.lost_below
+  RunConfidence run_;
 };
 
 }  // namespace depthtrack

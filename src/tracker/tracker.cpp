@@ -311,6 +311,7 @@ void Tracker::Impl::start_frame(const DepthImage& working, const std::function<c
   PendingFrame search;
   gap_pending_ = gap_pending_ || (has_previous_ && timestamp - previous_timestamp_ > config_.max_time_step);
   const bool gap = gap_pending_;
+  if (gap) supervisor_->end_run();
   choose_particle_count(gap || (config_.recovery.enabled && supervisor_->should_search()));
   if (config_.recovery.enabled && working.valid_count() > 0 && (gap || supervisor_->should_search())) {
     gap_pending_ = false;
@@ -392,7 +393,8 @@ Estimate Tracker::Impl::collect_frame() {
 void Tracker::Impl::assess_frame(Estimate& e, const DepthImage& working) {
   const Eigen::Matrix<double, 6, 6> fit_covariance = e.covariance;  // the fit's, before the report calibrates it
   assess_confidence(e, working);
-  if (budget_) budget_->observe(e, fit_covariance);
+  // The budget follows how hard this frame is: its own evidence, not the run's confidence.
+  if (budget_) budget_->observe(e, fit_covariance, e.status == TrackStatus::NoData ? 0.0 : pose_confidence(e.evidence));
 }
 
 void Tracker::Impl::assess_confidence(Estimate& e, const DepthImage& working) {
@@ -409,8 +411,10 @@ void Tracker::Impl::assess_confidence(Estimate& e, const DepthImage& working) {
   e.evidence = supervisor_->assess(e.pose, working, drawn);
   const ResidualStructure residual = residual_structure(drawn ? *drawn : supervisor_->silhouette(e.pose),
                                                         config_.observation, config_.loss.pixel_sigmas, working);
-  e.confidence = pose_confidence(e.evidence);
-  e.status = supervisor_->observe(e.confidence);
+  // collect_frame() has made this frame's timestamp the previous one.
+  const TrackSupervisor::Verdict verdict = supervisor_->observe(e.evidence, previous_timestamp_);
+  e.confidence = verdict.confidence;
+  e.status = verdict.status;
   report_covariance(e, residual);
   e.timings.confidence_ms = clock.elapsed_ms();
   e.timings.total_ms += e.timings.confidence_ms;
