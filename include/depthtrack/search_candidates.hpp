@@ -14,7 +14,7 @@ namespace depthtrack {
 struct SearchCandidate {
   Pose pose;              ///< camera_from_object, metres
   double score = 0;       ///< log-likelihood of the frame at this pose, with a fresh occlusion prior
-  double confidence = 0;  ///< Estimate::confidence's model at this pose: the probability it lies within tolerance
+  double confidence = 0;  ///< the confidence model at this pose, from this frame alone: the probability it lies within tolerance
 };
 
 /// The candidates of the tracker's last initialize_global, in the search's order: the best first, the
