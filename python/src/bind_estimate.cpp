@@ -71,7 +71,8 @@ void bind_estimate(py::module_& m) {
       .def_readonly("timings", &Estimate::timings)
       .def_readonly("confidence", &Estimate::confidence,
                     "probability that the pose is within tolerance of the truth (ADD-S <= 10 mm and a tenth of the "
-                    "diameter), calibrated from `evidence`")
+                    "diameter): calibrated from `evidence`, raised by the run of supported frames before it (at most "
+                    "0.99) where this frame's own evidence supports the pose")
       .def_readonly("evidence", &Estimate::evidence, "what the frame's depth says about the pose (PoseEvidence)")
       .def_property_readonly(
           "status", [](const Estimate& e) { return std::string(to_string(e.status)); }, "tracking, lost or no-data")
