@@ -46,8 +46,12 @@ double pose_support(const PoseEvidence& e) {
   return std::min(1.0, seen_pixels(e) / static_cast<double>(kPlanePixels));
 }
 
-double seen_pixels(const PoseEvidence& e) { return e.pixels * (1.0 - e.missing) * e.visible; }
+double seen_pixels(const PoseEvidence& e) {
+  return e.pixels * (1.0 - e.missing) * e.visible;
+}
 
-double pose_confidence(const PoseEvidence& e) { return pose_support(e) * evidence_probability(e); }
+double pose_confidence(const PoseEvidence& e) {
+  return pose_support(e) * evidence_probability(e);
+}
 
 }  // namespace depthtrack

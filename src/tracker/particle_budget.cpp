@@ -148,8 +148,8 @@ void ParticleBudget::observe(const Estimate& e, const Eigen::Matrix<double, 6, 6
     need_ = 1;
     return;
   }
-  need_ = std::clamp((kConfident - frame_confidence) / (kConfident - std::min(lost_below_, kConfident - 1e-3)), 0.0,
-                     1.0);
+  need_ =
+      std::clamp((kConfident - frame_confidence) / (kConfident - std::min(lost_below_, kConfident - 1e-3)), 0.0, 1.0);
   // A NaN ratio (no fit) adds nothing; +infinity (a direction set apart) the most.
   const double spread = fit_spread_ratio(fit_covariance, motion_);
   if (!std::isnan(spread))

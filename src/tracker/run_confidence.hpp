@@ -13,17 +13,16 @@
 // What decides the status is the frame alone: a frame below loss.lost_below is reported lost with its own
 // confidence and ends the run, as does a start, a re-seeding search or a gap the motion cannot bridge. A
 // supported frame reports the larger of its own confidence and the run's, at most kMostConfident.
-#include <optional>
-
 #include <depthtrack/pose_evidence.hpp>
+#include <optional>
 
 namespace depthtrack {
 
 class RunConfidence {
  public:
-  static constexpr double kHazard = 0.1;             // per kFramePeriod: the chance the run's pose goes wrong unseen
-  static constexpr double kFramePeriod = 1.0 / 30;   // s
-  static constexpr double kMostConfident = 0.99;     // never more: the run is a few clips' measure
+  static constexpr double kHazard = 0.1;            // per kFramePeriod: the chance the run's pose goes wrong unseen
+  static constexpr double kFramePeriod = 1.0 / 30;  // s
+  static constexpr double kMostConfident = 0.99;    // never more: the run is a few clips' measure
 
   // evidence: this frame's, taken at time_s (seconds, increasing); lost_below: the status's threshold.
   // Returns the confidence to report.

@@ -309,7 +309,7 @@ bool TrackSupervisor::fit_confident(search::SearchResult& result, const DepthIma
       start.translation += step * result.translation_spacing * start.apply(object_.centre).normalized();
       starts.push_back(start);
     }
-  // The best few turned a quarter, a half and three quarters about the view ray through the centre: a
+  // The best two turned a quarter, a half and three quarters about the view ray through the centre: a
   // face seen head-on shows the depth its outline alone, which the coarse grid's rotations can miss by a
   // quarter turn (the gelatin box of ycbv-0000 at 80x60: 90 degrees off, ADD-S 3.9 mm).
   for (size_t i = 0; i < std::min(result.candidates.size(), kTurnedInBox); ++i) {

@@ -14,8 +14,8 @@
 #include "search/global_search.hpp"
 #include "search/visible_box.hpp"
 #include "tracker/make_filter_backend.hpp"
-#include "tracker/search_workers.hpp"
 #include "tracker/run_confidence.hpp"
+#include "tracker/search_workers.hpp"
 #include "tracker/silhouette_shares.hpp"
 
 namespace depthtrack {

@@ -13,8 +13,12 @@ namespace {
 constexpr double kLostBelow = 0.5;
 constexpr double kFrame = 1.0 / 30;
 
-double logit(double p) { return std::log(p / (1 - p)); }
-double logistic(double z) { return 1 / (1 + std::exp(-z)); }
+double logit(double p) {
+  return std::log(p / (1 - p));
+}
+double logistic(double z) {
+  return 1 / (1 + std::exp(-z));
+}
 
 // A can's evidence as the tracker sees it on a real clip: its surface where the pose puts it, a third
 // of it hidden, its residual near the noise. Supported, but not by much.
