@@ -304,8 +304,8 @@ void Tracker::Impl::start_frame(const DepthImage& working, const std::function<c
     throw InputError(m.str());
   }
   // After a gap the motion model cannot bridge (max_time_step) the particles are drawn anew around the
-  // last pose, and, unless this frame still supports that pose, around the best candidates of a search
-  // near it too: the next frames' weights decide among them, and the confidence says when the track
+  // last pose, and, unless this frame still supports that pose, around those best candidates of a search
+  // near it that the evidence supports: the next frames' weights decide among them, and the confidence says when the track
   // holds again. While lost for a few frames, the whole frame is searched; a candidate the depth
   // supports re-seeds the filter. A dropout frame has nothing to search.
   PendingFrame search;
@@ -322,8 +322,12 @@ void Tracker::Impl::start_frame(const DepthImage& working, const std::function<c
       found = supervisor_->search(sensor_frame(), working, gap ? supervisor_->around(last_pose_) : InitHint::anywhere(),
                                   config_.recovery.budget_ms, ++search_round_);
     if (gap) {
+      // Beside the last pose, only candidates the evidence supports: the likelihood alone prefers a pose
+      // that explains more pixels, so an unsupported one elsewhere would win over a right pose seen by few
+      // (the YCB tuna fish can behind a 70 % occluder: 86 mm off after a 0.5 s gap).
       std::vector<Pose> modes{last_pose_};
-      for (const Pose& p : TrackSupervisor::seeds(found)) modes.push_back(p);
+      for (const Pose& p : TrackSupervisor::seeds(found))
+        if (pose_confidence(supervisor_->assess(p, working)) >= config_.loss.lost_below) modes.push_back(p);
       backend_->initialize_modes(modes, kSearchSpread);
       has_previous_ = false;
       search.recovered = true;
