@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Tries a temporal confidence on tracked frames: a two-state forward filter over "the pose is right".
+"""Evaluates temporal confidences on tracked frames: two-state forward filters over "the pose is right".
 
 Reads files of depthtrack_confidence_samples --track (each run's frames in order) and, for each file held
 out in turn, picks the filter's parameters on the others (least log-loss over a small grid) and prints the
