@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "tracker/silhouette_shares.hpp"
 
@@ -27,16 +28,20 @@ double surface_relief(const PoseEvidence& e) {
   return std::max(0.0, std::min(e.plane_rms, kRmsCap) - rms);
 }
 
-double evidence_probability(const PoseEvidence& e) {
+double evidence_log_odds(const PoseEvidence& e) {
   const double measured = e.visible + e.occluded + e.contradicted;
-  if (e.pixels == 0 || !(measured > 0)) return 0.0;
+  if (e.pixels == 0 || !(measured > 0)) return -std::numeric_limits<double>::infinity();
   // The outline's share that sees past the edge, of the whole outline: the part against nearer surfaces
   // (occluders) says nothing either way.
   const double separated_free = e.separated * (1.0 - e.outline_nearer);
   const double z = kFitted.bias + kFitted.occluded * e.occluded + kFitted.contradicted * e.contradicted +
                    kFitted.visible_rms * std::min(e.visible_rms, kRmsCap) + kFitted.separated_free * separated_free +
                    kFitted.relief * surface_relief(e);
-  return 1.0 / (1.0 + std::exp(-z));
+  return z;
+}
+
+double evidence_probability(const PoseEvidence& e) {
+  return 1.0 / (1.0 + std::exp(-evidence_log_odds(e)));
 }
 
 double pose_support(const PoseEvidence& e) {

@@ -11,8 +11,10 @@ namespace depthtrack {
 // with fewer than kPlanePixels seen (on the surface): evidence_probability times pose_support. The
 // confidence of this frame alone: a track's reported one also weighs its run (tracker/run_confidence.hpp).
 double pose_confidence(const PoseEvidence& evidence);
-// The logistic model's probability alone, as if every pixel needed were seen.
+// The logistic model's probability alone, as if every pixel needed were seen; and its log odds (-infinity
+// for a silhouette with no measured pixel).
 double evidence_probability(const PoseEvidence& evidence);
+double evidence_log_odds(const PoseEvidence& evidence);
 // min(1, seen_pixels / kPlanePixels): how far the pixels seen can speak for the pose.
 double pose_support(const PoseEvidence& evidence);
 // The silhouette's pixels that see the pose's surface: measured and within the band.

@@ -24,9 +24,12 @@ class RunConfidence {
   static constexpr double kFramePeriod = 1.0 / 30;  // s
   static constexpr double kMostConfident = 0.99;    // never more: the run is a few clips' measure
 
+  struct Reading {
+    double frame;     // the frame's own confidence (pose_confidence): what the status and the budget follow
+    double reported;  // what the track reports
+  };
   // evidence: this frame's, taken at time_s (seconds, increasing); lost_below: the status's threshold.
-  // Returns the confidence to report.
-  double update(const PoseEvidence& evidence, double time_s, double lost_below);
+  Reading update(const PoseEvidence& evidence, double time_s, double lost_below);
   void end_run() { carried_.reset(); }  // the next frame starts a run from its own evidence
 
  private:

@@ -382,6 +382,13 @@ std::vector<Pose> TrackSupervisor::seeds(const search::SearchResult& result) {
   return out;
 }
 
+std::vector<Pose> TrackSupervisor::supported_seeds(const search::SearchResult& result, const DepthImage& working) {
+  std::vector<Pose> out;
+  for (const Pose& p : seeds(result))
+    if (pose_confidence(assess(p, working)) >= config_.loss.lost_below) out.push_back(p);
+  return out;
+}
+
 SilhouetteShares TrackSupervisor::assess(const Pose& pose, const DepthImage& working, const std::vector<float>* drawn) {
   drawn_.reset();  // until the rendering is done
   SilhouetteShares shares;
@@ -419,9 +426,10 @@ bool TrackSupervisor::found(const Pose& pose, const DepthImage& working) {
 TrackSupervisor::Verdict TrackSupervisor::observe(const PoseEvidence& evidence, double time_s) {
   // A pose the evidence does not support is never reported as tracked: lost at once. The filter can
   // find the object again by itself (an occluder moves away), which ends it just as at once.
-  lost_frames_ = pose_confidence(evidence) < config_.loss.lost_below ? lost_frames_ + 1 : 0;
+  const RunConfidence::Reading reading = run_.update(evidence, time_s, config_.loss.lost_below);
+  lost_frames_ = reading.frame < config_.loss.lost_below ? lost_frames_ + 1 : 0;
   status_ = lost_frames_ > 0 ? TrackStatus::Lost : TrackStatus::Tracking;
-  return {run_.update(evidence, time_s, config_.loss.lost_below), status_};
+  return {reading.reported, reading.frame, status_};
 }
 
 bool TrackSupervisor::should_search() const {

@@ -50,6 +50,10 @@ class TrackSupervisor {
   InitHint around(const Pose& pose) const;
   // The candidates to seed the filter with: the best, and the runners-up nearly as likely.
   static std::vector<Pose> seeds(const search::SearchResult& result);
+  // Of those, the ones this frame's evidence supports (confidence at least loss.lost_below): after a gap
+  // the likelihood alone prefers a pose explaining more pixels, and would take an unsupported one
+  // elsewhere over a right pose seen by few (the YCB tuna fish can behind a 70 % occluder).
+  std::vector<Pose> supported_seeds(const search::SearchResult& result, const DepthImage& working);
 
   // drawn, when given: the mesh's working-resolution depth at pose as the filter drew it
   // (FilterBackend::rendering_of), not drawn again.
@@ -61,7 +65,8 @@ class TrackSupervisor {
   // loss.found_above) and it stands out from its surroundings (loss.found_outline of its outline).
   bool found(const Pose& pose, const DepthImage& working);
   struct Verdict {
-    double confidence;  // to report: the frame's, or where it supports the pose, its run's (run_confidence.hpp)
+    double confidence;        // to report: the frame's, or where it supports the pose, its run's (run_confidence.hpp)
+    double frame_confidence;  // the frame's own: what the status follows
     TrackStatus status;
   };
   // Takes this frame's evidence, taken at time_s; the status after it is lost while the frame's own

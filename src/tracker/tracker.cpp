@@ -305,8 +305,8 @@ void Tracker::Impl::start_frame(const DepthImage& working, const std::function<c
   }
   // After a gap the motion model cannot bridge (max_time_step) the particles are drawn anew around the
   // last pose, and, unless this frame still supports that pose, around those best candidates of a search
-  // near it that the evidence supports: the next frames' weights decide among them, and the confidence says when the track
-  // holds again. While lost for a few frames, the whole frame is searched; a candidate the depth
+  // near it that the evidence supports: the next frames' weights decide among them, and the confidence
+  // says when the track holds again. While lost for a few frames, the whole frame is searched; a candidate the depth
   // supports re-seeds the filter. A dropout frame has nothing to search.
   PendingFrame search;
   gap_pending_ = gap_pending_ || (has_previous_ && timestamp - previous_timestamp_ > config_.max_time_step);
@@ -322,12 +322,8 @@ void Tracker::Impl::start_frame(const DepthImage& working, const std::function<c
       found = supervisor_->search(sensor_frame(), working, gap ? supervisor_->around(last_pose_) : InitHint::anywhere(),
                                   config_.recovery.budget_ms, ++search_round_);
     if (gap) {
-      // Beside the last pose, only candidates the evidence supports: the likelihood alone prefers a pose
-      // that explains more pixels, so an unsupported one elsewhere would win over a right pose seen by few
-      // (the YCB tuna fish can behind a 70 % occluder: 86 mm off after a 0.5 s gap).
       std::vector<Pose> modes{last_pose_};
-      for (const Pose& p : TrackSupervisor::seeds(found))
-        if (pose_confidence(supervisor_->assess(p, working)) >= config_.loss.lost_below) modes.push_back(p);
+      for (const Pose& p : supervisor_->supported_seeds(found, working)) modes.push_back(p);
       backend_->initialize_modes(modes, kSearchSpread);
       has_previous_ = false;
       search.recovered = true;
@@ -396,19 +392,19 @@ Estimate Tracker::Impl::collect_frame() {
 
 void Tracker::Impl::assess_frame(Estimate& e, const DepthImage& working) {
   const Eigen::Matrix<double, 6, 6> fit_covariance = e.covariance;  // the fit's, before the report calibrates it
-  assess_confidence(e, working);
+  const double frame_confidence = assess_confidence(e, working);
   // The budget follows how hard this frame is: its own evidence, not the run's confidence.
-  if (budget_) budget_->observe(e, fit_covariance, e.status == TrackStatus::NoData ? 0.0 : pose_confidence(e.evidence));
+  if (budget_) budget_->observe(e, fit_covariance, frame_confidence);
 }
 
-void Tracker::Impl::assess_confidence(Estimate& e, const DepthImage& working) {
+double Tracker::Impl::assess_confidence(Estimate& e, const DepthImage& working) {
   // A dropout: every pixel adds 0 to every particle's log-likelihood, so the weights stay as they
   // are and resampling, decided on them, cannot trigger: the filter propagates only.
   if (working.valid_count() == 0) {
     // Nothing was seen: no evidence for or against the track, so the loss hysteresis is left alone.
     e.confidence = 0;
     e.status = TrackStatus::NoData;
-    return;
+    return 0.0;
   }
   const Stopwatch clock;
   const std::vector<float>* drawn = backend_->rendering_of(e.pose);
@@ -422,6 +418,7 @@ void Tracker::Impl::assess_confidence(Estimate& e, const DepthImage& working) {
   report_covariance(e, residual);
   e.timings.confidence_ms = clock.elapsed_ms();
   e.timings.total_ms += e.timings.confidence_ms;
+  return verdict.frame_confidence;
 }
 
 void Tracker::Impl::report_covariance(Estimate& e, const ResidualStructure& residual) const {

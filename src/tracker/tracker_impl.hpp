@@ -52,7 +52,8 @@ struct Tracker::Impl {
   // own state only, may run on another thread, side by side with other trackers' assessments.
   Estimate collect_frame();
   void assess_frame(Estimate& e, const DepthImage& working);
-  void assess_confidence(Estimate& e, const DepthImage& working);  // assess_frame before the budget's look
+  // assess_frame before the budget's look; returns the frame's own confidence (0 without data).
+  double assess_confidence(Estimate& e, const DepthImage& working);
   // The reported covariance from the fit's, once the frame's status and evidence are known.
   void report_covariance(Estimate& e, const ResidualStructure& residual) const;
   // The working-resolution depth of the mesh at `pose` (0 where it covers nothing): the confidence's

@@ -45,14 +45,14 @@ TEST_CASE("a run of supported frames raises the confidence, bounded by the hazar
   REQUIRE(q < 0.9);
   RunConfidence run;
   // The first frame is its own evidence.
-  CHECK(run.update(e, 0.0, kLostBelow) == Approx(q));
+  CHECK(run.update(e, 0.0, kLostBelow).reported == Approx(q));
   // The second: the prior 0.9 q + 0.05 (the hazard 0.1 towards even odds), then the frame's odds.
   const double second = logistic(logit(0.9 * q + 0.05) + logit(q));
-  CHECK(run.update(e, kFrame, kLostBelow) == Approx(second));
+  CHECK(run.update(e, kFrame, kLostBelow).reported == Approx(second));
   CHECK(second > q);
   // However long the run, the prior stays under 0.95: the frame's odds times at most 19.
   double last = 0;
-  for (int i = 2; i < 200; ++i) last = run.update(e, i * kFrame, kLostBelow);
+  for (int i = 2; i < 200; ++i) last = run.update(e, i * kFrame, kLostBelow).reported;
   CHECK(last <= logistic(logit(0.95) + logit(q)) + 1e-12);
   CHECK(last > second);
   // A frame of strong evidence after it: at most 0.99.
@@ -63,7 +63,7 @@ TEST_CASE("a run of supported frames raises the confidence, bounded by the hazar
   clear.separated = 0.95;
   clear.outline_nearer = 0.0;
   REQUIRE(pose_confidence(clear) < RunConfidence::kMostConfident);
-  CHECK(run.update(clear, 200 * kFrame, kLostBelow) == RunConfidence::kMostConfident);
+  CHECK(run.update(clear, 200 * kFrame, kLostBelow).reported == RunConfidence::kMostConfident);
 }
 
 TEST_CASE("a frame the evidence does not support reports its own confidence and ends the run", "[confidence]") {
@@ -77,8 +77,10 @@ TEST_CASE("a frame the evidence does not support reports its own confidence and 
   through.occluded = 0.02;
   const double wrong = pose_confidence(through);
   REQUIRE(wrong < kLostBelow);
-  CHECK(run.update(through, 10 * kFrame, kLostBelow) == wrong);  // whatever the run before it said
-  CHECK(run.update(e, 11 * kFrame, kLostBelow) == Approx(q));    // a new run: its own evidence
+  const RunConfidence::Reading lost = run.update(through, 10 * kFrame, kLostBelow);
+  CHECK(lost.reported == wrong);  // whatever the run before it said
+  CHECK(lost.frame == wrong);
+  CHECK(run.update(e, 11 * kFrame, kLostBelow).reported == Approx(q));  // a new run: its own evidence
 }
 
 TEST_CASE("a run forgets with time: a long pause, an end or few pixels seen", "[confidence]") {
@@ -87,10 +89,10 @@ TEST_CASE("a run forgets with time: a long pause, an end or few pixels seen", "[
   RunConfidence run;
   for (int i = 0; i < 10; ++i) run.update(e, i * kFrame, kLostBelow);
   // Ten seconds later (300 frames' hazard: 1 - 0.9^300) the prior is even odds: the frame alone.
-  CHECK(run.update(e, 9 * kFrame + 10.0, kLostBelow) == Approx(q).epsilon(1e-9));
+  CHECK(run.update(e, 9 * kFrame + 10.0, kLostBelow).reported == Approx(q).epsilon(1e-9));
   for (int i = 1; i < 10; ++i) run.update(e, 9 * kFrame + 10.0 + i * kFrame, kLostBelow);
   run.end_run();
-  CHECK(run.update(e, 30.0, kLostBelow) == Approx(q));
+  CHECK(run.update(e, 30.0, kLostBelow).reported == Approx(q));
   // Three quarters of the pixels a plane needs: the frame's odds count three quarters, on the prior.
   PoseEvidence few = e;
   few.pixels = 15;  // 15 * 0.8 = 12 seen
@@ -101,5 +103,5 @@ TEST_CASE("a run forgets with time: a long pause, an end or few pixels seen", "[
   REQUIRE(pose_confidence(few) >= kLostBelow);
   const double prior = 0.9 * q + 0.05;  // after the run's only frame so far
   const double expected = logistic(logit(prior) + 0.75 * logit(evidence_probability(few)));
-  CHECK(run.update(few, 30.0 + kFrame, kLostBelow) == Approx(std::max(pose_confidence(few), expected)));
+  CHECK(run.update(few, 30.0 + kFrame, kLostBelow).reported == Approx(std::max(pose_confidence(few), expected)));
 }

@@ -8,6 +8,7 @@
 #include <depthtrack/evaluation.hpp>
 #include <depthtrack/synth.hpp>
 #include <depthtrack/tracker.hpp>
+#include <functional>
 
 #include "support.hpp"
 #include "synth_frames.hpp"
@@ -126,34 +127,44 @@ TEST_CASE("a wall with no object in front of it: never tracking", "[trust]") {
   CHECK(tracking == 0);
 }
 
+namespace {
+// Tracks frames from 1 cm / 5 deg off the first one's truth, every timestamp from frame `before` on shifted
+// by gap seconds (the same images; only the time jumps, as when a robot's loop stalls); check gets each
+// frame's index, estimate and ADD-S.
+void track_across_gap(const Mesh& mesh, const SynthConfig& synth, const std::vector<SynthFrame>& frames,
+                      const TrackerConfig& config, int before, double gap,
+                      const std::function<void(int, const Estimate&, double)>& check) {
+  const AddsMetric adds(mesh);
+  Tracker tracker(mesh, synth.camera, config);
+  tracker.initialize(perturb_pose(frames.front().ground_truth, mesh.centre().cast<double>(), 0.01, 5, 1),
+                     InitialSpread{0.01, 0.087});
+  for (int i = 0; i < static_cast<int>(frames.size()); ++i) {
+    const Estimate e = tracker.update(frames[i].depth, frames[i].timestamp + (i >= before ? gap : 0.0));
+    check(i, e, adds(e.pose, frames[i].ground_truth));
+  }
+}
+}  // namespace
+
 TEST_CASE("a stalled camera loop (0.5 s and 2 s gaps): back within 10 mm in 5 frames, never confidently wrong",
           "[trust][gap]") {
   const Mesh mesh = test_object();
-  const AddsMetric adds(mesh);
   SynthConfig synth;
   synth.frames = 16;
   synth.occluder_fraction = 0.3;
   const std::vector<SynthFrame> frames = test::synthesize(mesh, synth);
   const int before = 6;
+  TrackerConfig config;
+  config.recovery.budget_ms = 60000;  // the whole grid: the test checks what the search finds, not the load
   for (const double gap : {0.5, 2.0}) {
-    TrackerConfig config;
-    config.recovery.budget_ms = 60000;  // the whole grid: the test checks what the search finds, not the load
-    Tracker tracker(mesh, synth.camera, config);
-    tracker.initialize(perturb_pose(frames.front().ground_truth, mesh.centre().cast<double>(), 0.01, 5, 1),
-                       InitialSpread{0.01, 0.087});
     std::printf("\ngap of %.1f s before frame %d: frame, status, confidence, ADD-S mm\n", gap, before);
-    for (int i = 0; i < synth.frames; ++i) {
-      // The same images; only the time jumps, as when a robot's loop stalls.
-      const double t = frames[i].timestamp + (i >= before ? gap : 0.0);
-      const Estimate e = tracker.update(frames[i].depth, t);
-      const double error = adds(e.pose, frames[i].ground_truth);
+    track_across_gap(mesh, synth, frames, config, before, gap, [&](int i, const Estimate& e, double error) {
       std::printf("  %2d %-9s %.2f %7.1f%s\n", i, to_string(e.status), e.confidence, 1000 * error,
                   e.recovered ? " (searched)" : "");
       INFO("frame " << i << ", gap " << gap << " s: ADD-S " << 1000 * error << " mm, confidence " << e.confidence);
       CHECK(!confidently_wrong(e, error));
       if (i >= before + 5) CHECK((error <= kWithin || e.status == TrackStatus::Lost));
       if (i == before) CHECK(e.recovered);  // the gap was searched around the last pose
-    }
+    });
   }
 }
 
@@ -164,23 +175,16 @@ TEST_CASE("a small object behind a 70 % occluder keeps its pose across a gap", "
   const auto path = test::shared_data("meshes/ycb/007_tuna_fish_can.obj");
   if (!path) return;
   const Mesh mesh = Mesh::load(*path);
-  const AddsMetric adds(mesh);
   SynthConfig synth;
   synth.frames = 10;
   synth.occluder_fraction = 0.7;
-  const std::vector<SynthFrame> frames = test::synthesize(mesh, synth);
   const int before = 6;
-  Tracker tracker(mesh, synth.camera, TrackerConfig{});
-  tracker.initialize(perturb_pose(frames.front().ground_truth, mesh.centre().cast<double>(), 0.01, 5, 1),
-                     InitialSpread{0.01, 0.087});
-  for (int i = 0; i < synth.frames; ++i) {
-    const double t = frames[i].timestamp + (i >= before ? 0.5 : 0.0);
-    const Estimate e = tracker.update(frames[i].depth, t);
-    const double error = adds(e.pose, frames[i].ground_truth);
-    INFO("frame " << i << ": ADD-S " << 1000 * error << " mm, confidence " << e.confidence << ", "
-                  << to_string(e.status));
-    CHECK(!confidently_wrong(e, error));
-    if (i == before) CHECK(e.recovered);  // the gap was searched around the last pose
-    if (i >= before) CHECK(error <= kWithin);
-  }
+  track_across_gap(mesh, synth, test::synthesize(mesh, synth), TrackerConfig{}, before, 0.5,
+                   [&](int i, const Estimate& e, double error) {
+                     INFO("frame " << i << ": ADD-S " << 1000 * error << " mm, confidence " << e.confidence << ", "
+                                   << to_string(e.status));
+                     CHECK(!confidently_wrong(e, error));
+                     if (i == before) CHECK(e.recovered);  // the gap was searched around the last pose
+                     if (i >= before) CHECK(error <= kWithin);
+                   });
 }
