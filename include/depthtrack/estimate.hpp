@@ -51,7 +51,10 @@ const char* to_string(TrackStatus status);
 
 /// What the tracker says about one frame: the pose, its uncertainty and confidence, and how it was computed.
 struct Estimate {
-  Pose pose;  ///< camera_from_object: the refined pose, or the weighted mean when refinement is off
+  /// camera_from_object: the refined pose, or the weighted mean when refinement is off. For a mesh with an axis of
+  /// near symmetry (can, bowl, mug) its turn about that axis is filtered over the frames (held where the depth
+  /// cannot tell it, following it where the part that breaks the symmetry is seen), so the frame does not spin.
+  Pose pose;
   Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   ///< m/s, object's local frame
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  ///< rad/s, object's local frame
   double effective_sample_size = 0;                            ///< 1 / sum w^2 before resampling

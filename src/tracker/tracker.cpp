@@ -151,6 +151,7 @@ Tracker::Impl::Impl(std::shared_ptr<Device> device, const Camera& sensor, const 
       config_(config) {
   centre_ = checked.centre().cast<double>();
   symmetry_ = symmetry_axis(checked);
+  if (symmetry_) held_turn_.emplace(*symmetry_, config.motion);
   // Every rendering draws the simplified mesh (the given one when simplify_error is 0); a frame budget
   // draws a fine one coarser (simplify_for_budget).
   const MeshSimplification drawn = config.budget_ms > 0 ? simplify_for_budget(checked, config.simplify_error)
@@ -222,6 +223,7 @@ void Tracker::Impl::initialize(const Pose& pose, const InitialSpread& spread) {
   }
   backend_->initialize(start, spread);
   supervisor_->reset();
+  if (held_turn_) held_turn_->reset();
   search_candidates_.clear();
   initialized_ = true;
   has_previous_ = false;
@@ -276,6 +278,7 @@ Estimate Tracker::Impl::initialize_global(const DepthImage& depth, double timest
   backend_->initialize_modes(seeds, kSearchSpread);
   const double search_ms = clock.elapsed_ms();
   supervisor_->reset();
+  if (held_turn_) held_turn_->reset();
   initialized_ = true;
   has_previous_ = false;
   gap_pending_ = false;
@@ -330,6 +333,7 @@ void Tracker::Impl::start_frame(const DepthImage& working, const std::function<c
     } else if (!found.candidates.empty() && supervisor_->found(found.candidates.front().pose, working)) {
       backend_->initialize_modes(TrackSupervisor::seeds(found), kSearchSpread);
       supervisor_->reset();
+      if (held_turn_) held_turn_->reset();
       has_previous_ = false;
       search.recovered = true;
     }
@@ -404,6 +408,7 @@ double Tracker::Impl::assess_confidence(Estimate& e, const DepthImage& working) 
     // Nothing was seen: no evidence for or against the track, so the loss hysteresis is left alone.
     e.confidence = 0;
     e.status = TrackStatus::NoData;
+    hold_turn(e, std::numeric_limits<double>::infinity());  // the propagation tells nothing of the turn
     return 0.0;
   }
   const Stopwatch clock;
@@ -415,18 +420,19 @@ double Tracker::Impl::assess_confidence(Estimate& e, const DepthImage& working) 
   const TrackSupervisor::Verdict verdict = supervisor_->observe(e.evidence, previous_timestamp_);
   e.confidence = verdict.confidence;
   e.status = verdict.status;
-  report_covariance(e, residual);
+  hold_turn(e, report_covariance(e, residual));
   e.timings.confidence_ms = clock.elapsed_ms();
   e.timings.total_ms += e.timings.confidence_ms;
   return verdict.frame_confidence;
 }
 
-void Tracker::Impl::report_covariance(Estimate& e, const ResidualStructure& residual) const {
-  if (e.covariance.array().isNaN().any()) return;  // refinement off, or too few pixels for the fit
+double Tracker::Impl::report_covariance(Estimate& e, const ResidualStructure& residual) const {
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  if (e.covariance.array().isNaN().any()) return kNone;  // refinement off, or too few pixels for the fit
   // Lost, or too little of the silhouette agrees with the pose: the depth does not determine it.
   if (e.status == TrackStatus::Lost || e.evidence.visible < model::kLeastVisibleShare) {
     e.covariance = model::undetermined_covariance();
-    return;
+    return std::numeric_limits<double>::infinity();
   }
   // The fit's covariance scaled by what the residual at the estimate says, the principal point's
   // sideways shift added, and a turn about the mesh's axis of symmetry left undetermined
@@ -434,14 +440,25 @@ void Tracker::Impl::report_covariance(Estimate& e, const ResidualStructure& resi
   e.covariance =
       model::calibrated_covariance(e.covariance, residual.white, residual.smooth(), residual.pixels, working_.width);
   e.covariance = model::with_principal_point(e.covariance, e.pose.apply(centre_).z(), sensor_.fx);
-  if (symmetry_) {
-    // A turn about the axis (through symmetry_->point) as a twist about the centre: the centre moves by
-    // axis x (centre - point), both in the camera frame.
-    const Eigen::Vector3d axis = e.pose.rotation * symmetry_->direction;
-    Eigen::Matrix<double, 6, 1> turn;
-    turn << axis.cross(e.pose.rotation * (centre_ - symmetry_->point)), axis;
-    e.covariance = model::with_undetermined_direction(e.covariance, turn);
+  if (!symmetry_) return kNone;
+  // A turn about the axis (through symmetry_->point) as a twist about the centre: the centre moves by
+  // axis x (centre - point), both in the camera frame.
+  const Eigen::Vector3d axis = e.pose.rotation * symmetry_->direction;
+  const double variance = turn_variance(e.covariance, axis);
+  Eigen::Matrix<double, 6, 1> turn;
+  turn << axis.cross(e.pose.rotation * (centre_ - symmetry_->point)), axis;
+  e.covariance = model::with_undetermined_direction(e.covariance, turn);
+  return variance;
+}
+
+void Tracker::Impl::hold_turn(Estimate& e, double turn_variance) {
+  if (!held_turn_) return;
+  if (e.status == TrackStatus::Lost) {
+    held_turn_->reset();
+    return;
   }
+  // collect_frame() has made this frame's timestamp the previous one.
+  e.pose = held_turn_->report(e.pose, turn_variance, seen_pixels(e.evidence), previous_timestamp_);
 }
 
 const std::vector<float>& Tracker::Impl::silhouette(const Pose& pose) {

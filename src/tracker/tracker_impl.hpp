@@ -13,6 +13,7 @@
 
 #include "core/mesh_symmetry.hpp"
 #include "model/filter_backend.hpp"
+#include "tracker/held_turn.hpp"
 #include "tracker/particle_budget.hpp"
 #include "tracker/residual_structure.hpp"
 #include "tracker/track_supervisor.hpp"
@@ -54,8 +55,12 @@ struct Tracker::Impl {
   void assess_frame(Estimate& e, const DepthImage& working);
   // assess_frame before the budget's look; returns the frame's own confidence (0 without data).
   double assess_confidence(Estimate& e, const DepthImage& working);
-  // The reported covariance from the fit's, once the frame's status and evidence are known.
-  void report_covariance(Estimate& e, const ResidualStructure& residual) const;
+  // The reported covariance from the fit's, once the frame's status and evidence are known. Returns the
+  // variance of the turn about the mesh's axis of symmetry before the report leaves it undetermined
+  // (HeldTurn's input: +infinity when nothing is determined, NaN without an axis or a fit).
+  double report_covariance(Estimate& e, const ResidualStructure& residual) const;
+  // The pose reported with its turn about the axis of symmetry held (HeldTurn); a lost frame restarts it.
+  void hold_turn(Estimate& e, double turn_variance);
   // The working-resolution depth of the mesh at `pose` (0 where it covers nothing): the confidence's
   // own rendering when it drew that very pose last, else drawn now by the same rasterizer.
   const std::vector<float>& silhouette(const Pose& pose);
@@ -85,6 +90,7 @@ struct Tracker::Impl {
   size_t frames_since_initialize_ = 0;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();  // the mesh's, where initialize() checks the start
   std::optional<SymmetryAxis> symmetry_;              // the mesh's axis of near symmetry, if it has one
+  std::optional<HeldTurn> held_turn_;                 // the reported turn about that axis, filtered
   size_t mesh_triangles_ = 0, drawn_triangles_ = 0;
   unsigned search_round_ = 0;                       // varies each recovery search's perturbations
   std::vector<SearchCandidate> search_candidates_;  // the last initialize_global's; none after initialize()
