@@ -1,5 +1,6 @@
 #include "tracker/held_turn.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -30,7 +31,7 @@ Pose HeldTurn::report(const Pose& estimate, double turn_variance, double seen_pi
   double gain = 0;
   if (std::isinf(turn_variance)) gain = 0;
   else if (std::isinf(prior)) gain = 1;
-  else if (prior + turn_variance > 0) gain = prior / (prior + turn_variance);
+  else if (prior + turn_variance > 0) gain = std::clamp(prior / (prior + turn_variance), 0.0, 1.0);
 
   // The estimate as the last report turned by some swing, then by `turn` about the axis (object frame):
   // estimate.rotation = last.rotation * swing * twist(turn). Only the twist is filtered.
