@@ -44,7 +44,9 @@ void bind_estimate(py::module_& m) {
 
   py::class_<Estimate>(m, "Estimate", "One frame's estimate")
       .def_property_readonly(
-          "pose", [](const Estimate& e) { return pose_to_matrix(e.pose); }, "4x4 camera-from-object matrix, metres")
+          "pose", [](const Estimate& e) { return pose_to_matrix(e.pose); },
+          "4x4 camera-from-object matrix, metres; a symmetric mesh's turn about its axis held where the depth cannot "
+          "tell it")
       .def_property_readonly(
           "translation", [](const Estimate& e) { return e.pose.translation; }, "metres, camera frame")
       .def_property_readonly(

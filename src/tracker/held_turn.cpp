@@ -8,8 +8,7 @@
 namespace depthtrack {
 
 HeldTurn::HeldTurn(const SymmetryAxis& axis, const MotionModel& motion)
-    : axis_(axis),
-      variance_per_second_(motion.sigma_angular * motion.sigma_angular * motion.reference_rate) {
+    : axis_(axis), variance_per_second_(motion.sigma_angular * motion.sigma_angular * motion.reference_rate) {
   axis_.direction.normalize();
 }
 
@@ -29,9 +28,12 @@ Pose HeldTurn::report(const Pose& estimate, double turn_variance, double seen_pi
   // The share of the estimate's turn that the report takes: none where the estimate knows nothing of it,
   // all of it where the last report knew nothing.
   double gain = 0;
-  if (std::isinf(turn_variance)) gain = 0;
-  else if (std::isinf(prior)) gain = 1;
-  else if (prior + turn_variance > 0) gain = std::clamp(prior / (prior + turn_variance), 0.0, 1.0);
+  if (std::isinf(turn_variance))
+    gain = 0;
+  else if (std::isinf(prior))
+    gain = 1;
+  else if (prior + turn_variance > 0)
+    gain = std::clamp(prior / (prior + turn_variance), 0.0, 1.0);
 
   // The estimate as the last report turned by some swing, then by `turn` about the axis (object frame):
   // estimate.rotation = last.rotation * swing * twist(turn). Only the twist is filtered.

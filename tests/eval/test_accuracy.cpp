@@ -249,8 +249,9 @@ TEST_CASE("YCB-Video clip 0049: each object from ground truth perturbed by 1 cm 
 TEST_CASE("YCB-Video clip 0049: a can's and a bowl's reported frames do not spin about their axes", "[accuracy]") {
   const auto clip = test::shared_data("sequences/ycbv-0049/gt.json");
   if (!clip) return;
-  std::printf("\nycbv-0049 at 80x60, 200 particles, reference: turn about the axis a frame (rms deg), rotation error "
-              "(mean / max deg), mean ADD-S mm\n");
+  std::printf(
+      "\nycbv-0049 at 80x60, 200 particles, reference: turn about the axis a frame (rms deg), rotation error "
+      "(mean / max deg), mean ADD-S mm\n");
   for (const char* object : {"007_tuna_fish_can", "024_bowl"}) {
     const auto mesh_path = test::shared_data(std::string("meshes/ycb/") + object + ".obj");
     if (!mesh_path) return;

@@ -31,7 +31,8 @@ Eigen::Quaterniond about(const Eigen::Vector3d& axis, double degrees) {
 
 // The estimate: a swing of 2 degrees about x, then `turn` degrees about the object's z, placed at t.
 Pose estimate_with_turn(double turn) {
-  return Pose(Eigen::Vector3d(0.1, -0.05, 0.8), about(Eigen::Vector3d::UnitX(), 2) * about(Eigen::Vector3d::UnitZ(), turn));
+  return Pose(Eigen::Vector3d(0.1, -0.05, 0.8),
+              about(Eigen::Vector3d::UnitX(), 2) * about(Eigen::Vector3d::UnitZ(), turn));
 }
 
 void check_same_rotation(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
