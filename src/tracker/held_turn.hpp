@@ -1,12 +1,13 @@
 #pragma once
 // The reported turn of a near-symmetric object (a can, a bowl, a mug) about its axis of symmetry. The
 // depth tells that turn little or nothing, so the fit's estimate of it wanders with the pixels' noise
-// from frame to frame (3-5 degrees a frame on YCB-Video's tuna fish can and bowl) while the rest of the
-// pose holds: reported as estimated, the object's frame would spin at random. Instead the turn alone is
-// filtered: the last report's turn, carried over the frame's time with the motion model's angular noise,
-// and this frame's estimate of it are combined in proportion to their variances (a Kalman step in one
-// dimension). Where the depth does tell the turn (a mug's handle in view), its variance is small and the
-// report follows it; where it does not, the report holds. The rest of the pose is the estimate's.
+// from frame to frame while the rest of the pose holds: reported as estimated, the object's frame would
+// spin at random (docs/covariance.md, "The reported turn about the axis", has the figures). Instead the
+// turn alone is filtered: the last report's turn, carried over the frame's time with the motion model's
+// angular noise, and this frame's estimate of it are combined in proportion to their variances (a Kalman
+// step in one dimension). Where the depth does tell the turn (a mug's handle in view), its variance is
+// small and the report follows it; where it does not, the report holds. The rest of the pose is the
+// estimate's.
 // Which frames can tell it: a mesh symmetric to its last percent (a can, a bowl: SymmetryAxis::share 1)
 // shows no part that breaks the symmetry, and the fit's variance of the turn there comes from the mesh's
 // and the pixels' noise, not from the object: such a turn is taken as unknown (the report holds) unless
@@ -20,8 +21,10 @@
 
 namespace depthtrack {
 
-// The least pixels of the part that breaks the symmetry for a frame to tell the turn: fewer cannot
-// outweigh the few millimetres a real mesh departs from its body of revolution.
+// The least pixels of the part that breaks the symmetry for a frame to tell the turn: a handful that a
+// fit can place (a mug's handle in view shows several times this at 80x60); with fewer, what the fit's
+// variance says of the turn comes from the mesh's small departures from its body of revolution and the
+// pixels' noise.
 constexpr double kTellingPixels = 4.0;
 
 class HeldTurn {
