@@ -168,7 +168,8 @@ def main():
             signed = np.einsum("ij,ij->i", points - closest_cam, rays)
             rows.append((np.median(distance) * 1e3, distance.mean() * 1e3, signed.mean() * 1e3))
             if args.frames:
-                print(f"  {name} {frame}: {rows[-1][0]:.2f} {rows[-1][1]:.2f} {rows[-1][2]:+.2f} ({len(points)} points)")
+                median, mean, signed = rows[-1]
+                print(f"  {name} {frame}: {median:.2f} {mean:.2f} {signed:+.2f} ({len(points)} points)")
         if rows:
             r = np.asarray(rows)
             print(f"{name}, {len(rows)}, {r[:, 0].mean():.3f}, {r[:, 1].mean():.3f}, {r[:, 2].mean():+.3f}")
