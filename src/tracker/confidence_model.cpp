@@ -40,8 +40,12 @@ double evidence_log_odds(const PoseEvidence& e) {
   return z;
 }
 
+double logistic(double z) {
+  return 1.0 / (1.0 + std::exp(-z));
+}
+
 double evidence_probability(const PoseEvidence& e) {
-  return 1.0 / (1.0 + std::exp(-evidence_log_odds(e)));
+  return logistic(evidence_log_odds(e));
 }
 
 double pose_support(const PoseEvidence& e) {

@@ -11,6 +11,8 @@ namespace depthtrack {
 // with fewer than kPlanePixels seen (on the surface): evidence_probability times pose_support. The
 // confidence of this frame alone: a track's reported one also weighs its run (tracker/run_confidence.hpp).
 double pose_confidence(const PoseEvidence& evidence);
+// The probability of log odds z: 1 / (1 + e^-z).
+double logistic(double z);
 // The logistic model's probability alone, as if every pixel needed were seen; and its log odds (-infinity
 // for a silhouette with no measured pixel).
 double evidence_probability(const PoseEvidence& evidence);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 namespace depthtrack {
 
@@ -28,26 +27,24 @@ Pose HeldTurn::report(const Pose& estimate, double turn_variance, double seen_pi
   // The share of the estimate's turn that the report takes: none where the estimate knows nothing of it,
   // all of it where the last report knew nothing.
   double gain = 0;
-  if (std::isinf(turn_variance))
-    gain = 0;
-  else if (std::isinf(prior))
+  if (std::isinf(turn_variance)) {
+    // nothing from the estimate: the report holds
+  } else if (std::isinf(prior)) {
     gain = 1;
-  else if (prior + turn_variance > 0)
+  } else if (prior + turn_variance > 0) {
     gain = std::clamp(prior / (prior + turn_variance), 0.0, 1.0);
+  }
 
   // The estimate as the last report turned by some swing, then by `turn` about the axis (object frame):
   // estimate.rotation = last.rotation * swing * twist(turn). Only the twist is filtered.
-  const Eigen::Quaterniond relative = (last_->rotation.conjugate() * estimate.rotation).normalized();
+  Eigen::Quaterniond relative = (last_->rotation.conjugate() * estimate.rotation).normalized();
+  if (relative.w() < 0) relative.coeffs() = -relative.coeffs();  // the same rotation, its turn in [-pi, pi]
   const Eigen::Vector3d& d = axis_.direction;
-  double turn = 2.0 * std::atan2(relative.vec().dot(d), relative.w());
-  if (turn > std::numbers::pi) turn -= 2.0 * std::numbers::pi;
-  if (turn < -std::numbers::pi) turn += 2.0 * std::numbers::pi;
-  const double back = gain * turn - turn;  // what the report turns the estimate by
-  // A turn about the axis through axis.point: x -> p + R (x - p) in the object frame.
-  const Eigen::Quaterniond by(Eigen::AngleAxisd(back, d));
-  Pose reported;
-  reported.rotation = (estimate.rotation * by).normalized();
-  reported.translation = estimate.rotation * (axis_.point - by * axis_.point) + estimate.translation;
+  const double turn = 2.0 * std::atan2(relative.vec().dot(d), relative.w());
+  // The report turns the estimate back by what it does not take, about the axis through axis.point:
+  // x -> p + R (x - p) in the object frame.
+  const Eigen::Quaterniond back(Eigen::AngleAxisd(gain * turn - turn, d));
+  const Pose reported = estimate * Pose(axis_.point - back * axis_.point, back);
 
   last_ = reported;
   last_time_ = time;

@@ -16,7 +16,7 @@ double logit(double p) {
 
 RunConfidence::Reading RunConfidence::update(const PoseEvidence& evidence, double time_s, double lost_below) {
   const double support = pose_support(evidence), odds = evidence_log_odds(evidence);
-  const double frame = support * (1.0 / (1.0 + std::exp(-odds)));  // pose_confidence, to the bit
+  const double frame = support * logistic(odds);  // pose_confidence, to the bit
   if (!(frame >= lost_below)) {
     carried_.reset();
     return {frame, frame};
@@ -27,7 +27,7 @@ RunConfidence::Reading RunConfidence::update(const PoseEvidence& evidence, doubl
     prior = logit((1.0 - hazard) * *carried_ + 0.5 * hazard);
   }
   const double z = std::clamp(prior + support * odds, -40.0, 40.0);
-  carried_ = 1.0 / (1.0 + std::exp(-z));
+  carried_ = logistic(z);
   carried_time_s_ = time_s;
   return {frame, std::max(frame, std::min(*carried_, kMostConfident))};
 }

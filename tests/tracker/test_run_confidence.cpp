@@ -16,7 +16,7 @@ constexpr double kFrame = 1.0 / 30;
 double logit(double p) {
   return std::log(p / (1 - p));
 }
-double logistic(double z) {
+double probability_of_log_odds(double z) {
   return 1 / (1 + std::exp(-z));
 }
 
@@ -47,13 +47,13 @@ TEST_CASE("a run of supported frames raises the confidence, bounded by the hazar
   // The first frame is its own evidence.
   CHECK(run.update(e, 0.0, kLostBelow).reported == Approx(q));
   // The second: the prior 0.9 q + 0.05 (the hazard 0.1 towards even odds), then the frame's odds.
-  const double second = logistic(logit(0.9 * q + 0.05) + logit(q));
+  const double second = probability_of_log_odds(logit(0.9 * q + 0.05) + logit(q));
   CHECK(run.update(e, kFrame, kLostBelow).reported == Approx(second));
   CHECK(second > q);
   // However long the run, the prior stays under 0.95: the frame's odds times at most 19.
   double last = 0;
   for (int i = 2; i < 200; ++i) last = run.update(e, i * kFrame, kLostBelow).reported;
-  CHECK(last <= logistic(logit(0.95) + logit(q)) + 1e-12);
+  CHECK(last <= probability_of_log_odds(logit(0.95) + logit(q)) + 1e-12);
   CHECK(last > second);
   // A frame of strong evidence after it: at most 0.99.
   PoseEvidence clear = e;
@@ -102,6 +102,6 @@ TEST_CASE("a run forgets with time: a long pause, an end or few pixels seen", "[
   REQUIRE(pose_support(few) == Approx(0.75));
   REQUIRE(pose_confidence(few) >= kLostBelow);
   const double prior = 0.9 * q + 0.05;  // after the run's only frame so far
-  const double expected = logistic(logit(prior) + 0.75 * logit(evidence_probability(few)));
+  const double expected = probability_of_log_odds(logit(prior) + 0.75 * logit(evidence_probability(few)));
   CHECK(run.update(few, 30.0 + kFrame, kLostBelow).reported == Approx(std::max(pose_confidence(few), expected)));
 }
